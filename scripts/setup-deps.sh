@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Installs pcsim's build and run dependencies from Debian packages (idempotent).
+# Usage: scripts/setup-deps.sh   (run as root, or with sudo available)
+set -euo pipefail
+PACKAGES=(build-essential cmake pkg-config
+  petsc-dev slepc-dev libmetis-dev libhdf5-openmpi-dev libopenmpi-dev openmpi-bin
+  libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libgtest-dev
+  python3-numpy python3-h5py python3-matplotlib python3-scipy)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+echo "pcsim setup: installing ${missing[*]}" >&2
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

@@ -1,0 +1,128 @@
+// pcsim: pantograph-catenary dynamic interaction simulator.
+//
+//   pcsim <command> SCENE.yaml [-o DIR] [PETSc options]
+//
+// The scene (YAML) gives the physics; numerics come from PETSc's options
+// database (-snes_*, -ksp_*, -ts_*, -eps_*, -log_view, ...).
+#include <slepcsys.h>
+
+#include <cstdarg>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "command.hpp"
+#include "pcsim/error.hpp"
+
+namespace pcsim::app {
+
+std::map<std::string, Command>& command_registry() {
+  static std::map<std::string, Command> registry;
+  return registry;
+}
+
+void print0(const CommandContext& ctx, const char* format, ...) {
+  if (ctx.rank != 0) return;
+  va_list args;
+  va_start(args, format);
+  std::vfprintf(stdout, format, args);
+  va_end(args);
+  std::fflush(stdout);
+}
+
+std::string CommandContext::scene_name(const InputNode& scene) const {
+  if (scene.has("name")) return scene.get_string("name");
+  std::string base = scene_path.substr(scene_path.find_last_of('/') + 1);
+  auto dot = base.find_last_of('.');
+  return dot == std::string::npos ? base : base.substr(0, dot);
+}
+
+std::string CommandContext::resolved_output_dir(const InputNode& scene) const {
+  return output_dir.empty() ? "out/" + scene_name(scene) : output_dir;
+}
+
+}  // namespace pcsim::app
+
+namespace {
+
+void print_usage() {
+  std::printf(
+      "pcsim - parallel pantograph-catenary interaction simulator\n\n"
+      "usage: pcsim <command> SCENE.yaml [-o DIR] [PETSc options]\n\n"
+      "commands:\n");
+  for (const auto& [name, command] : pcsim::app::command_registry())
+    std::printf("  %-12s %s\n", name.c_str(), command.summary.c_str());
+  std::printf(
+      "\noptions:\n"
+      "  -o DIR       output folder (default out/<scene name>/)\n"
+      "  -h, --help   this text\n"
+      "Any other option goes to PETSc's options database, e.g. -snes_monitor,\n"
+      "-snes_test_jacobian, -ksp_type, -ts_dt, -eps_nev, -log_view, -options_left.\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace pcsim::app;
+  if (argc < 2 || !std::strcmp(argv[1], "-h") || !std::strcmp(argv[1], "--help") ||
+      !std::strcmp(argv[1], "help")) {
+    print_usage();
+    return argc < 2 ? 1 : 0;
+  }
+  const std::string command_name = argv[1];
+  auto it = command_registry().find(command_name);
+  if (it == command_registry().end()) {
+    std::fprintf(stderr, "pcsim: error: unknown command '%s' (see pcsim --help)\n",
+                 command_name.c_str());
+    return 2;
+  }
+  CommandContext ctx;
+  // Split our own arguments from PETSc's.
+  std::vector<char*> petsc_argv = {argv[0]};
+  for (int i = 2; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "-o") || !std::strcmp(argv[i], "--output")) {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "pcsim: error: option -o needs a folder\n");
+        return 2;
+      }
+      ctx.output_dir = argv[++i];
+    } else if (!std::strcmp(argv[i], "-h") || !std::strcmp(argv[i], "--help")) {
+      std::printf("usage: pcsim %s SCENE.yaml [-o DIR] [PETSc options]\n  %s\n",
+                  command_name.c_str(), it->second.summary.c_str());
+      return 0;
+    } else if (ctx.scene_path.empty() && argv[i][0] != '-') {
+      ctx.scene_path = argv[i];
+    } else {
+      petsc_argv.push_back(argv[i]);
+    }
+  }
+  if (ctx.scene_path.empty()) {
+    std::fprintf(stderr, "pcsim: error: '%s' needs a scene file (pcsim %s SCENE.yaml)\n",
+                 command_name.c_str(), command_name.c_str());
+    return 2;
+  }
+  int petsc_argc = static_cast<int>(petsc_argv.size());
+  petsc_argv.push_back(nullptr);
+  char** petsc_args = petsc_argv.data();
+  if (SlepcInitialize(&petsc_argc, &petsc_args, nullptr, nullptr) != 0) return 4;
+  ctx.comm = PETSC_COMM_WORLD;
+  MPI_Comm_rank(ctx.comm, &ctx.rank);
+  MPI_Comm_size(ctx.comm, &ctx.size);
+
+  int status = 0;
+  try {
+    status = it->second.run(ctx);
+  } catch (const pcsim::InputError& e) {
+    if (ctx.rank == 0) std::fprintf(stderr, "pcsim: error: %s\n", e.what());
+    status = 2;
+  } catch (const pcsim::SolverError& e) {
+    std::fprintf(stderr, "pcsim: solver failure (rank %d): %s\n", ctx.rank, e.what());
+    status = 3;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "pcsim: internal error (rank %d): %s\n", ctx.rank, e.what());
+    status = 4;
+  }
+  SlepcFinalize();
+  return status;
+}

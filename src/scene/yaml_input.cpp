@@ -1,0 +1,190 @@
+#include "pcsim/scene/yaml_input.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace pcsim {
+
+namespace {
+std::string short_repr(const YAML::Node& n) {
+  if (n.IsScalar()) return "'" + n.Scalar() + "'";
+  if (n.IsSequence()) return "a list";
+  if (n.IsMap()) return "a map";
+  return "nothing";
+}
+}  // namespace
+
+InputNode InputNode::load_file(const std::string& path) {
+  std::ifstream probe(path);
+  if (!probe) throw InputError(path, "", "cannot open file (missing or unreadable)");
+  try {
+    YAML::Node root = YAML::LoadFile(path);
+    if (!root.IsMap()) throw InputError(path, "", "top level must be a map of keys");
+    return InputNode(root, path, "");
+  } catch (const YAML::Exception& e) {
+    throw InputError(path, "", std::string("malformed YAML: ") + e.what());
+  }
+}
+
+InputNode InputNode::load_string(const std::string& text, const std::string& file) {
+  try {
+    return InputNode(YAML::Load(text), file, "");
+  } catch (const YAML::Exception& e) {
+    throw InputError(file, "", std::string("malformed YAML: ") + e.what());
+  }
+}
+
+std::string InputNode::directory() const {
+  auto slash = file_.find_last_of('/');
+  return slash == std::string::npos ? std::string("./") : file_.substr(0, slash + 1);
+}
+
+std::string InputNode::resolve_path(const std::string& relative) const {
+  if (!relative.empty() && relative[0] == '/') return relative;
+  return directory() + relative;
+}
+
+std::string InputNode::child_path(const std::string& key) const {
+  return path_.empty() ? key : path_ + "." + key;
+}
+
+bool InputNode::has(const std::string& key) const {
+  return node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull();
+}
+
+InputNode InputNode::operator[](const std::string& key) const {
+  if (!node_.IsMap()) fail("must be a map with key '" + key + "'");
+  if (!has(key)) throw InputError(file_, child_path(key), "required key is missing");
+  return InputNode(node_[key], file_, child_path(key));
+}
+
+InputNode InputNode::at(std::size_t index) const {
+  if (!node_.IsSequence()) fail("must be a list");
+  if (index >= node_.size()) fail("list has no entry " + std::to_string(index));
+  return InputNode(node_[index], file_, path_ + "[" + std::to_string(index) + "]");
+}
+
+std::vector<std::string> InputNode::keys() const {
+  std::vector<std::string> out;
+  if (!node_.IsMap()) return out;
+  for (const auto& kv : node_) out.push_back(kv.first.as<std::string>());
+  return out;
+}
+
+void InputNode::allow_only(std::initializer_list<const char*> allowed) const {
+  if (!node_.IsMap()) fail("must be a map of keys");
+  for (const auto& kv : node_) {
+    const std::string key = kv.first.as<std::string>();
+    bool known = false;
+    for (const char* a : allowed) known = known || key == a;
+    if (!known) {
+      std::string list;
+      for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+      throw InputError(file_, child_path(key), "unknown key (allowed here: " + list + ")");
+    }
+  }
+}
+
+double InputNode::as_double() const {
+  if (!node_.IsScalar()) fail("must be a number, got " + short_repr(node_));
+  try {
+    double v = node_.as<double>();
+    if (!std::isfinite(v)) fail("must be a finite number, got " + short_repr(node_));
+    return v;
+  } catch (const YAML::Exception&) {
+    fail("must be a number, got " + short_repr(node_));
+  }
+}
+
+long InputNode::as_int() const {
+  if (!node_.IsScalar()) fail("must be an integer, got " + short_repr(node_));
+  try {
+    return node_.as<long>();
+  } catch (const YAML::Exception&) {
+    fail("must be an integer, got " + short_repr(node_));
+  }
+}
+
+bool InputNode::as_bool() const {
+  if (!node_.IsScalar()) fail("must be true or false, got " + short_repr(node_));
+  try {
+    return node_.as<bool>();
+  } catch (const YAML::Exception&) {
+    fail("must be true or false, got " + short_repr(node_));
+  }
+}
+
+std::string InputNode::as_string() const {
+  if (!node_.IsScalar()) fail("must be a string, got " + short_repr(node_));
+  return node_.Scalar();
+}
+
+std::vector<double> InputNode::as_doubles() const {
+  if (!node_.IsSequence()) fail("must be a list of numbers, got " + short_repr(node_));
+  std::vector<double> out;
+  for (std::size_t i = 0; i < node_.size(); ++i) out.push_back(at(i).as_double());
+  return out;
+}
+
+std::array<double, 3> InputNode::as_vec3() const {
+  auto v = as_doubles();
+  if (v.size() != 3) fail("must be a list of 3 numbers [x, y, z]");
+  return {v[0], v[1], v[2]};
+}
+
+double InputNode::get_double(const std::string& key, double fallback) const {
+  return has(key) ? (*this)[key].as_double() : fallback;
+}
+long InputNode::get_int(const std::string& key, long fallback) const {
+  return has(key) ? (*this)[key].as_int() : fallback;
+}
+bool InputNode::get_bool(const std::string& key, bool fallback) const {
+  return has(key) ? (*this)[key].as_bool() : fallback;
+}
+std::string InputNode::get_string(const std::string& key, const std::string& fallback) const {
+  return has(key) ? (*this)[key].as_string() : fallback;
+}
+
+static std::string num(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+double InputNode::get_positive(const std::string& key) const {
+  double v = get_double(key);
+  if (!(v > 0)) fail_key(key, "must be positive (got " + num(v) + ")");
+  return v;
+}
+double InputNode::get_positive(const std::string& key, double fallback) const {
+  return has(key) ? get_positive(key) : fallback;
+}
+double InputNode::get_nonnegative(const std::string& key) const {
+  double v = get_double(key);
+  if (!(v >= 0)) fail_key(key, "must not be negative (got " + num(v) + ")");
+  return v;
+}
+double InputNode::get_nonnegative(const std::string& key, double fallback) const {
+  return has(key) ? get_nonnegative(key) : fallback;
+}
+
+std::string InputNode::get_choice(const std::string& key,
+                                  std::initializer_list<const char*> choices,
+                                  const std::string& fallback) const {
+  if (!has(key)) return fallback;
+  std::string v = get_string(key);
+  std::string list;
+  for (const char* c : choices) {
+    if (v == c) return v;
+    list += (list.empty() ? "" : ", ") + std::string(c);
+  }
+  fail_key(key, "must be one of " + list + " (got '" + v + "')");
+}
+
+void InputNode::fail(const std::string& reason) const { throw InputError(file_, path_, reason); }
+void InputNode::fail_key(const std::string& key, const std::string& reason) const {
+  throw InputError(file_, child_path(key), reason);
+}
+
+}  // namespace pcsim
