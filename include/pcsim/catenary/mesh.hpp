@@ -1,0 +1,128 @@
+// Catenary finite-element mesh: nodes, ANCF cable elements, bar elements,
+// point masses, supports, and the targets of form-finding.
+//
+// Coordinates: x along the track, y lateral, z vertical (up); SI units.
+// Every node carries 6 DOFs: position r = (x, y, z) and slope r' = dr/dchi,
+// chi being the arc-length parameter of the design configuration (thesis
+// eq. 3.2). Slope DOFs of nodes that belong to no cable element are not
+// unknowns (the assembly fixes them).
+#pragma once
+
+#include <Eigen/Core>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace pcsim::catenary {
+
+constexpr int kNodeDofs = 6;
+
+struct Node {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // design position [m]
+  Eigen::Vector3d slope = Eigen::Vector3d::Zero();     // design unit tangent (cable nodes)
+  std::array<bool, kNodeDofs> fixed{};                 // DOF held at its design value
+};
+
+enum class WireKind { messenger, contact, stitch, other };
+
+// Cable properties (thesis 3.1.1).
+struct Wire {
+  std::string name;
+  WireKind kind = WireKind::other;
+  double mass_per_length = 0;  // [kg/m]
+  double EA = 0;               // axial stiffness [N]
+  double EI = 0;               // bending stiffness [N m^2]
+  double tension = 0;          // design tension [N] (form-finding target)
+  std::vector<int> nodes;      // node indices in order along the wire
+  std::vector<int> elements;   // cable element indices in order
+};
+
+// ANCF cable element between nodes[0] and nodes[1].
+struct CableElement {
+  std::array<int, 2> nodes{};
+  int wire = -1;
+  double ref_length = 0;         // length of the chi parameter (design length) [m]
+  double unstressed_length = 0;  // L0 [m]; strain is measured against it
+  int tension_segment = -1;      // index into CatenaryMesh::tension_segments, or -1
+};
+
+enum class BarKind { dropper, steady_arm, stitch, other };
+// How a bar goes slack (thesis 3.1.2):
+//  none:   N = k (l - L0) always;
+//  length: stiff only when longer than at static equilibrium:
+//          N = N_eq + k max(l - l_eq, 0);
+//  force:  no compression: N = max(k (l - L0), 0).
+enum class SlackCriterion { none, length, force };
+
+// Bar element (axial only, thesis 3.1.2).
+struct BarElement {
+  std::array<int, 2> nodes{};
+  BarKind kind = BarKind::other;
+  double stiffness = 0;          // axial stiffness k = EA/L [N/m]
+  double mass = 0;               // total mass, lumped half to each node [kg]
+  double unstressed_length = 0;  // L0 [m]; for droppers found by form-finding
+  SlackCriterion slack = SlackCriterion::none;
+  bool form_find_length = false;  // L0 is a form-finding unknown
+  int span = -1;                  // span index (droppers), 0-based
+  int index_in_span = -1;         // dropper number within its span, 0-based
+  double equilibrium_length = 0;  // l_eq, set after the static solution
+  double equilibrium_force = 0;   // N_eq, set after the static solution
+};
+
+struct PointMass {
+  int node = -1;
+  double mass = 0;  // [kg]
+  std::string label;
+};
+
+// Linear spring from a node DOF (0..2 = x, y, z) to its design position.
+struct SupportSpring {
+  int node = -1;
+  int dof = 0;
+  double stiffness = 0;  // [N/m]
+};
+
+// Form-finding: node 'node' must sit at height z in the static configuration.
+struct HeightTarget {
+  int node = -1;
+  double z = 0;
+  int bar = -1;  // the dropper whose unstressed length is the matching unknown
+};
+
+// Form-finding: the mean axial force of these cable elements must equal
+// 'tension'; their unstressed lengths share one scale factor (the unknown).
+struct TensionSegment {
+  int wire = -1;
+  std::vector<int> elements;
+  double tension = 0;
+};
+
+struct CatenaryMesh {
+  std::string name;
+  std::string source_file;
+  Eigen::Vector3d gravity{0.0, 0.0, -9.81};
+  std::vector<Node> nodes;
+  std::vector<Wire> wires;
+  std::vector<CableElement> cables;
+  std::vector<BarElement> bars;
+  std::vector<PointMass> point_masses;
+  std::vector<SupportSpring> springs;
+  std::vector<HeightTarget> height_targets;
+  std::vector<TensionSegment> tension_segments;
+  bool form_finding_default = false;  // true for parametric designs
+  // Track description (parametric designs; empty otherwise).
+  std::vector<double> support_x;   // x of every support [m]
+  std::vector<int> support_nodes;  // contact-wire node at every support (uplift)
+  int contact_wire = -1;           // index into wires, or -1
+  double rayleigh_alpha = 0;       // C = alpha M + beta K (thesis 3.1)
+  double rayleigh_beta = 0;
+
+  int find_wire(const std::string& wire_name) const {
+    for (std::size_t i = 0; i < wires.size(); ++i)
+      if (wires[i].name == wire_name) return static_cast<int>(i);
+    return -1;
+  }
+};
+
+}  // namespace pcsim::catenary

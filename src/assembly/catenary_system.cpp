@@ -1,0 +1,270 @@
+#include "pcsim/assembly/catenary_system.hpp"
+
+#include <Eigen/Dense>
+
+#include "pcsim/catenary/elements.hpp"
+#include "pcsim/error.hpp"
+
+namespace pcsim::assembly {
+
+using namespace pcsim::catenary;
+using RowMat12 = Eigen::Matrix<double, 12, 12, Eigen::RowMajor>;
+using RowMat6 = Eigen::Matrix<double, 6, 6, Eigen::RowMajor>;
+
+CatenarySystem::CatenarySystem(MPI_Comm comm, CatenaryMesh mesh, PetscInt extra_dofs)
+    : mesh_(std::move(mesh)) {
+  layout_ = std::make_unique<DofLayout>(comm, mesh_, extra_dofs);
+  design_values_.resize(6 * mesh_.nodes.size());
+  for (std::size_t n = 0; n < mesh_.nodes.size(); ++n)
+    for (int c = 0; c < 3; ++c) {
+      design_values_[6 * n + c] = mesh_.nodes[n].position[c];
+      design_values_[6 * n + 3 + c] = mesh_.nodes[n].slope[c];
+    }
+  node_state_.assign(6 * layout_->needed_nodes().size(), 0.0);
+  for (std::size_t i = 0; i < layout_->needed_nodes().size(); ++i)
+    for (int c = 0; c < 6; ++c)
+      node_state_[6 * i + c] = design_values_[6 * layout_->needed_nodes()[i] + c];
+  gathered_ = layout_->create_gathered_vector();
+  residual_gathered_ = layout_->create_gathered_vector();
+}
+
+CatenarySystem::~CatenarySystem() {
+  VecDestroy(&gathered_);
+  VecDestroy(&residual_gathered_);
+}
+
+void CatenarySystem::design_state(Vec x) const {
+  PetscScalar* a;
+  PCSIM_PETSC(VecGetArray(x, &a));
+  const PetscInt first = layout_->first_owned();
+  for (int n : layout_->owned_nodes())
+    for (int c = 0; c < 6; ++c) {
+      PetscInt g = layout_->global_dof(n, c);
+      if (g >= 0) a[g - first] = design_values_[6 * n + c];
+    }
+  PCSIM_PETSC(VecRestoreArray(x, &a));
+}
+
+void CatenarySystem::load_state(Vec x) {
+  layout_->gather(x, gathered_);
+  const PetscScalar* a;
+  PCSIM_PETSC(VecGetArrayRead(gathered_, &a));
+  const auto& needed = layout_->needed_nodes();
+  for (std::size_t i = 0; i < needed.size(); ++i)
+    for (int c = 0; c < 6; ++c) {
+      PetscInt p = layout_->gathered_position(static_cast<int>(i), c);
+      if (p >= 0) node_state_[6 * i + c] = a[p];
+    }
+  PCSIM_PETSC(VecRestoreArrayRead(gathered_, &a));
+}
+
+Eigen::Matrix<double, 6, 1> CatenarySystem::node_values(int node) const {
+  int i = layout_->needed_index(node);
+  if (i < 0) throw SolverError("node " + std::to_string(node) + " is not available on this rank");
+  return Eigen::Map<const Eigen::Matrix<double, 6, 1>>(&node_state_[6 * i]);
+}
+
+void CatenarySystem::cable_indices(int element, PetscInt idx[12]) const {
+  const auto& e = mesh_.cables[element];
+  for (int a = 0; a < 2; ++a)
+    for (int c = 0; c < 6; ++c) idx[6 * a + c] = layout_->global_dof(e.nodes[a], c);
+}
+
+void CatenarySystem::bar_indices(int bar, PetscInt idx[6]) const {
+  const auto& b = mesh_.bars[bar];
+  for (int a = 0; a < 2; ++a)
+    for (int c = 0; c < 3; ++c) idx[3 * a + c] = layout_->global_dof(b.nodes[a], c);
+}
+
+void CatenarySystem::cable_values(int element, double q[12]) const {
+  const auto& e = mesh_.cables[element];
+  for (int a = 0; a < 2; ++a) {
+    const double* v = &node_state_[6 * layout_->needed_index(e.nodes[a])];
+    for (int c = 0; c < 6; ++c) q[6 * a + c] = v[c];
+  }
+}
+
+void CatenarySystem::bar_values(int bar, double q[6]) const {
+  const auto& b = mesh_.bars[bar];
+  for (int a = 0; a < 2; ++a) {
+    const double* v = &node_state_[6 * layout_->needed_index(b.nodes[a])];
+    for (int c = 0; c < 3; ++c) q[3 * a + c] = v[c];
+  }
+}
+
+double* CatenarySystem::begin_residual() {
+  PCSIM_PETSC(VecSet(residual_gathered_, 0.0));
+  PCSIM_PETSC(VecGetArray(residual_gathered_, &residual_array_));
+  return residual_array_;
+}
+
+void CatenarySystem::end_residual(Vec R) {
+  PCSIM_PETSC(VecRestoreArray(residual_gathered_, &residual_array_));
+  residual_array_ = nullptr;
+  layout_->scatter_add(residual_gathered_, R);
+}
+
+void CatenarySystem::add_node_residual(double* r, int node, int c, double value) const {
+  PetscInt p = layout_->gathered_position(layout_->needed_index(node), c);
+  if (p >= 0) r[p] += value;
+}
+
+
+void CatenarySystem::assemble_static(Vec R, Mat J) {
+  PCSIM_PETSC(VecSet(R, 0.0));
+  double* r = begin_residual();
+  const auto& L = *layout_;
+  auto add_block = [&](const int* nodes, int n_nodes, int dofs_per_node, const double* f) {
+    for (int a = 0; a < n_nodes; ++a) {
+      int i = L.needed_index(nodes[a]);
+      for (int c = 0; c < dofs_per_node; ++c) {
+        PetscInt p = L.gathered_position(i, c);
+        if (p >= 0) r[p] += f[dofs_per_node * a + c];
+      }
+    }
+  };
+  Vec12 q12, f12;
+  Mat12 K12;
+  RowMat12 K12r;
+  PetscInt idx12[12];
+  for (int e : L.local_cables()) {
+    const auto& el = mesh_.cables[e];
+    const auto section = cable_section(mesh_.wires[el.wire]);
+    cable_values(e, q12.data());
+    cable_internal_force(section, el.ref_length, el.unstressed_length, q12, f12,
+                         J ? &K12 : nullptr, nullptr);
+    f12 -= cable_gravity_force(section, el.ref_length, mesh_.gravity);
+    add_block(el.nodes.data(), 2, 6, f12.data());
+    if (J) {
+      cable_indices(e, idx12);
+      K12r = K12;
+      PCSIM_PETSC(MatSetValues(J, 12, idx12, 12, idx12, K12r.data(), ADD_VALUES));
+    }
+  }
+  Vec6 q6, f6;
+  Mat6 K6;
+  RowMat6 K6r;
+  PetscInt idx6[6];
+  for (int b : L.local_bars()) {
+    const auto& bar = mesh_.bars[b];
+    bar_values(b, q6.data());
+    bar_internal_force(bar_parameters(bar), q6, f6, J ? &K6 : nullptr, nullptr);
+    for (int a = 0; a < 2; ++a)
+      for (int c = 0; c < 3; ++c) f6[3 * a + c] -= 0.5 * bar.mass * mesh_.gravity[c];
+    // Bars act on position DOFs only.
+    int nodes[2] = {bar.nodes[0], bar.nodes[1]};
+    add_block(nodes, 2, 3, f6.data());
+    if (J) {
+      bar_indices(b, idx6);
+      K6r = K6;
+      PCSIM_PETSC(MatSetValues(J, 6, idx6, 6, idx6, K6r.data(), ADD_VALUES));
+    }
+  }
+  for (int i : L.local_point_masses()) {
+    const auto& pm = mesh_.point_masses[i];
+    for (int c = 0; c < 3; ++c) add_node_residual(r, pm.node, c, -pm.mass * mesh_.gravity[c]);
+  }
+  for (int i : L.local_springs()) {
+    const auto& s = mesh_.springs[i];
+    const double u = node_values(s.node)[s.dof] - mesh_.nodes[s.node].position[s.dof];
+    add_node_residual(r, s.node, s.dof, s.stiffness * u);
+    if (J) {
+      PetscInt g = L.global_dof(s.node, s.dof);
+      if (g >= 0) PCSIM_PETSC(MatSetValue(J, g, g, s.stiffness, ADD_VALUES));
+    }
+  }
+  end_residual(R);
+}
+
+void CatenarySystem::assemble_mass(Mat M) {
+  const auto& L = *layout_;
+  RowMat12 M12;
+  PetscInt idx12[12];
+  for (int e : L.local_cables()) {
+    const auto& el = mesh_.cables[e];
+    M12 = cable_mass_matrix(cable_section(mesh_.wires[el.wire]), el.ref_length);
+    cable_indices(e, idx12);
+    PCSIM_PETSC(MatSetValues(M, 12, idx12, 12, idx12, M12.data(), ADD_VALUES));
+  }
+  for (int b : L.local_bars()) {
+    const auto& bar = mesh_.bars[b];
+    for (int a = 0; a < 2; ++a)
+      for (int c = 0; c < 3; ++c) {
+        PetscInt g = L.global_dof(bar.nodes[a], c);
+        if (g >= 0) PCSIM_PETSC(MatSetValue(M, g, g, 0.5 * bar.mass, ADD_VALUES));
+      }
+  }
+  for (int i : L.local_point_masses()) {
+    const auto& pm = mesh_.point_masses[i];
+    for (int c = 0; c < 3; ++c) {
+      PetscInt g = L.global_dof(pm.node, c);
+      if (g >= 0) PCSIM_PETSC(MatSetValue(M, g, g, pm.mass, ADD_VALUES));
+    }
+  }
+  PCSIM_PETSC(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
+  PCSIM_PETSC(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
+}
+
+double CatenarySystem::cable_mean_tension(int element) const {
+  const auto& el = mesh_.cables[element];
+  Vec12 q12;
+  cable_values(element, q12.data());
+  return cable_mean_axial_force(cable_section(mesh_.wires[el.wire]), el.ref_length,
+                                el.unstressed_length, q12, nullptr, nullptr);
+}
+
+double CatenarySystem::bar_force(int bar) const {
+  Vec6 q6;
+  bar_values(bar, q6.data());
+  return bar_axial_force(bar_parameters(mesh_.bars[bar]), q6, nullptr);
+}
+
+static std::vector<double> node_values_from(const CatenaryMesh& mesh, const DofLayout& L,
+                                            const std::vector<double>& design,
+                                            const PetscScalar* all_free) {
+  std::vector<double> out(design);
+  for (std::size_t n = 0; n < mesh.nodes.size(); ++n)
+    for (int c = 0; c < 6; ++c) {
+      PetscInt g = L.global_dof(static_cast<int>(n), c);
+      if (g >= 0) out[6 * n + c] = all_free[g];
+    }
+  return out;
+}
+
+std::vector<double> CatenarySystem::gather_positions_to_root(Vec x) const {
+  VecScatter to_zero;
+  Vec all;
+  PCSIM_PETSC(VecScatterCreateToZero(x, &to_zero, &all));
+  PCSIM_PETSC(VecScatterBegin(to_zero, x, all, INSERT_VALUES, SCATTER_FORWARD));
+  PCSIM_PETSC(VecScatterEnd(to_zero, x, all, INSERT_VALUES, SCATTER_FORWARD));
+  std::vector<double> positions;
+  if (layout_->rank() == 0) {
+    const PetscScalar* a;
+    PCSIM_PETSC(VecGetArrayRead(all, &a));
+    auto values = node_values_from(mesh_, *layout_, design_values_, a);
+    PCSIM_PETSC(VecRestoreArrayRead(all, &a));
+    positions.resize(3 * mesh_.nodes.size());
+    for (std::size_t n = 0; n < mesh_.nodes.size(); ++n)
+      for (int c = 0; c < 3; ++c) positions[3 * n + c] = values[6 * n + c];
+  }
+  PCSIM_PETSC(VecScatterDestroy(&to_zero));
+  PCSIM_PETSC(VecDestroy(&all));
+  return positions;
+}
+
+std::vector<double> CatenarySystem::all_node_values(Vec x) const {
+  VecScatter to_all;
+  Vec all;
+  PCSIM_PETSC(VecScatterCreateToAll(x, &to_all, &all));
+  PCSIM_PETSC(VecScatterBegin(to_all, x, all, INSERT_VALUES, SCATTER_FORWARD));
+  PCSIM_PETSC(VecScatterEnd(to_all, x, all, INSERT_VALUES, SCATTER_FORWARD));
+  const PetscScalar* a;
+  PCSIM_PETSC(VecGetArrayRead(all, &a));
+  auto values = node_values_from(mesh_, *layout_, design_values_, a);
+  PCSIM_PETSC(VecRestoreArrayRead(all, &a));
+  PCSIM_PETSC(VecScatterDestroy(&to_all));
+  PCSIM_PETSC(VecDestroy(&all));
+  return values;
+}
+
+}  // namespace pcsim::assembly
