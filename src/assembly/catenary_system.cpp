@@ -110,7 +110,24 @@ void CatenarySystem::add_node_residual(double* r, int node, int c, double value)
 }
 
 
-void CatenarySystem::assemble_static(Vec R, Mat J) {
+void CatenarySystem::insert_element_pattern(Mat A) const {
+  const auto& L = *layout_;
+  PetscInt idx12[12], idx6[6];
+  const double zeros[144] = {0};
+  for (int e : L.local_cables()) {
+    cable_indices(e, idx12);
+    PCSIM_PETSC(MatSetValues(A, 12, idx12, 12, idx12, zeros, ADD_VALUES));
+  }
+  for (int b : L.local_bars()) {
+    bar_indices(b, idx6);
+    PCSIM_PETSC(MatSetValues(A, 6, idx6, 6, idx6, zeros, ADD_VALUES));
+  }
+  // Diagonal of every owned row (point masses, springs, extras).
+  for (PetscInt i = L.first_owned(); i < L.first_owned() + L.local_size(); ++i)
+    PCSIM_PETSC(MatSetValue(A, i, i, 0.0, ADD_VALUES));
+}
+
+void CatenarySystem::assemble_static(Vec R, Mat J, unsigned terms) {
   PCSIM_PETSC(VecSet(R, 0.0));
   double* r = begin_residual();
   const auto& L = *layout_;
@@ -127,15 +144,21 @@ void CatenarySystem::assemble_static(Vec R, Mat J) {
   Mat12 K12;
   RowMat12 K12r;
   PetscInt idx12[12];
+  const bool cables = terms & kCables, bars = terms & kBars, loads = terms & kLoads;
   for (int e : L.local_cables()) {
+    if (!cables && !loads) break;
     const auto& el = mesh_.cables[e];
     const auto section = cable_section(mesh_.wires[el.wire]);
-    cable_values(e, q12.data());
-    cable_internal_force(section, el.ref_length, el.unstressed_length, q12, f12,
-                         J ? &K12 : nullptr, nullptr);
-    f12 -= cable_gravity_force(section, el.ref_length, mesh_.gravity);
+    if (cables) {
+      cable_values(e, q12.data());
+      cable_internal_force(section, el.ref_length, el.unstressed_length, q12, f12,
+                           J ? &K12 : nullptr, nullptr);
+    } else {
+      f12.setZero();
+    }
+    if (loads) f12 -= cable_gravity_force(section, el.ref_length, mesh_.gravity);
     add_block(el.nodes.data(), 2, 6, f12.data());
-    if (J) {
+    if (J && cables) {
       cable_indices(e, idx12);
       K12r = K12;
       PCSIM_PETSC(MatSetValues(J, 12, idx12, 12, idx12, K12r.data(), ADD_VALUES));
@@ -146,25 +169,42 @@ void CatenarySystem::assemble_static(Vec R, Mat J) {
   RowMat6 K6r;
   PetscInt idx6[6];
   for (int b : L.local_bars()) {
+    if (!bars && !loads) break;
     const auto& bar = mesh_.bars[b];
-    bar_values(b, q6.data());
-    bar_internal_force(bar_parameters(bar), q6, f6, J ? &K6 : nullptr, nullptr);
-    for (int a = 0; a < 2; ++a)
-      for (int c = 0; c < 3; ++c) f6[3 * a + c] -= 0.5 * bar.mass * mesh_.gravity[c];
+    if (bars) {
+      bar_values(b, q6.data());
+      bar_internal_force(bar_parameters(bar), q6, f6, J ? &K6 : nullptr, nullptr);
+    } else {
+      f6.setZero();
+    }
+    if (loads) f6 -= bar_gravity_force(bar.mass, mesh_.gravity);
     // Bars act on position DOFs only.
     int nodes[2] = {bar.nodes[0], bar.nodes[1]};
     add_block(nodes, 2, 3, f6.data());
-    if (J) {
+    if (J && bars) {
       bar_indices(b, idx6);
       K6r = K6;
       PCSIM_PETSC(MatSetValues(J, 6, idx6, 6, idx6, K6r.data(), ADD_VALUES));
     }
   }
   for (int i : L.local_point_masses()) {
+    if (!loads) break;
     const auto& pm = mesh_.point_masses[i];
     for (int c = 0; c < 3; ++c) add_node_residual(r, pm.node, c, -pm.mass * mesh_.gravity[c]);
   }
+  for (const auto& load : point_loads_) {
+    if (!loads) break;
+    const auto& el = mesh_.cables[load.element];
+    if (L.owner(el.nodes[0]) != L.rank()) continue;
+    const HermiteValues h = hermite(load.chi, el.ref_length);
+    for (int a = 0; a < 2; ++a)
+      for (int c = 0; c < 3; ++c) {
+        add_node_residual(r, el.nodes[a], c, -h.s[2 * a] * load.force[c]);
+        add_node_residual(r, el.nodes[a], 3 + c, -h.s[2 * a + 1] * load.force[c]);
+      }
+  }
   for (int i : L.local_springs()) {
+    if (!loads) break;
     const auto& s = mesh_.springs[i];
     const double u = node_values(s.node)[s.dof] - mesh_.nodes[s.node].position[s.dof];
     add_node_residual(r, s.node, s.dof, s.stiffness * u);

@@ -231,6 +231,13 @@ StaticResult solve_static(CatenarySystem& system, Vec x, bool form_finding,
     }
   }
   Mat J = L.create_matrix(couplings);
+  // Slack criteria are defined relative to the static equilibrium (thesis
+  // 3.1.2): during the static solution every bar is a plain linear bar.
+  std::vector<SlackCriterion> slack_criteria;
+  for (auto& bar : system.mutable_mesh().bars) {
+    slack_criteria.push_back(bar.slack);
+    bar.slack = SlackCriterion::none;
+  }
   Vec R;
   PCSIM_PETSC(VecDuplicate(x, &R));
   if (form_finding) initial_form_finding_unknowns(ctx, x);
@@ -272,6 +279,11 @@ StaticResult solve_static(CatenarySystem& system, Vec x, bool form_finding,
   PCSIM_PETSC(SNESDestroy(&snes));
   PCSIM_PETSC(MatDestroy(&J));
   PCSIM_PETSC(VecDestroy(&R));
+  auto restore_slack_criteria = [&] {
+    for (std::size_t b = 0; b < slack_criteria.size(); ++b)
+      system.mutable_mesh().bars[b].slack = slack_criteria[b];
+  };
+  if (!result.converged) restore_slack_criteria();
   if (!result.converged)
     throw SolverError(std::string("static solution did not converge (") +
                       result.converged_reason + " after " + std::to_string(its) +
@@ -295,6 +307,7 @@ StaticResult solve_static(CatenarySystem& system, Vec x, bool form_finding,
     mesh.bars[b].equilibrium_length = result.bar_lengths[b];
     mesh.bars[b].equilibrium_force = result.bar_forces[b];
   }
+  restore_slack_criteria();
   result.segment_tensions.assign(mesh.tension_segments.size(), 0.0);
   for (int e : L.local_cables()) {
     const int s = mesh.cables[e].tension_segment;

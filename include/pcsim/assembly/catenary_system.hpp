@@ -42,10 +42,30 @@ class CatenarySystem {
   // 6 values (r, r') of a needed node from the last loaded state.
   Eigen::Matrix<double, 6, 1> node_values(int node) const;
 
-  // R = f_elastic - f_gravity + springs at the loaded state (R is overwritten
-  // on the catenary rows; extra rows are left at zero). If J is not null the
-  // tangent is added to J (entries only; the caller assembles J).
-  void assemble_static(Vec R, Mat J);
+  // A constant force applied at local coordinate chi of a cable element
+  // (distributed to its DOFs by the shape functions; part of kLoads).
+  struct PointLoad {
+    int element = -1;
+    double chi = 0;
+    Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  };
+  std::vector<PointLoad>& point_loads() { return point_loads_; }
+
+  // Which terms assemble_static() evaluates.
+  enum Terms : unsigned {
+    kCables = 1u,       // ANCF cable elastic forces
+    kBars = 2u,         // bars (droppers, steady arms, stitch wires)
+    kLoads = 4u,        // gravity of everything, support springs
+    kAllTerms = 7u,
+  };
+  // R = f_elastic - f_gravity + springs at the loaded state (R is overwritten:
+  // zero outside the assembled terms). If J is not null the tangent is added
+  // to J (entries only; the caller assembles J).
+  void assemble_static(Vec R, Mat J, unsigned terms = kAllTerms);
+  // Inserts explicit zeros at every element coupling, so that matrices
+  // duplicated from A share one nonzero pattern (fast MatAXPY, and a pattern
+  // that never changes during a run). The caller assembles A.
+  void insert_element_pattern(Mat A) const;
   // Consistent mass (cables) + lumped masses (bars, point masses); assembled.
   void assemble_mass(Mat M);
   // Mean axial force of a local or remote cable element at the loaded state
@@ -76,6 +96,7 @@ class CatenarySystem {
  private:
   catenary::CatenaryMesh mesh_;
   std::unique_ptr<DofLayout> layout_;
+  std::vector<PointLoad> point_loads_;
   std::vector<double> node_state_;  // needed nodes x 6
   std::vector<double> design_values_;
   Vec gathered_ = nullptr, residual_gathered_ = nullptr;

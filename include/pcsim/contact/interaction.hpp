@@ -1,0 +1,131 @@
+// Dynamic pantograph-catenary interaction (thesis 3.2-3.3).
+//
+// One second-order system: the distributed catenary DOFs followed by the DOFs
+// of every pantograph (owned by the last rank). Its residual
+//   F(t, U, V, A) = M A + C V + f(U) - f_ext(t) + f_contact(U)
+// and tangent dF/dU + v dF/dV + a dF/dA are given to a PETSc TS through
+// TSSetI2Function/TSSetI2Jacobian, so any second-order TS integrates it; the
+// project's own is `-ts_type hht` (thesis 3.3.2).
+//
+// Effects (each switched on by the scene, costing nothing when off):
+//  - catenary geometric nonlinearity: full ANCF forces, or cables linearised
+//    about the static configuration (constant K0);
+//  - dropper slackening (the bars' slack criteria), else linear droppers;
+//  - Rayleigh damping C = alpha M + beta K_static (thesis eq. 3.1);
+//  - pantograph effects (friction, damper, restraints, aerodynamics) inside
+//    each pantograph model.
+// Penalty contact (eqs. 3.9-3.13) acts only in compression; the contact
+// element is found each step from x_c = x_0 + V t on the static geometry.
+//
+// Cheap path: when the catenary is linearised and every pantograph model is
+// linear, the Jacobian is assembled and factored once per time-step size and
+// reused (modified Newton; the residual stays exact, so the converged answer
+// is the same as with the full Newton path).
+#pragma once
+
+#include <petscts.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "pcsim/assembly/catenary_system.hpp"
+#include "pcsim/pantograph/model.hpp"
+
+namespace pcsim::contact {
+
+struct InteractionEffects {
+  bool catenary_nonlinear = false;
+  bool dropper_slack = true;
+  bool rayleigh_damping = true;
+};
+
+struct PantographRun {
+  std::string name;
+  std::unique_ptr<pantograph::PantographModel> model;
+  double start_x = 0;        // contact point x at t = 0 [m]
+  double speed = 0;          // [m/s]
+  double static_force = 0;   // F0: static contact force [N]
+  bool static_start = false; // start in static equilibrium in contact
+  double ramp_distance = 0;  // ramp-up: head force weighted 0 -> 1 over this distance [m]
+};
+
+// Locates x along the contact wire on a fixed (static) geometry.
+class ContactWireLocator {
+ public:
+  ContactWireLocator(const catenary::CatenaryMesh& mesh, const std::vector<double>& node_values);
+  // Element index (into mesh.cables) and local chi of the point at x; false if outside.
+  bool locate(double x, int& element, double& chi) const;
+  double x_min() const { return x_begin_; }
+  double x_max() const { return x_end_; }
+
+ private:
+  const catenary::CatenaryMesh& mesh_;
+  std::vector<int> elements_;           // contact-wire elements in order
+  std::vector<double> node_x_;          // x of their first nodes, then the last node
+  std::vector<std::array<double, 12>> q_;  // static element DOFs
+  double x_begin_ = 0, x_end_ = 0;
+  mutable int last_ = 0;
+};
+
+struct StepRecord {
+  double t = 0;
+  std::vector<double> contact_force, contact_x, wire_z;  // per pantograph
+  std::vector<std::vector<double>> q;                      // per pantograph
+  std::vector<double> support_z;                           // contact wire at supports
+  std::vector<double> dropper_force;                       // every dropper
+};
+
+class InteractionProblem {
+ public:
+  InteractionProblem(MPI_Comm comm, catenary::CatenaryMesh mesh,
+                     std::vector<double> static_node_values, std::vector<PantographRun> pantographs,
+                     InteractionEffects effects, double contact_stiffness);
+  ~InteractionProblem();
+
+  assembly::CatenarySystem& system() { return *system_; }
+  const std::vector<PantographRun>& pantographs() const { return pantographs_; }
+  bool cheap_path() const { return cheap_path_; }
+  void set_cheap_path(bool on) { cheap_path_ = on; }
+
+  // Initial state (static start or ramp, see PantographRun) into U0, V0.
+  void initial_state(Vec U0, Vec V0);
+  // TS ready to integrate (type from options, default "hht"), I2 callbacks set.
+  TS create_ts(double dt, double duration);
+  // Measured quantities at state U (collective; filled on rank 0).
+  StepRecord record(double t, Vec U);
+
+  // Residual and Jacobian (public for tests and -snes_test_jacobian).
+  void residual(double t, Vec U, Vec V, Vec A, Vec F);
+  void jacobian(double t, Vec U, Vec V, Vec A, double shift_v, double shift_a, Mat J);
+  Mat create_matrix() const;  // the fixed pattern of the coupled system
+  Vec create_vector() const { return system_->create_vector(); }
+  PetscInt pantograph_first_dof(std::size_t p) const { return panto_first_[p]; }
+  int total_newton_iterations() const { return 0; }
+
+ private:
+  struct ContactState;
+  void load_pantograph_state(Vec U, Vec V, Vec A);
+  double ramp_factor(const PantographRun& p, double t) const;
+  void add_contact(double t, Vec F, Mat J);
+  void apply_static_point_load(double x, double force, Vec x_state);
+
+  std::unique_ptr<assembly::CatenarySystem> system_;
+  std::vector<double> static_values_;
+  std::vector<PantographRun> pantographs_;
+  std::vector<PetscInt> panto_first_;
+  std::vector<double> head_offset_;  // extra offset so that contact height = q_c + offset
+  InteractionEffects effects_;
+  double kH_ = 50000;
+  bool cheap_path_ = false;
+  std::unique_ptr<ContactWireLocator> locator_;
+  Mat M_ = nullptr, C_ = nullptr, K0_ = nullptr;  // constant matrices (pattern of J)
+  Vec U0_ = nullptr, b0_ = nullptr, work_ = nullptr, work2_ = nullptr;
+  // Pantograph state on every rank (small): U, V, A per pantograph DOF.
+  std::vector<double> panto_u_, panto_v_, panto_a_;
+  PetscInt n_panto_dofs_ = 0;
+  // Cheap path: shifts of the Jacobian currently assembled.
+  double cached_shift_v_ = -1, cached_shift_a_ = -1;
+};
+
+}  // namespace pcsim::contact

@@ -1,0 +1,52 @@
+// Scene of a dynamic interaction run (`pcsim run`):
+//
+//   name: en50318-300
+//   catenary: {design: ../meshes/en50318-reference.yaml}
+//   pantographs:
+//     - name: leading
+//       model: ../meshes/pantographs/en50318_two_mass.yaml
+//       start_x: 5.0            # contact point x at t = 0 [m] (default: 2nd dropper of span 1)
+//       static_force: 120       # static contact force F0 [N] (default 120)
+//       start: static|ramp      # default: static for the first, ramp for the others
+//       ramp_distance: 20       # [m] (default 20)
+//       effects: {...}          # pantograph effects (see docs/pantograph.md)
+//   simulation:
+//     speed_kmh: 300
+//     end_x: 590                # the run ends when the first pantograph reaches end_x
+//     dt: 0.001                 # default time step [s] (-ts_dt overrides)
+//   effects: {catenary_nonlinear: false, dropper_slack: true, rayleigh_damping: true}
+//   contact: {stiffness: 50000}
+//   analysis: {from_span: 5, to_span: 6, cutoff_hz: 20}   # 1-based spans
+//   output: {dropper_forces: true}
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "pcsim/catenary/catenary_scene.hpp"
+#include "pcsim/contact/interaction.hpp"
+
+namespace pcsim::contact {
+
+struct RunScene {
+  catenary::CatenaryScene catenary;
+  std::vector<PantographRun> pantographs;
+  double speed = 0;  // [m/s]
+  double end_x = 0;
+  double dt = 1e-3;
+  InteractionEffects effects;
+  double contact_stiffness = 50000;
+  double analysis_from_x = 0, analysis_to_x = 0;
+  int analysis_from_span = 0, analysis_to_span = 0;  // 1-based
+  double cutoff_hz = 20;
+  bool dropper_forces = true;
+  // Duration of the run: from t = 0 until the first pantograph reaches end_x.
+  double duration() const { return (end_x - pantographs.front().start_x) / speed; }
+};
+
+RunScene load_run_scene(const InputNode& scene);
+
+// Transverse wave speed sqrt(T / rho) of a wire [m/s].
+double wave_speed(const catenary::Wire& wire);
+
+}  // namespace pcsim::contact

@@ -1,0 +1,110 @@
+#include "pcsim/contact/run_scene.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace pcsim::contact {
+
+double wave_speed(const catenary::Wire& wire) {
+  return std::sqrt(wire.tension / wire.mass_per_length);
+}
+
+static std::string fmt(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+RunScene load_run_scene(const InputNode& scene) {
+  RunScene run;
+  run.catenary = catenary::load_catenary_scene(scene);
+  const auto& mesh = run.catenary.mesh;
+  if (mesh.contact_wire < 0 || mesh.support_x.size() < 2)
+    scene["catenary"].fail_key("design",
+                               "a dynamic run needs a parametric design (contact wire and supports)");
+
+  const InputNode sim = scene["simulation"];
+  sim.allow_only({"speed_kmh", "end_x", "dt"});
+  run.speed = sim.get_positive("speed_kmh") / 3.6;
+  const double c = wave_speed(mesh.wires[mesh.contact_wire]);
+  if (run.speed >= c)
+    sim.fail_key("speed_kmh", "speed " + fmt(run.speed * 3.6) +
+                                  " km/h is not below the contact wire's wave speed sqrt(T/rho) = " +
+                                  fmt(c * 3.6) + " km/h");
+  run.dt = sim.get_positive("dt", 1e-3);
+  const double x_first = mesh.support_x.front(), x_last = mesh.support_x.back();
+  run.end_x = sim.get_double("end_x", x_last - 5.0);
+  if (run.end_x <= x_first || run.end_x > x_last)
+    sim.fail_key("end_x", "must lie on the line (" + fmt(x_first) + ", " + fmt(x_last) + "] m");
+
+  const InputNode list = scene["pantographs"];
+  if (!list.is_sequence() || list.size() == 0) list.fail("must be a non-empty list of pantographs");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const InputNode p = list.at(i);
+    p.allow_only({"name", "model", "start_x", "static_force", "start", "ramp_distance", "effects"});
+    PantographRun pr;
+    pr.name = p.get_string("name", "pantograph" + std::to_string(i + 1));
+    const InputNode effects = p.has("effects") ? p["effects"] : InputNode(YAML::Node(), p.file(), "");
+    pr.model = pantograph::load_pantograph_model(p.resolve_path(p.get_string("model")),
+                                                 p.has("effects") ? &effects : nullptr, run.speed);
+    pr.start_x = p.get_double("start_x", x_first + 5.0);
+    if (pr.start_x < x_first || pr.start_x >= run.end_x)
+      p.fail_key("start_x", "must lie on the line before simulation.end_x (" + fmt(run.end_x) +
+                                " m), got " + fmt(pr.start_x));
+    pr.static_force = p.get_positive("static_force", 120.0);
+    pr.speed = run.speed;
+    const std::string start = p.get_choice("start", {"static", "ramp"}, i == 0 ? "static" : "ramp");
+    if (start == "static" && i > 0)
+      p.fail_key("start", "only the first pantograph can start in static equilibrium");
+    pr.static_start = start == "static";
+    pr.ramp_distance = p.get_positive("ramp_distance", 20.0);
+    run.pantographs.push_back(std::move(pr));
+  }
+  if (scene.has("effects")) {
+    const InputNode e = scene["effects"];
+    e.allow_only({"catenary_nonlinear", "dropper_slack", "rayleigh_damping"});
+    run.effects.catenary_nonlinear = e.get_bool("catenary_nonlinear", false);
+    run.effects.dropper_slack = e.get_bool("dropper_slack", true);
+    run.effects.rayleigh_damping = e.get_bool("rayleigh_damping", true);
+  }
+  if (scene.has("contact")) {
+    const InputNode c2 = scene["contact"];
+    c2.allow_only({"stiffness"});
+    run.contact_stiffness = c2.get_positive("stiffness", 50000.0);
+  }
+  const int n_spans = static_cast<int>(mesh.support_x.size()) - 1;
+  run.analysis_from_span = std::min(5, n_spans);
+  run.analysis_to_span = std::min(6, n_spans);
+  if (scene.has("analysis")) {
+    const InputNode a = scene["analysis"];
+    a.allow_only({"from_span", "to_span", "cutoff_hz"});
+    run.analysis_from_span = static_cast<int>(a.get_int("from_span", run.analysis_from_span));
+    run.analysis_to_span = static_cast<int>(a.get_int("to_span", run.analysis_to_span));
+    if (run.analysis_from_span < 1 || run.analysis_to_span > n_spans ||
+        run.analysis_from_span > run.analysis_to_span)
+      a.fail("spans must satisfy 1 <= from_span <= to_span <= " + std::to_string(n_spans));
+    run.cutoff_hz = a.get_positive("cutoff_hz", 20.0);
+  }
+  run.analysis_from_x = mesh.support_x[run.analysis_from_span - 1];
+  run.analysis_to_x = mesh.support_x[run.analysis_to_span];
+  // Every pantograph must cross the whole analysis section during the run.
+  for (std::size_t i = 0; i < run.pantographs.size(); ++i) {
+    const auto& p = run.pantographs[i];
+    const double x_end = p.start_x + (run.end_x - run.pantographs.front().start_x);
+    if (p.start_x > run.analysis_from_x || x_end < run.analysis_to_x)
+      list.at(i).fail_key("start_x", "pantograph '" + p.name + "' runs from " + fmt(p.start_x) +
+                                         " to " + fmt(x_end) +
+                                         " m and does not cross the whole analysis section (" +
+                                         fmt(run.analysis_from_x) + ", " +
+                                         fmt(run.analysis_to_x) + ") m");
+  }
+  if (scene.has("output")) {
+    const InputNode o = scene["output"];
+    o.allow_only({"dropper_forces"});
+    run.dropper_forces = o.get_bool("dropper_forces", true);
+  }
+  return run;
+}
+
+}  // namespace pcsim::contact
