@@ -101,14 +101,15 @@ class InteractionProblem {
   Mat create_matrix() const;  // the fixed pattern of the coupled system
   Vec create_vector() const { return system_->create_vector(); }
   PetscInt pantograph_first_dof(std::size_t p) const { return panto_first_[p]; }
-  int total_newton_iterations() const { return 0; }
+  // Newton iterations of the coupled static start (0 for a ramp start).
+  PetscInt start_iterations() const { return start_iterations_; }
 
  private:
   struct ContactState;
   void load_pantograph_state(Vec U, Vec V, Vec A);
   double ramp_factor(const PantographRun& p, double t) const;
   void add_contact(double t, Vec F, Mat J);
-  void apply_static_point_load(double x, double force, Vec x_state);
+  void solve_coupled_static(Vec U0);
 
   std::unique_ptr<assembly::CatenarySystem> system_;
   std::vector<double> static_values_;
@@ -126,6 +127,7 @@ class InteractionProblem {
   PetscInt n_panto_dofs_ = 0;
   // Cheap path: shifts of the Jacobian currently assembled.
   double cached_shift_v_ = -1, cached_shift_a_ = -1;
+  PetscInt start_iterations_ = 0;
 };
 
 }  // namespace pcsim::contact

@@ -1,0 +1,526 @@
+#include "pcsim/contact/interaction.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "pcsim/catenary/elements.hpp"
+#include "pcsim/catenary/statics.hpp"
+#include "pcsim/contact/contact_kernel.hpp"
+#include "pcsim/error.hpp"
+#include "pcsim/solvers/hht.hpp"
+
+namespace pcsim::contact {
+
+using assembly::CatenarySystem;
+using catenary::BarKind;
+using catenary::CatenaryMesh;
+
+// ------------------------------------------------------------ locator ----
+
+ContactWireLocator::ContactWireLocator(const CatenaryMesh& mesh,
+                                       const std::vector<double>& node_values)
+    : mesh_(mesh) {
+  if (mesh.contact_wire < 0)
+    throw InputError(mesh.source_file, "wires", "the design has no contact wire");
+  elements_ = mesh.wires[mesh.contact_wire].elements;
+  for (int e : elements_) {
+    std::array<double, 12> q{};
+    for (int a = 0; a < 2; ++a)
+      for (int c = 0; c < 6; ++c) q[6 * a + c] = node_values[6 * mesh.cables[e].nodes[a] + c];
+    q_.push_back(q);
+    node_x_.push_back(q[0]);
+  }
+  node_x_.push_back(q_.back()[6]);
+  x_begin_ = node_x_.front();
+  x_end_ = node_x_.back();
+  for (std::size_t i = 1; i < node_x_.size(); ++i)
+    if (!(node_x_[i] > node_x_[i - 1]))
+      throw InputError(mesh.source_file, "wires",
+                       "contact-wire nodes must advance along x (element " +
+                           std::to_string(elements_[i - 1]) + ")");
+}
+
+bool ContactWireLocator::locate(double x, int& element, double& chi) const {
+  if (x < x_begin_ || x > x_end_) return false;
+  // Pantographs move steadily: start from the last element found.
+  int i = std::clamp(last_, 0, static_cast<int>(elements_.size()) - 1);
+  if (!(node_x_[i] <= x && x <= node_x_[i + 1])) {
+    auto it = std::upper_bound(node_x_.begin(), node_x_.end(), x);
+    i = std::clamp(static_cast<int>(it - node_x_.begin()) - 1, 0,
+                   static_cast<int>(elements_.size()) - 1);
+  }
+  last_ = i;
+  element = elements_[i];
+  const auto& q = q_[i];
+  const Vector12d q12 = Eigen::Map<const Vector12d>(q.data());
+  chi = locate_contact_point(q12, mesh_.cables[element].ref_length, x).chi;
+  return true;
+}
+
+// ------------------------------------------------------------ problem ----
+
+InteractionProblem::InteractionProblem(MPI_Comm comm, CatenaryMesh mesh,
+                                       std::vector<double> static_node_values,
+                                       std::vector<PantographRun> pantographs,
+                                       InteractionEffects effects, double contact_stiffness)
+    : static_values_(std::move(static_node_values)),
+      pantographs_(std::move(pantographs)),
+      effects_(effects),
+      kH_(contact_stiffness) {
+  if (!effects_.dropper_slack)
+    for (auto& bar : mesh.bars) bar.slack = catenary::SlackCriterion::none;
+  for (const auto& p : pantographs_) n_panto_dofs_ += p.model->dof_count();
+  system_ = std::make_unique<CatenarySystem>(comm, std::move(mesh), n_panto_dofs_);
+  PetscInt offset = 0;
+  for (const auto& p : pantographs_) {
+    panto_first_.push_back(system_->layout().extra_global(offset));
+    offset += p.model->dof_count();
+  }
+  head_offset_.assign(pantographs_.size(), 0.0);
+  panto_u_.assign(n_panto_dofs_, 0.0);
+  panto_v_.assign(n_panto_dofs_, 0.0);
+  panto_a_.assign(n_panto_dofs_, 0.0);
+  locator_ = std::make_unique<ContactWireLocator>(system_->mesh(), static_values_);
+  bool all_linear = true;
+  for (const auto& p : pantographs_) all_linear = all_linear && p.model->is_linear();
+  cheap_path_ = !effects_.catenary_nonlinear && all_linear;
+
+  // Constant matrices, all with the pattern of the Jacobian.
+  Mat pattern = create_matrix();
+  PCSIM_PETSC(MatDuplicate(pattern, MAT_DO_NOT_COPY_VALUES, &M_));
+  system_->assemble_mass(M_);
+  U0_ = system_->create_vector();
+  catenary::set_state_from_node_values(*system_, static_values_, U0_);
+  work_ = system_->create_vector();
+  work2_ = system_->create_vector();
+  system_->load_state(U0_);
+  auto tangent_of = [&](unsigned terms) {
+    Mat K;
+    PCSIM_PETSC(MatDuplicate(pattern, MAT_DO_NOT_COPY_VALUES, &K));
+    system_->assemble_static(work_, K, terms);
+    PCSIM_PETSC(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY));
+    PCSIM_PETSC(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
+    return K;
+  };
+  const unsigned cables_and_loads = CatenarySystem::kCables | CatenarySystem::kLoads;
+  if (!effects_.catenary_nonlinear) {
+    // Linearised cables: f(U) ~ b0 + K0 (U - U0), b0 = cable forces + loads at U0.
+    K0_ = tangent_of(cables_and_loads);
+    b0_ = system_->create_vector();
+    system_->assemble_static(b0_, nullptr, cables_and_loads);
+  }
+  if (effects_.rayleigh_damping) {
+    // C = alpha M + beta K at the static configuration (thesis eq. 3.1).
+    C_ = tangent_of(CatenarySystem::kAllTerms);
+    PCSIM_PETSC(MatScale(C_, system_->mesh().rayleigh_beta));
+    PCSIM_PETSC(MatAXPY(C_, system_->mesh().rayleigh_alpha, M_, SAME_NONZERO_PATTERN));
+  }
+  PCSIM_PETSC(MatDestroy(&pattern));
+}
+
+InteractionProblem::~InteractionProblem() {
+  MatDestroy(&M_);
+  MatDestroy(&C_);
+  MatDestroy(&K0_);
+  VecDestroy(&U0_);
+  VecDestroy(&b0_);
+  VecDestroy(&work_);
+  VecDestroy(&work2_);
+}
+
+Mat InteractionProblem::create_matrix() const {
+  const auto& L = system_->layout();
+  const auto& mesh = system_->mesh();
+  const auto& contact_nodes = mesh.wires[mesh.contact_wire].nodes;
+  std::vector<std::vector<int>> couplings(n_panto_dofs_);
+  for (std::size_t p = 0; p < pantographs_.size(); ++p)
+    couplings[panto_first_[p] - L.catenary_dofs() + pantographs_[p].model->contact_dof()] =
+        contact_nodes;
+  Mat A = L.create_matrix(couplings, true);
+  system_->insert_element_pattern(A);
+  if (L.rank() == L.size() - 1) {
+    // Dense block of each pantograph.
+    for (std::size_t p = 0; p < pantographs_.size(); ++p) {
+      const int n = pantographs_[p].model->dof_count();
+      std::vector<PetscInt> idx(n);
+      for (int i = 0; i < n; ++i) idx[i] = panto_first_[p] + i;
+      std::vector<double> zeros(n * n, 0.0);
+      PCSIM_PETSC(MatSetValues(A, n, idx.data(), n, idx.data(), zeros.data(), ADD_VALUES));
+    }
+  }
+  // Head <-> contact-wire couplings (every DOF of every contact-wire node, as
+  // the contact element block is 13 x 13): inserted once, so that the
+  // pattern does not change as pantographs move.
+  for (std::size_t p = 0; p < pantographs_.size(); ++p) {
+    const PetscInt head = panto_first_[p] + pantographs_[p].model->contact_dof();
+    for (int n : contact_nodes) {
+      if (L.owner(n) != L.rank()) continue;
+      for (int c = 0; c < 6; ++c) {
+        const PetscInt g = L.global_dof(n, c);
+        if (g < 0) continue;
+        PCSIM_PETSC(MatSetValue(A, g, head, 0.0, ADD_VALUES));
+        PCSIM_PETSC(MatSetValue(A, head, g, 0.0, ADD_VALUES));
+      }
+    }
+  }
+  PCSIM_PETSC(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+  PCSIM_PETSC(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  return A;
+}
+
+void InteractionProblem::load_pantograph_state(Vec U, Vec V, Vec A) {
+  const auto& L = system_->layout();
+  std::vector<double> buffer(3 * n_panto_dofs_, 0.0);
+  if (L.rank() == L.size() - 1) {
+    Vec vecs[3] = {U, V, A};
+    for (int k = 0; k < 3; ++k) {
+      if (!vecs[k]) continue;
+      const PetscScalar* a;
+      PCSIM_PETSC(VecGetArrayRead(vecs[k], &a));
+      for (PetscInt i = 0; i < n_panto_dofs_; ++i)
+        buffer[k * n_panto_dofs_ + i] = a[L.extra_global(i) - L.first_owned()];
+      PCSIM_PETSC(VecRestoreArrayRead(vecs[k], &a));
+    }
+  }
+  if (L.size() > 1)
+    MPI_Bcast(buffer.data(), static_cast<int>(buffer.size()), MPI_DOUBLE, L.size() - 1, L.comm());
+  std::copy(buffer.begin(), buffer.begin() + n_panto_dofs_, panto_u_.begin());
+  std::copy(buffer.begin() + n_panto_dofs_, buffer.begin() + 2 * n_panto_dofs_, panto_v_.begin());
+  std::copy(buffer.begin() + 2 * n_panto_dofs_, buffer.end(), panto_a_.begin());
+}
+
+double InteractionProblem::ramp_factor(const PantographRun& p, double t) const {
+  if (p.static_start || p.ramp_distance <= 0) return 1.0;
+  return std::clamp(p.speed * t / p.ramp_distance, 0.0, 1.0);
+}
+
+// Penalty contact of every pantograph (thesis 3.9-3.13), assembled by the
+// rank that owns the contact element.
+void InteractionProblem::add_contact(double t, Vec F, Mat J) {
+  const auto& L = system_->layout();
+  const auto& mesh = system_->mesh();
+  for (std::size_t p = 0; p < pantographs_.size(); ++p) {
+    const auto& run = pantographs_[p];
+    int element;
+    double chi;
+    if (!locator_->locate(run.start_x + run.speed * t, element, chi)) continue;
+    if (L.owner(mesh.cables[element].nodes[0]) != L.rank()) continue;
+    catenary::Vec12 q;
+    system_->cable_values(element, q.data());
+    const int c = run.model->contact_dof();
+    const PetscInt first = panto_first_[p] - L.catenary_dofs();
+    const double head_height = panto_u_[first + c] + run.model->contact_offset() + head_offset_[p];
+    const auto terms =
+        evaluate_penalty_contact(q, head_height, chi, mesh.cables[element].ref_length, kH_);
+    if (terms.force <= 0) continue;
+    PetscInt idx[13];
+    system_->cable_indices(element, idx);
+    idx[12] = panto_first_[p] + c;
+    if (F)
+      for (int i = 0; i < 13; ++i)  // VecSetValues does not skip constrained (-1) DOFs
+        if (idx[i] >= 0) PCSIM_PETSC(VecSetValue(F, idx[i], terms.residual[i], ADD_VALUES));
+    if (J) {
+      Eigen::Matrix<double, 13, 13, Eigen::RowMajor> K = terms.tangent;
+      PCSIM_PETSC(MatSetValues(J, 13, idx, 13, idx, K.data(), ADD_VALUES));
+    }
+  }
+}
+
+void InteractionProblem::residual(double t, Vec U, Vec V, Vec A, Vec F) {
+  const auto& L = system_->layout();
+  system_->load_state(U);
+  load_pantograph_state(U, V, A);
+  if (effects_.catenary_nonlinear) {
+    system_->assemble_static(F, nullptr, CatenarySystem::kAllTerms);
+  } else {
+    system_->assemble_static(F, nullptr, CatenarySystem::kBars);
+    PCSIM_PETSC(VecWAXPY(work_, -1.0, U0_, U));
+    PCSIM_PETSC(MatMultAdd(K0_, work_, F, F));
+    PCSIM_PETSC(VecAXPY(F, 1.0, b0_));
+  }
+  PCSIM_PETSC(MatMultAdd(M_, A, F, F));
+  if (C_) PCSIM_PETSC(MatMultAdd(C_, V, F, F));
+  if (L.rank() == L.size() - 1) {
+    for (std::size_t p = 0; p < pantographs_.size(); ++p) {
+      const auto& run = pantographs_[p];
+      const int n = run.model->dof_count();
+      const PetscInt first = panto_first_[p] - L.catenary_dofs();
+      Eigen::VectorXd q = Eigen::Map<Eigen::VectorXd>(&panto_u_[first], n);
+      Eigen::VectorXd qd = Eigen::Map<Eigen::VectorXd>(&panto_v_[first], n);
+      Eigen::VectorXd qdd = Eigen::Map<Eigen::VectorXd>(&panto_a_[first], n);
+      Eigen::VectorXd R(n);
+      run.model->residual(t, q, qd, qdd, R);
+      // Ramp-up (thesis 3.3.1): the head carries (1 - ramp) F0 downwards.
+      R[run.model->contact_dof()] += (1.0 - ramp_factor(run, t)) * run.static_force;
+      std::vector<PetscInt> idx(n);
+      for (int i = 0; i < n; ++i) idx[i] = panto_first_[p] + i;
+      PCSIM_PETSC(VecSetValues(F, n, idx.data(), R.data(), ADD_VALUES));
+    }
+  }
+  add_contact(t, F, nullptr);
+  PCSIM_PETSC(VecAssemblyBegin(F));
+  PCSIM_PETSC(VecAssemblyEnd(F));
+}
+
+void InteractionProblem::jacobian(double t, Vec U, Vec V, Vec A, double shift_v, double shift_a,
+                                  Mat J) {
+  if (cheap_path_ && shift_v == cached_shift_v_ && shift_a == cached_shift_a_) return;
+  const auto& L = system_->layout();
+  system_->load_state(U);
+  load_pantograph_state(U, V, A);
+  PCSIM_PETSC(MatZeroEntries(J));
+  system_->assemble_static(work2_, J,
+                           effects_.catenary_nonlinear ? CatenarySystem::kAllTerms
+                                                       : CatenarySystem::kBars);
+  if (L.rank() == L.size() - 1) {
+    for (std::size_t p = 0; p < pantographs_.size(); ++p) {
+      const auto& run = pantographs_[p];
+      const int n = run.model->dof_count();
+      const PetscInt first = panto_first_[p] - L.catenary_dofs();
+      Eigen::VectorXd q = Eigen::Map<Eigen::VectorXd>(&panto_u_[first], n);
+      Eigen::VectorXd qd = Eigen::Map<Eigen::VectorXd>(&panto_v_[first], n);
+      Eigen::VectorXd qdd = Eigen::Map<Eigen::VectorXd>(&panto_a_[first], n);
+      Eigen::MatrixXd Kq(n, n), Cq(n, n), Mq(n, n);
+      run.model->tangents(t, q, qd, qdd, Kq, Cq, Mq);
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Jp =
+          Kq + shift_v * Cq + shift_a * Mq;
+      std::vector<PetscInt> idx(n);
+      for (int i = 0; i < n; ++i) idx[i] = panto_first_[p] + i;
+      PCSIM_PETSC(MatSetValues(J, n, idx.data(), n, idx.data(), Jp.data(), ADD_VALUES));
+    }
+  }
+  add_contact(t, nullptr, J);
+  PCSIM_PETSC(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+  PCSIM_PETSC(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  if (!effects_.catenary_nonlinear) PCSIM_PETSC(MatAXPY(J, 1.0, K0_, SAME_NONZERO_PATTERN));
+  PCSIM_PETSC(MatAXPY(J, shift_a, M_, SAME_NONZERO_PATTERN));
+  if (C_) PCSIM_PETSC(MatAXPY(J, shift_v, C_, SAME_NONZERO_PATTERN));
+  cached_shift_v_ = shift_v;
+  cached_shift_a_ = shift_a;
+}
+
+void InteractionProblem::initial_state(Vec U0, Vec V0) {
+  const auto& L = system_->layout();
+  const auto& mesh = system_->mesh();
+  PCSIM_PETSC(VecSet(V0, 0.0));
+  std::vector<double> catenary_values = static_values_;
+  // Static start: the catenary under the first pantograph's static force.
+  if (!pantographs_.empty() && pantographs_[0].static_start) {
+    const auto& run = pantographs_[0];
+    int element;
+    double chi;
+    if (!locator_->locate(run.start_x, element, chi))
+      throw InputError("", "pantographs[0].start_x", "the pantograph starts outside the contact wire");
+    CatenarySystem loaded(L.comm(), mesh);
+    loaded.point_loads().push_back({element, chi, Eigen::Vector3d(0, 0, run.static_force)});
+    Vec x = loaded.create_vector();
+    catenary::set_state_from_node_values(loaded, static_values_, x);
+    auto result = catenary::solve_static(loaded, x, false, "pcsim_start_");
+    catenary_values = result.node_values;
+    PCSIM_PETSC(VecDestroy(&x));
+  }
+  catenary::set_state_from_node_values(*system_, catenary_values, U0);
+  // Pantographs in static equilibrium: touching the wire (ramp, zero contact
+  // force at t = 0) or pressing it with F0 (static start).
+  std::vector<double> q0_all(n_panto_dofs_, 0.0);
+  for (std::size_t p = 0; p < pantographs_.size(); ++p) {
+    auto& run = pantographs_[p];
+    int element;
+    double chi;
+    if (!locator_->locate(run.start_x, element, chi))
+      throw InputError("", "pantographs[" + std::to_string(p) + "].start_x",
+                       "the pantograph starts outside the contact wire");
+    catenary::Vec12 q;
+    for (int a = 0; a < 2; ++a)
+      for (int c = 0; c < 6; ++c) q[6 * a + c] = catenary_values[6 * mesh.cables[element].nodes[a] + c];
+    const double wire_z = catenary::cable_point(mesh.cables[element].ref_length, q, chi).r[2];
+    const double penetration = run.static_start ? run.static_force / kH_ : 0.0;
+    Eigen::VectorXd q0 = run.model->static_equilibrium(run.static_force, wire_z + penetration);
+    head_offset_[p] = 0.0;
+    const PetscInt first = panto_first_[p] - L.catenary_dofs();
+    for (int i = 0; i < run.model->dof_count(); ++i) q0_all[first + i] = q0[i];
+  }
+  if (L.rank() == L.size() - 1) {
+    for (PetscInt i = 0; i < n_panto_dofs_; ++i)
+      PCSIM_PETSC(VecSetValue(U0, L.extra_global(i), q0_all[i], INSERT_VALUES));
+  }
+  PCSIM_PETSC(VecAssemblyBegin(U0));
+  PCSIM_PETSC(VecAssemblyEnd(U0));
+  // Static start: the state above is a guess (catenary under a point load,
+  // pantograph in its own equilibrium). The start is the equilibrium of the
+  // dynamic model itself, F(0, U, 0, 0) = 0, so that nothing drifts at t = 0.
+  if (!pantographs_.empty() && pantographs_[0].static_start) solve_coupled_static(U0);
+}
+
+namespace {
+struct CoupledStatic {
+  InteractionProblem* problem;
+  Vec zero;
+};
+PetscErrorCode coupled_static_residual(SNES, Vec U, Vec F, void* ptr) {
+  PCSIM_CALLBACK_BEGIN
+  auto* c = static_cast<CoupledStatic*>(ptr);
+  c->problem->residual(0.0, U, c->zero, c->zero, F);
+  PCSIM_CALLBACK_END
+}
+PetscErrorCode coupled_static_jacobian(SNES, Vec U, Mat J, Mat P, void* ptr) {
+  PCSIM_CALLBACK_BEGIN
+  auto* c = static_cast<CoupledStatic*>(ptr);
+  c->problem->jacobian(0.0, U, c->zero, c->zero, 0.0, 0.0, P);
+  PCSIM_CALLBACK_END
+}
+}  // namespace
+
+void InteractionProblem::solve_coupled_static(Vec U0) {
+  CoupledStatic ctx{this, nullptr};
+  ctx.zero = create_vector();
+  PCSIM_PETSC(VecSet(ctx.zero, 0.0));
+  Vec F = create_vector();
+  Mat J = create_matrix();
+  const bool cheap = cheap_path_;
+  cheap_path_ = false;  // exact Newton for the start
+  SNES snes;
+  PCSIM_PETSC(SNESCreate(system_->comm(), &snes));
+  PCSIM_PETSC(SNESSetOptionsPrefix(snes, "pcsim_start_"));
+  PCSIM_PETSC(SNESSetFunction(snes, F, coupled_static_residual, &ctx));
+  PCSIM_PETSC(SNESSetJacobian(snes, J, J, coupled_static_jacobian, &ctx));
+  PCSIM_PETSC(SNESSetTolerances(snes, 1e-3, 1e-12, 0.0, 50, 100000));
+  SNESLineSearch line_search;
+  PCSIM_PETSC(SNESGetLineSearch(snes, &line_search));
+  PCSIM_PETSC(SNESLineSearchSetType(line_search, SNESLINESEARCHBASIC));
+  KSP ksp;
+  PC pc;
+  PCSIM_PETSC(SNESGetKSP(snes, &ksp));
+  PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
+  PCSIM_PETSC(KSPGetPC(ksp, &pc));
+  PCSIM_PETSC(PCSetType(pc, PCLU));
+  PCSIM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PCSIM_PETSC(SNESSetFromOptions(snes));
+  PCSIM_PETSC(SNESSolve(snes, nullptr, U0));
+  SNESConvergedReason reason;
+  PCSIM_PETSC(SNESGetConvergedReason(snes, &reason));
+  PCSIM_PETSC(SNESGetIterationNumber(snes, &start_iterations_));
+  PCSIM_PETSC(SNESDestroy(&snes));
+  PCSIM_PETSC(MatDestroy(&J));
+  PCSIM_PETSC(VecDestroy(&F));
+  PCSIM_PETSC(VecDestroy(&ctx.zero));
+  cheap_path_ = cheap;
+  cached_shift_v_ = cached_shift_a_ = -1;
+  if (reason <= 0)
+    throw SolverError(std::string("static start (coupled equilibrium) did not converge: ") +
+                      SNESConvergedReasons[reason]);
+}
+
+StepRecord InteractionProblem::record(double t, Vec U) {
+  const auto& L = system_->layout();
+  const auto& mesh = system_->mesh();
+  system_->load_state(U);
+  load_pantograph_state(U, nullptr, nullptr);
+  const std::size_t np = pantographs_.size();
+  const std::size_t ns = mesh.support_nodes.size();
+  std::vector<int> droppers;
+  for (std::size_t b = 0; b < mesh.bars.size(); ++b)
+    if (mesh.bars[b].kind == BarKind::dropper) droppers.push_back(static_cast<int>(b));
+  // Layout of the reduction buffer: per pantograph [Fc, x, z_wire], supports, droppers.
+  std::vector<double> buffer(3 * np + ns + droppers.size(), 0.0);
+  for (std::size_t p = 0; p < np; ++p) {
+    const auto& run = pantographs_[p];
+    const double x = run.start_x + run.speed * t;
+    int element;
+    double chi;
+    if (L.rank() == 0) buffer[3 * p + 1] = x;
+    if (!locator_->locate(x, element, chi)) continue;
+    if (L.owner(mesh.cables[element].nodes[0]) != L.rank()) continue;
+    catenary::Vec12 q;
+    system_->cable_values(element, q.data());
+    const int c = run.model->contact_dof();
+    const PetscInt first = panto_first_[p] - L.catenary_dofs();
+    const double head = panto_u_[first + c] + run.model->contact_offset() + head_offset_[p];
+    const auto terms = evaluate_penalty_contact(q, head, chi, mesh.cables[element].ref_length, kH_);
+    buffer[3 * p] = terms.force;
+    buffer[3 * p + 2] = terms.gap + head;
+  }
+  for (std::size_t s = 0; s < ns; ++s) {
+    const int n = mesh.support_nodes[s];
+    if (L.owner(n) == L.rank()) buffer[3 * np + s] = system_->node_values(n)[2];
+  }
+  for (std::size_t d = 0; d < droppers.size(); ++d)
+    if (L.owner(mesh.bars[droppers[d]].nodes[0]) == L.rank())
+      buffer[3 * np + ns + d] = system_->bar_force(droppers[d]);
+  if (L.size() > 1)
+    MPI_Reduce(L.rank() == 0 ? MPI_IN_PLACE : buffer.data(), buffer.data(),
+               static_cast<int>(buffer.size()), MPI_DOUBLE, MPI_SUM, 0, L.comm());
+  StepRecord rec;
+  rec.t = t;
+  if (L.rank() != 0) return rec;
+  for (std::size_t p = 0; p < np; ++p) {
+    rec.contact_force.push_back(buffer[3 * p]);
+    rec.contact_x.push_back(buffer[3 * p + 1]);
+    rec.wire_z.push_back(buffer[3 * p + 2]);
+    const PetscInt first = panto_first_[p] - L.catenary_dofs();
+    rec.q.emplace_back(panto_u_.begin() + first,
+                       panto_u_.begin() + first + pantographs_[p].model->dof_count());
+  }
+  rec.support_z.assign(buffer.begin() + 3 * np, buffer.begin() + 3 * np + ns);
+  rec.dropper_force.assign(buffer.begin() + 3 * np + ns, buffer.end());
+  return rec;
+}
+
+// ----------------------------------------------------------------- TS ----
+
+namespace {
+
+PetscErrorCode ts_residual(TS, PetscReal t, Vec U, Vec V, Vec A, Vec F, void* ctx) {
+  PCSIM_CALLBACK_BEGIN
+  static_cast<InteractionProblem*>(ctx)->residual(t, U, V, A, F);
+  PCSIM_CALLBACK_END
+}
+
+PetscErrorCode ts_jacobian(TS, PetscReal t, Vec U, Vec V, Vec A, PetscReal shift_v,
+                           PetscReal shift_a, Mat J, Mat P, void* ctx) {
+  PCSIM_CALLBACK_BEGIN
+  static_cast<InteractionProblem*>(ctx)->jacobian(t, U, V, A, shift_v, shift_a, P);
+  if (J != P) {
+    PCSIM_PETSC(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+    PCSIM_PETSC(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  }
+  PCSIM_CALLBACK_END
+}
+
+}  // namespace
+
+TS InteractionProblem::create_ts(double dt, double duration) {
+  solvers::register_hht_ts();
+  TS ts;
+  PCSIM_PETSC(TSCreate(system_->comm(), &ts));
+  PCSIM_PETSC(TSSetType(ts, solvers::kTSHHT));
+  Vec F = create_vector();
+  Mat J = create_matrix();
+  PCSIM_PETSC(TSSetI2Function(ts, F, ts_residual, this));
+  PCSIM_PETSC(TSSetI2Jacobian(ts, J, J, ts_jacobian, this));
+  PCSIM_PETSC(VecDestroy(&F));
+  PCSIM_PETSC(MatDestroy(&J));
+  PCSIM_PETSC(TSSetTimeStep(ts, dt));
+  PCSIM_PETSC(TSSetMaxTime(ts, duration));
+  PCSIM_PETSC(TSSetMaxSteps(ts, 100000000));
+  PCSIM_PETSC(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
+  SNES snes;
+  KSP ksp;
+  PC pc;
+  PCSIM_PETSC(TSGetSNES(ts, &snes));
+  // Residuals are forces [N]: round-off on the wire tensions leaves ~1e-4 N,
+  // so the absolute tolerance is 1e-3 N (contact forces are ~100 N).
+  PCSIM_PETSC(SNESSetTolerances(snes, 1e-3, 1e-9, 0.0, 25, 100000));
+  SNESLineSearch line_search;
+  PCSIM_PETSC(SNESGetLineSearch(snes, &line_search));
+  PCSIM_PETSC(SNESLineSearchSetType(line_search, SNESLINESEARCHBASIC));
+  PCSIM_PETSC(SNESGetKSP(snes, &ksp));
+  PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
+  PCSIM_PETSC(KSPGetPC(ksp, &pc));
+  PCSIM_PETSC(PCSetType(pc, PCLU));
+  PCSIM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PCSIM_PETSC(TSSetFromOptions(ts));
+  return ts;
+}
+
+}  // namespace pcsim::contact
