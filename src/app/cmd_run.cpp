@@ -120,7 +120,7 @@ int run_dynamic(const app::CommandContext& ctx) {
     assembly::CatenarySystem statics_system(ctx.comm, design, extra);
     Vec xs = statics_system.create_vector();
     statics_system.design_state(xs);
-    auto statics = catenary::solve_static(statics_system, xs, run.catenary.form_finding);
+    auto statics = catenary::solve_static(statics_system, xs, run.catenary.form_finding, "static_");
     app::print0(ctx, "  static: %d Newton iterations, height error %.2e m, tension error %.2e\n",
                 statics.snes_iterations, statics.max_height_error_m,
                 statics.max_tension_error_rel);

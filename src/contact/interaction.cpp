@@ -315,7 +315,7 @@ void InteractionProblem::initial_state(Vec U0, Vec V0) {
     loaded.point_loads().push_back({element, chi, Eigen::Vector3d(0, 0, run.static_force)});
     Vec x = loaded.create_vector();
     catenary::set_state_from_node_values(loaded, static_values_, x);
-    auto result = catenary::solve_static(loaded, x, false, "pcsim_start_");
+    auto result = catenary::solve_static(loaded, x, false, "start_");
     catenary_values = result.node_values;
     PCSIM_PETSC(VecDestroy(&x));
   }
@@ -381,7 +381,7 @@ void InteractionProblem::solve_coupled_static(Vec U0) {
   cheap_path_ = false;  // exact Newton for the start
   SNES snes;
   PCSIM_PETSC(SNESCreate(system_->comm(), &snes));
-  PCSIM_PETSC(SNESSetOptionsPrefix(snes, "pcsim_start_"));
+  PCSIM_PETSC(SNESSetOptionsPrefix(snes, "start_"));
   PCSIM_PETSC(SNESSetFunction(snes, F, coupled_static_residual, &ctx));
   PCSIM_PETSC(SNESSetJacobian(snes, J, J, coupled_static_jacobian, &ctx));
   PCSIM_PETSC(SNESSetTolerances(snes, 1e-3, 1e-12, 0.0, 50, 100000));
@@ -518,7 +518,15 @@ TS InteractionProblem::create_ts(double dt, double duration) {
   PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
   PCSIM_PETSC(KSPGetPC(ksp, &pc));
   PCSIM_PETSC(PCSetType(pc, PCLU));
-  PCSIM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  // The step matrix (M/(beta dt^2) dominant) needs no pivoting: on one rank
+  // PETSc's own sparse LU with minimum-degree ordering has the cheapest
+  // solves (measured 4x faster than MUMPS on the EN 50318 mesh); MUMPS in parallel.
+  if (system_->layout().size() == 1) {
+    PCSIM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERPETSC));
+    PCSIM_PETSC(PCFactorSetMatOrderingType(pc, MATORDERINGQMD));
+  } else {
+    PCSIM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  }
   PCSIM_PETSC(TSSetFromOptions(ts));
   return ts;
 }

@@ -41,8 +41,8 @@ struct ContactLocation {
 ContactLocation locate_contact_point(const Vector12d& q, double lref, double x_c);
 
 struct ContactEvaluation {
-  double gap = 0;    // dz = z_cc - z_H (3.9); < 0 means interpenetration
-  double force = 0;  // Fc >= 0 (3.10)
+  double gap = 0;                          // dz = z_cc - z_H (3.9); < 0 means interpenetration
+  double force = 0;                        // Fc >= 0 (3.10)
   Vector13d residual = Vector13d::Zero();  // 12 wire DOFs, then the head coordinate q_H
   Matrix13d tangent = Matrix13d::Zero();   // d residual / d [q, q_H], chi fixed
 };

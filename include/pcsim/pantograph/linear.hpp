@@ -1,0 +1,79 @@
+// Linearised pantograph about a static equilibrium (thesis 2.1.2, Annex B), its modes
+// (2.21–2.28) with SLEPc and with Eigen (cross-check), and receptance FRFs: direct (2.36)
+// and by modal superposition of the damped state-space modes (2.37–2.40).
+#pragma once
+
+#include <complex>
+#include <string>
+#include <vector>
+
+#include "pcsim/pantograph/model.hpp"
+
+namespace pcsim::pantograph {
+
+// M Δq̈ + C Δq̇ + K Δq = 0 (2.20): the tangents of R at (q0, 0, 0).
+struct LinearModel {
+  Eigen::MatrixXd M, C, K;
+  Eigen::VectorXd q0;
+  std::vector<std::string> dof_names;
+};
+LinearModel linearise(const PantographModel& model, const Eigen::VectorXd& q0);
+
+// The linearised model as a PantographModel (for linear vs nonlinear time responses):
+//   R = M q̈ + C q̇ + K (q − q0) − F0 e_c,
+// in equilibrium at q0 under the contact force F0 used to build it.
+class LinearisedPantograph : public PantographModel {
+ public:
+  LinearisedPantograph(LinearModel lin, int contact_dof, double contact_offset,
+                       double contact_force);
+  std::string kind() const override { return "linearised"; }
+  int dof_count() const override { return static_cast<int>(lin_.M.rows()); }
+  std::vector<std::string> dof_names() const override { return lin_.dof_names; }
+  int contact_dof() const override { return c_; }
+  double contact_offset() const override { return offset_; }
+  void residual(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                const Eigen::VectorXd& qdd, Eigen::Ref<Eigen::VectorXd> R) const override;
+  void tangents(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                const Eigen::VectorXd& qdd, Eigen::Ref<Eigen::MatrixXd> dR_dq,
+                Eigen::Ref<Eigen::MatrixXd> dR_dqd,
+                Eigen::Ref<Eigen::MatrixXd> dR_dqdd) const override;
+  bool is_linear() const override { return true; }
+  // Returns q0 (the linearisation point; F0 and h0 are fixed at construction).
+  Eigen::VectorXd static_equilibrium(double, double) override { return lin_.q0; }
+  double kinetic_energy(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const override;
+  double potential_energy(const Eigen::VectorXd& q) const override;
+  PowerSplit power(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const override;
+
+ private:
+  LinearModel lin_;
+  int c_;
+  double offset_, F0_;
+};
+
+struct Mode {
+  std::complex<double> eigenvalue;  // λ = ω(−ζ + i√(1−ζ²)) (damped); iω (undamped)
+  double frequency_hz = 0;          // ω / 2π (undamped natural frequency for damped modes)
+  double damping_ratio = 0;
+  Eigen::VectorXcd shape;         // Δq part, scaled to unit max modulus
+  Eigen::VectorXcd state_vector;  // damped: full state eigenvector Y = {Δq, Δq̇} (2.26)
+  int dominant_dof = -1;          // coordinate with the largest share of M_ii |φ_i|²
+  bool real_root = false;         // damped: overdamped (real λ, no conjugate)
+};
+
+// Undamped: (K − ω² M) φ = 0 (2.23); modes with ω > 0, ascending. Zero eigenvalues of
+// restrained coordinates (rows replaced by acceleration constraints) are dropped.
+std::vector<Mode> undamped_modes_slepc(const LinearModel& lin);
+std::vector<Mode> undamped_modes_eigen(const LinearModel& lin);
+// Damped: state-space form [C M; M 0] Ẏ + [K 0; 0 −M] Y = 0 (2.27); one mode per
+// complex-conjugate pair (Im λ > 0), ascending in ω.
+std::vector<Mode> damped_modes_slepc(const LinearModel& lin);
+std::vector<Mode> damped_modes_eigen(const LinearModel& lin);
+
+// Receptance H_ij(ω) = [K + iωC − ω²M]⁻¹_ij (2.36).
+std::complex<double> frf_direct(const LinearModel& lin, int i, int j, double omega);
+// H_ij(ω) = Σ_r φ_r,i φ_r,j / (a_r (iω − λ_r)) + conj. (2.40), a_r = φ_rᵀ A φ_r, with the
+// damped state-space modes; requires symmetric M, C, K.
+std::complex<double> frf_modal(const LinearModel& lin, const std::vector<Mode>& damped, int i,
+                               int j, double omega);
+
+}  // namespace pcsim::pantograph

@@ -1,0 +1,69 @@
+// Pantograph models for the pantograph–catenary interaction (thesis chapter 2).
+//
+// A model states its equations of motion in residual form WITHOUT the contact force:
+//   R(t, q, q̇, q̈) = M(q) q̈ + f(q, q̇) − Q(t)
+// (uplift, aerodynamic force, gravity, springs, dampers, friction and restraints as
+// enabled). The contact force Fc ≥ 0 pushes the head DOWN; a coupling adds it as
+//   R_total = R + Fc · e_c,   e_c = unit vector of contact_dof(),
+// and the contact point height is q[contact_dof()] + contact_offset().
+// Exact tangents dR/dq, dR/dq̇, dR/dq̈ are given for implicit integration (thesis 3.3.3).
+#pragma once
+
+#include <Eigen/Dense>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "pcsim/scene/yaml_input.hpp"
+
+namespace pcsim::pantograph {
+
+// Power of the non-conservative generalised forces contained in R (W = ∫ P dt).
+struct PowerSplit {
+  double dissipative = 0;  // damper, friction (≤ 0 for passive elements)
+  double external = 0;     // uplift force / bellows torque, aerodynamic force
+};
+
+class PantographModel {
+ public:
+  virtual ~PantographModel();
+
+  virtual std::string kind() const = 0;  // "lumped" | "dsa380"
+  virtual int dof_count() const = 0;
+  virtual std::vector<std::string> dof_names() const = 0;
+  // Index in q of the head's vertical coordinate.
+  virtual int contact_dof() const = 0;
+  // Contact point height = q[contact_dof()] + contact_offset().
+  virtual double contact_offset() const = 0;
+
+  virtual void residual(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                        const Eigen::VectorXd& qdd, Eigen::Ref<Eigen::VectorXd> R) const = 0;
+  virtual void tangents(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                        const Eigen::VectorXd& qdd, Eigen::Ref<Eigen::MatrixXd> dR_dq,
+                        Eigen::Ref<Eigen::MatrixXd> dR_dqd,
+                        Eigen::Ref<Eigen::MatrixXd> dR_dqdd) const = 0;
+  // True if R is linear in (q, q̇, q̈) with constant tangents.
+  virtual bool is_linear() const = 0;
+
+  // Static equilibrium under a downward contact force F0 with the contact point at height
+  // h0. Sets what the equilibrium fixes (DSA-380: bellows torque M0; lumped: the height
+  // offset) and returns q0.
+  virtual Eigen::VectorXd static_equilibrium(double contact_force, double working_height) = 0;
+
+  // Energies for the balance [T+V]_t − [T+V]_0 − W_dissipative − W_external = 0 (2.30–2.34).
+  virtual double kinetic_energy(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const = 0;
+  virtual double potential_energy(const Eigen::VectorXd& q) const = 0;
+  virtual PowerSplit power(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const = 0;
+};
+
+// Builds a model from a scene's pantograph entry
+//   {model: <path to meshes/pantographs/*.yaml, relative to the scene>, effects: {...}}
+// Effects (all optional): aerodynamic: bool; DSA-380 only: head_restraint:
+// none|rotation|horizontal, friction: {force, kt}, damper: {enabled, one_way, quadratic}.
+std::unique_ptr<PantographModel> make_pantograph(const pcsim::InputNode& node, double speed_m_s);
+// Same, from a model file and an effects node (may be a null/absent node).
+std::unique_ptr<PantographModel> load_pantograph_model(const std::string& model_path,
+                                                       const pcsim::InputNode* effects,
+                                                       double speed_m_s);
+
+}  // namespace pcsim::pantograph

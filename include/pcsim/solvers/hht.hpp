@@ -1,0 +1,73 @@
+// HHT-α time integrator as a PETSc TS type "hht" (thesis 3.3.2, eqs 3.16–3.24).
+//
+// The user states the second-order problem with TSSetI2Function/TSSetI2Jacobian as
+//   F(t, U, V, A) = M(U) A + f(t, U, V) = 0        (affine in A),
+// and sets the initial state with TS2SetSolution(ts, U0, V0). Each step solves, with the
+// TS's SNES and the positions U_{n+1} as unknowns (Newton on positions, as the thesis does),
+//   R = (1-α) F(t_{n+1}, U_{n+1}, V_{n+1}, A_{n+1}/(1-α)) + α F(t_n, U_n, V_n, 0) = 0,
+// i.e. inertia M(U_{n+1}) A_{n+1} at the new level and every other force averaged
+// (1-α) new + α old (3.19–3.21 with the known slip fixed: new-level weight 1-α). Newmark
+// updates (3.16) with γ = 1/2 + α, β = (1+α)²/4; high-frequency spectral radius
+// (1-α)/(1+α). The SNES residual is R/(1-α); its Jacobian is the user's I2Jacobian with
+// shifts dV/dU = γ/(βΔt), dA/dU = 1/(βΔt²(1-α)) (3.23).
+//
+// Options (prefix of the TS):
+//   -ts_hht_alpha <0.1>           α in [0, 1/3]. Default 0.1 (spectral radius 0.818):
+//                                 enough to damp spurious high-frequency catenary modes,
+//                                 small period error for the resolved ones.
+//   -ts_hht_energy_norm_tol <0>   if > 0, Newton also stops when |Δqᵀ R| < tol (thesis
+//                                 energy norm, R the residual the update Δq was computed
+//                                 from); the usual SNES norms still apply.
+//   -ts_hht_max_reject <8>        a step whose SNES fails is retried with Δt halved, at most
+//                                 this many times; then the TS stops with
+//                                 TS_DIVERGED_NONLINEAR_SOLVE.
+//   -ts_hht_regrow_steps <4>      after this many accepted steps at a reduced Δt, Δt doubles
+//                                 (never beyond the user's Δt).
+//   -ts_hht_average_inertia <0>   inertia ((1-α) M(U_{n+1}) + α M(U_n)) A_{n+1} instead of the
+//                                 thesis's M(U_{n+1}) A_{n+1}. Same result for constant M; with
+//                                 configuration-dependent M the thesis form is only first-order
+//                                 accurate (measured in tests/solvers/test_hht.cpp), the averaged
+//                                 form second order. Costs M(U_n) once per step (extracted
+//                                 from 2-3 I2Jacobian evaluations) and one MatMult per residual.
+// The initial acceleration solves F(t0, U0, V0, A0) = 0 with the TS's SNES at the first step
+// (and whenever the time differs from the end of the last step), unless
+// hht_set_initial_acceleration() supplied it. With -ts_hht_energy_norm_tol the TS installs its
+// own SNES convergence test (SNESConvergedDefault plus the energy test) at TSSetUp.
+// TS_EXACTFINALTIME_MATCHSTEP clips the last step to the final time.
+#pragma once
+
+#include <petscts.h>
+
+namespace pcsim::solvers {
+
+inline constexpr const char* kTSHHT = "hht";
+
+// Registers the TS type "hht" (TSRegister); safe to call any number of times.
+void register_hht_ts();
+
+// The following throw pcsim::SolverError if ts is not of type "hht".
+
+// Uses A0 (copied) as acceleration at the start of the next step instead of solving for it.
+void hht_set_initial_acceleration(TS ts, Vec A0);
+// Makes the next step solve F(t, U, V, A) = 0 for its starting acceleration (call it after
+// changing the solution from outside without changing the time; a new time does it anyway).
+void hht_recompute_initial_acceleration(TS ts);
+// Copies the acceleration belonging to the current solution (after at least one step).
+void hht_get_acceleration(TS ts, Vec A);
+// Sets α (γ and β follow); α must lie in [0, 1/3].
+void hht_set_alpha(TS ts, PetscReal alpha);
+void hht_get_params(TS ts, PetscReal* alpha, PetscReal* gamma, PetscReal* beta);
+// Sets the energy-norm tolerance (<= 0 disables the test); takes effect at TSSetUp.
+void hht_set_energy_norm_tol(TS ts, PetscReal tol);
+
+// Diagnostics of the most recent Newton solve of a step.
+struct HHTNewtonInfo {
+  PetscReal last_energy_norm = 0;  // |Δqᵀ R| of the last iteration (0 before any)
+  PetscBool converged_by_energy = PETSC_FALSE;
+  PetscInt accepted_steps = 0;   // since setup
+  PetscInt rejected_steps = 0;   // since setup
+  PetscReal user_time_step = 0;  // the Δt the step size grows back to
+};
+HHTNewtonInfo hht_get_info(TS ts);
+
+}  // namespace pcsim::solvers

@@ -1,0 +1,61 @@
+#!/usr/bin/python3
+"""Time response of the pantograph alone (pcsim pantograph, study: time).
+
+usage: pantograph_time.py OUTDIR [OUTDIR2 ...] -o PNG [--labels A,B] [--title T]
+Plots the head height y10 (contact dof), the frame angle and the head rotation for every
+scheme stored in OUTDIR/time.h5 (rk4, hht, and *_linear if present). Several OUTDIRs
+(e.g. without/with friction) are overlaid.
+"""
+import argparse
+import os
+
+import h5py
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+import numpy as np
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("outdirs", nargs="+")
+    ap.add_argument("-o", "--output", required=True)
+    ap.add_argument("--labels", default=None)
+    ap.add_argument("--title", default="")
+    ap.add_argument("--schemes", default=None, help="comma list, default: all")
+    args = ap.parse_args()
+    labels = args.labels.split(",") if args.labels else [os.path.basename(d.rstrip("/")) for d in args.outdirs]
+    fig, axes = plt.subplots(3, 1, figsize=(8, 8), sharex=True)
+    for d, lab in zip(args.outdirs, labels):
+        with h5py.File(os.path.join(d, "time.h5"), "r") as f:
+            for scheme in f.keys():
+                if args.schemes and scheme not in args.schemes.split(","):
+                    continue
+                g = f[scheme]
+                t = g["t"][:]
+                q = g["q"][:]
+                names = [n.decode() if isinstance(n, bytes) else n for n in g["dof_names"][:]]
+                y = g["contact_height"][:]
+                style = "--" if "hht" in scheme else ("-." if "linear" in scheme else "-")
+                axes[0].plot(t, 1e3 * (y - y[0]), style, label=f"{lab} {scheme}")
+                axes[1].plot(t, np.degrees(q[:, 0] - q[0, 0]), style, label=f"{lab} {scheme}")
+                if q.shape[1] > 3:
+                    axes[2].plot(t, np.degrees(q[:, 3]), style, label=f"{lab} {scheme}")
+                else:
+                    axes[2].plot(t, g["contact_force"][:], style, label=f"{lab} {scheme}")
+    axes[0].set_ylabel("contact height change (mm)")
+    axes[1].set_ylabel("frame angle change (deg)")
+    axes[2].set_ylabel("head rotation θ7 (deg)")
+    axes[2].set_xlabel("t (s)")
+    for a in axes:
+        a.grid(True)
+    axes[0].legend(fontsize=8)
+    axes[0].set_title(args.title)
+    fig.tight_layout()
+    fig.savefig(args.output, dpi=120)
+    print(args.output)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,250 @@
+#include "pcsim/pantograph/linear.hpp"
+
+#include <slepceps.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "pcsim/error.hpp"
+
+namespace pcsim::pantograph {
+
+LinearModel linearise(const PantographModel& model, const Eigen::VectorXd& q0) {
+  const int n = model.dof_count();
+  LinearModel lin;
+  lin.M.resize(n, n);
+  lin.C.resize(n, n);
+  lin.K.resize(n, n);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+  model.tangents(0.0, q0, zero, zero, lin.K, lin.C, lin.M);
+  lin.q0 = q0;
+  lin.dof_names = model.dof_names();
+  return lin;
+}
+
+LinearisedPantograph::LinearisedPantograph(LinearModel lin, int contact_dof, double contact_offset,
+                                           double contact_force)
+    : lin_(std::move(lin)), c_(contact_dof), offset_(contact_offset), F0_(contact_force) {}
+
+void LinearisedPantograph::residual(double, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                                    const Eigen::VectorXd& qdd,
+                                    Eigen::Ref<Eigen::VectorXd> R) const {
+  R.noalias() = lin_.M * qdd + lin_.C * qd + lin_.K * (q - lin_.q0);
+  R[c_] -= F0_;
+}
+
+void LinearisedPantograph::tangents(double, const Eigen::VectorXd&, const Eigen::VectorXd&,
+                                    const Eigen::VectorXd&, Eigen::Ref<Eigen::MatrixXd> dR_dq,
+                                    Eigen::Ref<Eigen::MatrixXd> dR_dqd,
+                                    Eigen::Ref<Eigen::MatrixXd> dR_dqdd) const {
+  dR_dq = lin_.K;
+  dR_dqd = lin_.C;
+  dR_dqdd = lin_.M;
+}
+
+double LinearisedPantograph::kinetic_energy(const Eigen::VectorXd&,
+                                            const Eigen::VectorXd& qd) const {
+  return 0.5 * qd.dot(lin_.M * qd);
+}
+
+double LinearisedPantograph::potential_energy(const Eigen::VectorXd& q) const {
+  const Eigen::VectorXd d = q - lin_.q0;
+  return 0.5 * d.dot(lin_.K * d);
+}
+
+PowerSplit LinearisedPantograph::power(double, const Eigen::VectorXd&,
+                                       const Eigen::VectorXd& qd) const {
+  return {-qd.dot(lin_.C * qd), F0_ * qd[c_]};
+}
+
+namespace {
+
+constexpr double kTwoPi = 2 * M_PI;
+
+Mat dense(const Eigen::MatrixXd& A) {
+  Mat m;
+  const int n = static_cast<int>(A.rows());
+  PCSIM_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, n, n, nullptr, &m));
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) PCSIM_PETSC(MatSetValue(m, i, j, A(i, j), INSERT_VALUES));
+  PCSIM_PETSC(MatAssemblyBegin(m, MAT_FINAL_ASSEMBLY));
+  PCSIM_PETSC(MatAssemblyEnd(m, MAT_FINAL_ASSEMBLY));
+  return m;
+}
+
+// All eigenpairs of A x = λ B x with SLEPc's dense (LAPACK) solver.
+void slepc_all_eigenpairs(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
+                          Eigen::VectorXcd* values, Eigen::MatrixXcd* vectors) {
+  const int n = static_cast<int>(A.rows());
+  Mat a = dense(A), b = dense(B);
+  EPS eps;
+  PCSIM_PETSC(EPSCreate(PETSC_COMM_SELF, &eps));
+  PCSIM_PETSC(EPSSetOperators(eps, a, b));
+  PCSIM_PETSC(EPSSetProblemType(eps, EPS_GNHEP));
+  PCSIM_PETSC(EPSSetType(eps, EPSLAPACK));
+  PCSIM_PETSC(EPSSetDimensions(eps, n, PETSC_DEFAULT, PETSC_DEFAULT));
+  PCSIM_PETSC(EPSSolve(eps));
+  PetscInt nconv = 0;
+  PCSIM_PETSC(EPSGetConverged(eps, &nconv));
+  if (nconv < n) throw SolverError("pantograph modes: SLEPc converged fewer eigenpairs than DOFs");
+  Vec xr, xi;
+  PCSIM_PETSC(MatCreateVecs(a, &xr, nullptr));
+  PCSIM_PETSC(VecDuplicate(xr, &xi));
+  values->resize(n);
+  vectors->resize(n, n);
+  for (int k = 0; k < n; ++k) {
+    PetscScalar kr, ki;
+    PCSIM_PETSC(EPSGetEigenpair(eps, k, &kr, &ki, xr, xi));
+    (*values)[k] = {kr, ki};
+    const PetscScalar *pr, *pi;
+    PCSIM_PETSC(VecGetArrayRead(xr, &pr));
+    PCSIM_PETSC(VecGetArrayRead(xi, &pi));
+    for (int i = 0; i < n; ++i) (*vectors)(i, k) = {pr[i], pi[i]};
+    PCSIM_PETSC(VecRestoreArrayRead(xr, &pr));
+    PCSIM_PETSC(VecRestoreArrayRead(xi, &pi));
+  }
+  PCSIM_PETSC(VecDestroy(&xr));
+  PCSIM_PETSC(VecDestroy(&xi));
+  PCSIM_PETSC(EPSDestroy(&eps));
+  PCSIM_PETSC(MatDestroy(&a));
+  PCSIM_PETSC(MatDestroy(&b));
+}
+
+void finish_shape(const LinearModel& lin, Mode* m) {
+  const int n = static_cast<int>(lin.M.rows());
+  Eigen::Index imax = 0;
+  m->shape.cwiseAbs().maxCoeff(&imax);
+  m->shape /= m->shape[imax];
+  double best = -1;
+  for (int i = 0; i < n; ++i) {
+    const double share = std::abs(lin.M(i, i)) * std::norm(m->shape[i]);
+    if (share > best) best = share, m->dominant_dof = i;
+  }
+}
+
+std::vector<Mode> undamped_from(const LinearModel& lin, const Eigen::VectorXcd& lambda,
+                                const Eigen::MatrixXcd& vec) {
+  // λ = ω² of K φ = λ M φ.
+  std::vector<Mode> modes;
+  const double scale = lin.K.cwiseAbs().maxCoeff() / lin.M.cwiseAbs().maxCoeff();
+  for (int k = 0; k < lambda.size(); ++k) {
+    const double w2 = lambda[k].real();
+    if (!(w2 > 1e-9 * scale)) continue;  // restrained coordinate (or unstable)
+    Mode m;
+    m.eigenvalue = {0.0, std::sqrt(w2)};
+    m.frequency_hz = std::sqrt(w2) / kTwoPi;
+    m.shape = vec.col(k);
+    finish_shape(lin, &m);
+    modes.push_back(m);
+  }
+  std::sort(modes.begin(), modes.end(),
+            [](const Mode& a, const Mode& b) { return a.frequency_hz < b.frequency_hz; });
+  return modes;
+}
+
+void state_space(const LinearModel& lin, Eigen::MatrixXd* A, Eigen::MatrixXd* B) {
+  const int n = static_cast<int>(lin.M.rows());
+  A->setZero(2 * n, 2 * n);
+  B->setZero(2 * n, 2 * n);
+  A->topLeftCorner(n, n) = lin.C;
+  A->topRightCorner(n, n) = lin.M;
+  A->bottomLeftCorner(n, n) = lin.M;
+  B->topLeftCorner(n, n) = lin.K;
+  B->bottomRightCorner(n, n) = -lin.M;
+}
+
+std::vector<Mode> damped_from(const LinearModel& lin, const Eigen::VectorXcd& lambda,
+                              const Eigen::MatrixXcd& vec) {
+  const int n = static_cast<int>(lin.M.rows());
+  std::vector<Mode> modes;
+  // Restrained coordinates give a (defective) double zero eigenvalue, perturbed by
+  // rounding to O(sqrt(eps)) times the system's frequency scale.
+  const double zero_tol =
+      1e-5 * std::sqrt(lin.K.cwiseAbs().maxCoeff() / lin.M.cwiseAbs().maxCoeff());
+  for (int k = 0; k < lambda.size(); ++k) {
+    const std::complex<double> l = lambda[k];
+    const double tol = 1e-9 * std::max(1.0, std::abs(l));
+    if (l.imag() < -tol || std::abs(l) < zero_tol) continue;  // conjugate, or restrained
+    Mode m;
+    m.real_root = l.imag() <= tol;
+    m.eigenvalue = m.real_root ? std::complex<double>(l.real(), 0.0) : l;
+    const double w = std::abs(l);
+    m.frequency_hz = w / kTwoPi;
+    m.damping_ratio = -l.real() / w;  // (2.28)
+    m.state_vector = vec.col(k);
+    if (m.real_root) m.state_vector = m.state_vector.real().cast<std::complex<double>>();
+    m.shape = m.state_vector.head(n);
+    finish_shape(lin, &m);
+    modes.push_back(m);
+  }
+  std::sort(modes.begin(), modes.end(),
+            [](const Mode& a, const Mode& b) { return a.frequency_hz < b.frequency_hz; });
+  return modes;
+}
+
+}  // namespace
+
+std::vector<Mode> undamped_modes_slepc(const LinearModel& lin) {
+  Eigen::VectorXcd lambda;
+  Eigen::MatrixXcd vec;
+  slepc_all_eigenpairs(lin.K, lin.M, &lambda, &vec);
+  return undamped_from(lin, lambda, vec);
+}
+
+std::vector<Mode> undamped_modes_eigen(const LinearModel& lin) {
+  Eigen::EigenSolver<Eigen::MatrixXd> es(lin.M.lu().solve(lin.K));
+  return undamped_from(lin, es.eigenvalues(), es.eigenvectors());
+}
+
+std::vector<Mode> damped_modes_slepc(const LinearModel& lin) {
+  Eigen::MatrixXd A, B;
+  state_space(lin, &A, &B);
+  Eigen::VectorXcd lambda;
+  Eigen::MatrixXcd vec;
+  slepc_all_eigenpairs(-B, A, &lambda, &vec);  // (λ A + B) Y = 0
+  return damped_from(lin, lambda, vec);
+}
+
+std::vector<Mode> damped_modes_eigen(const LinearModel& lin) {
+  Eigen::MatrixXd A, B;
+  state_space(lin, &A, &B);
+  Eigen::EigenSolver<Eigen::MatrixXd> es(A.lu().solve(-B));
+  return damped_from(lin, es.eigenvalues(), es.eigenvectors());
+}
+
+std::complex<double> frf_direct(const LinearModel& lin, int i, int j, double omega) {
+  const std::complex<double> I(0, 1);
+  const Eigen::MatrixXcd D = lin.K.cast<std::complex<double>>() +
+                             I * omega * lin.C.cast<std::complex<double>>() -
+                             omega * omega * lin.M.cast<std::complex<double>>();
+  Eigen::VectorXcd f = Eigen::VectorXcd::Zero(lin.M.rows());
+  f[j] = 1.0;
+  return D.fullPivLu().solve(f)[i];
+}
+
+std::complex<double> frf_modal(const LinearModel& lin, const std::vector<Mode>& damped, int i,
+                               int j, double omega) {
+  if (!lin.M.isApprox(lin.M.transpose()) || !lin.K.isApprox(lin.K.transpose()) ||
+      !lin.C.isApprox(lin.C.transpose()))
+    throw SolverError("frf_modal: needs symmetric M, C, K (use frf_direct with restraints)");
+  Eigen::MatrixXd A, B;
+  state_space(lin, &A, &B);
+  const std::complex<double> I(0, 1);
+  std::complex<double> h = 0;
+  for (const auto& m : damped) {
+    const Eigen::VectorXcd& phi = m.state_vector;
+    const std::complex<double> a = phi.transpose() * A.cast<std::complex<double>>() * phi;
+    const std::complex<double> term = phi[i] * phi[j] / (a * (I * omega - m.eigenvalue));
+    if (m.real_root) {
+      h += term;
+      continue;
+    }
+    // Conjugate pair: φ̄, λ̄.
+    const std::complex<double> conj_term = std::conj(phi[i]) * std::conj(phi[j]) /
+                                           (std::conj(a) * (I * omega - std::conj(m.eigenvalue)));
+    h += term + conj_term;
+  }
+  return h;
+}
+
+}  // namespace pcsim::pantograph

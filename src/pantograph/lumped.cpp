@@ -1,0 +1,116 @@
+#include "pcsim/pantograph/lumped.hpp"
+
+namespace pcsim::pantograph {
+
+LumpedParameters load_lumped_parameters(const pcsim::InputNode& model) {
+  model.allow_only({"kind", "name", "source", "stages", "uplift", "gravity", "aerodynamic"});
+  LumpedParameters p;
+  p.name = model.get_string("name", "lumped");
+  const auto stages = model["stages"];
+  if (!stages.is_sequence() || stages.size() == 0) stages.fail("must be a non-empty list");
+  for (std::size_t i = 0; i < stages.size(); ++i) {
+    const auto s = stages.at(i);
+    s.allow_only({"name", "mass", "stiffness", "damping"});
+    LumpedStage st;
+    st.name = s.get_string("name", "stage" + std::to_string(i));
+    st.mass = s.get_positive("mass");
+    st.stiffness = s.get_nonnegative("stiffness");
+    st.damping = s.get_nonnegative("damping", 0.0);
+    p.stages.push_back(st);
+  }
+  if (model.has("uplift")) {
+    const auto u = model["uplift"];
+    u.allow_only({"force", "stage"});
+    p.uplift_force = u.get_double("force");
+    const std::string stage = u.get_string("stage", p.stages.back().name);
+    p.uplift_stage = -1;
+    for (std::size_t i = 0; i < p.stages.size(); ++i)
+      if (p.stages[i].name == stage) p.uplift_stage = static_cast<int>(i);
+    if (p.uplift_stage < 0) u.fail_key("stage", "no stage named '" + stage + "'");
+  }
+  p.gravity = model.get_bool("gravity", false);
+  if (model.has("aerodynamic")) {
+    const auto a = model["aerodynamic"];
+    a.allow_only({"a", "b", "c"});
+    p.aero_a = a.get_double("a", 0.0);
+    p.aero_b = a.get_double("b", 0.0);
+    p.aero_c = a.get_double("c", 0.0);
+  }
+  return p;
+}
+
+LumpedPantograph::LumpedPantograph(LumpedParameters params, bool aerodynamic, double speed_m_s)
+    : p_(std::move(params)) {
+  const int n = dof_count();
+  M_ = Eigen::MatrixXd::Zero(n, n);
+  C_ = Eigen::MatrixXd::Zero(n, n);
+  K_ = Eigen::MatrixXd::Zero(n, n);
+  Q_ = Eigen::VectorXd::Zero(n);
+  Q_ext_ = Eigen::VectorXd::Zero(n);
+  for (int i = 0; i < n; ++i) {
+    const auto& s = p_.stages[i];
+    M_(i, i) = s.mass;
+    // Element between stage i and stage i+1 (or the roof).
+    K_(i, i) += s.stiffness;
+    C_(i, i) += s.damping;
+    if (i + 1 < n) {
+      K_(i + 1, i + 1) += s.stiffness;
+      K_(i, i + 1) -= s.stiffness;
+      K_(i + 1, i) -= s.stiffness;
+      C_(i + 1, i + 1) += s.damping;
+      C_(i, i + 1) -= s.damping;
+      C_(i + 1, i) -= s.damping;
+    }
+    if (p_.gravity) Q_(i) -= s.mass * p_.g;
+  }
+  Q_ext_(p_.uplift_stage) += p_.uplift_force;
+  if (aerodynamic)
+    Q_ext_(0) += p_.aero_a + p_.aero_b * speed_m_s + p_.aero_c * speed_m_s * speed_m_s;
+  Q_ += Q_ext_;
+}
+
+std::vector<std::string> LumpedPantograph::dof_names() const {
+  std::vector<std::string> names;
+  for (const auto& s : p_.stages) names.push_back("z_" + s.name);
+  return names;
+}
+
+void LumpedPantograph::residual(double, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                                const Eigen::VectorXd& qdd, Eigen::Ref<Eigen::VectorXd> R) const {
+  R.noalias() = M_ * qdd + C_ * qd + K_ * q - Q_;
+}
+
+void LumpedPantograph::tangents(double, const Eigen::VectorXd&, const Eigen::VectorXd&,
+                                const Eigen::VectorXd&, Eigen::Ref<Eigen::MatrixXd> dR_dq,
+                                Eigen::Ref<Eigen::MatrixXd> dR_dqd,
+                                Eigen::Ref<Eigen::MatrixXd> dR_dqdd) const {
+  dR_dq = K_;
+  dR_dqd = C_;
+  dR_dqdd = M_;
+}
+
+Eigen::VectorXd LumpedPantograph::static_equilibrium(double contact_force, double working_height) {
+  Eigen::VectorXd rhs = Q_;
+  rhs(0) -= contact_force;
+  Eigen::VectorXd q0 = K_.fullPivLu().solve(rhs);
+  if (!(K_ * q0).isApprox(rhs, 1e-10))
+    throw SolverError("lumped pantograph: no static equilibrium (singular stiffness)");
+  offset_ = working_height - q0(0);
+  return q0;
+}
+
+double LumpedPantograph::kinetic_energy(const Eigen::VectorXd&, const Eigen::VectorXd& qd) const {
+  return 0.5 * qd.dot(M_ * qd);
+}
+
+double LumpedPantograph::potential_energy(const Eigen::VectorXd& q) const {
+  // Springs plus gravity (the gravity part of Q is conservative).
+  return 0.5 * q.dot(K_ * q) - (Q_ - Q_ext_).dot(q);
+}
+
+PowerSplit LumpedPantograph::power(double, const Eigen::VectorXd&,
+                                   const Eigen::VectorXd& qd) const {
+  return {-qd.dot(C_ * qd), Q_ext_.dot(qd)};
+}
+
+}  // namespace pcsim::pantograph

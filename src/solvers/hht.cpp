@@ -1,0 +1,500 @@
+// HHT-α TS type (thesis 3.3.2). See include/pcsim/solvers/hht.hpp for the method.
+//
+// Design notes (after reading how PETSc's TSALPHA2 plugs into TS; no code taken from it):
+//  - the TS owns the SNES; ts->ops->snesfunction/snesjacobian are called by it with the
+//    unknown X = U_{n+1}; the stage vectors V_{n+1}, A_{n+1} follow from X by (3.18);
+//  - TS2SetSolution/TS2GetSolution hold (U, V) in ts->vec_sol/ts->vec_dot;
+//  - all work vectors are created at TSSetUp, so a step allocates nothing; the state at t_n
+//    is kept in U0/V0/A0 so that TSRollBack can restore it.
+#include "pcsim/solvers/hht.hpp"
+
+#include <petsc/private/tsimpl.h>
+
+#include <cmath>
+#include <string>
+
+#include "pcsim/error.hpp"
+
+namespace {
+
+enum class SolveMode { kStep, kInitialAcceleration };
+
+struct HHTData {
+  // Method parameters (3.24 with η = α).
+  PetscReal alpha = 0.1;
+  PetscReal gamma = 0.6;
+  PetscReal beta = 0.3025;
+  PetscReal energy_tol = 0;  // <= 0: energy-norm test off
+  PetscInt max_reject = 8;
+  PetscInt regrow_steps = 4;
+  // Inertia at the new level M(U_{n+1}) A_{n+1} (thesis) or averaged
+  // ((1-α) M(U_{n+1}) + α M(U_n)) A_{n+1} (second order when M depends on U).
+  PetscBool average_inertia = PETSC_FALSE;
+
+  // State at t_n, stage/new state, work vectors (created at setup).
+  Vec U0 = nullptr, V0 = nullptr, A0 = nullptr;
+  Vec U1 = nullptr, V1 = nullptr, A1 = nullptr;
+  Vec A1_arg = nullptr;  // A_{n+1}/(1-α): the acceleration argument of F
+  Vec F0 = nullptr;      // F(t_n, U_n, V_n, 0): non-inertial force at the old level
+  Vec zero = nullptr;    // zero vector (acceleration argument of F0)
+  Vec R_prev = nullptr;  // SNES residual the last Newton update was computed from
+  Vec A_user = nullptr;  // user-supplied initial acceleration
+  Vec work = nullptr;    // M(U_n) A_{n+1} (averaged inertia)
+  Mat M0 = nullptr;      // M(U_n) (averaged inertia), created at the first step
+  Mat K_work = nullptr;  // dF/dU while extracting a mass matrix
+  PetscBool user_accel_pending = PETSC_FALSE;
+
+  // A1 is the acceleration of (vec_sol, vec_dot) at accel_time when accel_valid.
+  PetscBool accel_valid = PETSC_FALSE;
+  PetscReal accel_time = 0;
+
+  // Current solve.
+  SolveMode mode = SolveMode::kStep;
+  PetscReal t0 = 0, t1 = 0, dt = 0;
+
+  // Step-size control after rejections.
+  PetscReal dt_user = 0;       // the Δt to grow back to
+  PetscReal dt_last_set = -1;  // Δt this type left in ts->time_step (detects user changes)
+  PetscInt accepted_since_cut = 0;
+
+  // Diagnostics.
+  PetscReal last_energy_norm = 0;
+  PetscBool converged_by_energy = PETSC_FALSE;
+  PetscInt accepted = 0, rejected = 0;
+};
+
+void set_alpha(HHTData* th, PetscReal alpha) {
+  th->alpha = alpha;
+  th->gamma = 0.5 + alpha;                      // (3.24)
+  th->beta = 0.25 * (1 + alpha) * (1 + alpha);  // (3.24)
+}
+
+HHTData* data_of(TS ts) {
+  return static_cast<HHTData*>(ts->data);
+}
+
+// V_{n+1}, A_{n+1} and A_{n+1}/(1-α) from the unknown X = U_{n+1} (3.16–3.18).
+PetscErrorCode stage_vectors(TS ts, Vec X) {
+  HHTData* th = data_of(ts);
+  const PetscReal dt = th->dt, b = th->beta, g = th->gamma;
+  PetscFunctionBeginUser;
+  // A1 = (X - U0 - dt V0 - dt²(1/2-β) A0) / (β dt²)
+  PetscCall(VecWAXPY(th->A1, -1.0, th->U0, X));
+  PetscCall(VecAXPY(th->A1, -dt, th->V0));
+  PetscCall(VecAXPBY(th->A1, -(0.5 - b) / b, 1.0 / (b * dt * dt), th->A0));
+  // V1 = V0 + dt((1-γ) A0 + γ A1)
+  PetscCall(VecWAXPY(th->V1, dt * (1 - g), th->A0, th->V0));
+  PetscCall(VecAXPY(th->V1, dt * g, th->A1));
+  PetscCall(VecCopy(th->A1, th->A1_arg));
+  if (!th->average_inertia) PetscCall(VecScale(th->A1_arg, 1.0 / (1 - th->alpha)));
+  PetscFunctionReturn(0);
+}
+
+// SNES residual. Step: R/(1-α) = F(t1, X, V1, A1/(1-α)) + α/(1-α) F(t0, U0, V0, 0) (3.21);
+// with averaged inertia F(t1, X, V1, A1) + α/(1-α) (F(t0, U0, V0, 0) + M(U0) A1).
+// Initial acceleration: F(t0, U0, V0, X).
+PetscErrorCode snes_function(SNES snes, Vec X, Vec F, TS ts) {
+  HHTData* th = data_of(ts);
+  PetscFunctionBeginUser;
+  if (th->mode == SolveMode::kInitialAcceleration) {
+    PetscCall(TSComputeI2Function(ts, th->t0, th->U0, th->V0, X, F));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(stage_vectors(ts, X));
+  PetscCall(TSComputeI2Function(ts, th->t1, X, th->V1, th->A1_arg, F));
+  PetscCall(VecAXPY(F, th->alpha / (1 - th->alpha), th->F0));
+  if (th->average_inertia) {
+    PetscCall(MatMult(th->M0, th->A1, th->work));
+    PetscCall(VecAXPY(F, th->alpha / (1 - th->alpha), th->work));
+  }
+  PetscFunctionReturn(0);
+}
+
+// dF/dA = M(U0) by differencing two I2Jacobian evaluations with acceleration shifts 0 and s;
+// s is chosen so that s M dominates dF/dU and the difference loses no digits.
+PetscErrorCode mass_matrix(TS ts, Vec A, Mat J, Mat P) {
+  HHTData* th = data_of(ts);
+  PetscReal norm_k = 0, norm_m = 0, shift = 1;
+  PetscFunctionBeginUser;
+  PetscCheck(J == P, PetscObjectComm((PetscObject)ts), PETSC_ERR_SUP,
+             "HHT initial acceleration needs Amat == Pmat; set it with "
+             "pcsim::solvers::hht_set_initial_acceleration()");
+  PetscCall(TSComputeI2Jacobian(ts, th->t0, th->U0, th->V0, A, 0.0, 0.0, J, P));
+  if (!th->K_work)
+    PetscCall(MatDuplicate(P, MAT_COPY_VALUES, &th->K_work));
+  else
+    PetscCall(MatCopy(P, th->K_work, SAME_NONZERO_PATTERN));
+  Mat K = th->K_work;
+  PetscCall(TSComputeI2Jacobian(ts, th->t0, th->U0, th->V0, A, 0.0, 1.0, J, P));
+  PetscCall(MatAXPY(P, -1.0, K, SUBSET_NONZERO_PATTERN));
+  PetscCall(MatNorm(K, NORM_FROBENIUS, &norm_k));
+  PetscCall(MatNorm(P, NORM_FROBENIUS, &norm_m));
+  PetscCheck(norm_m > 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONG,
+             "HHT: dF/dA is zero, no inertia to compute an initial acceleration");
+  if (norm_k > norm_m) {
+    shift = 1e3 * norm_k / norm_m;
+    PetscCall(TSComputeI2Jacobian(ts, th->t0, th->U0, th->V0, A, 0.0, shift, J, P));
+    PetscCall(MatAXPY(P, -1.0, K, SUBSET_NONZERO_PATTERN));
+    PetscCall(MatScale(P, 1.0 / shift));
+  }
+  PetscFunctionReturn(0);
+}
+
+// SNES Jacobian. Step: I2Jacobian with dV/dU = γ/(βΔt), dA_arg/dU = 1/(βΔt²(1-α)) (3.22–3.23).
+PetscErrorCode snes_jacobian(SNES snes, Vec X, Mat J, Mat P, TS ts) {
+  HHTData* th = data_of(ts);
+  PetscFunctionBeginUser;
+  if (th->mode == SolveMode::kInitialAcceleration) {
+    PetscCall(mass_matrix(ts, X, J, P));
+    PetscFunctionReturn(0);
+  }
+  const PetscReal dt = th->dt;
+  PetscCall(stage_vectors(ts, X));
+  const PetscReal shift_a = 1.0 / (th->beta * dt * dt);
+  PetscCall(TSComputeI2Jacobian(ts, th->t1, X, th->V1, th->A1_arg, th->gamma / (th->beta * dt),
+                                th->average_inertia ? shift_a : shift_a / (1 - th->alpha), J, P));
+  if (th->average_inertia) {
+    PetscCheck(J == P, PetscObjectComm((PetscObject)ts), PETSC_ERR_SUP,
+               "HHT averaged inertia needs Amat == Pmat");
+    PetscCall(MatAXPY(P, th->alpha / (1 - th->alpha) * shift_a, th->M0, SUBSET_NONZERO_PATTERN));
+  }
+  PetscFunctionReturn(0);
+}
+
+// Usual SNES tests plus the thesis energy norm |Δqᵀ R| (3.3.2). The SNES residual is
+// R/(1-α), hence the factor (1-α).
+PetscErrorCode converged_energy(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm,
+                                PetscReal fnorm, SNESConvergedReason* reason, void* ctx) {
+  TS ts = static_cast<TS>(ctx);
+  HHTData* th = data_of(ts);
+  PetscFunctionBeginUser;
+  PetscCall(SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, nullptr));
+  if (th->mode != SolveMode::kStep || th->energy_tol <= 0) PetscFunctionReturn(0);
+  Vec F = nullptr;
+  PetscCall(SNESGetFunction(snes, &F, nullptr, nullptr));
+  if (it == 0) {
+    th->last_energy_norm = 0;
+    th->converged_by_energy = PETSC_FALSE;
+  } else {
+    Vec dq = nullptr;
+    PetscScalar dot = 0;
+    PetscCall(SNESGetSolutionUpdate(snes, &dq));
+    PetscCall(VecDot(dq, th->R_prev, &dot));
+    th->last_energy_norm = (1 - th->alpha) * PetscAbsScalar(dot);
+    if (*reason == SNES_CONVERGED_ITERATING && th->last_energy_norm < th->energy_tol) {
+      // PETSc 3.18 has no "user" reason; FNORM_ABS stands for this absolute test.
+      *reason = SNES_CONVERGED_FNORM_ABS;
+      th->converged_by_energy = PETSC_TRUE;
+    }
+  }
+  PetscCall(VecCopy(F, th->R_prev));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode solve_counted(TS ts, Vec x) {
+  PetscInt nits = 0, lits = 0;
+  PetscFunctionBeginUser;
+  PetscCall(SNESSolve(ts->snes, nullptr, x));
+  PetscCall(SNESGetIterationNumber(ts->snes, &nits));
+  PetscCall(SNESGetLinearSolveIterations(ts->snes, &lits));
+  ts->snes_its += nits;
+  ts->ksp_its += lits;
+  PetscFunctionReturn(0);
+}
+
+// Solves F(t0, U0, V0, A0) = 0 for A0 with the TS's SNES (U0, V0, t0 already set).
+PetscErrorCode initial_acceleration(TS ts) {
+  HHTData* th = data_of(ts);
+  SNESConvergedReason reason;
+  PetscFunctionBeginUser;
+  th->mode = SolveMode::kInitialAcceleration;
+  PetscCall(VecZeroEntries(th->A0));
+  PetscCall(solve_counted(ts, th->A0));
+  th->mode = SolveMode::kStep;
+  PetscCall(SNESGetConvergedReason(ts->snes, &reason));
+  PetscCheck(reason > 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_NOT_CONVERGED,
+             "HHT: solve for the initial acceleration failed (SNES reason %s)",
+             SNESConvergedReasons[reason]);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ts_step(TS ts) {
+  HHTData* th = data_of(ts);
+  const PetscReal t_n = ts->ptime;
+  PetscFunctionBeginUser;
+  if (!ts->steprollback) {
+    if (ts->time_step != th->dt_last_set) {  // first step or Δt changed from outside
+      th->dt_user = ts->time_step;
+      th->accepted_since_cut = 0;
+    }
+    PetscCall(VecCopy(ts->vec_sol, th->U0));
+    PetscCall(VecCopy(ts->vec_dot, th->V0));
+    th->t0 = t_n;
+    if (th->user_accel_pending) {
+      PetscCall(VecCopy(th->A_user, th->A0));
+      th->user_accel_pending = PETSC_FALSE;
+    } else if (th->accel_valid && th->accel_time == t_n) {
+      PetscCall(VecCopy(th->A1, th->A0));
+    } else {
+      PetscCall(initial_acceleration(ts));
+    }
+  }
+  th->t0 = t_n;
+  PetscCall(TSComputeI2Function(ts, t_n, th->U0, th->V0, th->zero, th->F0));
+  if (th->average_inertia) {  // M(U_n), once per step
+    Mat J = nullptr, P = nullptr;
+    PetscCall(SNESGetJacobian(ts->snes, &J, &P, nullptr, nullptr));
+    PetscCall(mass_matrix(ts, th->A0, J, P));
+    if (!th->M0)
+      PetscCall(MatDuplicate(P, MAT_COPY_VALUES, &th->M0));
+    else
+      PetscCall(MatCopy(P, th->M0, SAME_NONZERO_PATTERN));
+  }
+
+  PetscReal dt = ts->time_step;
+  PetscInt rejections = 0;
+  for (;;) {
+    PetscReal dt_step = dt;
+    PetscBool hits_final_time = PETSC_FALSE;
+    // The last step ends on the final time; a remainder below 1e-10 Δt joins it.
+    if (ts->exact_final_time == TS_EXACTFINALTIME_MATCHSTEP &&
+        t_n + dt_step * (1 + 1e-10) >= ts->max_time) {
+      dt_step = ts->max_time - t_n;
+      hits_final_time = PETSC_TRUE;
+    }
+    th->dt = dt_step;
+    th->t1 = t_n + dt_step;
+    // Predictor (3.17): A_{n+1} = 0.
+    PetscCall(VecWAXPY(th->U1, dt_step, th->V0, th->U0));
+    PetscCall(VecAXPY(th->U1, dt_step * dt_step * (0.5 - th->beta), th->A0));
+    PetscCall(TSPreStage(ts, th->t1));
+    PetscCall(solve_counted(ts, th->U1));
+    SNESConvergedReason reason;
+    PetscCall(SNESGetConvergedReason(ts->snes, &reason));
+    if (reason > 0) {
+      PetscCall(TSPostStage(ts, th->t1, 0, &th->U1));
+      PetscCall(stage_vectors(ts, th->U1));
+      PetscCall(VecCopy(th->U1, ts->vec_sol));
+      PetscCall(VecCopy(th->V1, ts->vec_dot));
+      ts->ptime = hits_final_time ? ts->max_time : th->t1;
+      th->accel_valid = PETSC_TRUE;
+      th->accel_time = ts->ptime;
+      ++th->accepted;
+      if (dt < th->dt_user && ++th->accepted_since_cut >= th->regrow_steps) {
+        dt = PetscMin(2 * dt, th->dt_user);
+        th->accepted_since_cut = 0;
+      }
+      break;
+    }
+    ++ts->reject;
+    ++ts->num_snes_failures;
+    ++th->rejected;
+    th->accepted_since_cut = 0;
+    PetscCall(PetscInfo(ts, "HHT step at t=%g with dt=%g rejected (SNES %s)\n", (double)t_n,
+                        (double)dt_step, SNESConvergedReasons[reason]));
+    if (++rejections > th->max_reject) {
+      ts->reason = TS_DIVERGED_NONLINEAR_SOLVE;
+      break;
+    }
+    dt *= 0.5;
+  }
+  ts->time_step = dt;
+  th->dt_last_set = dt;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ts_rollback(TS ts) {
+  HHTData* th = data_of(ts);
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(th->U0, ts->vec_sol));
+  PetscCall(VecCopy(th->V0, ts->vec_dot));
+  PetscCall(VecCopy(th->A0, th->A1));
+  th->accel_time = th->t0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ts_reset(TS ts) {
+  HHTData* th = data_of(ts);
+  PetscFunctionBeginUser;
+  for (Vec* v : {&th->U0, &th->V0, &th->A0, &th->U1, &th->V1, &th->A1, &th->A1_arg, &th->F0,
+                 &th->zero, &th->R_prev, &th->work})
+    PetscCall(VecDestroy(v));
+  PetscCall(MatDestroy(&th->M0));
+  PetscCall(MatDestroy(&th->K_work));
+  th->accel_valid = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ts_destroy(TS ts) {
+  PetscFunctionBeginUser;
+  PetscCall(ts_reset(ts));
+  HHTData* th = data_of(ts);
+  PetscCall(VecDestroy(&th->A_user));
+  delete th;
+  ts->data = nullptr;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ts_setup(TS ts) {
+  HHTData* th = data_of(ts);
+  PetscFunctionBeginUser;
+  PetscCheck(ts->vec_dot, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONGSTATE,
+             "TS type hht needs the velocity: call TS2SetSolution(ts, U, V)");
+  for (Vec* v : {&th->U0, &th->V0, &th->A0, &th->U1, &th->V1, &th->A1, &th->A1_arg, &th->F0,
+                 &th->zero, &th->R_prev, &th->work})
+    if (!*v) PetscCall(VecDuplicate(ts->vec_sol, v));
+  PetscCall(VecZeroEntries(th->zero));
+  PetscCall(TSGetAdapt(ts, &ts->adapt));
+  PetscCall(TSAdaptCandidatesClear(ts->adapt));
+  PetscCall(TSGetSNES(ts, &ts->snes));
+  if (th->energy_tol > 0)
+    PetscCall(SNESSetConvergenceTest(ts->snes, converged_energy, ts, nullptr));
+  th->accel_valid = PETSC_FALSE;
+  th->dt_last_set = -1;
+  th->accepted = th->rejected = 0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ts_set_from_options(TS ts, PetscOptionItems* PetscOptionsObject) {
+  HHTData* th = data_of(ts);
+  PetscReal alpha = th->alpha;
+  PetscBool set = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscOptionsHeadBegin(PetscOptionsObject, "HHT-alpha options");
+  PetscCall(PetscOptionsReal("-ts_hht_alpha", "HHT alpha in [0, 1/3]", "hht_set_alpha", alpha,
+                             &alpha, &set));
+  if (set) {
+    PetscCheck(alpha >= 0 && alpha <= 1.0 / 3.0 + 1e-14, PetscObjectComm((PetscObject)ts),
+               PETSC_ERR_ARG_OUTOFRANGE, "-ts_hht_alpha %g not in [0, 1/3]", (double)alpha);
+    set_alpha(th, alpha);
+  }
+  PetscCall(PetscOptionsReal("-ts_hht_energy_norm_tol",
+                             "Newton also stops when |dq^T R| < tol (0: off)",
+                             "hht_set_energy_norm_tol", th->energy_tol, &th->energy_tol, nullptr));
+  PetscCall(PetscOptionsInt("-ts_hht_max_reject", "Max step halvings after SNES failures", "",
+                            th->max_reject, &th->max_reject, nullptr));
+  PetscCall(PetscOptionsBool("-ts_hht_average_inertia",
+                             "Average the inertia (1-a) M(U1) A1 + a M(U0) A1 (order 2 when M "
+                             "depends on U) instead of M(U1) A1",
+                             "", th->average_inertia, &th->average_inertia, nullptr));
+  PetscCall(PetscOptionsInt("-ts_hht_regrow_steps",
+                            "Accepted steps before a reduced dt doubles again", "",
+                            th->regrow_steps, &th->regrow_steps, nullptr));
+  PetscOptionsHeadEnd();
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ts_view(TS ts, PetscViewer viewer) {
+  HHTData* th = data_of(ts);
+  PetscBool ascii = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
+  if (ascii) {
+    PetscCall(PetscViewerASCIIPrintf(
+        viewer, "  HHT-alpha: alpha=%g, gamma=%g, beta=%g (spectral radius at infinity %g)\n",
+        (double)th->alpha, (double)th->gamma, (double)th->beta,
+        (double)((1 - th->alpha) / (1 + th->alpha))));
+    PetscCall(PetscViewerASCIIPrintf(viewer,
+                                     "  energy-norm tol=%g, max rejections per step=%" PetscInt_FMT
+                                     ", regrow after %" PetscInt_FMT " steps\n",
+                                     (double)th->energy_tol, th->max_reject, th->regrow_steps));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  inertia: %s\n",
+                                     th->average_inertia ? "averaged (1-alpha) M(U_n+1) + alpha "
+                                                           "M(U_n)"
+                                                         : "M(U_n+1) at the new level"));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ts_create_hht(TS ts) {
+  PetscFunctionBeginUser;
+  ts->ops->reset = ts_reset;
+  ts->ops->destroy = ts_destroy;
+  ts->ops->view = ts_view;
+  ts->ops->setup = ts_setup;
+  ts->ops->setfromoptions = ts_set_from_options;
+  ts->ops->step = ts_step;
+  ts->ops->rollback = ts_rollback;
+  ts->ops->snesfunction = snes_function;
+  ts->ops->snesjacobian = snes_jacobian;
+  ts->default_adapt_type = TSADAPTNONE;
+  ts->usessnes = PETSC_TRUE;
+  auto* th = new HHTData;
+  set_alpha(th, 0.1);
+  ts->data = th;
+  PetscFunctionReturn(0);
+}
+
+HHTData* checked_data(TS ts) {
+  PetscBool is_hht = PETSC_FALSE;
+  PCSIM_PETSC(PetscObjectTypeCompare((PetscObject)ts, pcsim::solvers::kTSHHT, &is_hht));
+  if (!is_hht) throw pcsim::SolverError("TS is not of type hht");
+  return data_of(ts);
+}
+
+}  // namespace
+
+namespace pcsim::solvers {
+
+void register_hht_ts() {
+  PCSIM_PETSC(TSInitializePackage());
+  void (*existing)(void) = nullptr;
+  PCSIM_PETSC(PetscFunctionListFind(TSList, kTSHHT, &existing));
+  if (!existing) PCSIM_PETSC(TSRegister(kTSHHT, ts_create_hht));
+}
+
+void hht_set_initial_acceleration(TS ts, Vec A0) {
+  HHTData* th = checked_data(ts);
+  if (!th->A_user) PCSIM_PETSC(VecDuplicate(A0, &th->A_user));
+  PCSIM_PETSC(VecCopy(A0, th->A_user));
+  th->user_accel_pending = PETSC_TRUE;
+}
+
+void hht_recompute_initial_acceleration(TS ts) {
+  HHTData* th = checked_data(ts);
+  th->accel_valid = PETSC_FALSE;
+  th->user_accel_pending = PETSC_FALSE;
+}
+
+void hht_get_acceleration(TS ts, Vec A) {
+  HHTData* th = checked_data(ts);
+  if (!th->accel_valid) throw SolverError("hht_get_acceleration: no step taken yet");
+  PCSIM_PETSC(VecCopy(th->A1, A));
+}
+
+void hht_set_alpha(TS ts, PetscReal alpha) {
+  HHTData* th = checked_data(ts);
+  if (!(alpha >= 0 && alpha <= 1.0 / 3.0 + 1e-14))
+    throw SolverError("hht_set_alpha: alpha " + std::to_string(alpha) + " not in [0, 1/3]");
+  set_alpha(th, alpha);
+}
+
+void hht_get_params(TS ts, PetscReal* alpha, PetscReal* gamma, PetscReal* beta) {
+  HHTData* th = checked_data(ts);
+  if (alpha) *alpha = th->alpha;
+  if (gamma) *gamma = th->gamma;
+  if (beta) *beta = th->beta;
+}
+
+void hht_set_energy_norm_tol(TS ts, PetscReal tol) {
+  HHTData* th = checked_data(ts);
+  th->energy_tol = tol;
+  if (ts->setupcalled && tol > 0) {
+    SNES snes = nullptr;
+    PCSIM_PETSC(TSGetSNES(ts, &snes));
+    PCSIM_PETSC(SNESSetConvergenceTest(snes, converged_energy, ts, nullptr));
+  }
+}
+
+HHTNewtonInfo hht_get_info(TS ts) {
+  HHTData* th = checked_data(ts);
+  HHTNewtonInfo info;
+  info.last_energy_norm = th->last_energy_norm;
+  info.converged_by_energy = th->converged_by_energy;
+  info.accepted_steps = th->accepted;
+  info.rejected_steps = th->rejected;
+  info.user_time_step = th->dt_user;
+  return info;
+}
+
+}  // namespace pcsim::solvers
