@@ -335,8 +335,12 @@ void InteractionProblem::initial_state(Vec U0, Vec V0) {
       for (int c = 0; c < 6; ++c) q[6 * a + c] = catenary_values[6 * mesh.cables[element].nodes[a] + c];
     const double wire_z = catenary::cable_point(mesh.cables[element].ref_length, q, chi).r[2];
     const double penetration = run.static_start ? run.static_force / kH_ : 0.0;
-    Eigen::VectorXd q0 = run.model->static_equilibrium(run.static_force, wire_z + penetration);
-    head_offset_[p] = 0.0;
+    const double contact_height = wire_z + penetration;
+    Eigen::VectorXd q0 = run.model->static_equilibrium(
+        run.static_force, run.working_height > 0 ? run.working_height : contact_height);
+    // Base of the pantograph: its contact point sits at the wire (thesis 3.3.1).
+    head_offset_[p] =
+        contact_height - (q0[run.model->contact_dof()] + run.model->contact_offset());
     const PetscInt first = panto_first_[p] - L.catenary_dofs();
     for (int i = 0; i < run.model->dof_count(); ++i) q0_all[first + i] = q0[i];
   }

@@ -42,7 +42,8 @@ RunScene load_run_scene(const InputNode& scene) {
   if (!list.is_sequence() || list.size() == 0) list.fail("must be a non-empty list of pantographs");
   for (std::size_t i = 0; i < list.size(); ++i) {
     const InputNode p = list.at(i);
-    p.allow_only({"name", "model", "start_x", "static_force", "start", "ramp_distance", "effects"});
+    p.allow_only({"name", "model", "start_x", "static_force", "start", "ramp_distance",
+                  "working_height", "effects"});
     PantographRun pr;
     pr.name = p.get_string("name", "pantograph" + std::to_string(i + 1));
     const InputNode effects = p.has("effects") ? p["effects"] : InputNode(YAML::Node(), p.file(), "");
@@ -59,6 +60,10 @@ RunScene load_run_scene(const InputNode& scene) {
       p.fail_key("start", "only the first pantograph can start in static equilibrium");
     pr.static_start = start == "static";
     pr.ramp_distance = p.get_positive("ramp_distance", 20.0);
+    // Rigid models work in heights above their base; lumped ones in absolute heights.
+    pr.working_height =
+        p.get_positive("working_height", pr.model->kind() == "dsa380" ? 1.2 : 1.0);
+    if (pr.model->kind() != "dsa380" && !p.has("working_height")) pr.working_height = 0;
     run.pantographs.push_back(std::move(pr));
   }
   if (scene.has("effects")) {

@@ -48,6 +48,9 @@ struct PantographRun {
   double static_force = 0;   // F0: static contact force [N]
   bool static_start = false; // start in static equilibrium in contact
   double ramp_distance = 0;  // ramp-up: head force weighted 0 -> 1 over this distance [m]
+  // Height of the contact point above the pantograph's base at the start [m];
+  // <= 0: the model takes absolute heights (lumped models).
+  double working_height = 0;
 };
 
 // Locates x along the contact wire on a fixed (static) geometry.
