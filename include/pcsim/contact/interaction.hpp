@@ -18,9 +18,15 @@
 // element is found each step from x_c = x_0 + V t on the static geometry.
 //
 // Cheap path: when the catenary is linearised and every pantograph model is
-// linear, the Jacobian is assembled and factored once per time-step size and
-// reused (modified Newton; the residual stays exact, so the converged answer
-// is the same as with the full Newton path).
+// linear, the step matrix without contact, J0, is assembled and factored once
+// per time-step size. The contact tangent of pantograph p is the rank-one term
+// kH u_p u_p^T (u_p = [S_z; -1] on the contact element and head DOFs), added
+// exactly by the Woodbury formula in a PCSHELL:
+//   J^-1 r = J0^-1 r - Z (K^-1 + U^T Z)^-1 U^T J0^-1 r,   Z = J0^-1 U,
+// so Newton stays exact for contact at one extra solve per pantograph and
+// step. The inner solver takes options with the prefix -cheap_ (e.g.
+// -cheap_pc_factor_mat_solver_type mumps). J0 is reassembled and refactored
+// only when a dropper switches between slack and taut.
 #pragma once
 
 #include <petscts.h>
@@ -107,12 +113,32 @@ class InteractionProblem {
   // Newton iterations of the coupled static start (0 for a ramp start).
   PetscInt start_iterations() const { return start_iterations_; }
 
+  // Mechanical energy E = T + V of the coupled system at time t (t fixes the
+  // contact points and the ramp), for energy-balance tests. Collective.
+  // Needs the linearised catenary (throws SolverError if catenary_nonlinear).
+  //   T = 1/2 V^T M V (catenary) + sum of the pantographs' kinetic_energy;
+  //   V = b0^T dU + 1/2 dU^T K0 dU, dU = U - U0 (linearised cables, gravity,
+  //       support springs: the potential of the terms residual() uses)
+  //     + sum over bars of bar_strain_energy (droppers with their slack law)
+  //     + sum over pantographs of potential_energy(q) - Q_ext . q, with Q_ext the
+  //       constant external generalised force (uplift, bellows torque,
+  //       aerodynamic force), read from power().external; + (1 - ramp) F0 q_c
+  //     + 1/2 kH gap^2 at every contact point in compression.
+  // Rayleigh damping, pantograph dampers and friction are not potentials:
+  // with them E decreases by their dissipated work.
+  double energy(double t, Vec U, Vec V);
+
  private:
   struct ContactState;
   void load_pantograph_state(Vec U, Vec V, Vec A);
   double ramp_factor(const PantographRun& p, double t) const;
   void add_contact(double t, Vec F, Mat J);
   void solve_coupled_static(Vec U0);
+  // Cheap path: contact vectors u_p and Z_p = J0^-1 u_p at the state U.
+  void update_contact_low_rank(double t);
+  std::vector<char> bar_states() const;
+  static PetscErrorCode woodbury_setup(PC pc);
+  static PetscErrorCode woodbury_apply(PC pc, Vec r, Vec x);
 
   std::unique_ptr<assembly::CatenarySystem> system_;
   std::vector<double> static_values_;
@@ -131,6 +157,15 @@ class InteractionProblem {
   // Cheap path: shifts of the Jacobian currently assembled.
   double cached_shift_v_ = -1, cached_shift_a_ = -1;
   PetscInt start_iterations_ = 0;
+  // Woodbury data of the cheap path, per pantograph.
+  KSP inner_ksp_ = nullptr;
+  bool inner_factored_ = false;
+  std::vector<int> slack_bars_;          // bars with a slack criterion
+  std::vector<char> j0_bar_states_;      // their state when J0 was assembled
+  std::vector<Vec> contact_u_, contact_z_;
+  std::vector<double> contact_k_;       // kH while in contact, else 0
+  std::vector<int> contact_element_;    // element and chi that u_p was built for
+  std::vector<double> contact_chi_;
 };
 
 }  // namespace pcsim::contact
