@@ -113,10 +113,20 @@ InteractionProblem::InteractionProblem(MPI_Comm comm, CatenaryMesh mesh,
     system_->assemble_static(b0_, nullptr, cables_and_loads);
   }
   if (effects_.rayleigh_damping) {
-    // C = alpha M + beta K at the static configuration (thesis eq. 3.1).
-    C_ = tangent_of(CatenarySystem::kAllTerms);
-    PCSIM_PETSC(MatScale(C_, system_->mesh().rayleigh_beta));
-    PCSIM_PETSC(MatAXPY(C_, system_->mesh().rayleigh_alpha, M_, SAME_NONZERO_PATTERN));
+    // C = alpha M + beta K at the static configuration (thesis eq. 3.1). The
+    // alpha M part is applied with M; of beta K only what K0 does not hold is
+    // kept: the bars (linearised cables) or everything (nonlinear cables).
+    rayleigh_alpha_ = system_->mesh().rayleigh_alpha;
+    rayleigh_beta_ = system_->mesh().rayleigh_beta;
+    if (effects_.catenary_nonlinear) {
+      C_ = tangent_of(CatenarySystem::kAllTerms);
+    } else {
+      C_ = system_->layout().create_matrix();  // bar entries only: small
+      system_->assemble_static(work_, C_, CatenarySystem::kBars);
+      PCSIM_PETSC(MatAssemblyBegin(C_, MAT_FINAL_ASSEMBLY));
+      PCSIM_PETSC(MatAssemblyEnd(C_, MAT_FINAL_ASSEMBLY));
+    }
+    PCSIM_PETSC(MatScale(C_, rayleigh_beta_));
   }
   PCSIM_PETSC(MatDestroy(&pattern));
 }
@@ -236,16 +246,24 @@ void InteractionProblem::residual(double t, Vec U, Vec V, Vec A, Vec F) {
   const auto& L = system_->layout();
   system_->load_state(U);
   load_pantograph_state(U, V, A);
+  // Linear terms with two large products, using C = alpha M + beta K:
+  //   K0 (U - U0 + beta V) + M (A + alpha V) + C_rest V.
   if (effects_.catenary_nonlinear) {
     system_->assemble_static(F, nullptr, CatenarySystem::kAllTerms);
   } else {
     system_->assemble_static(F, nullptr, CatenarySystem::kBars);
     PCSIM_PETSC(VecWAXPY(work_, -1.0, U0_, U));
+    if (C_) PCSIM_PETSC(VecAXPY(work_, rayleigh_beta_, V));
     PCSIM_PETSC(MatMultAdd(K0_, work_, F, F));
     PCSIM_PETSC(VecAXPY(F, 1.0, b0_));
   }
-  PCSIM_PETSC(MatMultAdd(M_, A, F, F));
-  if (C_) PCSIM_PETSC(MatMultAdd(C_, V, F, F));
+  if (C_) {
+    PCSIM_PETSC(VecWAXPY(work2_, rayleigh_alpha_, V, A));
+    PCSIM_PETSC(MatMultAdd(M_, work2_, F, F));
+    PCSIM_PETSC(MatMultAdd(C_, V, F, F));
+  } else {
+    PCSIM_PETSC(MatMultAdd(M_, A, F, F));
+  }
   if (L.rank() == L.size() - 1) {
     for (std::size_t p = 0; p < pantographs_.size(); ++p) {
       const auto& run = pantographs_[p];
@@ -307,9 +325,15 @@ void InteractionProblem::jacobian(double t, Vec U, Vec V, Vec A, double shift_v,
   if (!cheap_path_) add_contact(t, nullptr, J);
   PCSIM_PETSC(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
   PCSIM_PETSC(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
-  if (!effects_.catenary_nonlinear) PCSIM_PETSC(MatAXPY(J, 1.0, K0_, SAME_NONZERO_PATTERN));
-  PCSIM_PETSC(MatAXPY(J, shift_a, M_, SAME_NONZERO_PATTERN));
-  if (C_) PCSIM_PETSC(MatAXPY(J, shift_v, C_, SAME_NONZERO_PATTERN));
+  // J = K + shift_v C + shift_a M with C = alpha M + beta K0 + C_rest.
+  const double beta = C_ ? rayleigh_beta_ : 0.0, alpha = C_ ? rayleigh_alpha_ : 0.0;
+  if (!effects_.catenary_nonlinear)
+    PCSIM_PETSC(MatAXPY(J, 1.0 + shift_v * beta, K0_, SAME_NONZERO_PATTERN));
+  PCSIM_PETSC(MatAXPY(J, shift_a + shift_v * alpha, M_, SAME_NONZERO_PATTERN));
+  if (C_)
+    PCSIM_PETSC(MatAXPY(J, shift_v, C_,
+                        effects_.catenary_nonlinear ? SAME_NONZERO_PATTERN
+                                                    : SUBSET_NONZERO_PATTERN));
   cached_shift_v_ = shift_v;
   cached_shift_a_ = shift_a;
   if (cheap_path_) j0_bar_states_ = bar_states();
@@ -663,9 +687,11 @@ TS InteractionProblem::create_ts(double dt, double duration) {
   KSP ksp;
   PC pc;
   PCSIM_PETSC(TSGetSNES(ts, &snes));
-  // Residuals are forces [N]: round-off on the wire tensions leaves ~1e-4 N,
-  // so the absolute tolerance is 1e-3 N (contact forces are ~100 N).
-  PCSIM_PETSC(SNESSetTolerances(snes, 1e-3, 1e-9, 0.0, 25, 100000));
+  // Residuals are forces [N]. The step matrix is dominated by M/(beta dt^2)
+  // (~2e6 N/m per wire node at dt = 1 ms), so a residual r leaves position
+  // errors ~r/2e6 m and contact-force errors ~kH r/2e6 = 0.025 r N: 1e-2 N is
+  // ample (measured: EN 50318 statistics equal to 0.01 N with 1e-3 N).
+  PCSIM_PETSC(SNESSetTolerances(snes, 1e-2, 1e-9, 0.0, 25, 100000));
   SNESLineSearch line_search;
   PCSIM_PETSC(SNESGetLineSearch(snes, &line_search));
   PCSIM_PETSC(SNESLineSearchSetType(line_search, SNESLINESEARCHBASIC));

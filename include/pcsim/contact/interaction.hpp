@@ -149,7 +149,10 @@ class InteractionProblem {
   double kH_ = 50000;
   bool cheap_path_ = false;
   std::unique_ptr<ContactWireLocator> locator_;
-  Mat M_ = nullptr, C_ = nullptr, K0_ = nullptr;  // constant matrices (pattern of J)
+  // Constant matrices: M, K0 (linearised cables and loads) and C_ = the part
+  // of beta K that K0 does not hold (Rayleigh C = alpha M + beta K).
+  Mat M_ = nullptr, C_ = nullptr, K0_ = nullptr;
+  double rayleigh_alpha_ = 0, rayleigh_beta_ = 0;
   Vec U0_ = nullptr, b0_ = nullptr, work_ = nullptr, work2_ = nullptr;
   // Pantograph state on every rank (small): U, V, A per pantograph DOF.
   std::vector<double> panto_u_, panto_v_, panto_a_;
