@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "command.hpp"
+#include "pcsim/catenary/mesh_io.hpp"
 #include "pcsim/catenary/statics.hpp"
 #include "pcsim/contact/interaction.hpp"
 #include "pcsim/contact/run_scene.hpp"
@@ -31,6 +32,9 @@ struct RunMonitor {
   long newton_iterations = 0;
   long steps = 0;
   bool keep_dropper_forces = true;
+  long snapshot_every = 0;
+  std::vector<double> snapshot_times;
+  std::vector<std::vector<double>> snapshots;  // node positions (rank 0)
 };
 
 PetscErrorCode monitor(TS ts, PetscInt step, PetscReal t, Vec U, void* ptr) {
@@ -39,6 +43,13 @@ PetscErrorCode monitor(TS ts, PetscInt step, PetscReal t, Vec U, void* ptr) {
   auto rec = m.problem->record(t, U);
   if (!m.keep_dropper_forces) rec.dropper_force.clear();
   if (m.ctx->rank == 0) m.history.push_back(std::move(rec));
+  if (m.snapshot_every > 0 && step % m.snapshot_every == 0) {
+    auto positions = m.problem->system().gather_positions_to_root(U);  // collective
+    if (m.ctx->rank == 0) {
+      m.snapshot_times.push_back(t);
+      m.snapshots.push_back(std::move(positions));
+    }
+  }
   if (step > 0) {
     SNES snes;
     PetscInt its;
@@ -168,6 +179,7 @@ int run_dynamic(const app::CommandContext& ctx) {
   mon.ctx = &ctx;
   mon.duration = duration;
   mon.keep_dropper_forces = run.dropper_forces;
+  mon.snapshot_every = run.snapshot_every;
   PetscTime(&mon.wall_start);
   mon.last_print = mon.wall_start;
   PCSIM_PETSC(TSMonitorSet(ts, monitor, &mon, nullptr));
@@ -217,6 +229,22 @@ int run_dynamic(const app::CommandContext& ctx) {
       for (std::size_t i = 0; i < n; ++i)
         std::copy(h[i].dropper_force.begin(), h[i].dropper_force.end(), forces.begin() + i * nd);
       h5.write("/droppers/force", forces, n, nd);
+    }
+    if (!mon.snapshots.empty()) {
+      // Static mesh + displacement snapshots: ParaView animation of the wires.
+      std::vector<double> static_positions(3 * mesh.nodes.size());
+      for (std::size_t i = 0; i < mesh.nodes.size(); ++i)
+        for (int c = 0; c < 3; ++c) static_positions[3 * i + c] = static_values[6 * i + c];
+      catenary::write_mesh_h5_xdmf(mesh, static_positions, out.file("static_mesh.h5"),
+                                   out.file("static.xdmf"));
+      for (std::size_t k = 0; k < mon.snapshots.size(); ++k) {
+        std::vector<double> d(mon.snapshots[k]);
+        for (std::size_t i = 0; i < d.size(); ++i) d[i] -= static_positions[i];
+        h5.write("/snapshots/displacement_" + std::to_string(k), d, mesh.nodes.size(), 3);
+      }
+      h5.write("/snapshots/time", mon.snapshot_times);
+      catenary::write_snapshots_xdmf(mesh, "static_mesh.h5", "results.h5", mon.snapshot_times,
+                                     out.file("snapshots.xdmf"));
     }
     h5.attribute("/", "analysis_from_x", run.analysis_from_x);
     h5.attribute("/", "analysis_to_x", run.analysis_to_x);

@@ -310,4 +310,39 @@ void write_modes_xdmf(const CatenaryMesh& mesh, const std::string& modes_h5_name
   write_xdmf_file(xdmf_path, x.str());
 }
 
+void write_snapshots_xdmf(const CatenaryMesh& mesh, const std::string& mesh_h5_name,
+                          const std::string& snapshots_h5_name, const std::vector<double>& times,
+                          const std::string& xdmf_path) {
+  if (snapshots_h5_name.find('/') != std::string::npos ||
+      mesh_h5_name.find('/') != std::string::npos)
+    throw std::invalid_argument("write_snapshots_xdmf: give bare file names, not paths");
+  const std::size_t n = mesh.nodes.size(), ne = mesh.cables.size(), nb = mesh.bars.size();
+  std::ostringstream x;
+  x << "<?xml version=\"1.0\" ?>\n";
+  x << "<Xdmf Version=\"3.0\">\n";
+  x << "  <Domain Name=\"" << xml_escape(mesh.name) << " snapshots\">\n";
+  x << "    <Grid Name=\"snapshots\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    const std::vector<XdmfAttribute> attrs = {{"displacement",
+                                               "/snapshots/displacement_" + std::to_string(k),
+                                               false, false, n, 3, snapshots_h5_name}};
+    std::ostringstream grids;
+    if (ne > 0)
+      write_grid(grids, mesh_h5_name, "wires", "Polyline", ne, "/cables/connectivity", 2, n, attrs);
+    if (nb > 0)
+      write_grid(grids, mesh_h5_name, "bars", "Polyline", nb, "/bars/connectivity", 2, n, attrs);
+    std::ostringstream t;
+    t.precision(10);
+    t << times[k];
+    x << "      <Grid Name=\"t_" << k << "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n";
+    x << "        <Time Value=\"" << t.str() << "\"/>\n";
+    x << grids.str();
+    x << "      </Grid>\n";
+  }
+  x << "    </Grid>\n";
+  x << "  </Domain>\n";
+  x << "</Xdmf>\n";
+  write_xdmf_file(xdmf_path, x.str());
+}
+
 }  // namespace pcsim::catenary

@@ -106,8 +106,10 @@ RunScene load_run_scene(const InputNode& scene) {
   }
   if (scene.has("output")) {
     const InputNode o = scene["output"];
-    o.allow_only({"dropper_forces"});
+    o.allow_only({"dropper_forces", "snapshot_every"});
     run.dropper_forces = o.get_bool("dropper_forces", true);
+    run.snapshot_every = o.get_int("snapshot_every", 0);
+    if (run.snapshot_every < 0) o.fail_key("snapshot_every", "must be 0 (none) or a number of steps");
   }
   return run;
 }

@@ -57,6 +57,15 @@ void write_modes_xdmf(const CatenaryMesh& mesh, const std::string& modes_h5_name
                       const std::string& mesh_h5_name, const std::vector<double>& frequencies_hz,
                       const std::string& xdmf_path);
 
+// XDMF for a time series of field snapshots: a Temporal collection (time in s)
+// of the wires and bars grids of mesh_h5_name (the static configuration) with
+// a node vector attribute 'displacement' =
+// snapshots_h5_name:/snapshots/displacement_<k> (n x 3), the displacement from
+// that configuration (ParaView: Warp By Vector animates the wires).
+void write_snapshots_xdmf(const CatenaryMesh& mesh, const std::string& mesh_h5_name,
+                          const std::string& snapshots_h5_name, const std::vector<double>& times,
+                          const std::string& xdmf_path);
+
 // Design positions of every node, 3 per node (for write_mesh_h5_xdmf).
 std::vector<double> design_positions(const CatenaryMesh& mesh);
 

@@ -17,7 +17,7 @@
 //   effects: {catenary_nonlinear: false, dropper_slack: true, rayleigh_damping: true}
 //   contact: {stiffness: 50000}
 //   analysis: {from_span: 5, to_span: 6, cutoff_hz: 20}   # 1-based spans
-//   output: {dropper_forces: true}
+//   output: {dropper_forces: true, snapshot_every: 0}   # field snapshots every N steps (0: none)
 #pragma once
 
 #include <string>
@@ -40,6 +40,7 @@ struct RunScene {
   int analysis_from_span = 0, analysis_to_span = 0;  // 1-based
   double cutoff_hz = 20;
   bool dropper_forces = true;
+  long snapshot_every = 0;  // steps between field snapshots (XDMF animation); 0: none
   // Duration of the run: from t = 0 until the first pantograph reaches end_x.
   double duration() const { return (end_x - pantographs.front().start_x) / speed; }
 };
