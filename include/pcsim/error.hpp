@@ -44,18 +44,18 @@ class SolverError : public std::runtime_error {
 }  // namespace pcsim
 
 // Calls a PETSc function from C++ code and throws pcsim::SolverError on failure.
-#define PCSIM_PETSC(call)                                                         \
-  do {                                                                            \
-    PetscErrorCode pcsim_ierr_ = (call);                                          \
+#define PCSIM_PETSC(call)                                                                \
+  do {                                                                                   \
+    PetscErrorCode pcsim_ierr_ = (call);                                                 \
     if (pcsim_ierr_) ::pcsim::throw_petsc_error(pcsim_ierr_, #call, __FILE__, __LINE__); \
   } while (0)
 
 // Inside a PETSc callback (returns PetscErrorCode): turns a C++ exception into
 // a PETSc error so that the solver stops cleanly.
 #define PCSIM_CALLBACK_BEGIN try {
-#define PCSIM_CALLBACK_END                                                  \
-  }                                                                         \
-  catch (const std::exception& e) {                                         \
+#define PCSIM_CALLBACK_END                                                   \
+  }                                                                          \
+  catch (const std::exception& e) {                                          \
     SETERRQ(PETSC_COMM_SELF, PETSC_ERR_LIB, "pcsim callback: %s", e.what()); \
-  }                                                                         \
+  }                                                                          \
   return 0;

@@ -1,9 +1,8 @@
 #include "catenary_output.hpp"
 
-#include <nlohmann/json.hpp>
-
 #include <cmath>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "pcsim/catenary/mesh_io.hpp"
 #include "pcsim/output/h5_file.hpp"
@@ -105,8 +104,8 @@ void print_static_summary(const CommandContext& ctx, const assembly::CatenarySys
 }
 
 void write_static_results(const CommandContext& ctx, const OutputDir& out,
-                          const assembly::CatenarySystem& system,
-                          const catenary::StaticResult& r, const std::string& scene_name) {
+                          const assembly::CatenarySystem& system, const catenary::StaticResult& r,
+                          const std::string& scene_name) {
   if (ctx.rank != 0) return;
   const auto& mesh = system.mesh();
   write_static_h5(out.file("static.h5"), mesh, r);

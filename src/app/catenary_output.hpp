@@ -23,7 +23,7 @@ void write_static_results(const CommandContext& ctx, const OutputDir& out,
 // modes.h5 + modes.xdmf (one grid per mode, animatable) and summary.json.
 void write_modes_results(const CommandContext& ctx, const OutputDir& out,
                          const assembly::CatenarySystem& system,
-                         const catenary::StaticResult& statics,
-                         const catenary::ModesResult& modes, const std::string& scene_name);
+                         const catenary::StaticResult& statics, const catenary::ModesResult& modes,
+                         const std::string& scene_name);
 
 }  // namespace pcsim::app

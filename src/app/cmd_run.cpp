@@ -1,13 +1,12 @@
 // `pcsim run SCENE.yaml`: dynamic pantograph-catenary interaction.
-#include <petscts.h>
 #include <petsctime.h>
+#include <petscts.h>
 #include <sys/resource.h>
-
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "command.hpp"
 #include "pcsim/catenary/mesh_io.hpp"
@@ -97,7 +96,8 @@ std::vector<double> filter_uniformly_sampled(const std::vector<double>& time,
   const auto filtered_grid = zero_phase_lowpass(resampled, 1.0 / dt_min, cutoff_hz);
   std::vector<double> out(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t k = std::min(m - 1, static_cast<std::size_t>(std::lround((time[i] - time.front()) / dt_min)));
+    const std::size_t k =
+        std::min(m - 1, static_cast<std::size_t>(std::lround((time[i] - time.front()) / dt_min)));
     out[i] = filtered_grid[k];
   }
   return out;
@@ -133,8 +133,7 @@ int run_dynamic(const app::CommandContext& ctx) {
     statics_system.design_state(xs);
     auto statics = catenary::solve_static(statics_system, xs, run.catenary.form_finding, "static_");
     app::print0(ctx, "  static: %d Newton iterations, height error %.2e m, tension error %.2e\n",
-                statics.snes_iterations, statics.max_height_error_m,
-                statics.max_tension_error_rel);
+                statics.snes_iterations, statics.max_height_error_m, statics.max_tension_error_rel);
     static_values = statics.node_values;
     mesh = statics_system.mesh();
     VecDestroy(&xs);
@@ -251,9 +250,8 @@ int run_dynamic(const app::CommandContext& ctx) {
     h5.attribute("/", "speed_m_s", run.speed);
     summary["scene"] = ctx.scene_name(scene);
     summary["speed_kmh"] = run.speed * 3.6;
-    summary["analysis"] = {{"from_x", run.analysis_from_x},
-                           {"to_x", run.analysis_to_x},
-                           {"cutoff_hz", run.cutoff_hz}};
+    summary["analysis"] = {
+        {"from_x", run.analysis_from_x}, {"to_x", run.analysis_to_x}, {"cutoff_hz", run.cutoff_hz}};
     summary["pantographs"] = nlohmann::json::array();
     app::print0(ctx, "\n  EN 50318 statistics (contact force low-pass %.0f Hz, spans %d-%d)\n",
                 run.cutoff_hz, run.analysis_from_span, run.analysis_to_span);
@@ -283,8 +281,7 @@ int run_dynamic(const app::CommandContext& ctx) {
         summary["pantographs"].push_back({{"name", names[p]}, {"complete", false}});
         continue;
       }
-      const auto st =
-          force_statistics(x, filtered, force, run.analysis_from_x, run.analysis_to_x);
+      const auto st = force_statistics(x, filtered, force, run.analysis_from_x, run.analysis_to_x);
       nlohmann::json j = {{"name", names[p]},
                           {"mean_N", st.mean},
                           {"std_N", st.std_dev},
@@ -295,10 +292,11 @@ int run_dynamic(const app::CommandContext& ctx) {
                           {"loss_of_contact_percent", st.loss_of_contact_percent},
                           {"samples", st.samples}};
       summary["pantographs"].push_back(j);
-      app::print0(ctx, "  %-12s mean %7.2f N  std %6.2f N  stat max %7.2f  stat min %7.2f  "
-                       "max %7.2f  min %7.2f  loss of contact %.2f%%\n",
-                  names[p].c_str(), st.mean, st.std_dev, st.statistical_max,
-                  st.statistical_min, st.actual_max, st.actual_min, st.loss_of_contact_percent);
+      app::print0(ctx,
+                  "  %-12s mean %7.2f N  std %6.2f N  stat max %7.2f  stat min %7.2f  "
+                  "max %7.2f  min %7.2f  loss of contact %.2f%%\n",
+                  names[p].c_str(), st.mean, st.std_dev, st.statistical_max, st.statistical_min,
+                  st.actual_max, st.actual_min, st.loss_of_contact_percent);
     }
     summary["max_uplift_at_support_m"] = max_uplift;
     summary["steps"] = mon.steps;

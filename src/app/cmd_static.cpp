@@ -1,8 +1,7 @@
 // `pcsim static SCENE.yaml`: form-finding and static configuration of the
 // catenary (thesis 3.1.3).
-#include <nlohmann/json.hpp>
-
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "catenary_output.hpp"
 #include "command.hpp"

@@ -109,7 +109,6 @@ void CatenarySystem::add_node_residual(double* r, int node, int c, double value)
   if (p >= 0) r[p] += value;
 }
 
-
 void CatenarySystem::insert_element_pattern(Mat A) const {
   const auto& L = *layout_;
   PetscInt idx12[12], idx6[6];

@@ -57,9 +57,8 @@ std::vector<int> partition_nodes(MPI_Comm comm, int size,
     METIS_SetDefaultOptions(options);
     options[METIS_OPTION_SEED] = 7;
     int status = n > size ? METIS_PartGraphKway(&const_cast<idx_t&>(n), &ncon, xadj.data(),
-                                                adjncy.data(), nullptr, nullptr, nullptr,
-                                                &nparts, nullptr, nullptr, options, &objval,
-                                                part.data())
+                                                adjncy.data(), nullptr, nullptr, nullptr, &nparts,
+                                                nullptr, nullptr, options, &objval, part.data())
                           : METIS_OK;
     if (status != METIS_OK) throw SolverError("METIS partitioning failed");
     if (n <= size)
@@ -109,7 +108,8 @@ DofLayout::DofLayout(MPI_Comm comm, const CatenaryMesh& mesh, PetscInt extra_dof
   for (std::size_t e = 0; e < mesh.bars.size(); ++e)
     if (owner_[mesh.bars[e].nodes[0]] == rank_) local_bars_.push_back(static_cast<int>(e));
   for (std::size_t i = 0; i < mesh.point_masses.size(); ++i)
-    if (owner_[mesh.point_masses[i].node] == rank_) local_point_masses_.push_back(static_cast<int>(i));
+    if (owner_[mesh.point_masses[i].node] == rank_)
+      local_point_masses_.push_back(static_cast<int>(i));
   for (std::size_t i = 0; i < mesh.springs.size(); ++i)
     if (owner_[mesh.springs[i].node] == rank_) local_springs_.push_back(static_cast<int>(i));
 
@@ -135,8 +135,8 @@ DofLayout::DofLayout(MPI_Comm comm, const CatenaryMesh& mesh, PetscInt extra_dof
   PCSIM_PETSC(VecCreateMPI(comm_, local_size_, PETSC_DETERMINE, &scatter_template_global_));
   PCSIM_PETSC(VecCreateSeq(PETSC_COMM_SELF, gathered_size_, &scatter_template_local_));
   IS is_from;
-  PCSIM_PETSC(ISCreateGeneral(PETSC_COMM_SELF, gathered_size_, from.data(), PETSC_COPY_VALUES,
-                              &is_from));
+  PCSIM_PETSC(
+      ISCreateGeneral(PETSC_COMM_SELF, gathered_size_, from.data(), PETSC_COPY_VALUES, &is_from));
   PCSIM_PETSC(VecScatterCreate(scatter_template_global_, is_from, scatter_template_local_, nullptr,
                                &scatter_));
   PCSIM_PETSC(ISDestroy(&is_from));
@@ -148,7 +148,9 @@ DofLayout::~DofLayout() {
   VecDestroy(&scatter_template_local_);
 }
 
-int DofLayout::needed_index(int node) const { return needed_lookup_[node]; }
+int DofLayout::needed_index(int node) const {
+  return needed_lookup_[node];
+}
 
 void DofLayout::gather(Vec global, Vec gathered) const {
   PCSIM_PETSC(VecScatterBegin(scatter_, global, gathered, INSERT_VALUES, SCATTER_FORWARD));

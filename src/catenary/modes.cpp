@@ -11,8 +11,8 @@
 
 namespace pcsim::catenary {
 
-ModesResult compute_modes(assembly::CatenarySystem& system, Vec x, int nev,
-                          double max_frequency_hz, bool want_shapes) {
+ModesResult compute_modes(assembly::CatenarySystem& system, Vec x, int nev, double max_frequency_hz,
+                          bool want_shapes) {
   PetscLogDouble t0, t1;
   PetscTime(&t0);
   const auto& L = system.layout();
@@ -77,7 +77,8 @@ ModesResult compute_modes(assembly::CatenarySystem& system, Vec x, int nev,
   }
   std::vector<PetscInt> order(nconv);
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](PetscInt a, PetscInt b) { return lambdas[a] < lambdas[b]; });
+  std::sort(order.begin(), order.end(),
+            [&](PetscInt a, PetscInt b) { return lambdas[a] < lambdas[b]; });
   PetscInt keep = slicing ? nconv : std::min<PetscInt>(nconv, nev);
   result.converged = static_cast<int>(nconv);
   Vec phi, Kphi, Mphi;
@@ -108,7 +109,8 @@ ModesResult compute_modes(assembly::CatenarySystem& system, Vec x, int nev,
     PetscReal rn, mn;
     PCSIM_PETSC(VecNorm(Kphi, NORM_2, &rn));
     PCSIM_PETSC(VecNorm(Mphi, NORM_2, &mn));
-    result.max_relative_residual = std::max(result.max_relative_residual, rn / (std::abs(lambda) * mn));
+    result.max_relative_residual =
+        std::max(result.max_relative_residual, rn / (std::abs(lambda) * mn));
     if (want_shapes) {
       // Displacement DOFs only; constrained ones are zero.
       std::vector<double> shape(3 * mesh.nodes.size(), 0.0);

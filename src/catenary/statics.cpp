@@ -58,7 +58,8 @@ void initial_form_finding_unknowns(StaticContext& ctx, Vec x) {
   PCSIM_PETSC(VecGetArray(x, &a));
   const std::size_t n_targets = mesh.height_targets.size();
   for (std::size_t k = 0; k < n_targets; ++k)
-    a[L.extra_global(k) - L.first_owned()] = mesh.bars[mesh.height_targets[k].bar].unstressed_length;
+    a[L.extra_global(k) - L.first_owned()] =
+        mesh.bars[mesh.height_targets[k].bar].unstressed_length;
   for (std::size_t s = 0; s < mesh.tension_segments.size(); ++s) {
     double ratio = 0;
     for (int e : mesh.tension_segments[s].elements)
@@ -114,9 +115,8 @@ void add_form_finding_terms(StaticContext& ctx, Vec R, Mat J) {
     const CableSection section = cable_section(wire);
     system.cable_values(e, q12.data());
     double dT_dL0 = 0;
-    const double T =
-        cable_mean_axial_force(section, el.ref_length, el.unstressed_length, q12,
-                               J ? &dT12 : nullptr, J ? &dT_dL0 : nullptr);
+    const double T = cable_mean_axial_force(section, el.ref_length, el.unstressed_length, q12,
+                                            J ? &dT12 : nullptr, J ? &dT_dL0 : nullptr);
     const PetscInt row = L.extra_global(static_cast<PetscInt>(n_targets + s));
     const double weight = 1.0 / ctx.segment_count[s];
     PCSIM_PETSC(VecSetValue(R, row, weight * T, ADD_VALUES));
@@ -285,8 +285,8 @@ StaticResult solve_static(CatenarySystem& system, Vec x, bool form_finding,
   };
   if (!result.converged) restore_slack_criteria();
   if (!result.converged)
-    throw SolverError(std::string("static solution did not converge (") +
-                      result.converged_reason + " after " + std::to_string(its) +
+    throw SolverError(std::string("static solution did not converge (") + result.converged_reason +
+                      " after " + std::to_string(its) +
                       " Newton iterations); try -snes_monitor -snes_linesearch_type bt");
 
   // Final state: unstressed lengths in the mesh, equilibrium of every bar.

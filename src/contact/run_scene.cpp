@@ -21,17 +21,18 @@ RunScene load_run_scene(const InputNode& scene) {
   run.catenary = catenary::load_catenary_scene(scene);
   const auto& mesh = run.catenary.mesh;
   if (mesh.contact_wire < 0 || mesh.support_x.size() < 2)
-    scene["catenary"].fail_key("design",
-                               "a dynamic run needs a parametric design (contact wire and supports)");
+    scene["catenary"].fail_key(
+        "design", "a dynamic run needs a parametric design (contact wire and supports)");
 
   const InputNode sim = scene["simulation"];
   sim.allow_only({"speed_kmh", "end_x", "dt"});
   run.speed = sim.get_positive("speed_kmh") / 3.6;
   const double c = wave_speed(mesh.wires[mesh.contact_wire]);
   if (run.speed >= c)
-    sim.fail_key("speed_kmh", "speed " + fmt(run.speed * 3.6) +
-                                  " km/h is not below the contact wire's wave speed sqrt(T/rho) = " +
-                                  fmt(c * 3.6) + " km/h");
+    sim.fail_key("speed_kmh",
+                 "speed " + fmt(run.speed * 3.6) +
+                     " km/h is not below the contact wire's wave speed sqrt(T/rho) = " +
+                     fmt(c * 3.6) + " km/h");
   run.dt = sim.get_positive("dt", 1e-3);
   const double x_first = mesh.support_x.front(), x_last = mesh.support_x.back();
   run.end_x = sim.get_double("end_x", x_last - 5.0);
@@ -46,7 +47,8 @@ RunScene load_run_scene(const InputNode& scene) {
                   "working_height", "effects"});
     PantographRun pr;
     pr.name = p.get_string("name", "pantograph" + std::to_string(i + 1));
-    const InputNode effects = p.has("effects") ? p["effects"] : InputNode(YAML::Node(), p.file(), "");
+    const InputNode effects =
+        p.has("effects") ? p["effects"] : InputNode(YAML::Node(), p.file(), "");
     pr.model = pantograph::load_pantograph_model(p.resolve_path(p.get_string("model")),
                                                  p.has("effects") ? &effects : nullptr, run.speed);
     pr.start_x = p.get_double("start_x", x_first + 5.0);
@@ -61,8 +63,7 @@ RunScene load_run_scene(const InputNode& scene) {
     pr.static_start = start == "static";
     pr.ramp_distance = p.get_positive("ramp_distance", 20.0);
     // Rigid models work in heights above their base; lumped ones in absolute heights.
-    pr.working_height =
-        p.get_positive("working_height", pr.model->kind() == "dsa380" ? 1.2 : 1.0);
+    pr.working_height = p.get_positive("working_height", pr.model->kind() == "dsa380" ? 1.2 : 1.0);
     if (pr.model->kind() != "dsa380" && !p.has("working_height")) pr.working_height = 0;
     run.pantographs.push_back(std::move(pr));
   }
@@ -98,18 +99,18 @@ RunScene load_run_scene(const InputNode& scene) {
     const auto& p = run.pantographs[i];
     const double x_end = p.start_x + (run.end_x - run.pantographs.front().start_x);
     if (p.start_x > run.analysis_from_x || x_end < run.analysis_to_x)
-      list.at(i).fail_key("start_x", "pantograph '" + p.name + "' runs from " + fmt(p.start_x) +
-                                         " to " + fmt(x_end) +
-                                         " m and does not cross the whole analysis section (" +
-                                         fmt(run.analysis_from_x) + ", " +
-                                         fmt(run.analysis_to_x) + ") m");
+      list.at(i).fail_key("start_x",
+                          "pantograph '" + p.name + "' runs from " + fmt(p.start_x) + " to " +
+                              fmt(x_end) + " m and does not cross the whole analysis section (" +
+                              fmt(run.analysis_from_x) + ", " + fmt(run.analysis_to_x) + ") m");
   }
   if (scene.has("output")) {
     const InputNode o = scene["output"];
     o.allow_only({"dropper_forces", "snapshot_every"});
     run.dropper_forces = o.get_bool("dropper_forces", true);
     run.snapshot_every = o.get_int("snapshot_every", 0);
-    if (run.snapshot_every < 0) o.fail_key("snapshot_every", "must be 0 (none) or a number of steps");
+    if (run.snapshot_every < 0)
+      o.fail_key("snapshot_every", "must be 0 (none) or a number of steps");
   }
   return run;
 }

@@ -65,8 +65,8 @@ void H5File::write_strings(const std::string& path, const std::vector<std::strin
 
 void H5File::attribute(const std::string& object_path, const std::string& name, double value) {
   hid_t space = H5Screate(H5S_SCALAR);
-  hid_t attr = H5Acreate_by_name(file_, object_path.c_str(), name.c_str(), H5T_NATIVE_DOUBLE,
-                                 space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t attr = H5Acreate_by_name(file_, object_path.c_str(), name.c_str(), H5T_NATIVE_DOUBLE, space,
+                                 H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   H5Awrite(attr, H5T_NATIVE_DOUBLE, &value);
   H5Aclose(attr);
   H5Sclose(space);
@@ -77,8 +77,8 @@ void H5File::attribute(const std::string& object_path, const std::string& name,
   hid_t type = H5Tcopy(H5T_C_S1);
   H5Tset_size(type, value.size() + 1);
   hid_t space = H5Screate(H5S_SCALAR);
-  hid_t attr = H5Acreate_by_name(file_, object_path.c_str(), name.c_str(), type, space,
-                                 H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t attr = H5Acreate_by_name(file_, object_path.c_str(), name.c_str(), type, space, H5P_DEFAULT,
+                                 H5P_DEFAULT, H5P_DEFAULT);
   H5Awrite(attr, type, value.c_str());
   H5Aclose(attr);
   H5Sclose(space);

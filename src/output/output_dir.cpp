@@ -36,7 +36,9 @@ OutputDir::~OutputDir() {
   }
 }
 
-std::string OutputDir::file(const std::string& name) const { return partial_ + "/" + name; }
+std::string OutputDir::file(const std::string& name) const {
+  return partial_ + "/" + name;
+}
 
 void OutputDir::commit() {
   MPI_Barrier(comm_);
@@ -52,6 +54,8 @@ void OutputDir::commit() {
   committed_ = true;
 }
 
-std::string default_output_dir(const std::string& scene_name) { return "out/" + scene_name; }
+std::string default_output_dir(const std::string& scene_name) {
+  return "out/" + scene_name;
+}
 
 }  // namespace pcsim

@@ -182,7 +182,9 @@ std::string InputNode::get_choice(const std::string& key,
   fail_key(key, "must be one of " + list + " (got '" + v + "')");
 }
 
-void InputNode::fail(const std::string& reason) const { throw InputError(file_, path_, reason); }
+void InputNode::fail(const std::string& reason) const {
+  throw InputError(file_, path_, reason);
+}
 void InputNode::fail_key(const std::string& key, const std::string& reason) const {
   throw InputError(file_, child_path(key), reason);
 }

@@ -102,7 +102,8 @@ TEST(Statics, AssembledTangentMatchesFiniteDifferences) {
   // Directional derivative along a deterministic perturbation.
   PetscInt lo, hi;
   VecGetOwnershipRange(dx, &lo, &hi);
-  for (PetscInt i = lo; i < hi; ++i) VecSetValue(dx, i, 1e-3 * std::sin(1.7 * i + 0.3), INSERT_VALUES);
+  for (PetscInt i = lo; i < hi; ++i)
+    VecSetValue(dx, i, 1e-3 * std::sin(1.7 * i + 0.3), INSERT_VALUES);
   VecAssemblyBegin(dx);
   VecAssemblyEnd(dx);
   MatMult(J, dx, JdX);

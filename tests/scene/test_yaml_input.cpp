@@ -24,8 +24,8 @@ TEST(YamlInput, MissingFileNamesFile) {
 }
 
 TEST(YamlInput, UnknownKeyNamesKeyPath) {
-  auto root = InputNode::load_string("wires:\n  contact:\n    tension: 20000\n    tensoin: 1\n",
-                                     "d.yaml");
+  auto root =
+      InputNode::load_string("wires:\n  contact:\n    tension: 20000\n    tensoin: 1\n", "d.yaml");
   auto msg = message_of([&] { root["wires"]["contact"].allow_only({"tension"}); });
   EXPECT_NE(msg.find("d.yaml"), std::string::npos);
   EXPECT_NE(msg.find("wires.contact.tensoin"), std::string::npos);

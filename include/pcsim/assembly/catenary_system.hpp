@@ -53,9 +53,9 @@ class CatenarySystem {
 
   // Which terms assemble_static() evaluates.
   enum Terms : unsigned {
-    kCables = 1u,       // ANCF cable elastic forces
-    kBars = 2u,         // bars (droppers, steady arms, stitch wires)
-    kLoads = 4u,        // gravity of everything, support springs
+    kCables = 1u,  // ANCF cable elastic forces
+    kBars = 2u,    // bars (droppers, steady arms, stitch wires)
+    kLoads = 4u,   // gravity of everything, support springs
     kAllTerms = 7u,
   };
   // R = f_elastic - f_gravity + springs at the loaded state (R is overwritten:

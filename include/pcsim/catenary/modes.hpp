@@ -29,7 +29,7 @@ struct ModesResult {
 
 // nev: number of modes (when max_frequency_hz <= 0); max_frequency_hz > 0:
 // every mode below it. 'x' is the static configuration of 'system'.
-ModesResult compute_modes(assembly::CatenarySystem& system, Vec x, int nev,
-                          double max_frequency_hz, bool want_shapes);
+ModesResult compute_modes(assembly::CatenarySystem& system, Vec x, int nev, double max_frequency_hz,
+                          bool want_shapes);
 
 }  // namespace pcsim::catenary

@@ -30,8 +30,7 @@ class H5File {
   }
   void write_strings(const std::string& path, const std::vector<std::string>& data);
   void attribute(const std::string& object_path, const std::string& name, double value);
-  void attribute(const std::string& object_path, const std::string& name,
-                 const std::string& value);
+  void attribute(const std::string& object_path, const std::string& name, const std::string& value);
 
  private:
   void ensure_parent_groups(const std::string& path);
