@@ -1,6 +1,7 @@
 #include "pcsim/contact/run_scene.hpp"
 
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
 namespace pcsim::contact {
@@ -49,8 +50,11 @@ RunScene load_run_scene(const InputNode& scene) {
     pr.name = p.get_string("name", "pantograph" + std::to_string(i + 1));
     const InputNode effects =
         p.has("effects") ? p["effects"] : InputNode(YAML::Node(), p.file(), "");
-    pr.model = pantograph::load_pantograph_model(p.resolve_path(p.get_string("model")),
-                                                 p.has("effects") ? &effects : nullptr, run.speed);
+    const std::string model_path = p.resolve_path(p.get_string("model"));
+    if (!std::ifstream(model_path))
+      p.fail_key("model", "cannot open pantograph model file '" + model_path + "'");
+    pr.model = pantograph::load_pantograph_model(model_path, p.has("effects") ? &effects : nullptr,
+                                                 run.speed);
     pr.start_x = p.get_double("start_x", x_first + 5.0);
     if (pr.start_x < x_first || pr.start_x >= run.end_x)
       p.fail_key("start_x", "must lie on the line before simulation.end_x (" + fmt(run.end_x) +
