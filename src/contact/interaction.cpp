@@ -1,5 +1,6 @@
 #include "pcsim/contact/interaction.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -132,8 +133,11 @@ InteractionProblem::InteractionProblem(MPI_Comm comm, CatenaryMesh mesh,
 }
 
 InteractionProblem::~InteractionProblem() {
-  for (auto& v : contact_u_) VecDestroy(&v);
-  for (auto& v : contact_z_) VecDestroy(&v);
+  clear_low_rank();
+  for (auto& term : contact_terms_) {
+    VecDestroy(&term.u);
+    VecDestroy(&term.z);
+  }
   KSPDestroy(&inner_ksp_);
   MatDestroy(&M_);
   MatDestroy(&C_);
@@ -289,14 +293,11 @@ void InteractionProblem::residual(double t, Vec U, Vec V, Vec A, Vec F) {
 void InteractionProblem::jacobian(double t, Vec U, Vec V, Vec A, double shift_v, double shift_a,
                                   Mat J) {
   if (cheap_path_ && shift_v == cached_shift_v_ && shift_a == cached_shift_a_) {
+    // J0 is kept; contact and switched droppers follow the state through
+    // the low-rank terms.
     system_->load_state(U);
     load_pantograph_state(U, V, A);
-    // J0 is kept while no dropper switches (slack <-> taut); contact follows
-    // the state through the low-rank terms.
-    if (bar_states() == j0_bar_states_) {
-      update_contact_low_rank(t);
-      return;
-    }
+    if (update_low_rank(t)) return;
   }
   const auto& L = system_->layout();
   system_->load_state(U);
@@ -336,12 +337,16 @@ void InteractionProblem::jacobian(double t, Vec U, Vec V, Vec A, double shift_v,
                                                     : SUBSET_NONZERO_PATTERN));
   cached_shift_v_ = shift_v;
   cached_shift_a_ = shift_a;
-  if (cheap_path_) j0_bar_states_ = bar_states();
   if (cheap_path_) {
-    // J0 changed: Z_p = J0^-1 u_p follow in woodbury_setup, after the factorisation.
+    // New J0: its low-rank terms are rebuilt after the factorisation.
+    j0_bar_states_ = bar_states();
+    j0_bar_tangents_.assign(slack_bars_.size(), Eigen::Matrix3d::Zero());
+    for (std::size_t i = 0; i < slack_bars_.size(); ++i)
+      if (L.owner(system_->mesh().bars[slack_bars_[i]].nodes[0]) == L.rank())
+        j0_bar_tangents_[i] = bar_tangent_block(slack_bars_[i]);
     inner_factored_ = false;
-    contact_element_.assign(pantographs_.size(), -1);
-    update_contact_low_rank(t);
+    clear_low_rank();
+    update_low_rank(t);
   }
 }
 
@@ -366,25 +371,128 @@ std::vector<char> InteractionProblem::bar_states() const {
   return states;
 }
 
-// u_p = [S_z(chi); -1] on the contact element's DOFs and the head DOF, its
-// stiffness kH while in contact, and Z_p = J0^-1 u_p when u_p moved.
-void InteractionProblem::update_contact_low_rank(double t) {
+Eigen::Matrix3d InteractionProblem::bar_tangent_block(int bar) const {
+  catenary::Vec6 q, f;
+  catenary::Mat6 K;
+  system_->bar_values(bar, q.data());
+  catenary::bar_internal_force(catenary::bar_parameters(system_->mesh().bars[bar]), q, f, &K);
+  return K.topLeftCorner<3, 3>();
+}
+
+void InteractionProblem::clear_low_rank() {
+  for (auto& [g, v] : unit_solutions_) VecDestroy(&v);
+  unit_solutions_.clear();
+  for (auto& [b, terms] : bar_terms_)
+    for (auto& term : terms) {
+      VecDestroy(&term.u);
+      VecDestroy(&term.z);
+    }
+  bar_terms_.clear();
+  bar_term_state_.clear();
+  contact_element_.assign(pantographs_.size(), -1);
+  contact_chi_.assign(pantographs_.size(), -1.0);
+  capacitance_dirty_ = true;
+}
+
+// J0^-1 e_g, solved once per J0 and cached.
+Vec InteractionProblem::unit_solution(PetscInt g) {
+  auto it = unit_solutions_.find(g);
+  if (it != unit_solutions_.end()) return it->second;
+  Vec e = create_vector(), z = create_vector();
+  PCSIM_PETSC(VecSet(e, 0.0));
+  PetscInt lo, hi;
+  PCSIM_PETSC(VecGetOwnershipRange(e, &lo, &hi));
+  if (g >= lo && g < hi) PCSIM_PETSC(VecSetValue(e, g, 1.0, INSERT_VALUES));
+  PCSIM_PETSC(VecAssemblyBegin(e));
+  PCSIM_PETSC(VecAssemblyEnd(e));
+  PCSIM_PETSC(KSPSolve(inner_ksp_, e, z));
+  PCSIM_PETSC(VecDestroy(&e));
+  unit_solutions_[g] = z;
+  return z;
+}
+
+// Contact of pantograph p: u_p = [S_z(chi); -1] on the contact element's DOFs
+// and the head DOF, coefficient kH while in contact. Switched dropper b:
+// u_b = [-e; e] on its position DOFs, coefficient +k (taut now, slack in J0)
+// or -k (slack now, taut in J0). Called at every Newton iteration.
+bool InteractionProblem::update_low_rank(double t) {
   const auto& L = system_->layout();
   const auto& mesh = system_->mesh();
   const std::size_t np = pantographs_.size();
-  if (contact_u_.empty()) {
-    contact_u_.resize(np);
-    contact_z_.resize(np);
-    for (std::size_t p = 0; p < np; ++p) {
-      contact_u_[p] = create_vector();
-      contact_z_[p] = create_vector();
+  if (contact_terms_.empty()) {
+    contact_terms_.resize(np);
+    for (auto& term : contact_terms_) {
+      term.u = create_vector();
+      term.z = create_vector();
     }
-    contact_k_.assign(np, 0.0);
     contact_element_.assign(np, -1);
     contact_chi_.assign(np, -1.0);
   }
-  // Element, chi and gap are known on the element's owner: share them.
-  std::vector<double> info(3 * np, 0.0);  // element, chi, in contact
+  // Switched droppers.
+  const std::vector<char> states = bar_states();
+  std::vector<int> switched;
+  for (std::size_t i = 0; i < slack_bars_.size(); ++i)
+    if (states[i] != j0_bar_states_[i]) switched.push_back(static_cast<int>(i));
+  if (switched.size() > 12) return false;  // refactor J0 instead
+  for (auto it = bar_terms_.begin(); it != bar_terms_.end();) {
+    if (std::find(switched.begin(), switched.end(), it->first) == switched.end() ||
+        bar_term_state_[it->first] != states[it->first]) {
+      for (auto& term : it->second) {
+        VecDestroy(&term.u);
+        VecDestroy(&term.z);
+      }
+      bar_term_state_.erase(it->first);
+      it = bar_terms_.erase(it);
+      capacitance_dirty_ = true;
+    } else {
+      ++it;
+    }
+  }
+  for (int i : switched) {
+    if (bar_terms_.count(i)) continue;
+    // Change of the bar's tangent since J0, frozen at the switch (as a
+    // refactorisation there would be): B (x) dK3 = sum_j lambda_j w_j w_j^T,
+    // w_j = [v_j; -v_j] for the eigenpairs (lambda_j, v_j) of dK3.
+    const int b = slack_bars_[i];
+    std::array<double, 12> eig{};  // 3 eigenvalues, 3 eigenvectors
+    if (L.owner(mesh.bars[b].nodes[0]) == L.rank()) {
+      const Eigen::Matrix3d dK = bar_tangent_block(b) - j0_bar_tangents_[i];
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(dK);
+      for (int j = 0; j < 3; ++j) {
+        eig[j] = solver.eigenvalues()[j];
+        for (int c = 0; c < 3; ++c) eig[3 + 3 * j + c] = solver.eigenvectors()(c, j);
+      }
+    }
+    if (L.size() > 1)
+      MPI_Allreduce(MPI_IN_PLACE, eig.data(), 12, MPI_DOUBLE, MPI_SUM, L.comm());
+    double scale = 0;
+    for (int j = 0; j < 3; ++j) scale = std::max(scale, std::abs(eig[j]));
+    PetscInt idx[6];
+    system_->bar_indices(b, idx);
+    auto& terms = bar_terms_[i];
+    bar_term_state_[i] = states[i];
+    capacitance_dirty_ = true;
+    for (int j = 0; j < 3; ++j) {
+      if (std::abs(eig[j]) <= 1e-12 * scale) continue;
+      LowRankTerm term;
+      term.coefficient = eig[j];
+      term.u = create_vector();
+      term.z = create_vector();
+      PCSIM_PETSC(VecSet(term.u, 0.0));
+      if (L.rank() == 0)
+        for (int c = 0; c < 3; ++c) {
+          const double v = eig[3 + 3 * j + c];
+          if (idx[c] >= 0) PCSIM_PETSC(VecSetValue(term.u, idx[c], v, INSERT_VALUES));
+          if (idx[3 + c] >= 0) PCSIM_PETSC(VecSetValue(term.u, idx[3 + c], -v, INSERT_VALUES));
+        }
+      PCSIM_PETSC(VecAssemblyBegin(term.u));
+      PCSIM_PETSC(VecAssemblyEnd(term.u));
+      if (inner_factored_) PCSIM_PETSC(KSPSolve(inner_ksp_, term.u, term.z));
+      terms.push_back(term);
+    }
+  }
+  // Contact: element, chi and contact state are known on the element's owner.
+  std::vector<double> info(3 * np, 0.0);
   for (std::size_t p = 0; p < np; ++p) {
     const auto& run = pantographs_[p];
     int element;
@@ -409,25 +517,59 @@ void InteractionProblem::update_contact_low_rank(double t) {
                   L.comm());
   for (std::size_t p = 0; p < np; ++p) {
     const int element = static_cast<int>(std::lround(info[3 * p]));
-    contact_k_[p] = element >= 0 && info[3 * p + 2] > 0.5 ? kH_ : 0.0;
+    const double coefficient = element >= 0 && info[3 * p + 2] > 0.5 ? kH_ : 0.0;
+    if (coefficient != contact_terms_[p].coefficient) capacitance_dirty_ = true;
+    contact_terms_[p].coefficient = coefficient;
     if (element < 0 || (element == contact_element_[p] && info[3 * p + 1] == contact_chi_[p]))
       continue;
+    capacitance_dirty_ = true;
     contact_element_[p] = element;
     contact_chi_[p] = info[3 * p + 1];
-    PCSIM_PETSC(VecSet(contact_u_[p], 0.0));
-    if (L.owner(mesh.cables[element].nodes[0]) == L.rank()) {
-      const Vector12d S = shape_row(contact_chi_[p], mesh.cables[element].ref_length, 2);
-      PetscInt idx[12];
-      system_->cable_indices(element, idx);
-      for (int i = 0; i < 12; ++i)
-        if (idx[i] >= 0 && S[i] != 0.0) PCSIM_PETSC(VecSetValue(contact_u_[p], idx[i], S[i], INSERT_VALUES));
-      PCSIM_PETSC(VecSetValue(contact_u_[p], panto_first_[p] + pantographs_[p].model->contact_dof(),
-                              -1.0, INSERT_VALUES));
+    // u_p and, from cached unit solves, z_p = sum_k S_k J0^-1 e_k - J0^-1 e_head.
+    const Vector12d S = shape_row(contact_chi_[p], mesh.cables[element].ref_length, 2);
+    PetscInt idx[12];
+    system_->cable_indices(element, idx);
+    std::vector<PetscInt> dofs;
+    std::vector<PetscScalar> weights;
+    for (int i = 0; i < 12; ++i)
+      if (idx[i] >= 0 && S[i] != 0.0) {
+        dofs.push_back(idx[i]);
+        weights.push_back(S[i]);
+      }
+    dofs.push_back(panto_first_[p] + pantographs_[p].model->contact_dof());
+    weights.push_back(-1.0);
+    PCSIM_PETSC(VecSet(contact_terms_[p].u, 0.0));
+    if (L.rank() == 0)  // every index is known everywhere: one rank sets them
+      PCSIM_PETSC(VecSetValues(contact_terms_[p].u, static_cast<PetscInt>(dofs.size()),
+                               dofs.data(), weights.data(), INSERT_VALUES));
+    PCSIM_PETSC(VecAssemblyBegin(contact_terms_[p].u));
+    PCSIM_PETSC(VecAssemblyEnd(contact_terms_[p].u));
+    if (inner_factored_) {
+      // Keep only the unit solutions of the current contact elements' DOFs.
+      std::vector<PetscInt> keep = dofs;
+      for (std::size_t other = 0; other < np; ++other) {
+        if (other == p || contact_element_[other] < 0) continue;
+        PetscInt other_idx[12];
+        system_->cable_indices(contact_element_[other], other_idx);
+        keep.insert(keep.end(), other_idx, other_idx + 12);
+        keep.push_back(panto_first_[other] + pantographs_[other].model->contact_dof());
+      }
+      for (auto it = unit_solutions_.begin(); it != unit_solutions_.end();) {
+        if (std::find(keep.begin(), keep.end(), it->first) == keep.end()) {
+          VecDestroy(&it->second);
+          it = unit_solutions_.erase(it);
+        } else {
+          ++it;
+        }
+      }
+      std::vector<Vec> columns;
+      for (PetscInt g : dofs) columns.push_back(unit_solution(g));
+      PCSIM_PETSC(VecSet(contact_terms_[p].z, 0.0));
+      PCSIM_PETSC(VecMAXPY(contact_terms_[p].z, static_cast<PetscInt>(columns.size()),
+                           weights.data(), columns.data()));
     }
-    PCSIM_PETSC(VecAssemblyBegin(contact_u_[p]));
-    PCSIM_PETSC(VecAssemblyEnd(contact_u_[p]));
-    if (inner_factored_) PCSIM_PETSC(KSPSolve(inner_ksp_, contact_u_[p], contact_z_[p]));
   }
+  return true;
 }
 
 PetscErrorCode InteractionProblem::woodbury_setup(PC pc) {
@@ -439,38 +581,57 @@ PetscErrorCode InteractionProblem::woodbury_setup(PC pc) {
   PCSIM_PETSC(KSPSetOperators(self->inner_ksp_, A, P));
   PCSIM_PETSC(KSPSetUp(self->inner_ksp_));
   self->inner_factored_ = true;
-  // The factorisation changed: every Z_p must be recomputed.
-  for (std::size_t p = 0; p < self->contact_z_.size(); ++p) {
-    if (self->contact_element_[p] < 0) continue;
-    PCSIM_PETSC(KSPSolve(self->inner_ksp_, self->contact_u_[p], self->contact_z_[p]));
-  }
+  // The factorisation changed: every z must be recomputed.
+  for (auto& [b, terms] : self->bar_terms_)
+    for (auto& term : terms) PCSIM_PETSC(KSPSolve(self->inner_ksp_, term.u, term.z));
+  for (std::size_t p = 0; p < self->contact_terms_.size(); ++p)
+    if (self->contact_element_[p] >= 0)
+      PCSIM_PETSC(KSPSolve(self->inner_ksp_, self->contact_terms_[p].u, self->contact_terms_[p].z));
+  self->capacitance_dirty_ = true;
   PCSIM_CALLBACK_END
 }
 
+// x = (J0 + U C U^T)^-1 r = y - Z (C^-1 + U^T Z)^-1 U^T y,  y = J0^-1 r.
 PetscErrorCode InteractionProblem::woodbury_apply(PC pc, Vec r, Vec x) {
   PCSIM_CALLBACK_BEGIN
   InteractionProblem* self;
   PCSIM_PETSC(PCShellGetContext(pc, &self));
   PCSIM_PETSC(KSPSolve(self->inner_ksp_, r, x));
-  std::vector<std::size_t> active;
-  for (std::size_t p = 0; p < self->contact_k_.size(); ++p)
-    if (self->contact_k_[p] > 0 && self->contact_element_[p] >= 0) active.push_back(p);
-  if (active.empty()) return 0;
-  const std::size_t k = active.size();
-  // Capacitance G = K^-1 + U^T Z (k x k) and w = U^T x.
-  Eigen::MatrixXd G(k, k);
-  Eigen::VectorXd w(k);
-  for (std::size_t i = 0; i < k; ++i) {
-    PetscScalar dot;
-    PCSIM_PETSC(VecDot(self->contact_u_[active[i]], x, &dot));
-    w[i] = dot;
-    for (std::size_t j = 0; j < k; ++j) {
-      PCSIM_PETSC(VecDot(self->contact_u_[active[i]], self->contact_z_[active[j]], &dot));
-      G(i, j) = dot + (i == j ? 1.0 / self->contact_k_[active[i]] : 0.0);
+  if (self->capacitance_dirty_) {
+    self->active_terms_.clear();
+    for (auto& term : self->contact_terms_)
+      if (term.coefficient != 0) self->active_terms_.push_back(&term);
+    for (auto& [b, terms] : self->bar_terms_)
+      for (auto& term : terms) self->active_terms_.push_back(&term);
+    const std::size_t k = self->active_terms_.size();
+    self->capacitance_.resize(k, k);
+    std::vector<Vec> zs(k);
+    for (std::size_t j = 0; j < k; ++j) zs[j] = self->active_terms_[j]->z;
+    std::vector<PetscScalar> row(k);
+    for (std::size_t i = 0; i < k; ++i) {
+      if (k > 0)
+        PCSIM_PETSC(VecMDot(self->active_terms_[i]->u, static_cast<PetscInt>(k), zs.data(),
+                            row.data()));
+      for (std::size_t j = 0; j < k; ++j)
+        self->capacitance_(i, j) = row[j] + (i == j ? 1.0 / self->active_terms_[i]->coefficient : 0.0);
     }
+    self->capacitance_dirty_ = false;
   }
-  const Eigen::VectorXd s = G.lu().solve(w);
-  for (std::size_t j = 0; j < k; ++j) PCSIM_PETSC(VecAXPY(x, -s[j], self->contact_z_[active[j]]));
+  const std::size_t k = self->active_terms_.size();
+  if (k == 0) return 0;
+  std::vector<Vec> us(k), zs(k);
+  for (std::size_t j = 0; j < k; ++j) {
+    us[j] = self->active_terms_[j]->u;
+    zs[j] = self->active_terms_[j]->z;
+  }
+  std::vector<PetscScalar> w(k);
+  PCSIM_PETSC(VecMDotBegin(x, static_cast<PetscInt>(k), us.data(), w.data()));
+  PCSIM_PETSC(VecMDotEnd(x, static_cast<PetscInt>(k), us.data(), w.data()));
+  // U^T y with y = x: VecMDot conjugates the second argument; real scalars.
+  Eigen::VectorXd s =
+      self->capacitance_.lu().solve(Eigen::Map<Eigen::VectorXd>(w.data(), static_cast<long>(k)));
+  for (auto& v : s) v = -v;
+  PCSIM_PETSC(VecMAXPY(x, static_cast<PetscInt>(k), s.data(), zs.data()));
   PCSIM_CALLBACK_END
 }
 
@@ -691,9 +852,11 @@ TS InteractionProblem::create_ts(double dt, double duration) {
   PCSIM_PETSC(TSGetSNES(ts, &snes));
   // Residuals are forces [N]. The step matrix is dominated by M/(beta dt^2)
   // (~2e6 N/m per wire node at dt = 1 ms), so a residual r leaves position
-  // errors ~r/2e6 m and contact-force errors ~kH r/2e6 = 0.025 r N: 1e-2 N is
-  // ample (measured: EN 50318 statistics equal to 0.01 N with 1e-3 N).
-  PCSIM_PETSC(SNESSetTolerances(snes, 1e-2, 1e-9, 0.0, 25, 100000));
+  // errors ~r/2e6 m and contact-force errors ~kH r/2e6 = 0.025 r N. Measured on
+  // the EN 50318 case: atol 5e-2 N changes the contact force by at most 6e-3 N
+  // against atol 1e-2 N (statistics by <= 0.01 N) and saves 40 % of the
+  // Newton iterations. -snes_atol tightens it.
+  PCSIM_PETSC(SNESSetTolerances(snes, 5e-2, 1e-9, 0.0, 25, 100000));
   SNESLineSearch line_search;
   PCSIM_PETSC(SNESGetLineSearch(snes, &line_search));
   PCSIM_PETSC(SNESLineSearchSetType(line_search, SNESLINESEARCHBASIC));

@@ -24,13 +24,19 @@
 // exactly by the Woodbury formula in a PCSHELL:
 //   J^-1 r = J0^-1 r - Z (K^-1 + U^T Z)^-1 U^T J0^-1 r,   Z = J0^-1 U,
 // so Newton stays exact for contact at one extra solve per pantograph and
-// step. The inner solver takes options with the prefix -cheap_ (e.g.
-// -cheap_pc_factor_mat_solver_type mumps). J0 is reassembled and refactored
-// only when a dropper switches between slack and taut.
+// step (Z_p is combined from cached solves J0^-1 e_g of the contact
+// element's DOFs, so a new solve is needed only when the contact enters a new
+// element). A dropper that switches between taut and slack is the rank-one
+// change of its tangent B (x) dK3 (B = [1 -1; -1 1], dK3 its 3x3 block: up
+// to three rank-one terms) and joins the same correction, so J0 is
+// refactored only when the time step changes (or more than 24 terms pile up).
+// The inner solver takes options with the prefix -cheap_ (e.g.
+// -cheap_pc_factor_mat_solver_type mumps).
 #pragma once
 
 #include <petscts.h>
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -135,8 +141,9 @@ class InteractionProblem {
   void add_contact(double t, Vec F, Mat J);
   void solve_coupled_static(Vec U0);
   // Cheap path: contact vectors u_p and Z_p = J0^-1 u_p at the state U.
-  void update_contact_low_rank(double t);
+
   std::vector<char> bar_states() const;
+  Eigen::Matrix3d bar_tangent_block(int bar) const;  // at the loaded state
   static PetscErrorCode woodbury_setup(PC pc);
   static PetscErrorCode woodbury_apply(PC pc, Vec r, Vec x);
 
@@ -160,15 +167,30 @@ class InteractionProblem {
   // Cheap path: shifts of the Jacobian currently assembled.
   double cached_shift_v_ = -1, cached_shift_a_ = -1;
   PetscInt start_iterations_ = 0;
-  // Woodbury data of the cheap path, per pantograph.
+  // Cheap path (Woodbury). A rank-one term c u u^T with z = J0^-1 u.
+  struct LowRankTerm {
+    Vec u = nullptr, z = nullptr;
+    double coefficient = 0;
+  };
   KSP inner_ksp_ = nullptr;
   bool inner_factored_ = false;
+  bool capacitance_dirty_ = true;
+  Eigen::MatrixXd capacitance_;          // K^-1 + U^T Z over the active terms
+  std::vector<LowRankTerm*> active_terms_;
   std::vector<int> slack_bars_;          // bars with a slack criterion
-  std::vector<char> j0_bar_states_;      // their state when J0 was assembled
-  std::vector<Vec> contact_u_, contact_z_;
-  std::vector<double> contact_k_;       // kH while in contact, else 0
-  std::vector<int> contact_element_;    // element and chi that u_p was built for
+  std::vector<char> j0_bar_states_;      // their state (taut 1, slack 0) in J0
+  // Bars whose state differs from J0's: up to 3 terms each (eigenpairs of
+  // the change of their 3x3 tangent block), keyed by index in slack_bars_.
+  std::map<int, std::vector<LowRankTerm>> bar_terms_;
+  std::map<int, char> bar_term_state_;    // state the terms were built for
+  std::vector<Eigen::Matrix3d> j0_bar_tangents_;  // 3x3 block of each in J0
+  std::vector<LowRankTerm> contact_terms_;  // per pantograph
+  std::vector<int> contact_element_;     // element and chi u_p was built for
   std::vector<double> contact_chi_;
+  std::map<PetscInt, Vec> unit_solutions_;  // J0^-1 e_g of contact DOFs g
+  Vec unit_solution(PetscInt g);
+  void clear_low_rank();
+  bool update_low_rank(double t);  // false: too many terms, J0 must be rebuilt
 };
 
 }  // namespace pcsim::contact
