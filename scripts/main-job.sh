@@ -19,5 +19,8 @@ echo
 echo "== pcsim run runs/en50318-300.yaml on $RANKS ranks"
 scripts/mpirun.sh -n "$RANKS" build/pcsim run runs/en50318-300.yaml -o "$OUT/en50318-300"
 echo
-$PY postproc/interaction_table.py "$OUT/en50318-300/summary.json"
-$PY postproc/interaction_plots.py all "$OUT/en50318-300"
+$PY postproc/interaction_table.py "$OUT/en50318-300"
+for plot in force spectrum uplift; do
+  $PY postproc/interaction_plots.py $plot "$OUT/en50318-300" -o "$OUT/en50318-300/$plot.png"
+done
+echo "plots: $OUT/en50318-static/catenary.png $OUT/en50318-300/{force,spectrum,uplift}.png"
