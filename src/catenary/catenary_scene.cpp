@@ -1,5 +1,7 @@
 #include "pcsim/catenary/catenary_scene.hpp"
 
+#include <fstream>
+
 #include "pcsim/catenary/design.hpp"
 
 namespace pcsim::catenary {
@@ -15,6 +17,8 @@ CatenaryScene load_catenary_scene(const InputNode& scene) {
   section.allow_only({"design", "form_finding"});
   CatenaryScene out;
   out.design_path = section.resolve_path(section.get_string("design"));
+  if (!std::ifstream(out.design_path))
+    section.fail_key("design", "cannot open catenary design file '" + out.design_path + "'");
   out.mesh = load_catenary_design(out.design_path);
   out.form_finding = section.get_bool("form_finding", out.mesh.form_finding_default);
   return out;
