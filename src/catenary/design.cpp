@@ -413,7 +413,12 @@ CatenaryMesh build_parametric(const InputNode& root) {
     }
     mesh.wires.push_back(w);
   };
-  add_wire("contact", WireKind::contact, in.contact, 0, false);
+  // One tension segment per span for both wires: the messenger is pinned at
+  // every support; the contact wire runs through them with a uniform tension,
+  // so imposing it span by span is the same condition, and keeps each
+  // form-finding row local (a single segment couples every contact-wire DOF:
+  // a dense row that made the sparse factorisation of long lines slow).
+  add_wire("contact", WireKind::contact, in.contact, 0, true);
   add_wire("messenger", WireKind::messenger, in.messenger, S, true);
   mesh.contact_wire = 0;
 

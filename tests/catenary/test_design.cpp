@@ -87,8 +87,8 @@ TEST(ParametricDesign, ReferenceCounts) {
   EXPECT_EQ(static_cast<int>(m.nodes.size()), 2 * (elements_per_wire + 1));
   EXPECT_EQ(m.bars.size(), 90u);
   EXPECT_EQ(m.height_targets.size(), 90u);
-  // 1 contact-wire segment (anchored at the ends) + 1 messenger segment per span.
-  ASSERT_EQ(m.tension_segments.size(), 11u);
+  // 1 contact-wire segment and 1 messenger segment per span.
+  ASSERT_EQ(m.tension_segments.size(), 20u);
   // Clamps: 2 per dropper; steady arms: 1 per support.
   EXPECT_EQ(m.point_masses.size(), 90u * 2 + 11u);
   EXPECT_EQ(m.contact_wire, 0);
@@ -150,12 +150,12 @@ TEST(ParametricDesign, ReferenceWireProperties) {
   for (const auto& seg : m.tension_segments) {
     if (seg.wire == 0) {
       ++contact_segments;
-      EXPECT_EQ(seg.elements.size(), m.wires[0].elements.size());
+      EXPECT_EQ(seg.elements.size(), m.wires[0].elements.size() / 10);
     } else {
       EXPECT_EQ(seg.elements.size(), m.wires[1].elements.size() / 10);
     }
   }
-  EXPECT_EQ(contact_segments, 1);
+  EXPECT_EQ(contact_segments, 10);
 }
 
 TEST(ParametricDesign, StaggerAndSupports) {
