@@ -42,11 +42,10 @@ expect_error() {
 }
 
 # Design errors, through a scene (file = the design, key = the key path in it).
-# A missing design file: the message names the design file and the reason; it
-# does not yet name the scene key 'catenary.design' (load_catenary_scene passes
-# the path straight to load_catenary_design, whose InputError has an empty key).
+# A missing design file: the message names the scene, the key 'catenary.design',
+# the design file and the reason.
 expect_error missing-design static "$D/bad-missing-design.yaml" \
-  "no-such-design.yaml" "cannot open"
+  "bad-missing-design.yaml" "catenary.design" "no-such-design.yaml" "cannot open"
 expect_error unknown-key static "$D/bad-unknown-key.yaml" \
   "meshes/bad/unknown-key.yaml" "droppers.stiffnes" "unknown key"
 expect_error negative-tension static "$D/bad-negative-tension.yaml" \
