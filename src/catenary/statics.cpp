@@ -7,6 +7,7 @@
 
 #include "pcsim/catenary/elements.hpp"
 #include "pcsim/error.hpp"
+#include "pcsim/solvers/direct.hpp"
 
 namespace pcsim::catenary {
 
@@ -250,13 +251,9 @@ StaticResult solve_static(CatenarySystem& system, Vec x, bool form_finding,
   PCSIM_PETSC(SNESSetType(snes, SNESNEWTONLS));
   PCSIM_PETSC(SNESSetTolerances(snes, 1e-8, 1e-12, 1e-14, 50, 10000));
   KSP ksp;
-  PC pc;
   PCSIM_PETSC(SNESGetKSP(snes, &ksp));
-  PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
-  PCSIM_PETSC(KSPGetPC(ksp, &pc));
-  PCSIM_PETSC(PCSetType(pc, PCLU));
   // MUMPS pivots: the form-finding system has zero diagonal entries.
-  PCSIM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  solvers::use_direct_lu(ksp, MATSOLVERMUMPS);
   std::vector<PetscReal> history(60, 0.0);
   PCSIM_PETSC(SNESSetConvergenceHistory(snes, history.data(), nullptr,
                                         static_cast<PetscInt>(history.size()), PETSC_TRUE));

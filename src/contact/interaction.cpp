@@ -8,6 +8,7 @@
 #include "pcsim/catenary/statics.hpp"
 #include "pcsim/contact/contact_kernel.hpp"
 #include "pcsim/error.hpp"
+#include "pcsim/solvers/direct.hpp"
 #include "pcsim/solvers/hht.hpp"
 
 namespace pcsim::contact {
@@ -209,6 +210,14 @@ void InteractionProblem::load_pantograph_state(Vec U, Vec V, Vec A) {
   std::copy(buffer.begin() + 2 * n_panto_dofs_, buffer.end(), panto_a_.begin());
 }
 
+InteractionProblem::PantographState InteractionProblem::pantograph_state(std::size_t p) const {
+  const int n = pantographs_[p].model->dof_count();
+  const PetscInt first = panto_first_[p] - system_->layout().catenary_dofs();
+  return {Eigen::Map<const Eigen::VectorXd>(&panto_u_[first], n),
+          Eigen::Map<const Eigen::VectorXd>(&panto_v_[first], n),
+          Eigen::Map<const Eigen::VectorXd>(&panto_a_[first], n)};
+}
+
 double InteractionProblem::ramp_factor(const PantographRun& p, double t) const {
   if (p.static_start || p.ramp_distance <= 0) return 1.0;
   return std::clamp(p.speed * t / p.ramp_distance, 0.0, 1.0);
@@ -272,12 +281,9 @@ void InteractionProblem::residual(double t, Vec U, Vec V, Vec A, Vec F) {
     for (std::size_t p = 0; p < pantographs_.size(); ++p) {
       const auto& run = pantographs_[p];
       const int n = run.model->dof_count();
-      const PetscInt first = panto_first_[p] - L.catenary_dofs();
-      Eigen::VectorXd q = Eigen::Map<Eigen::VectorXd>(&panto_u_[first], n);
-      Eigen::VectorXd qd = Eigen::Map<Eigen::VectorXd>(&panto_v_[first], n);
-      Eigen::VectorXd qdd = Eigen::Map<Eigen::VectorXd>(&panto_a_[first], n);
+      const auto state = pantograph_state(p);
       Eigen::VectorXd R(n);
-      run.model->residual(t, q, qd, qdd, R);
+      run.model->residual(t, state.q, state.qd, state.qdd, R);
       // Ramp-up (thesis 3.3.1): the head carries (1 - ramp) F0 downwards.
       R[run.model->contact_dof()] += (1.0 - ramp_factor(run, t)) * run.static_force;
       std::vector<PetscInt> idx(n);
@@ -303,19 +309,15 @@ void InteractionProblem::jacobian(double t, Vec U, Vec V, Vec A, double shift_v,
   system_->load_state(U);
   load_pantograph_state(U, V, A);
   PCSIM_PETSC(MatZeroEntries(J));
-  system_->assemble_static(work2_, J,
-                           effects_.catenary_nonlinear ? CatenarySystem::kAllTerms
-                                                       : CatenarySystem::kBars);
+  system_->assemble_static(
+      work2_, J, effects_.catenary_nonlinear ? CatenarySystem::kAllTerms : CatenarySystem::kBars);
   if (L.rank() == L.size() - 1) {
     for (std::size_t p = 0; p < pantographs_.size(); ++p) {
       const auto& run = pantographs_[p];
       const int n = run.model->dof_count();
-      const PetscInt first = panto_first_[p] - L.catenary_dofs();
-      Eigen::VectorXd q = Eigen::Map<Eigen::VectorXd>(&panto_u_[first], n);
-      Eigen::VectorXd qd = Eigen::Map<Eigen::VectorXd>(&panto_v_[first], n);
-      Eigen::VectorXd qdd = Eigen::Map<Eigen::VectorXd>(&panto_a_[first], n);
+      const auto state = pantograph_state(p);
       Eigen::MatrixXd Kq(n, n), Cq(n, n), Mq(n, n);
-      run.model->tangents(t, q, qd, qdd, Kq, Cq, Mq);
+      run.model->tangents(t, state.q, state.qd, state.qdd, Kq, Cq, Mq);
       Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Jp =
           Kq + shift_v * Cq + shift_a * Mq;
       std::vector<PetscInt> idx(n);
@@ -332,9 +334,9 @@ void InteractionProblem::jacobian(double t, Vec U, Vec V, Vec A, double shift_v,
     PCSIM_PETSC(MatAXPY(J, 1.0 + shift_v * beta, K0_, SAME_NONZERO_PATTERN));
   PCSIM_PETSC(MatAXPY(J, shift_a + shift_v * alpha, M_, SAME_NONZERO_PATTERN));
   if (C_)
-    PCSIM_PETSC(MatAXPY(J, shift_v, C_,
-                        effects_.catenary_nonlinear ? SAME_NONZERO_PATTERN
-                                                    : SUBSET_NONZERO_PATTERN));
+    PCSIM_PETSC(
+        MatAXPY(J, shift_v, C_,
+                effects_.catenary_nonlinear ? SAME_NONZERO_PATTERN : SUBSET_NONZERO_PATTERN));
   cached_shift_v_ = shift_v;
   cached_shift_a_ = shift_a;
   if (cheap_path_) {
@@ -463,8 +465,7 @@ bool InteractionProblem::update_low_rank(double t) {
         for (int c = 0; c < 3; ++c) eig[3 + 3 * j + c] = solver.eigenvectors()(c, j);
       }
     }
-    if (L.size() > 1)
-      MPI_Allreduce(MPI_IN_PLACE, eig.data(), 12, MPI_DOUBLE, MPI_SUM, L.comm());
+    if (L.size() > 1) MPI_Allreduce(MPI_IN_PLACE, eig.data(), 12, MPI_DOUBLE, MPI_SUM, L.comm());
     double scale = 0;
     for (int j = 0; j < 3; ++j) scale = std::max(scale, std::abs(eig[j]));
     PetscInt idx[6];
@@ -540,8 +541,8 @@ bool InteractionProblem::update_low_rank(double t) {
     weights.push_back(-1.0);
     PCSIM_PETSC(VecSet(contact_terms_[p].u, 0.0));
     if (L.rank() == 0)  // every index is known everywhere: one rank sets them
-      PCSIM_PETSC(VecSetValues(contact_terms_[p].u, static_cast<PetscInt>(dofs.size()),
-                               dofs.data(), weights.data(), INSERT_VALUES));
+      PCSIM_PETSC(VecSetValues(contact_terms_[p].u, static_cast<PetscInt>(dofs.size()), dofs.data(),
+                               weights.data(), INSERT_VALUES));
     PCSIM_PETSC(VecAssemblyBegin(contact_terms_[p].u));
     PCSIM_PETSC(VecAssemblyEnd(contact_terms_[p].u));
     if (inner_factored_) {
@@ -610,10 +611,11 @@ PetscErrorCode InteractionProblem::woodbury_apply(PC pc, Vec r, Vec x) {
     std::vector<PetscScalar> row(k);
     for (std::size_t i = 0; i < k; ++i) {
       if (k > 0)
-        PCSIM_PETSC(VecMDot(self->active_terms_[i]->u, static_cast<PetscInt>(k), zs.data(),
-                            row.data()));
+        PCSIM_PETSC(
+            VecMDot(self->active_terms_[i]->u, static_cast<PetscInt>(k), zs.data(), row.data()));
       for (std::size_t j = 0; j < k; ++j)
-        self->capacitance_(i, j) = row[j] + (i == j ? 1.0 / self->active_terms_[i]->coefficient : 0.0);
+        self->capacitance_(i, j) =
+            row[j] + (i == j ? 1.0 / self->active_terms_[i]->coefficient : 0.0);
     }
     self->capacitance_dirty_ = false;
   }
@@ -646,7 +648,8 @@ void InteractionProblem::initial_state(Vec U0, Vec V0) {
     int element;
     double chi;
     if (!locator_->locate(run.start_x, element, chi))
-      throw InputError("", "pantographs[0].start_x", "the pantograph starts outside the contact wire");
+      throw InputError("", "pantographs[0].start_x",
+                       "the pantograph starts outside the contact wire");
     CatenarySystem loaded(L.comm(), mesh);
     loaded.point_loads().push_back({element, chi, Eigen::Vector3d(0, 0, run.static_force)});
     Vec x = loaded.create_vector();
@@ -668,15 +671,15 @@ void InteractionProblem::initial_state(Vec U0, Vec V0) {
                        "the pantograph starts outside the contact wire");
     catenary::Vec12 q;
     for (int a = 0; a < 2; ++a)
-      for (int c = 0; c < 6; ++c) q[6 * a + c] = catenary_values[6 * mesh.cables[element].nodes[a] + c];
+      for (int c = 0; c < 6; ++c)
+        q[6 * a + c] = catenary_values[6 * mesh.cables[element].nodes[a] + c];
     const double wire_z = catenary::cable_point(mesh.cables[element].ref_length, q, chi).r[2];
     const double penetration = run.static_start ? run.static_force / kH_ : 0.0;
     const double contact_height = wire_z + penetration;
     Eigen::VectorXd q0 = run.model->static_equilibrium(
         run.static_force, run.working_height > 0 ? run.working_height : contact_height);
     // Base of the pantograph: its contact point sits at the wire (thesis 3.3.1).
-    head_offset_[p] =
-        contact_height - (q0[run.model->contact_dof()] + run.model->contact_offset());
+    head_offset_[p] = contact_height - (q0[run.model->contact_dof()] + run.model->contact_offset());
     const PetscInt first = panto_first_[p] - L.catenary_dofs();
     for (int i = 0; i < run.model->dof_count(); ++i) q0_all[first + i] = q0[i];
   }
@@ -731,12 +734,8 @@ void InteractionProblem::solve_coupled_static(Vec U0) {
   PCSIM_PETSC(SNESGetLineSearch(snes, &line_search));
   PCSIM_PETSC(SNESLineSearchSetType(line_search, SNESLINESEARCHBASIC));
   KSP ksp;
-  PC pc;
   PCSIM_PETSC(SNESGetKSP(snes, &ksp));
-  PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
-  PCSIM_PETSC(KSPGetPC(ksp, &pc));
-  PCSIM_PETSC(PCSetType(pc, PCLU));
-  PCSIM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  solvers::use_direct_lu(ksp, MATSOLVERMUMPS);
   PCSIM_PETSC(SNESSetFromOptions(snes));
   PCSIM_PETSC(SNESSolve(snes, nullptr, U0));
   SNESConvergedReason reason;
@@ -901,7 +900,6 @@ TS InteractionProblem::create_ts(double dt, double duration) {
   PCSIM_PETSC(TSSetFromOptions(ts));
   return ts;
 }
-
 
 // ------------------------------------------------------------- energy ----
 // Energy for balance tests (see the header for what is included). The

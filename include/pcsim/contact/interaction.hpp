@@ -55,11 +55,11 @@ struct InteractionEffects {
 struct PantographRun {
   std::string name;
   std::unique_ptr<pantograph::PantographModel> model;
-  double start_x = 0;        // contact point x at t = 0 [m]
-  double speed = 0;          // [m/s]
-  double static_force = 0;   // F0: static contact force [N]
-  bool static_start = false; // start in static equilibrium in contact
-  double ramp_distance = 0;  // ramp-up: head force weighted 0 -> 1 over this distance [m]
+  double start_x = 0;         // contact point x at t = 0 [m]
+  double speed = 0;           // [m/s]
+  double static_force = 0;    // F0: static contact force [N]
+  bool static_start = false;  // start in static equilibrium in contact
+  double ramp_distance = 0;   // ramp-up: head force weighted 0 -> 1 over this distance [m]
   // Height of the contact point above the pantograph's base at the start [m];
   // <= 0: the model takes absolute heights (lumped models).
   double working_height = 0;
@@ -76,8 +76,8 @@ class ContactWireLocator {
 
  private:
   const catenary::CatenaryMesh& mesh_;
-  std::vector<int> elements_;           // contact-wire elements in order
-  std::vector<double> node_x_;          // x of their first nodes, then the last node
+  std::vector<int> elements_;              // contact-wire elements in order
+  std::vector<double> node_x_;             // x of their first nodes, then the last node
   std::vector<std::array<double, 12>> q_;  // static element DOFs
   double x_begin_ = 0, x_end_ = 0;
   mutable int last_ = 0;
@@ -86,9 +86,9 @@ class ContactWireLocator {
 struct StepRecord {
   double t = 0;
   std::vector<double> contact_force, contact_x, wire_z;  // per pantograph
-  std::vector<std::vector<double>> q;                      // per pantograph
-  std::vector<double> support_z;                           // contact wire at supports
-  std::vector<double> dropper_force;                       // every dropper
+  std::vector<std::vector<double>> q;                    // per pantograph
+  std::vector<double> support_z;                         // contact wire at supports
+  std::vector<double> dropper_force;                     // every dropper
 };
 
 class InteractionProblem {
@@ -137,6 +137,11 @@ class InteractionProblem {
  private:
   struct ContactState;
   void load_pantograph_state(Vec U, Vec V, Vec A);
+  // q, q', q'' of pantograph p from the last loaded state.
+  struct PantographState {
+    Eigen::VectorXd q, qd, qdd;
+  };
+  PantographState pantograph_state(std::size_t p) const;
   double ramp_factor(const PantographRun& p, double t) const;
   void add_contact(double t, Vec F, Mat J);
   void solve_coupled_static(Vec U0);
@@ -175,17 +180,17 @@ class InteractionProblem {
   KSP inner_ksp_ = nullptr;
   bool inner_factored_ = false;
   bool capacitance_dirty_ = true;
-  Eigen::MatrixXd capacitance_;          // K^-1 + U^T Z over the active terms
+  Eigen::MatrixXd capacitance_;  // K^-1 + U^T Z over the active terms
   std::vector<LowRankTerm*> active_terms_;
-  std::vector<int> slack_bars_;          // bars with a slack criterion
-  std::vector<char> j0_bar_states_;      // their state (taut 1, slack 0) in J0
+  std::vector<int> slack_bars_;      // bars with a slack criterion
+  std::vector<char> j0_bar_states_;  // their state (taut 1, slack 0) in J0
   // Bars whose state differs from J0's: up to 3 terms each (eigenpairs of
   // the change of their 3x3 tangent block), keyed by index in slack_bars_.
   std::map<int, std::vector<LowRankTerm>> bar_terms_;
-  std::map<int, char> bar_term_state_;    // state the terms were built for
+  std::map<int, char> bar_term_state_;            // state the terms were built for
   std::vector<Eigen::Matrix3d> j0_bar_tangents_;  // 3x3 block of each in J0
-  std::vector<LowRankTerm> contact_terms_;  // per pantograph
-  std::vector<int> contact_element_;     // element and chi u_p was built for
+  std::vector<LowRankTerm> contact_terms_;        // per pantograph
+  std::vector<int> contact_element_;              // element and chi u_p was built for
   std::vector<double> contact_chi_;
   std::map<PetscInt, Vec> unit_solutions_;  // J0^-1 e_g of contact DOFs g
   Vec unit_solution(PetscInt g);
