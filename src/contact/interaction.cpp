@@ -225,26 +225,34 @@ double InteractionProblem::ramp_factor(const PantographRun& p, double t) const {
 
 // Penalty contact of every pantograph (thesis 3.9-3.13), assembled by the
 // rank that owns the contact element.
-void InteractionProblem::add_contact(double t, Vec F, Mat J) {
+InteractionProblem::ContactPoint InteractionProblem::contact_point(std::size_t p, double t) const {
   const auto& L = system_->layout();
   const auto& mesh = system_->mesh();
+  const auto& run = pantographs_[p];
+  ContactPoint point;
+  point.x = run.start_x + run.speed * t;
+  point.on_wire = locator_->locate(point.x, point.element, point.chi);
+  if (!point.on_wire || L.owner(mesh.cables[point.element].nodes[0]) != L.rank()) return point;
+  point.evaluated = true;
+  catenary::Vec12 q;
+  system_->cable_values(point.element, q.data());
+  const PetscInt first = panto_first_[p] - L.catenary_dofs();
+  point.head_height =
+      panto_u_[first + run.model->contact_dof()] + run.model->contact_offset() + head_offset_[p];
+  point.terms = evaluate_penalty_contact(q, point.head_height, point.chi,
+                                         mesh.cables[point.element].ref_length, kH_);
+  return point;
+}
+
+void InteractionProblem::add_contact(double t, Vec F, Mat J) {
   for (std::size_t p = 0; p < pantographs_.size(); ++p) {
-    const auto& run = pantographs_[p];
-    int element;
-    double chi;
-    if (!locator_->locate(run.start_x + run.speed * t, element, chi)) continue;
-    if (L.owner(mesh.cables[element].nodes[0]) != L.rank()) continue;
-    catenary::Vec12 q;
-    system_->cable_values(element, q.data());
-    const int c = run.model->contact_dof();
-    const PetscInt first = panto_first_[p] - L.catenary_dofs();
-    const double head_height = panto_u_[first + c] + run.model->contact_offset() + head_offset_[p];
-    const auto terms =
-        evaluate_penalty_contact(q, head_height, chi, mesh.cables[element].ref_length, kH_);
+    const ContactPoint point = contact_point(p, t);
+    if (!point.evaluated) continue;
+    const auto& terms = point.terms;
     if (terms.force <= 0) continue;
     PetscInt idx[13];
-    system_->cable_indices(element, idx);
-    idx[12] = panto_first_[p] + c;
+    system_->cable_indices(point.element, idx);
+    idx[12] = panto_first_[p] + pantographs_[p].model->contact_dof();
     if (F)
       for (int i = 0; i < 13; ++i)  // VecSetValues does not skip constrained (-1) DOFs
         if (idx[i] >= 0) PCSIM_PETSC(VecSetValue(F, idx[i], terms.residual[i], ADD_VALUES));
@@ -495,23 +503,15 @@ bool InteractionProblem::update_low_rank(double t) {
   // Contact: element, chi and contact state are known on the element's owner.
   std::vector<double> info(3 * np, 0.0);
   for (std::size_t p = 0; p < np; ++p) {
-    const auto& run = pantographs_[p];
-    int element;
-    double chi;
-    if (!locator_->locate(run.start_x + run.speed * t, element, chi)) {
+    const ContactPoint point = contact_point(p, t);
+    if (!point.on_wire) {
       if (L.rank() == 0) info[3 * p] = -1;
       continue;
     }
-    if (L.owner(mesh.cables[element].nodes[0]) != L.rank()) continue;
-    catenary::Vec12 q;
-    system_->cable_values(element, q.data());
-    const int c = run.model->contact_dof();
-    const PetscInt first = panto_first_[p] - L.catenary_dofs();
-    const double head = panto_u_[first + c] + run.model->contact_offset() + head_offset_[p];
-    const auto terms = evaluate_penalty_contact(q, head, chi, mesh.cables[element].ref_length, kH_);
-    info[3 * p] = element;
-    info[3 * p + 1] = chi;
-    info[3 * p + 2] = terms.force > 0 ? 1.0 : 0.0;
+    if (!point.evaluated) continue;
+    info[3 * p] = point.element;
+    info[3 * p + 1] = point.chi;
+    info[3 * p + 2] = point.terms.force > 0 ? 1.0 : 0.0;
   }
   if (L.size() > 1)
     MPI_Allreduce(MPI_IN_PLACE, info.data(), static_cast<int>(info.size()), MPI_DOUBLE, MPI_SUM,
@@ -765,21 +765,11 @@ StepRecord InteractionProblem::record(double t, Vec U) {
   // Layout of the reduction buffer: per pantograph [Fc, x, z_wire], supports, droppers.
   std::vector<double> buffer(3 * np + ns + droppers.size(), 0.0);
   for (std::size_t p = 0; p < np; ++p) {
-    const auto& run = pantographs_[p];
-    const double x = run.start_x + run.speed * t;
-    int element;
-    double chi;
-    if (L.rank() == 0) buffer[3 * p + 1] = x;
-    if (!locator_->locate(x, element, chi)) continue;
-    if (L.owner(mesh.cables[element].nodes[0]) != L.rank()) continue;
-    catenary::Vec12 q;
-    system_->cable_values(element, q.data());
-    const int c = run.model->contact_dof();
-    const PetscInt first = panto_first_[p] - L.catenary_dofs();
-    const double head = panto_u_[first + c] + run.model->contact_offset() + head_offset_[p];
-    const auto terms = evaluate_penalty_contact(q, head, chi, mesh.cables[element].ref_length, kH_);
-    buffer[3 * p] = terms.force;
-    buffer[3 * p + 2] = terms.gap + head;
+    const ContactPoint point = contact_point(p, t);
+    if (L.rank() == 0) buffer[3 * p + 1] = point.x;
+    if (!point.evaluated) continue;
+    buffer[3 * p] = point.terms.force;
+    buffer[3 * p + 2] = point.terms.gap + point.head_height;
   }
   for (std::size_t s = 0; s < ns; ++s) {
     const int n = mesh.support_nodes[s];

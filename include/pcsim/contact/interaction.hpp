@@ -42,6 +42,7 @@
 #include <vector>
 
 #include "pcsim/assembly/catenary_system.hpp"
+#include "pcsim/contact/contact_kernel.hpp"
 #include "pcsim/pantograph/model.hpp"
 
 namespace pcsim::contact {
@@ -143,6 +144,18 @@ class InteractionProblem {
   };
   PantographState pantograph_state(std::size_t p) const;
   double ramp_factor(const PantographRun& p, double t) const;
+  // Contact of pantograph p at time t (thesis 3.9-3.13): evaluated only on the
+  // rank that owns the contact element, from the last loaded state.
+  struct ContactPoint {
+    double x = 0;            // contact point along the track
+    bool on_wire = false;    // x lies on the contact wire
+    bool evaluated = false;  // this rank owns the element: the fields below are set
+    int element = -1;
+    double chi = 0;
+    double head_height = 0;
+    ContactEvaluation terms;
+  };
+  ContactPoint contact_point(std::size_t p, double t) const;
   void add_contact(double t, Vec F, Mat J);
   void solve_coupled_static(Vec U0);
   // Cheap path: contact vectors u_p and Z_p = J0^-1 u_p at the state U.
