@@ -35,14 +35,6 @@ void write_json(const std::string& path, const nlohmann::json& j) {
   f << j.dump(2) << "\n";
 }
 
-std::vector<double> positions_of(const catenary::CatenaryMesh& mesh,
-                                 const std::vector<double>& node_values) {
-  std::vector<double> p(3 * mesh.nodes.size());
-  for (std::size_t n = 0; n < mesh.nodes.size(); ++n)
-    for (int c = 0; c < 3; ++c) p[3 * n + c] = node_values[6 * n + c];
-  return p;
-}
-
 void write_static_h5(const std::string& path, const catenary::CatenaryMesh& mesh,
                      const catenary::StaticResult& r) {
   H5File h5(path);
@@ -109,8 +101,8 @@ void write_static_results(const CommandContext& ctx, const OutputDir& out,
   if (ctx.rank != 0) return;
   const auto& mesh = system.mesh();
   write_static_h5(out.file("static.h5"), mesh, r);
-  catenary::write_mesh_h5_xdmf(mesh, positions_of(mesh, r.node_values), out.file("static_mesh.h5"),
-                               out.file("static.xdmf"));
+  catenary::write_mesh_h5_xdmf(mesh, catenary::positions_from_node_values(r.node_values),
+                               out.file("static_mesh.h5"), out.file("static.xdmf"));
   write_json(out.file("summary.json"), static_json(ctx, system, r, scene_name));
 }
 
@@ -121,7 +113,7 @@ void write_modes_results(const CommandContext& ctx, const OutputDir& out,
   if (ctx.rank != 0) return;
   const auto& mesh = system.mesh();
   write_static_h5(out.file("static.h5"), mesh, statics);
-  const auto positions = positions_of(mesh, statics.node_values);
+  const auto positions = catenary::positions_from_node_values(statics.node_values);
   catenary::write_mesh_h5_xdmf(mesh, positions, out.file("static_mesh.h5"),
                                out.file("static.xdmf"));
   {

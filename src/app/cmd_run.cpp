@@ -231,9 +231,7 @@ int run_dynamic(const app::CommandContext& ctx) {
     }
     if (!mon.snapshots.empty()) {
       // Static mesh + displacement snapshots: ParaView animation of the wires.
-      std::vector<double> static_positions(3 * mesh.nodes.size());
-      for (std::size_t i = 0; i < mesh.nodes.size(); ++i)
-        for (int c = 0; c < 3; ++c) static_positions[3 * i + c] = static_values[6 * i + c];
+      const auto static_positions = catenary::positions_from_node_values(static_values);
       catenary::write_mesh_h5_xdmf(mesh, static_positions, out.file("static_mesh.h5"),
                                    out.file("static.xdmf"));
       for (std::size_t k = 0; k < mon.snapshots.size(); ++k) {

@@ -270,40 +270,35 @@ static std::vector<double> node_values_from(const CatenaryMesh& mesh, const DofL
   return out;
 }
 
-std::vector<double> CatenarySystem::gather_positions_to_root(Vec x) const {
-  VecScatter to_zero;
+// Node values (6 per node; design values for constrained DOFs) of state x,
+// on every rank (to_root false) or on rank 0 only (empty elsewhere).
+std::vector<double> CatenarySystem::gather_node_values(Vec x, bool to_root) const {
+  VecScatter scatter;
   Vec all;
-  PCSIM_PETSC(VecScatterCreateToZero(x, &to_zero, &all));
-  PCSIM_PETSC(VecScatterBegin(to_zero, x, all, INSERT_VALUES, SCATTER_FORWARD));
-  PCSIM_PETSC(VecScatterEnd(to_zero, x, all, INSERT_VALUES, SCATTER_FORWARD));
-  std::vector<double> positions;
-  if (layout_->rank() == 0) {
+  if (to_root)
+    PCSIM_PETSC(VecScatterCreateToZero(x, &scatter, &all));
+  else
+    PCSIM_PETSC(VecScatterCreateToAll(x, &scatter, &all));
+  PCSIM_PETSC(VecScatterBegin(scatter, x, all, INSERT_VALUES, SCATTER_FORWARD));
+  PCSIM_PETSC(VecScatterEnd(scatter, x, all, INSERT_VALUES, SCATTER_FORWARD));
+  std::vector<double> values;
+  if (!to_root || layout_->rank() == 0) {
     const PetscScalar* a;
     PCSIM_PETSC(VecGetArrayRead(all, &a));
-    auto values = node_values_from(mesh_, *layout_, design_values_, a);
+    values = node_values_from(mesh_, *layout_, design_values_, a);
     PCSIM_PETSC(VecRestoreArrayRead(all, &a));
-    positions.resize(3 * mesh_.nodes.size());
-    for (std::size_t n = 0; n < mesh_.nodes.size(); ++n)
-      for (int c = 0; c < 3; ++c) positions[3 * n + c] = values[6 * n + c];
   }
-  PCSIM_PETSC(VecScatterDestroy(&to_zero));
+  PCSIM_PETSC(VecScatterDestroy(&scatter));
   PCSIM_PETSC(VecDestroy(&all));
-  return positions;
+  return values;
+}
+
+std::vector<double> CatenarySystem::gather_positions_to_root(Vec x) const {
+  return positions_from_node_values(gather_node_values(x, true));
 }
 
 std::vector<double> CatenarySystem::all_node_values(Vec x) const {
-  VecScatter to_all;
-  Vec all;
-  PCSIM_PETSC(VecScatterCreateToAll(x, &to_all, &all));
-  PCSIM_PETSC(VecScatterBegin(to_all, x, all, INSERT_VALUES, SCATTER_FORWARD));
-  PCSIM_PETSC(VecScatterEnd(to_all, x, all, INSERT_VALUES, SCATTER_FORWARD));
-  const PetscScalar* a;
-  PCSIM_PETSC(VecGetArrayRead(all, &a));
-  auto values = node_values_from(mesh_, *layout_, design_values_, a);
-  PCSIM_PETSC(VecRestoreArrayRead(all, &a));
-  PCSIM_PETSC(VecScatterDestroy(&to_all));
-  PCSIM_PETSC(VecDestroy(&all));
-  return values;
+  return gather_node_values(x, false);
 }
 
 }  // namespace pcsim::assembly

@@ -79,9 +79,11 @@ InteractionProblem::InteractionProblem(MPI_Comm comm, CatenaryMesh mesh,
     offset += p.model->dof_count();
   }
   head_offset_.assign(pantographs_.size(), 0.0);
-  for (std::size_t b = 0; b < system_->mesh().bars.size(); ++b)
+  for (std::size_t b = 0; b < system_->mesh().bars.size(); ++b) {
     if (system_->mesh().bars[b].slack != catenary::SlackCriterion::none)
       slack_bars_.push_back(static_cast<int>(b));
+    if (system_->mesh().bars[b].kind == BarKind::dropper) droppers_.push_back(static_cast<int>(b));
+  }
   panto_u_.assign(n_panto_dofs_, 0.0);
   panto_v_.assign(n_panto_dofs_, 0.0);
   panto_a_.assign(n_panto_dofs_, 0.0);
@@ -759,9 +761,7 @@ StepRecord InteractionProblem::record(double t, Vec U) {
   load_pantograph_state(U, nullptr, nullptr);
   const std::size_t np = pantographs_.size();
   const std::size_t ns = mesh.support_nodes.size();
-  std::vector<int> droppers;
-  for (std::size_t b = 0; b < mesh.bars.size(); ++b)
-    if (mesh.bars[b].kind == BarKind::dropper) droppers.push_back(static_cast<int>(b));
+  const auto& droppers = droppers_;
   // Layout of the reduction buffer: per pantograph [Fc, x, z_wire], supports, droppers.
   std::vector<double> buffer(3 * np + ns + droppers.size(), 0.0);
   for (std::size_t p = 0; p < np; ++p) {

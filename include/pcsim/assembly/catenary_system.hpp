@@ -96,6 +96,7 @@ class CatenarySystem {
  private:
   catenary::CatenaryMesh mesh_;
   std::unique_ptr<DofLayout> layout_;
+  std::vector<double> gather_node_values(Vec x, bool to_root) const;
   std::vector<PointLoad> point_loads_;
   std::vector<double> node_state_;  // needed nodes x 6
   std::vector<double> design_values_;

@@ -97,6 +97,14 @@ struct TensionSegment {
   double tension = 0;
 };
 
+// Positions (3 per node) from node values (r, r': 6 per node).
+inline std::vector<double> positions_from_node_values(const std::vector<double>& node_values) {
+  std::vector<double> positions(node_values.size() / kNodeDofs * 3);
+  for (std::size_t n = 0; n < node_values.size() / kNodeDofs; ++n)
+    for (int c = 0; c < 3; ++c) positions[3 * n + c] = node_values[kNodeDofs * n + c];
+  return positions;
+}
+
 struct CatenaryMesh {
   std::string name;
   std::string source_file;

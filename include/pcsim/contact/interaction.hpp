@@ -195,6 +195,7 @@ class InteractionProblem {
   bool capacitance_dirty_ = true;
   Eigen::MatrixXd capacitance_;  // K^-1 + U^T Z over the active terms
   std::vector<LowRankTerm*> active_terms_;
+  std::vector<int> droppers_;        // dropper bars, in mesh order (records)
   std::vector<int> slack_bars_;      // bars with a slack criterion
   std::vector<char> j0_bar_states_;  // their state (taut 1, slack 0) in J0
   // Bars whose state differs from J0's: up to 3 terms each (eigenpairs of
