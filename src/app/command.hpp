@@ -8,6 +8,8 @@
 #include <map>
 #include <string>
 
+#include "pcsim/catenary/mesh.hpp"
+#include "pcsim/catenary/results.hpp"
 #include "pcsim/scene/yaml_input.hpp"
 
 namespace pcsim::app {
@@ -39,6 +41,13 @@ struct CommandRegistrar {
 
 // Prints on rank 0 only.
 void print0(const CommandContext& ctx, const char* format, ...);
+
+// Newton history, form-finding errors and dropper forces of a static solution.
+void print_static_summary(const CommandContext& ctx, const catenary::CatenaryMesh& mesh,
+                          const catenary::StaticResult& result);
+
+// Largest peak resident memory of any rank [MB] (collective).
+double peak_memory_mb(MPI_Comm comm);
 
 }  // namespace pcsim::app
 

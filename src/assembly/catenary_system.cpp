@@ -11,9 +11,10 @@ using namespace pcsim::catenary;
 using RowMat12 = Eigen::Matrix<double, 12, 12, Eigen::RowMajor>;
 using RowMat6 = Eigen::Matrix<double, 6, 6, Eigen::RowMajor>;
 
-CatenarySystem::CatenarySystem(MPI_Comm comm, CatenaryMesh mesh, PetscInt extra_dofs)
+CatenarySystem::CatenarySystem(MPI_Comm comm, CatenaryMesh mesh, PetscInt extra_dofs,
+                               const std::vector<int>* node_owner)
     : mesh_(std::move(mesh)) {
-  layout_ = std::make_unique<DofLayout>(comm, mesh_, extra_dofs);
+  layout_ = std::make_unique<DofLayout>(comm, mesh_, extra_dofs, node_owner);
   design_values_.resize(6 * mesh_.nodes.size());
   for (std::size_t n = 0; n < mesh_.nodes.size(); ++n)
     for (int c = 0; c < 3; ++c) {
@@ -128,73 +129,80 @@ void CatenarySystem::insert_element_pattern(Mat A) const {
 
 void CatenarySystem::assemble_static(Vec R, Mat J, unsigned terms) {
   PCSIM_PETSC(VecSet(R, 0.0));
-  double* r = begin_residual();
-  const auto& L = *layout_;
-  auto add_block = [&](const int* nodes, int n_nodes, int dofs_per_node, const double* f) {
-    for (int a = 0; a < n_nodes; ++a) {
-      int i = L.needed_index(nodes[a]);
-      for (int c = 0; c < dofs_per_node; ++c) {
-        PetscInt p = L.gathered_position(i, c);
-        if (p >= 0) r[p] += f[dofs_per_node * a + c];
-      }
+  add_forces(R, J, terms);
+}
+
+// Adds the element vector f (dofs_per_node per node) into the gathered
+// residual array r.
+void CatenarySystem::add_block(double* r, const int* nodes, int dofs_per_node,
+                               const double* f) const {
+  if (!r) return;
+  for (int a = 0; a < 2; ++a) {
+    const int i = layout_->needed_index(nodes[a]);
+    for (int c = 0; c < dofs_per_node; ++c) {
+      const PetscInt p = layout_->gathered_position(i, c);
+      if (p >= 0) r[p] += f[dofs_per_node * a + c];
     }
-  };
+  }
+}
+
+void CatenarySystem::add_cable_forces(double* r, Mat J, bool cables, bool loads) const {
   Vec12 q12, f12;
   Mat12 K12;
   RowMat12 K12r;
   PetscInt idx12[12];
-  const bool cables = terms & kCables, bars = terms & kBars, loads = terms & kLoads;
-  for (int e : L.local_cables()) {
-    if (!cables && !loads) break;
+  for (int e : layout_->local_cables()) {
     const auto& el = mesh_.cables[e];
     const auto section = cable_section(mesh_.wires[el.wire]);
+    f12.setZero();
     if (cables) {
       cable_values(e, q12.data());
       cable_internal_force(section, el.ref_length, el.unstressed_length, q12, f12,
                            J ? &K12 : nullptr, nullptr);
-    } else {
-      f12.setZero();
     }
     if (loads) f12 -= cable_gravity_force(section, el.ref_length, mesh_.gravity);
-    add_block(el.nodes.data(), 2, 6, f12.data());
+    add_block(r, el.nodes.data(), 6, f12.data());
     if (J && cables) {
       cable_indices(e, idx12);
       K12r = K12;
       PCSIM_PETSC(MatSetValues(J, 12, idx12, 12, idx12, K12r.data(), ADD_VALUES));
     }
   }
+}
+
+void CatenarySystem::add_bar_forces(double* r, Mat J, bool bars, bool loads) const {
   Vec6 q6, f6;
   Mat6 K6;
   RowMat6 K6r;
   PetscInt idx6[6];
-  for (int b : L.local_bars()) {
-    if (!bars && !loads) break;
+  for (int b : layout_->local_bars()) {
     const auto& bar = mesh_.bars[b];
+    f6.setZero();
     if (bars) {
       bar_values(b, q6.data());
       bar_internal_force(bar_parameters(bar), q6, f6, J ? &K6 : nullptr, nullptr);
-    } else {
-      f6.setZero();
     }
     if (loads) f6 -= bar_gravity_force(bar.mass, mesh_.gravity);
-    // Bars act on position DOFs only.
-    int nodes[2] = {bar.nodes[0], bar.nodes[1]};
-    add_block(nodes, 2, 3, f6.data());
+    add_block(r, bar.nodes.data(), 3, f6.data());  // bars act on position DOFs only
     if (J && bars) {
       bar_indices(b, idx6);
       K6r = K6;
       PCSIM_PETSC(MatSetValues(J, 6, idx6, 6, idx6, K6r.data(), ADD_VALUES));
     }
   }
+}
+
+// Gravity of point masses, point loads and support springs.
+void CatenarySystem::add_point_forces(double* r, Mat J) const {
+  const auto& L = *layout_;
   for (int i : L.local_point_masses()) {
-    if (!loads) break;
     const auto& pm = mesh_.point_masses[i];
-    for (int c = 0; c < 3; ++c) add_node_residual(r, pm.node, c, -pm.mass * mesh_.gravity[c]);
+    if (r)
+      for (int c = 0; c < 3; ++c) add_node_residual(r, pm.node, c, -pm.mass * mesh_.gravity[c]);
   }
   for (const auto& load : point_loads_) {
-    if (!loads) break;
     const auto& el = mesh_.cables[load.element];
-    if (L.owner(el.nodes[0]) != L.rank()) continue;
+    if (!r || L.owner(el.nodes[0]) != L.rank()) continue;
     const HermiteValues h = hermite(load.chi, el.ref_length);
     for (int a = 0; a < 2; ++a)
       for (int c = 0; c < 3; ++c) {
@@ -203,16 +211,59 @@ void CatenarySystem::assemble_static(Vec R, Mat J, unsigned terms) {
       }
   }
   for (int i : L.local_springs()) {
-    if (!loads) break;
     const auto& s = mesh_.springs[i];
     const double u = node_values(s.node)[s.dof] - mesh_.nodes[s.node].position[s.dof];
-    add_node_residual(r, s.node, s.dof, s.stiffness * u);
-    if (J) {
-      PetscInt g = L.global_dof(s.node, s.dof);
-      if (g >= 0) PCSIM_PETSC(MatSetValue(J, g, g, s.stiffness, ADD_VALUES));
-    }
+    if (r) add_node_residual(r, s.node, s.dof, s.stiffness * u);
+    const PetscInt g = L.global_dof(s.node, s.dof);
+    if (J && g >= 0) PCSIM_PETSC(MatSetValue(J, g, g, s.stiffness, ADD_VALUES));
   }
-  end_residual(R);
+}
+
+void CatenarySystem::add_forces(Vec R, Mat J, unsigned terms) {
+  double* r = R ? begin_residual() : nullptr;
+  const bool cables = terms & kCables, bars = terms & kBars, loads = terms & kLoads;
+  if (cables || loads) add_cable_forces(r, J, cables, loads);
+  if (bars || loads) add_bar_forces(r, J, bars, loads);
+  if (loads) add_point_forces(r, J);
+  if (R) end_residual(R);
+}
+
+double CatenarySystem::local_potential_energy(unsigned terms) const {
+  const auto& L = *layout_;
+  const bool cables = terms & kCables, bars = terms & kBars, loads = terms & kLoads;
+  double energy = 0;
+  Vec12 q12;
+  for (int e : L.local_cables()) {
+    const auto& el = mesh_.cables[e];
+    const auto section = cable_section(mesh_.wires[el.wire]);
+    cable_values(e, q12.data());
+    if (cables) energy += cable_strain_energy(section, el.ref_length, el.unstressed_length, q12);
+    if (loads) energy -= cable_gravity_force(section, el.ref_length, mesh_.gravity).dot(q12);
+  }
+  Vec6 q6;
+  for (int b : L.local_bars()) {
+    const auto& bar = mesh_.bars[b];
+    bar_values(b, q6.data());
+    if (bars) energy += bar_strain_energy(bar_parameters(bar), q6);
+    if (loads) energy -= bar_gravity_force(bar.mass, mesh_.gravity).dot(q6);
+  }
+  if (!loads) return energy;
+  for (int i : L.local_point_masses()) {
+    const auto& pm = mesh_.point_masses[i];
+    energy -= pm.mass * mesh_.gravity.dot(node_values(pm.node).head<3>());
+  }
+  for (const auto& load : point_loads_) {
+    const auto& el = mesh_.cables[load.element];
+    if (L.owner(el.nodes[0]) != L.rank()) continue;
+    cable_values(load.element, q12.data());
+    energy -= load.force.dot(cable_point(el.ref_length, q12, load.chi).r);
+  }
+  for (int i : L.local_springs()) {
+    const auto& s = mesh_.springs[i];
+    const double u = node_values(s.node)[s.dof] - mesh_.nodes[s.node].position[s.dof];
+    energy += 0.5 * s.stiffness * u * u;
+  }
+  return energy;
 }
 
 void CatenarySystem::assemble_mass(Mat M) {

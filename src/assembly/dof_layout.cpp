@@ -71,13 +71,18 @@ std::vector<int> partition_nodes(MPI_Comm comm, int size,
 
 }  // namespace
 
-DofLayout::DofLayout(MPI_Comm comm, const CatenaryMesh& mesh, PetscInt extra_dofs)
+DofLayout::DofLayout(MPI_Comm comm, const CatenaryMesh& mesh, PetscInt extra_dofs,
+                     const std::vector<int>* node_owner)
     : comm_(comm), n_extra_(extra_dofs) {
   MPI_Comm_rank(comm_, &rank_);
   MPI_Comm_size(comm_, &size_);
   const int n_nodes = static_cast<int>(mesh.nodes.size());
   adjacency_ = build_adjacency(mesh);
-  owner_ = partition_nodes(comm_, size_, adjacency_);
+  if (node_owner && node_owner->size() == mesh.nodes.size() &&
+      std::all_of(node_owner->begin(), node_owner->end(), [&](int r) { return r < size_; }))
+    owner_ = *node_owner;
+  else
+    owner_ = partition_nodes(comm_, size_, adjacency_);
 
   // Free DOFs: not fixed in the design; slope DOFs only on cable nodes.
   const auto has_slope = nodes_with_slopes(mesh);

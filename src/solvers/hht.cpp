@@ -13,65 +13,12 @@
 #include <cmath>
 #include <string>
 
+#include "hht_data.hpp"
 #include "pcsim/error.hpp"
 
+namespace pcsim::solvers::hht_detail {
+
 namespace {
-
-enum class SolveMode { kStep, kInitialAcceleration };
-
-struct HHTData {
-  // Method parameters (3.24 with η = α).
-  PetscReal alpha = 0.1;
-  PetscReal gamma = 0.6;
-  PetscReal beta = 0.3025;
-  PetscReal energy_tol = 0;  // <= 0: energy-norm test off
-  PetscInt max_reject = 8;
-  PetscInt regrow_steps = 4;
-  // Inertia at the new level M(U_{n+1}) A_{n+1} (thesis) or averaged
-  // ((1-α) M(U_{n+1}) + α M(U_n)) A_{n+1} (second order when M depends on U).
-  PetscBool average_inertia = PETSC_FALSE;
-
-  // State at t_n, stage/new state, work vectors (created at setup).
-  Vec U0 = nullptr, V0 = nullptr, A0 = nullptr;
-  Vec U1 = nullptr, V1 = nullptr, A1 = nullptr;
-  Vec A1_arg = nullptr;  // A_{n+1}/(1-α): the acceleration argument of F
-  Vec F0 = nullptr;      // F(t_n, U_n, V_n, 0): non-inertial force at the old level
-  Vec zero = nullptr;    // zero vector (acceleration argument of F0)
-  Vec R_prev = nullptr;  // SNES residual the last Newton update was computed from
-  Vec A_user = nullptr;  // user-supplied initial acceleration
-  Vec work = nullptr;    // M(U_n) A_{n+1} (averaged inertia)
-  Mat M0 = nullptr;      // M(U_n) (averaged inertia), created at the first step
-  Mat K_work = nullptr;  // dF/dU while extracting a mass matrix
-  PetscBool user_accel_pending = PETSC_FALSE;
-
-  // A1 is the acceleration of (vec_sol, vec_dot) at accel_time when accel_valid.
-  PetscBool accel_valid = PETSC_FALSE;
-  PetscReal accel_time = 0;
-
-  // Current solve.
-  SolveMode mode = SolveMode::kStep;
-  PetscReal t0 = 0, t1 = 0, dt = 0;
-
-  // Step-size control after rejections.
-  PetscReal dt_user = 0;       // the Δt to grow back to
-  PetscReal dt_last_set = -1;  // Δt this type left in ts->time_step (detects user changes)
-  PetscInt accepted_since_cut = 0;
-
-  // Diagnostics.
-  PetscReal last_energy_norm = 0;
-  PetscBool converged_by_energy = PETSC_FALSE;
-  PetscInt accepted = 0, rejected = 0;
-};
-
-void set_alpha(HHTData* th, PetscReal alpha) {
-  th->alpha = alpha;
-  th->gamma = 0.5 + alpha;                      // (3.24)
-  th->beta = 0.25 * (1 + alpha) * (1 + alpha);  // (3.24)
-}
-
-HHTData* data_of(TS ts) {
-  return static_cast<HHTData*>(ts->data);
-}
 
 // V_{n+1}, A_{n+1} and A_{n+1}/(1-α) from the unknown X = U_{n+1} (3.16–3.18).
 PetscErrorCode stage_vectors(TS ts, Vec X) {
@@ -161,6 +108,8 @@ PetscErrorCode snes_jacobian(SNES snes, Vec X, Mat J, Mat P, TS ts) {
   PetscFunctionReturn(0);
 }
 
+}  // namespace
+
 // Usual SNES tests plus the thesis energy norm |Δqᵀ R| (3.3.2). The SNES residual is
 // R/(1-α), hence the factor (1-α).
 PetscErrorCode converged_energy(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm,
@@ -191,6 +140,8 @@ PetscErrorCode converged_energy(SNES snes, PetscInt it, PetscReal xnorm, PetscRe
   PetscFunctionReturn(0);
 }
 
+namespace {
+
 PetscErrorCode solve_counted(TS ts, Vec x) {
   PetscInt nits = 0, lits = 0;
   PetscFunctionBeginUser;
@@ -218,7 +169,9 @@ PetscErrorCode initial_acceleration(TS ts) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ts_step(TS ts) {
+// Start of a step: U_n, V_n, A_n and F(t_n, U_n, V_n, 0) (and M(U_n) for
+// the averaged inertia).
+PetscErrorCode begin_step(TS ts) {
   HHTData* th = data_of(ts);
   const PetscReal t_n = ts->ptime;
   PetscFunctionBeginUser;
@@ -250,37 +203,61 @@ PetscErrorCode ts_step(TS ts) {
     else
       PetscCall(MatCopy(P, th->M0, SAME_NONZERO_PATTERN));
   }
+  PetscFunctionReturn(0);
+}
 
+// One attempt with step dt from t_n; *converged tells whether Newton did.
+PetscErrorCode attempt_step(TS ts, PetscReal dt, PetscBool* converged) {
+  HHTData* th = data_of(ts);
+  const PetscReal t_n = ts->ptime;
+  PetscFunctionBeginUser;
+  PetscReal dt_step = dt;
+  PetscBool hits_final_time = PETSC_FALSE;
+  // The last step ends on the final time; a remainder below 1e-6 Δt joins it
+  // (summing thousands of steps leaves remainders ~1e-12 s, and a step that
+  // short makes M/(beta dt^2) swamp the rest of the Newton matrix).
+  if (ts->exact_final_time == TS_EXACTFINALTIME_MATCHSTEP &&
+      t_n + dt_step * (1 + 1e-6) >= ts->max_time) {
+    dt_step = ts->max_time - t_n;
+    hits_final_time = PETSC_TRUE;
+  }
+  th->dt = dt_step;
+  th->t1 = t_n + dt_step;
+  // Predictor (3.17): A_{n+1} = 0.
+  PetscCall(VecWAXPY(th->U1, dt_step, th->V0, th->U0));
+  PetscCall(VecAXPY(th->U1, dt_step * dt_step * (0.5 - th->beta), th->A0));
+  PetscCall(TSPreStage(ts, th->t1));
+  PetscCall(solve_counted(ts, th->U1));
+  SNESConvergedReason reason;
+  PetscCall(SNESGetConvergedReason(ts->snes, &reason));
+  *converged = reason > 0 ? PETSC_TRUE : PETSC_FALSE;
+  if (!*converged) {
+    PetscCall(PetscInfo(ts, "HHT step at t=%g with dt=%g rejected (SNES %s)\n", (double)t_n,
+                        (double)dt_step, SNESConvergedReasons[reason]));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(TSPostStage(ts, th->t1, 0, &th->U1));
+  PetscCall(stage_vectors(ts, th->U1));
+  PetscCall(VecCopy(th->U1, ts->vec_sol));
+  PetscCall(VecCopy(th->V1, ts->vec_dot));
+  ts->ptime = hits_final_time ? ts->max_time : th->t1;
+  th->accel_valid = PETSC_TRUE;
+  th->accel_time = ts->ptime;
+  PetscFunctionReturn(0);
+}
+
+// A step: retried with Δt halved after a Newton failure (at most max_reject
+// times); Δt doubles back after regrow_steps accepted steps.
+PetscErrorCode ts_step(TS ts) {
+  HHTData* th = data_of(ts);
+  PetscFunctionBeginUser;
+  PetscCall(begin_step(ts));
   PetscReal dt = ts->time_step;
   PetscInt rejections = 0;
   for (;;) {
-    PetscReal dt_step = dt;
-    PetscBool hits_final_time = PETSC_FALSE;
-    // The last step ends on the final time; a remainder below 1e-6 Δt joins it
-    // (summing thousands of steps leaves remainders ~1e-12 s, and a step that
-    // short makes M/(beta dt^2) swamp the rest of the Newton matrix).
-    if (ts->exact_final_time == TS_EXACTFINALTIME_MATCHSTEP &&
-        t_n + dt_step * (1 + 1e-6) >= ts->max_time) {
-      dt_step = ts->max_time - t_n;
-      hits_final_time = PETSC_TRUE;
-    }
-    th->dt = dt_step;
-    th->t1 = t_n + dt_step;
-    // Predictor (3.17): A_{n+1} = 0.
-    PetscCall(VecWAXPY(th->U1, dt_step, th->V0, th->U0));
-    PetscCall(VecAXPY(th->U1, dt_step * dt_step * (0.5 - th->beta), th->A0));
-    PetscCall(TSPreStage(ts, th->t1));
-    PetscCall(solve_counted(ts, th->U1));
-    SNESConvergedReason reason;
-    PetscCall(SNESGetConvergedReason(ts->snes, &reason));
-    if (reason > 0) {
-      PetscCall(TSPostStage(ts, th->t1, 0, &th->U1));
-      PetscCall(stage_vectors(ts, th->U1));
-      PetscCall(VecCopy(th->U1, ts->vec_sol));
-      PetscCall(VecCopy(th->V1, ts->vec_dot));
-      ts->ptime = hits_final_time ? ts->max_time : th->t1;
-      th->accel_valid = PETSC_TRUE;
-      th->accel_time = ts->ptime;
+    PetscBool converged = PETSC_FALSE;
+    PetscCall(attempt_step(ts, dt, &converged));
+    if (converged) {
       ++th->accepted;
       if (dt < th->dt_user && ++th->accepted_since_cut >= th->regrow_steps) {
         dt = PetscMin(2 * dt, th->dt_user);
@@ -292,8 +269,6 @@ PetscErrorCode ts_step(TS ts) {
     ++ts->num_snes_failures;
     ++th->rejected;
     th->accepted_since_cut = 0;
-    PetscCall(PetscInfo(ts, "HHT step at t=%g with dt=%g rejected (SNES %s)\n", (double)t_n,
-                        (double)dt_step, SNESConvergedReasons[reason]));
     if (++rejections > th->max_reject) {
       ts->reason = TS_DIVERGED_NONLINEAR_SOLVE;
       break;
@@ -408,6 +383,8 @@ PetscErrorCode ts_view(TS ts, PetscViewer viewer) {
   PetscFunctionReturn(0);
 }
 
+}  // namespace
+
 PetscErrorCode ts_create_hht(TS ts) {
   PetscFunctionBeginUser;
   ts->ops->reset = ts_reset;
@@ -427,76 +404,4 @@ PetscErrorCode ts_create_hht(TS ts) {
   PetscFunctionReturn(0);
 }
 
-HHTData* checked_data(TS ts) {
-  PetscBool is_hht = PETSC_FALSE;
-  PCSIM_PETSC(PetscObjectTypeCompare((PetscObject)ts, pcsim::solvers::kTSHHT, &is_hht));
-  if (!is_hht) throw pcsim::SolverError("TS is not of type hht");
-  return data_of(ts);
-}
-
-}  // namespace
-
-namespace pcsim::solvers {
-
-void register_hht_ts() {
-  PCSIM_PETSC(TSInitializePackage());
-  void (*existing)(void) = nullptr;
-  PCSIM_PETSC(PetscFunctionListFind(TSList, kTSHHT, &existing));
-  if (!existing) PCSIM_PETSC(TSRegister(kTSHHT, ts_create_hht));
-}
-
-void hht_set_initial_acceleration(TS ts, Vec A0) {
-  HHTData* th = checked_data(ts);
-  if (!th->A_user) PCSIM_PETSC(VecDuplicate(A0, &th->A_user));
-  PCSIM_PETSC(VecCopy(A0, th->A_user));
-  th->user_accel_pending = PETSC_TRUE;
-}
-
-void hht_recompute_initial_acceleration(TS ts) {
-  HHTData* th = checked_data(ts);
-  th->accel_valid = PETSC_FALSE;
-  th->user_accel_pending = PETSC_FALSE;
-}
-
-void hht_get_acceleration(TS ts, Vec A) {
-  HHTData* th = checked_data(ts);
-  if (!th->accel_valid) throw SolverError("hht_get_acceleration: no step taken yet");
-  PCSIM_PETSC(VecCopy(th->A1, A));
-}
-
-void hht_set_alpha(TS ts, PetscReal alpha) {
-  HHTData* th = checked_data(ts);
-  if (!(alpha >= 0 && alpha <= 1.0 / 3.0 + 1e-14))
-    throw SolverError("hht_set_alpha: alpha " + std::to_string(alpha) + " not in [0, 1/3]");
-  set_alpha(th, alpha);
-}
-
-void hht_get_params(TS ts, PetscReal* alpha, PetscReal* gamma, PetscReal* beta) {
-  HHTData* th = checked_data(ts);
-  if (alpha) *alpha = th->alpha;
-  if (gamma) *gamma = th->gamma;
-  if (beta) *beta = th->beta;
-}
-
-void hht_set_energy_norm_tol(TS ts, PetscReal tol) {
-  HHTData* th = checked_data(ts);
-  th->energy_tol = tol;
-  if (ts->setupcalled && tol > 0) {
-    SNES snes = nullptr;
-    PCSIM_PETSC(TSGetSNES(ts, &snes));
-    PCSIM_PETSC(SNESSetConvergenceTest(snes, converged_energy, ts, nullptr));
-  }
-}
-
-HHTNewtonInfo hht_get_info(TS ts) {
-  HHTData* th = checked_data(ts);
-  HHTNewtonInfo info;
-  info.last_energy_norm = th->last_energy_norm;
-  info.converged_by_energy = th->converged_by_energy;
-  info.accepted_steps = th->accepted;
-  info.rejected_steps = th->rejected;
-  info.user_time_step = th->dt_user;
-  return info;
-}
-
-}  // namespace pcsim::solvers
+}  // namespace pcsim::solvers::hht_detail

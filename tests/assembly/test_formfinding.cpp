@@ -12,9 +12,10 @@
 #include <vector>
 
 #include "pcsim/assembly/catenary_system.hpp"
+#include "pcsim/assembly/static_problem.hpp"
 #include "pcsim/catenary/design.hpp"
 #include "pcsim/catenary/elements.hpp"
-#include "pcsim/catenary/statics.hpp"
+#include "pcsim/solvers/statics.hpp"
 
 using namespace pcsim;
 
@@ -81,10 +82,10 @@ double max_segment_tension_error(const catenary::CatenaryMesh& mesh,
 
 TEST(FormFinding, En50318HeightsTensionsAndQuadraticNewton) {
   const auto mesh = catenary::load_catenary_design(kReferenceDesign);
-  assembly::CatenarySystem system(PETSC_COMM_WORLD, mesh, catenary::form_finding_unknowns(mesh));
+  assembly::CatenarySystem system(PETSC_COMM_WORLD, mesh, assembly::form_finding_unknowns(mesh));
   Vec x = system.create_vector();
   system.design_state(x);
-  const auto result = catenary::solve_static(system, x, true);
+  const auto result = solvers::solve_static(system, x, true);
   VecDestroy(&x);
   ASSERT_TRUE(result.converged) << result.converged_reason;
 
@@ -149,7 +150,7 @@ TEST(FormFinding, DesignLengthsWithoutFormFindingMissTheTargets) {
   assembly::CatenarySystem system(PETSC_COMM_WORLD, mesh);
   Vec x = system.create_vector();
   system.design_state(x);
-  const auto result = catenary::solve_static(system, x, false);
+  const auto result = solvers::solve_static(system, x, false);
   VecDestroy(&x);
   ASSERT_TRUE(result.converged) << result.converged_reason;
   int n_droppers = 0;

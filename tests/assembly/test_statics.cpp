@@ -9,8 +9,9 @@
 
 #include "catenary_fixtures.hpp"
 #include "pcsim/assembly/catenary_system.hpp"
-#include "pcsim/catenary/modes.hpp"
-#include "pcsim/catenary/statics.hpp"
+#include "pcsim/assembly/static_problem.hpp"
+#include "pcsim/solvers/modes.hpp"
+#include "pcsim/solvers/statics.hpp"
 
 using namespace pcsim;
 
@@ -72,7 +73,7 @@ TEST(Statics, HeavyCableMatchesElasticCatenary) {
   assembly::CatenarySystem system(PETSC_COMM_WORLD, mesh);
   Vec x = system.create_vector();
   system.design_state(x);
-  auto result = catenary::solve_static(system, x, false);
+  auto result = solvers::solve_static(system, x, false);
   ASSERT_TRUE(result.converged);
   const double sag = -cat.z_at_x(0.5 * span);
   double max_err = 0;
@@ -147,9 +148,9 @@ TEST(Modes, TautStringMatchesTensionedBeamFormula) {
   assembly::CatenarySystem system(PETSC_COMM_WORLD, mesh);
   Vec x = system.create_vector();
   system.design_state(x);
-  auto statics = catenary::solve_static(system, x, false);
+  auto statics = solvers::solve_static(system, x, false);
   ASSERT_TRUE(statics.converged);
-  auto modes = catenary::compute_modes(system, x, 20, 0.0, false);
+  auto modes = solvers::compute_modes(system, x, 20, 0.0, false);
   ASSERT_EQ(modes.frequencies_hz.size(), 20u);
   // Transverse modes come in pairs (lateral y, vertical z) of equal frequency.
   for (int n = 1; n <= 10; ++n) {
@@ -176,10 +177,10 @@ TEST(RankIndependence, StaticAndModesEqualSerial) {
     assembly::CatenarySystem system(comms[k], mesh);
     Vec x = system.create_vector();
     system.design_state(x);
-    auto statics = catenary::solve_static(system, x, false);
+    auto statics = solvers::solve_static(system, x, false);
     ASSERT_TRUE(statics.converged);
     values[k] = statics.node_values;
-    freqs[k] = catenary::compute_modes(system, x, 20, 0.0, false).frequencies_hz;
+    freqs[k] = solvers::compute_modes(system, x, 20, 0.0, false).frequencies_hz;
     VecDestroy(&x);
   }
   double scale = 0;

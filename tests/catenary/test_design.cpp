@@ -15,10 +15,11 @@
 #include <sstream>
 
 #include "pcsim/catenary/design.hpp"
-#include "pcsim/catenary/mesh_io.hpp"
 #include "pcsim/output/h5_file.hpp"
+#include "pcsim/output/mesh_xdmf.hpp"
 
 using namespace pcsim::catenary;
+using namespace pcsim::output;
 using pcsim::InputError;
 using pcsim::InputNode;
 

@@ -4,10 +4,10 @@
 // with slack, penalty contact. The pantograph stands still (1e-6 m/s) and its
 // uplift is released over 10 ms (ramp start): after that no external force does
 // work and every force derives from a potential, so E = T + V of
-// InteractionProblem::energy() (see its header for what is included) must
+// CoupledSystem::energy() (see its header for what is included) must
 //  - stay constant with HHT alpha = 0 (the trapezoidal rule conserves the
 //    energy of a linear system exactly). Left: the droppers' geometric
-//    nonlinearity and the Newton residual of each step (create_ts's SNES
+//    nonlinearity and the Newton residual of each step (the dynamic solver.s SNES
 //    tolerances, |R| <= 1e-3 N; one exact linear solve leaves round-off), whose
 //    work |R| |dU| over 500 steps is far below 1e-6 of the energy released
 //    (3.4 J): tolerance 1e-6 relative (measured 4.9e-9);

@@ -1,4 +1,4 @@
-// Helpers of the interaction tests: a coupled problem built from a run scene
+// Helpers of the interaction tests: a coupled system built from a run scene
 // exactly as `pcsim run` builds it (src/app/cmd_run.cpp), and TS driving.
 #pragma once
 
@@ -9,13 +9,15 @@
 #include <string>
 #include <vector>
 
-#include "pcsim/assembly/catenary_system.hpp"
-#include "pcsim/catenary/statics.hpp"
-#include "pcsim/contact/interaction.hpp"
-#include "pcsim/contact/run_scene.hpp"
+#include "pcsim/assembly/coupled_system.hpp"
+#include "pcsim/assembly/fe_catenary.hpp"
 #include "pcsim/error.hpp"
+#include "pcsim/scene/run_scene.hpp"
 #include "pcsim/scene/yaml_input.hpp"
+#include "pcsim/solvers/dynamics.hpp"
 #include "pcsim/solvers/hht.hpp"
+#include "pcsim/solvers/static_start.hpp"
+#include "pcsim/solvers/statics.hpp"
 
 namespace pcsim::testing {
 
@@ -28,8 +30,8 @@ inline std::string pantograph_model(const std::string& name) {
 
 // A run scene from YAML text, read as if it were a file in tests/contact/data
 // (relative paths resolve there).
-inline contact::RunScene scene_from_text(const std::string& text) {
-  return contact::load_run_scene(InputNode::load_string(text, contact_data("inline-scene.yaml")));
+inline scene::RunScene scene_from_text(const std::string& text) {
+  return scene::load_run_scene(InputNode::load_string(text, contact_data("inline-scene.yaml")));
 }
 
 struct StaticCatenary {
@@ -37,37 +39,60 @@ struct StaticCatenary {
   std::vector<double> node_values;  // 6 per node
 };
 
-// Static configuration with form-finding as the scene says (as `pcsim run`).
-inline StaticCatenary solve_catenary_statics(const catenary::CatenaryScene& scene) {
-  const PetscInt extra = scene.form_finding ? catenary::form_finding_unknowns(scene.mesh) : 0;
-  assembly::CatenarySystem system(PETSC_COMM_WORLD, scene.mesh, extra);
-  Vec x = system.create_vector();
-  system.design_state(x);
-  auto result = catenary::solve_static(system, x, scene.form_finding, "static_");
-  PCSIM_PETSC(VecDestroy(&x));
-  if (!result.converged) throw SolverError("test statics did not converge");
-  return {system.mesh(), result.node_values};
-}
+// The coupled system of a scene and the calls the tests make on it.
+class Problem {
+ public:
+  explicit Problem(std::unique_ptr<assembly::CoupledSystem> system) : system_(std::move(system)) {}
+  assembly::CoupledSystem& system() { return *system_; }
+  Vec create_vector() const { return system_->create_vector(); }
+  Mat create_matrix() const { return system_->create_matrix(); }
+  std::vector<assembly::PantographSlot>& pantographs() { return system_->pantographs(); }
+  PetscInt pantograph_first_dof(std::size_t p) { return pantographs()[p].first_dof; }
+  solvers::StartInfo initial_state(Vec U0, Vec V0) {
+    return solvers::initial_state(*system_, U0, V0);
+  }
+  void residual(double t, Vec U, Vec V, Vec A, Vec F) { system_->residual(t, U, V, A, F); }
+  void jacobian(double t, Vec U, Vec V, Vec A, double sv, double sa, Mat J) {
+    system_->jacobian(t, U, V, A, {sv, sa}, J);
+  }
+  contact::StepRecord record(double t, Vec U) { return system_->record(t, U); }
+  double energy(double t, Vec U, Vec V) { return system_->energy(t, U, V); }
 
-// The coupled problem of a scene (moves the scene's pantographs out).
-inline std::unique_ptr<contact::InteractionProblem> make_problem(
-    contact::RunScene& run, StaticCatenary* statics = nullptr) {
-  auto st = solve_catenary_statics(run.catenary);
-  auto problem = std::make_unique<contact::InteractionProblem>(
-      PETSC_COMM_WORLD, st.mesh, st.node_values, std::move(run.pantographs), run.effects,
-      run.contact_stiffness);
-  if (statics) *statics = std::move(st);
+ private:
+  std::unique_ptr<assembly::CoupledSystem> system_;
+};
+
+// The coupled problem of a scene (moves the scene's pantographs out);
+// optionally returns the static configuration.
+inline std::unique_ptr<Problem> make_problem(scene::RunScene& run,
+                                             StaticCatenary* statics = nullptr) {
+  auto st = solvers::static_configuration(PETSC_COMM_WORLD, run.catenary.mesh,
+                                          run.catenary.form_finding, "static_");
+  std::vector<assembly::PantographSlot> slots;
+  PetscInt dofs = 0;
+  for (std::size_t p = 0; p < run.pantographs.size(); ++p) {
+    assembly::PantographSlot slot;
+    slot.run = run.pantographs[p];
+    slot.model = std::move(run.models[p]);
+    dofs += slot.dof_count();
+    slots.push_back(std::move(slot));
+  }
+  auto catenary = std::make_unique<assembly::FECatenary>(
+      PETSC_COMM_WORLD, st.mesh, st.result.node_values, dofs, &st.node_owner);
+  auto problem = std::make_unique<Problem>(std::make_unique<assembly::CoupledSystem>(
+      std::move(catenary), std::move(slots), run.effects, run.contact_stiffness));
+  if (statics) *statics = {st.mesh, st.result.node_values};
   return problem;
 }
 
-// Integrates from (U0, V0, A = 0) with the problem's TS (HHT unless options
-// say otherwise), leaving U0 and V0 unchanged; calls after_step(t, U, V)
-// after every accepted step and at t = 0. Returns the number of steps.
-inline PetscInt integrate(contact::InteractionProblem& problem, Vec U0, Vec V0, double dt,
-                          double duration, PetscInt max_steps,
-                          const std::function<void(TS)>& configure,
+// Integrates from (U0, V0, A = 0) with the run's TS (HHT unless options say
+// otherwise), leaving U0 and V0 unchanged; calls after_step(t, U, V) after
+// every accepted step and at t = 0. Returns the number of steps.
+inline PetscInt integrate(Problem& problem, Vec U0, Vec V0, double dt, double duration,
+                          PetscInt max_steps, const std::function<void(TS)>& configure,
                           const std::function<void(double, Vec, Vec)>& after_step) {
-  TS ts = problem.create_ts(dt, duration);
+  solvers::DynamicSolver solver(problem.system(), dt, duration);
+  TS ts = solver.ts();
   PCSIM_PETSC(TSSetMaxSteps(ts, max_steps));
   if (configure) configure(ts);
   // The TS integrates in the vectors it is given: copies keep U0, V0 intact.
@@ -96,7 +121,6 @@ inline PetscInt integrate(contact::InteractionProblem& problem, Vec U0, Vec V0, 
     after_step(t, U, V);
     ++steps;
   }
-  PCSIM_PETSC(TSDestroy(&ts));
   return steps;
 }
 

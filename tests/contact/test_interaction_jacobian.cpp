@@ -1,4 +1,4 @@
-// Coupled Jacobian of InteractionProblem against central finite differences of
+// Coupled Jacobian of the coupled system against central finite differences of
 // its residual, for the lumped EN 50318 pantograph and the DSA-380 (friction and
 // one-way damper on), with the catenary linearised and fully nonlinear, dropper
 // slack on, the pantograph pressing the wire (thesis 3.3.3: every tangent term).
@@ -11,9 +11,9 @@
 
 namespace {
 
-using pcsim::contact::InteractionProblem;
 using pcsim::testing::make_problem;
 using pcsim::testing::pantograph_model;
+using pcsim::testing::Problem;
 using pcsim::testing::scene_from_text;
 
 struct Case {
@@ -62,7 +62,6 @@ class CoupledJacobian : public ::testing::TestWithParam<Case> {
   void SetUp() override {
     auto run = scene_from_text(scene_text(GetParam()));
     problem_ = make_problem(run);
-    problem_->set_cheap_path(false);  // jacobian() must assemble on every call
     U_ = problem_->create_vector();
     V_ = problem_->create_vector();
     A_ = problem_->create_vector();
@@ -139,7 +138,7 @@ class CoupledJacobian : public ::testing::TestWithParam<Case> {
     return err;
   }
 
-  std::unique_ptr<InteractionProblem> problem_;
+  std::unique_ptr<Problem> problem_;
   Vec U_ = nullptr, V_ = nullptr, A_ = nullptr;
   Mat J_ = nullptr;
   PetscRandom rng_ = nullptr;

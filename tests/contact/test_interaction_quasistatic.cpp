@@ -26,7 +26,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "pcsim/assembly/static_problem.hpp"
 #include "pcsim/catenary/elements.hpp"
+#include "pcsim/contact/wire_locator.hpp"
 #include "test_interaction_fixtures.hpp"
 
 namespace {
@@ -69,8 +71,8 @@ analysis: {from_span: 1, to_span: 1}
       pcsim::assembly::CatenarySystem loaded(PETSC_COMM_WORLD, statics.mesh);
       loaded.point_loads().push_back({element, chi, Eigen::Vector3d(0, 0, F0)});
       Vec xs = loaded.create_vector();
-      pcsim::catenary::set_state_from_node_values(loaded, statics.node_values, xs);
-      const auto result = pcsim::catenary::solve_static(loaded, xs, false, "point_load_");
+      pcsim::assembly::set_state_from_node_values(loaded, statics.node_values, xs);
+      const auto result = pcsim::solvers::solve_static(loaded, xs, false, "point_load_");
       PCSIM_PETSC(VecDestroy(&xs));
       ASSERT_TRUE(result.converged);
       pcsim::catenary::Vec12 q;

@@ -18,7 +18,7 @@ using pcsim::testing::make_problem;
 class StaticStart : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(StaticStart, IsAnEquilibriumOfTheDynamicModel) {
-  auto run = pcsim::contact::load_run_scene(
+  auto run = pcsim::scene::load_run_scene(
       pcsim::InputNode::load_file(contact_data(std::string(GetParam()) + ".yaml")));
   const double vanishing_speed = 1e-6;  // [m/s]: 50 ms move the contact point by 50 nm
   run.pantographs[0].speed = vanishing_speed;
@@ -48,7 +48,7 @@ TEST_P(StaticStart, IsAnEquilibriumOfTheDynamicModel) {
   if (rank == 0) EXPECT_NEAR(f_start, 120.0, 0.05);
 
   // 2. 50 HHT steps (dt = 1 ms, default alpha) from (U0, 0, 0).
-  //  a) SNES tolerances of create_ts (|R| <= 1e-3 N), as in `pcsim run`: U
+  //  a) SNES tolerances of solvers::DynamicSolver (|R| <= 1e-3 N), as in `pcsim run`: U
   //     stays within 1e-9 m (and 1e-9 in slopes) of U0, the contact force within
   //     1e-6 relative of its start value. (The step residual at U0 is below the
   //     tolerance, so Newton leaves U0 as it is: this checks that it is.)

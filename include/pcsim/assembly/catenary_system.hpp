@@ -23,7 +23,9 @@ namespace pcsim::assembly {
 
 class CatenarySystem {
  public:
-  CatenarySystem(MPI_Comm comm, catenary::CatenaryMesh mesh, PetscInt extra_dofs = 0);
+  // node_owner: reuse a partition computed before (see DofLayout).
+  CatenarySystem(MPI_Comm comm, catenary::CatenaryMesh mesh, PetscInt extra_dofs = 0,
+                 const std::vector<int>* node_owner = nullptr);
   ~CatenarySystem();
   CatenarySystem(const CatenarySystem&) = delete;
   CatenarySystem& operator=(const CatenarySystem&) = delete;
@@ -62,6 +64,12 @@ class CatenarySystem {
   // zero outside the assembled terms). If J is not null the tangent is added
   // to J (entries only; the caller assembles J).
   void assemble_static(Vec R, Mat J, unsigned terms = kAllTerms);
+  // Adds the same forces to R and their tangent to J; either may be null.
+  void add_forces(Vec R, Mat J, unsigned terms = kAllTerms);
+  // Potential energy of the selected terms at the loaded state, summed over
+  // the elements this rank assembles (strain energy of cables and bars,
+  // minus the work of gravity and point loads, spring energy).
+  double local_potential_energy(unsigned terms = kAllTerms) const;
   // Inserts explicit zeros at every element coupling, so that matrices
   // duplicated from A share one nonzero pattern (fast MatAXPY, and a pattern
   // that never changes during a run). The caller assembles A.
@@ -97,6 +105,10 @@ class CatenarySystem {
   catenary::CatenaryMesh mesh_;
   std::unique_ptr<DofLayout> layout_;
   std::vector<double> gather_node_values(Vec x, bool to_root) const;
+  void add_block(double* r, const int* nodes, int dofs_per_node, const double* f) const;
+  void add_cable_forces(double* r, Mat J, bool cables, bool loads) const;
+  void add_bar_forces(double* r, Mat J, bool bars, bool loads) const;
+  void add_point_forces(double* r, Mat J) const;
   std::vector<PointLoad> point_loads_;
   std::vector<double> node_state_;  // needed nodes x 6
   std::vector<double> design_values_;

@@ -22,7 +22,10 @@ namespace pcsim::assembly {
 
 class DofLayout {
  public:
-  DofLayout(MPI_Comm comm, const catenary::CatenaryMesh& mesh, PetscInt extra_dofs = 0);
+  // node_owner: a partition of the nodes computed before (same mesh graph),
+  // reused instead of calling METIS again; null: partition with METIS.
+  DofLayout(MPI_Comm comm, const catenary::CatenaryMesh& mesh, PetscInt extra_dofs = 0,
+            const std::vector<int>* node_owner = nullptr);
   ~DofLayout();
   DofLayout(const DofLayout&) = delete;
   DofLayout& operator=(const DofLayout&) = delete;
@@ -34,6 +37,7 @@ class DofLayout {
   // Global equation number of DOF c (0..5) of node n, -1 if constrained.
   PetscInt global_dof(int node, int c) const { return node_dofs_[6 * node + c]; }
   int owner(int node) const { return owner_[node]; }
+  const std::vector<int>& node_owner() const { return owner_; }
   PetscInt catenary_dofs() const { return n_catenary_; }  // global, free catenary DOFs
   PetscInt extra_dofs() const { return n_extra_; }
   PetscInt extra_global(PetscInt k) const { return n_catenary_ + k; }

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,11 @@ struct Wire {
   std::vector<int> nodes;      // node indices in order along the wire
   std::vector<int> elements;   // cable element indices in order
 };
+
+// Transverse wave speed sqrt(T / rho) of a wire at its design tension [m/s].
+inline double wave_speed(const Wire& wire) {
+  return std::sqrt(wire.tension / wire.mass_per_length);
+}
 
 // ANCF cable element between nodes[0] and nodes[1].
 struct CableElement {

@@ -1,4 +1,4 @@
-#include "pcsim/catenary/catenary_scene.hpp"
+#include "pcsim/scene/catenary_scene.hpp"
 
 #include <fstream>
 

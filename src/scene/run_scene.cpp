@@ -1,14 +1,10 @@
-#include "pcsim/contact/run_scene.hpp"
+#include "pcsim/scene/run_scene.hpp"
 
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
-namespace pcsim::contact {
-
-double wave_speed(const catenary::Wire& wire) {
-  return std::sqrt(wire.tension / wire.mass_per_length);
-}
+namespace pcsim::scene {
 
 static std::string fmt(double v) {
   std::ostringstream s;
@@ -28,7 +24,7 @@ RunScene load_run_scene(const InputNode& scene) {
   const InputNode sim = scene["simulation"];
   sim.allow_only({"speed_kmh", "end_x", "dt"});
   run.speed = sim.get_positive("speed_kmh") / 3.6;
-  const double c = wave_speed(mesh.wires[mesh.contact_wire]);
+  const double c = catenary::wave_speed(mesh.wires[mesh.contact_wire]);
   if (run.speed >= c)
     sim.fail_key("speed_kmh",
                  "speed " + fmt(run.speed * 3.6) +
@@ -46,15 +42,15 @@ RunScene load_run_scene(const InputNode& scene) {
     const InputNode p = list.at(i);
     p.allow_only({"name", "model", "start_x", "static_force", "start", "ramp_distance",
                   "working_height", "effects"});
-    PantographRun pr;
+    contact::PantographRun pr;
     pr.name = p.get_string("name", "pantograph" + std::to_string(i + 1));
     const InputNode effects =
         p.has("effects") ? p["effects"] : InputNode(YAML::Node(), p.file(), "");
     const std::string model_path = p.resolve_path(p.get_string("model"));
     if (!std::ifstream(model_path))
       p.fail_key("model", "cannot open pantograph model file '" + model_path + "'");
-    pr.model = pantograph::load_pantograph_model(model_path, p.has("effects") ? &effects : nullptr,
-                                                 run.speed);
+    auto model = pantograph::load_pantograph_model(
+        model_path, p.has("effects") ? &effects : nullptr, run.speed);
     pr.start_x = p.get_double("start_x", x_first + 5.0);
     if (pr.start_x < x_first || pr.start_x >= run.end_x)
       p.fail_key("start_x", "must lie on the line before simulation.end_x (" + fmt(run.end_x) +
@@ -67,9 +63,10 @@ RunScene load_run_scene(const InputNode& scene) {
     pr.static_start = start == "static";
     pr.ramp_distance = p.get_positive("ramp_distance", 20.0);
     // Rigid models work in heights above their base; lumped ones in absolute heights.
-    pr.working_height = p.get_positive("working_height", pr.model->kind() == "dsa380" ? 1.2 : 1.0);
-    if (pr.model->kind() != "dsa380" && !p.has("working_height")) pr.working_height = 0;
+    pr.working_height = p.get_positive("working_height", model->kind() == "dsa380" ? 1.2 : 1.0);
+    if (model->kind() != "dsa380" && !p.has("working_height")) pr.working_height = 0;
     run.pantographs.push_back(std::move(pr));
+    run.models.push_back(std::move(model));
   }
   if (scene.has("effects")) {
     const InputNode e = scene["effects"];
@@ -119,4 +116,4 @@ RunScene load_run_scene(const InputNode& scene) {
   return run;
 }
 
-}  // namespace pcsim::contact
+}  // namespace pcsim::scene

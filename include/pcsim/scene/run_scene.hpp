@@ -20,21 +20,24 @@
 //   output: {dropper_forces: true, snapshot_every: 0}   # field snapshots every N steps (0: none)
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
-#include "pcsim/catenary/catenary_scene.hpp"
-#include "pcsim/contact/interaction.hpp"
+#include "pcsim/contact/pantograph_run.hpp"
+#include "pcsim/pantograph/model.hpp"
+#include "pcsim/scene/catenary_scene.hpp"
 
-namespace pcsim::contact {
+namespace pcsim::scene {
 
 struct RunScene {
   catenary::CatenaryScene catenary;
-  std::vector<PantographRun> pantographs;
-  double speed = 0;  // [m/s]
+  std::vector<contact::PantographRun> pantographs;
+  std::vector<std::unique_ptr<pantograph::PantographModel>> models;  // one per pantograph
+  double speed = 0;                                                  // [m/s]
   double end_x = 0;
   double dt = 1e-3;
-  InteractionEffects effects;
+  contact::InteractionEffects effects;
   double contact_stiffness = 50000;
   double analysis_from_x = 0, analysis_to_x = 0;
   int analysis_from_span = 0, analysis_to_span = 0;  // 1-based
@@ -47,7 +50,4 @@ struct RunScene {
 
 RunScene load_run_scene(const InputNode& scene);
 
-// Transverse wave speed sqrt(T / rho) of a wire [m/s].
-double wave_speed(const catenary::Wire& wire);
-
-}  // namespace pcsim::contact
+}  // namespace pcsim::scene

@@ -1,5 +1,5 @@
 // CatenaryMesh -> HDF5 + XDMF (see mesh_io.hpp for the layout).
-#include "pcsim/catenary/mesh_io.hpp"
+#include "pcsim/output/mesh_xdmf.hpp"
 
 #include <cctype>
 #include <fstream>
@@ -9,7 +9,9 @@
 #include "pcsim/error.hpp"
 #include "pcsim/output/h5_file.hpp"
 
-namespace pcsim::catenary {
+namespace pcsim::output {
+
+using namespace pcsim::catenary;
 
 namespace {
 
@@ -345,4 +347,4 @@ void write_snapshots_xdmf(const CatenaryMesh& mesh, const std::string& mesh_h5_n
   write_xdmf_file(xdmf_path, x.str());
 }
 
-}  // namespace pcsim::catenary
+}  // namespace pcsim::output

@@ -9,27 +9,22 @@
 
 #include <petscvec.h>
 
-#include <string>
-#include <vector>
-
 #include "pcsim/assembly/catenary_system.hpp"
+#include "pcsim/catenary/results.hpp"
 
-namespace pcsim::catenary {
-
-struct ModesResult {
-  std::vector<double> frequencies_hz;  // ascending
-  // Mode shapes as node displacements (3 per node, all nodes), mass-normalised;
-  // filled on every rank when requested.
-  std::vector<std::vector<double>> shapes;
-  int requested = 0;
-  int converged = 0;
-  double max_relative_residual = 0;  // ||K phi - w^2 M phi|| / (w^2 ||M phi||)
-  double wall_time_s = 0;
-};
+namespace pcsim::solvers {
 
 // nev: number of modes (when max_frequency_hz <= 0); max_frequency_hz > 0:
 // every mode below it. 'x' is the static configuration of 'system'.
-ModesResult compute_modes(assembly::CatenarySystem& system, Vec x, int nev, double max_frequency_hz,
-                          bool want_shapes);
+catenary::ModesResult compute_modes(assembly::CatenarySystem& system, Vec x, int nev,
+                                    double max_frequency_hz, bool want_shapes);
 
-}  // namespace pcsim::catenary
+// The command-line overrides of the modes scene section, declared in the
+// options database (listed by -help): -eps_nev (count) and -modes_fmax [Hz].
+struct ModesRequest {
+  int count = 20;
+  double max_frequency_hz = 0;  // > 0: every mode below it
+};
+ModesRequest modes_request_from_options(MPI_Comm comm, ModesRequest scene_values);
+
+}  // namespace pcsim::solvers

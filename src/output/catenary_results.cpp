@@ -1,26 +1,26 @@
-#include "catenary_output.hpp"
+#include "pcsim/output/catenary_results.hpp"
 
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "pcsim/catenary/mesh_io.hpp"
 #include "pcsim/output/h5_file.hpp"
+#include "pcsim/output/mesh_xdmf.hpp"
 
-namespace pcsim::app {
+namespace pcsim::output {
 
 using catenary::BarKind;
 
 namespace {
 
-nlohmann::json static_json(const CommandContext& ctx, const assembly::CatenarySystem& system,
-                           const catenary::StaticResult& r, const std::string& scene_name) {
+nlohmann::json static_json(const catenary::CatenaryMesh& mesh, const catenary::StaticResult& r,
+                           const CatenaryRunInfo& info) {
   nlohmann::json j;
-  j["scene"] = scene_name;
-  j["design"] = system.mesh().source_file;
-  j["dofs"] = system.layout().catenary_dofs();
-  j["ranks"] = ctx.size;
-  j["form_finding"] = system.layout().extra_dofs() > 0;
+  j["scene"] = info.scene_name;
+  j["design"] = mesh.source_file;
+  j["dofs"] = info.dofs;
+  j["ranks"] = info.ranks;
+  j["form_finding"] = info.form_finding;
   j["snes_iterations"] = r.snes_iterations;
   j["snes_residual_history"] = r.residual_history;
   j["max_height_error_m"] = r.max_height_error_m;
@@ -72,50 +72,20 @@ void write_static_h5(const std::string& path, const catenary::CatenaryMesh& mesh
 
 }  // namespace
 
-void print_static_summary(const CommandContext& ctx, const assembly::CatenarySystem& system,
-                          const catenary::StaticResult& r) {
-  print0(ctx, "  Newton: %d iterations (%s), ||R||:", r.snes_iterations,
-         r.converged_reason.c_str());
-  for (double v : r.residual_history) print0(ctx, " %.2e", v);
-  print0(ctx, "\n");
-  if (!system.mesh().height_targets.empty())
-    print0(ctx, "  max contact-wire height error at droppers: %.3e m\n", r.max_height_error_m);
-  if (!system.mesh().tension_segments.empty())
-    print0(ctx, "  max wire tension error: %.3e (relative)\n", r.max_tension_error_rel);
-  double fmin = 1e300, fmax = -1e300;
-  int n_droppers = 0;
-  for (std::size_t b = 0; b < system.mesh().bars.size(); ++b)
-    if (system.mesh().bars[b].kind == BarKind::dropper) {
-      fmin = std::min(fmin, r.bar_forces[b]);
-      fmax = std::max(fmax, r.bar_forces[b]);
-      ++n_droppers;
-    }
-  if (n_droppers > 0)
-    print0(ctx, "  %d droppers, static force %.1f .. %.1f N\n", n_droppers, fmin, fmax);
-  print0(ctx, "  wall time %.3f s\n", r.wall_time_s);
-}
-
-void write_static_results(const CommandContext& ctx, const OutputDir& out,
-                          const assembly::CatenarySystem& system, const catenary::StaticResult& r,
-                          const std::string& scene_name) {
-  if (ctx.rank != 0) return;
-  const auto& mesh = system.mesh();
+void write_static_results(const OutputDir& out, const catenary::CatenaryMesh& mesh,
+                          const catenary::StaticResult& r, const CatenaryRunInfo& info) {
   write_static_h5(out.file("static.h5"), mesh, r);
-  catenary::write_mesh_h5_xdmf(mesh, catenary::positions_from_node_values(r.node_values),
-                               out.file("static_mesh.h5"), out.file("static.xdmf"));
-  write_json(out.file("summary.json"), static_json(ctx, system, r, scene_name));
+  write_mesh_h5_xdmf(mesh, catenary::positions_from_node_values(r.node_values),
+                     out.file("static_mesh.h5"), out.file("static.xdmf"));
+  write_json(out.file("summary.json"), static_json(mesh, r, info));
 }
 
-void write_modes_results(const CommandContext& ctx, const OutputDir& out,
-                         const assembly::CatenarySystem& system,
+void write_modes_results(const OutputDir& out, const catenary::CatenaryMesh& mesh,
                          const catenary::StaticResult& statics, const catenary::ModesResult& modes,
-                         const std::string& scene_name) {
-  if (ctx.rank != 0) return;
-  const auto& mesh = system.mesh();
+                         const CatenaryRunInfo& info) {
   write_static_h5(out.file("static.h5"), mesh, statics);
   const auto positions = catenary::positions_from_node_values(statics.node_values);
-  catenary::write_mesh_h5_xdmf(mesh, positions, out.file("static_mesh.h5"),
-                               out.file("static.xdmf"));
+  write_mesh_h5_xdmf(mesh, positions, out.file("static_mesh.h5"), out.file("static.xdmf"));
   {
     H5File h5(out.file("modes.h5"));
     h5.write("/frequencies_hz", modes.frequencies_hz);
@@ -123,9 +93,9 @@ void write_modes_results(const CommandContext& ctx, const OutputDir& out,
     for (std::size_t m = 0; m < modes.shapes.size(); ++m)
       h5.write("/shapes/mode_" + std::to_string(m), modes.shapes[m], mesh.nodes.size(), 3);
   }
-  catenary::write_modes_xdmf(mesh, "modes.h5", "static_mesh.h5", modes.frequencies_hz,
-                             out.file("modes.xdmf"));
-  nlohmann::json j = static_json(ctx, system, statics, scene_name);
+  write_modes_xdmf(mesh, "modes.h5", "static_mesh.h5", modes.frequencies_hz,
+                   out.file("modes.xdmf"));
+  nlohmann::json j = static_json(mesh, statics, info);
   j["catenary_frequencies_hz"] = modes.frequencies_hz;
   j["modes_converged"] = modes.converged;
   j["modes_max_relative_residual"] = modes.max_relative_residual;
@@ -133,4 +103,4 @@ void write_modes_results(const CommandContext& ctx, const OutputDir& out,
   write_json(out.file("summary.json"), j);
 }
 
-}  // namespace pcsim::app
+}  // namespace pcsim::output

@@ -29,7 +29,7 @@
 
 #include "pcsim/catenary/mesh.hpp"
 
-namespace pcsim::catenary {
+namespace pcsim::output {
 
 // An extra per-node quantity to show in ParaView (e.g. velocity, force).
 struct NodeField {
@@ -41,8 +41,9 @@ struct NodeField {
 // node_positions: 3 per node (x, y, z), e.g. the static solution, or the
 // design positions. Throws std::invalid_argument on size mismatches and
 // pcsim::SolverError if a file cannot be written.
-void write_mesh_h5_xdmf(const CatenaryMesh& mesh, const std::vector<double>& node_positions,
-                        const std::string& h5_path, const std::string& xdmf_path,
+void write_mesh_h5_xdmf(const catenary::CatenaryMesh& mesh,
+                        const std::vector<double>& node_positions, const std::string& h5_path,
+                        const std::string& xdmf_path,
                         const std::vector<NodeField>& node_fields = {});
 
 // XDMF for mode shapes: a Temporal collection (time = mode number 0, 1, ...)
@@ -53,7 +54,7 @@ void write_mesh_h5_xdmf(const CatenaryMesh& mesh, const std::vector<double>& nod
 // of xdmf_path; modes whose shape dataset is absent from the modes file are
 // left out. Throws std::invalid_argument for a name with a '/', and
 // pcsim::SolverError if the files cannot be read or written.
-void write_modes_xdmf(const CatenaryMesh& mesh, const std::string& modes_h5_name,
+void write_modes_xdmf(const catenary::CatenaryMesh& mesh, const std::string& modes_h5_name,
                       const std::string& mesh_h5_name, const std::vector<double>& frequencies_hz,
                       const std::string& xdmf_path);
 
@@ -62,11 +63,11 @@ void write_modes_xdmf(const CatenaryMesh& mesh, const std::string& modes_h5_name
 // a node vector attribute 'displacement' =
 // snapshots_h5_name:/snapshots/displacement_<k> (n x 3), the displacement from
 // that configuration (ParaView: Warp By Vector animates the wires).
-void write_snapshots_xdmf(const CatenaryMesh& mesh, const std::string& mesh_h5_name,
+void write_snapshots_xdmf(const catenary::CatenaryMesh& mesh, const std::string& mesh_h5_name,
                           const std::string& snapshots_h5_name, const std::vector<double>& times,
                           const std::string& xdmf_path);
 
 // Design positions of every node, 3 per node (for write_mesh_h5_xdmf).
-std::vector<double> design_positions(const CatenaryMesh& mesh);
+std::vector<double> design_positions(const catenary::CatenaryMesh& mesh);
 
-}  // namespace pcsim::catenary
+}  // namespace pcsim::output

@@ -1,0 +1,75 @@
+// A catenary model behind the coupled system: it owns the catenary part of
+// the state vector and contributes the catenary's terms. The finite-element
+// model (FECatenary: nonlinear ANCF or cables linearised about the static
+// configuration) is one; a reduced-order (modal) model is another behind the
+// same interface. The contact terms see the catenary only through
+// wire_point(): the contact wire's height at x as a linear function of the
+// catenary's unknowns.
+//
+// The global vector holds the catenary's unknowns followed by 'extra'
+// unknowns (the pantographs' coordinates), which the last rank owns.
+#pragma once
+
+#include <petscmat.h>
+#include <petscvec.h>
+
+#include <memory>
+#include <vector>
+
+#include "pcsim/assembly/term.hpp"
+#include "pcsim/catenary/mesh.hpp"
+#include "pcsim/contact/pantograph_run.hpp"
+
+namespace pcsim::assembly {
+
+// The contact wire at a point x: z(U) = z0 + sum_i weight_i (U[index_i] - U_ref[index_i])
+// near the current state, i.e. weight = dz/dU (chi fixed, thesis 3.9-3.13).
+struct WirePoint {
+  bool on_wire = false;         // x lies on the contact wire
+  bool owned = false;           // this rank holds the state of the point: z is set
+  double z = 0;                 // wire height at x at the loaded state [m]
+  std::vector<PetscInt> index;  // global unknowns z depends on (every rank)
+  std::vector<double> weight;   // dz/dU for those unknowns (every rank)
+};
+
+class CatenaryModel {
+ public:
+  virtual ~CatenaryModel() = default;
+  virtual MPI_Comm comm() const = 0;
+  virtual const catenary::CatenaryMesh& mesh() const = 0;
+
+  // Unknowns: the catenary's, then the extras (owned by the last rank).
+  virtual PetscInt catenary_dofs() const = 0;
+  virtual PetscInt extra_global(PetscInt k) const = 0;
+  virtual Vec create_vector() const = 0;
+  // The pattern of every term the model contributes, the extras coupled
+  // densely with each other, and each extra marked in wire_coupled coupled
+  // with every unknown a wire point may involve: zeros inserted, not yet
+  // assembled (the caller adds the other terms' patterns).
+  virtual Mat create_matrix(const std::vector<bool>& wire_coupled) const = 0;
+
+  // The static configuration (the linearisation point), catenary part.
+  virtual void reference_state(Vec U) const = 0;
+  // Makes the state U current for the queries below (collective).
+  virtual void load_state(Vec U) = 0;
+  virtual WirePoint wire_point(double x) const = 0;
+  virtual double wire_x_min() const = 0;
+  virtual double wire_x_max() const = 0;
+  // Contact-wire height at every support and axial force of every dropper at
+  // the loaded state: set by the ranks that own them, zero elsewhere (the
+  // caller sums over ranks).
+  virtual std::vector<double> support_heights() const = 0;
+  virtual std::vector<double> dropper_forces() const = 0;
+
+  // Node positions (3 per node) of state U on rank 0, empty elsewhere
+  // (field snapshots; collective).
+  virtual std::vector<double> node_positions_to_root(Vec U) const = 0;
+
+  // The catenary's terms for these effects: forces, inertia, damping, bars.
+  // Their constant matrices are duplicated from 'pattern' (the Jacobian's
+  // final pattern, assembled; the model keeps a reference).
+  virtual std::vector<std::unique_ptr<Term>> make_terms(const contact::InteractionEffects& e,
+                                                        Mat pattern) = 0;
+};
+
+}  // namespace pcsim::assembly

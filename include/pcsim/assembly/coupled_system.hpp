@@ -1,0 +1,81 @@
+// The coupled second-order system of a dynamic run (thesis 3.2-3.3): the
+// catenary model's unknowns followed by every pantograph's (on the last rank),
+//   F(t, U, V, A) = sum over the terms the scene switched on = 0,
+// with tangent dF/dU + v dF/dV + a dF/dA. A loop over terms: the system knows
+// no physics of its own. The linear parts of all terms are merged by matrix
+// (one product per constant matrix per residual).
+#pragma once
+
+#include <petscmat.h>
+
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "pcsim/assembly/coupled_state.hpp"
+#include "pcsim/assembly/term.hpp"
+#include "pcsim/contact/records.hpp"
+
+namespace pcsim::assembly {
+
+class PenaltyContact;
+
+class CoupledSystem {
+ public:
+  // The pantographs' unknowns must be the catenary model's extras, in order.
+  CoupledSystem(std::unique_ptr<CatenaryModel> catenary, std::vector<PantographSlot> pantographs,
+                const contact::InteractionEffects& effects, double contact_stiffness);
+  ~CoupledSystem();
+  CoupledSystem(const CoupledSystem&) = delete;
+  CoupledSystem& operator=(const CoupledSystem&) = delete;
+
+  MPI_Comm comm() const { return catenary_->comm(); }
+  CatenaryModel& catenary() { return *catenary_; }
+  const CatenaryModel& catenary() const { return *catenary_; }
+  std::vector<PantographSlot>& pantographs() { return pantographs_; }
+  const std::vector<std::unique_ptr<Term>>& terms() const { return terms_; }
+  PetscInt global_size() const;
+  double contact_stiffness() const { return contact_stiffness_; }
+  // True when no term is 'varying': J0 + low-rank changes is exact (cheap path).
+  bool cheap_path_possible() const;
+
+  Vec create_vector() const { return catenary_->create_vector(); }
+  Mat create_matrix() const;  // the fixed pattern of the Jacobian (a copy)
+
+  void residual(double t, Vec U, Vec V, Vec A, Vec F);
+  // The exact tangent, assembled into J.
+  void jacobian(double t, Vec U, Vec V, Vec A, Shifts shifts, Mat J);
+  // Cheap path: J0 (every term's reference tangent), assembled; then the
+  // terms' low-rank changes against it at the same or a later state. The
+  // latter returns false when a term asks for a new J0.
+  void reference_jacobian(double t, Vec U, Vec V, Vec A, Shifts shifts, Mat J0);
+  bool low_rank_change(double t, Vec U, Vec V, Vec A, std::vector<RankOne>& terms);
+
+  // Sum of the terms' energies E(t, U, V) and powers (collective).
+  double energy(double t, Vec U, Vec V);
+  TermPower power(double t, Vec U, Vec V);
+  // Measured quantities at state U (collective; filled on rank 0).
+  contact::StepRecord record(double t, Vec U);
+
+ private:
+  struct MergedPart {
+    Mat matrix;
+    double cu, cv, ca;
+    MatStructure structure;
+  };
+  void load(double t, Vec U, Vec V, Vec A);
+  void add_linear_parts(Vec U, Vec V, Vec A, Vec F);
+  void assemble_tangent(Shifts shifts, Mat J, bool reference);
+
+  std::unique_ptr<CatenaryModel> catenary_;
+  std::vector<PantographSlot> pantographs_;
+  CoupledState state_;
+  std::vector<std::unique_ptr<Term>> terms_;
+  std::vector<PenaltyContact*> contacts_;  // per pantograph (records)
+  std::vector<MergedPart> parts_;
+  double contact_stiffness_;
+  Mat pattern_ = nullptr;
+  Vec reference_ = nullptr, work_ = nullptr;
+};
+
+}  // namespace pcsim::assembly

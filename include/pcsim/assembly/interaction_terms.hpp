@@ -1,0 +1,70 @@
+// Terms of the interaction: each pantograph (its model's equations of motion,
+// thesis chapter 2, with the ramp-up force of 3.3.1) and the penalty contact
+// between a pantograph and the contact wire (thesis 3.2, eqs. 3.9-3.13).
+#pragma once
+
+#include "pcsim/assembly/coupled_state.hpp"
+#include "pcsim/assembly/term.hpp"
+
+namespace pcsim::assembly {
+
+// R_p = model residual (without contact) + (1 - ramp(t)) F0 e_c, on the last
+// rank; dense tangent K + v C + a M of the model.
+class PantographTerm : public Term {
+ public:
+  explicit PantographTerm(std::size_t index, const PantographSlot& slot)
+      : index_(index), slot_(slot) {}
+  std::string name() const override { return "pantograph " + slot_.run.name; }
+  TangentKind tangent_kind() const override {
+    return slot_.model->is_linear() ? TangentKind::constant : TangentKind::varying;
+  }
+  bool adds_by_set_values() const override { return true; }
+  void add_residual(const CoupledState& state, Vec F) override;
+  void add_tangent(const CoupledState& state, Shifts shifts, Mat J) override;
+  void insert_pattern(Mat J) const override;
+  // T + V of the model - Q_ext . q (constant external forces as potentials)
+  // + (1 - ramp) F0 q_c.
+  double energy(const CoupledState& state) const override;
+  TermPower power(const CoupledState& state) const override;
+
+ private:
+  std::size_t index_;
+  const PantographSlot& slot_;
+};
+
+// Penalty contact of one pantograph with the contact wire at the moving point
+// x_c = x_0 + v t (chi fixed within a step, as the thesis does): gap
+// dz = z_wire - z_head (3.9), force Fc = kH max(-dz, 0) (3.10), residual
+// -Fc dz/dU on the wire and +Fc on the head, tangent kH u u^T with
+// u = [dz/dU; -1] in contact. On the cheap path J0 holds no contact: the
+// whole tangent is the rank-one term (coefficient 0 out of contact).
+class PenaltyContact : public Term {
+ public:
+  PenaltyContact(std::size_t index, const PantographSlot& slot, double stiffness)
+      : index_(index), slot_(slot), kH_(stiffness) {}
+  std::string name() const override { return "penalty contact " + slot_.run.name; }
+  TangentKind tangent_kind() const override { return TangentKind::low_rank; }
+  bool adds_by_set_values() const override { return true; }
+  void add_residual(const CoupledState& state, Vec F) override;
+  void add_tangent(const CoupledState& state, Shifts shifts, Mat J) override;
+  void add_reference_tangent(const CoupledState&, Shifts, Mat) override {}
+  bool low_rank_change(const CoupledState& state, std::vector<RankOne>& terms) override;
+  double energy(const CoupledState& state) const override;  // 1/2 kH dz^2 in contact
+
+  struct Evaluation {
+    WirePoint wire;    // at x_c
+    double x = 0;      // contact point along the track
+    double head = 0;   // head height
+    double gap = 0;    // dz (owner rank)
+    double force = 0;  // Fc >= 0 (owner rank)
+  };
+  // At the loaded state; gap and force only on the rank that owns the point.
+  Evaluation evaluate(const CoupledState& state) const;
+
+ private:
+  std::size_t index_;
+  const PantographSlot& slot_;
+  double kH_;
+};
+
+}  // namespace pcsim::assembly

@@ -1,0 +1,111 @@
+// The term interface of the coupled second-order system
+//   F(t, U, V, A) = sum over terms = 0
+// (thesis 3.2-3.3: catenary forces, inertia, damping, dropper slack, penalty
+// contact, pantographs). Every effect a scene switches on is one Term; an
+// effect that is off is not in the list and costs nothing. A term never knows
+// which integrator or solver calls it: it adds its residual and its tangent
+//   dF/dU + shift_v dF/dV + shift_a dF/dA
+// for the shifts the integrator gives.
+//
+// A term states its residual in two parts:
+//  - linear_parts(): constant matrices times the state, F += A (cu dU + cv V + ca A)
+//    with dU = U - U_ref (the static configuration). The coupled system merges
+//    the parts that share a matrix (one product per matrix: K0 (dU + beta V),
+//    M (A + alpha V)) and adds (cu + shift_v cv + shift_a ca) A to the tangent;
+//  - add_residual()/add_tangent(): everything else (element forces, contact,
+//    pantographs), added with ADD_VALUES before the caller assembles.
+//
+// For the cheap path (a constant step matrix J0 factored once) a term says
+// how its tangent behaves (TangentKind). A 'low_rank' term adds a reference
+// tangent to J0 and reports the change of its tangent against that reference
+// as rank-one terms c u u^T (low_rank_change), which the solver adds exactly
+// (Woodbury). The solver never knows what a dropper or a contact is.
+#pragma once
+
+#include <petscmat.h>
+#include <petscvec.h>
+
+#include <string>
+#include <vector>
+
+namespace pcsim::assembly {
+
+class CoupledState;
+
+// J = dF/dU + v dF/dV + a dF/dA.
+struct Shifts {
+  double v = 0;
+  double a = 0;
+};
+
+// F += matrix (cu (U - U_ref) + cv V + ca A); tangent += (cu + v cv + a ca) matrix.
+struct LinearPart {
+  Mat matrix = nullptr;
+  double cu = 0, cv = 0, ca = 0;
+  // Nonzero pattern of 'matrix' relative to the system's Jacobian.
+  MatStructure structure = SAME_NONZERO_PATTERN;
+};
+
+// A rank-one change c u u^T of a tangent, u sparse (global indices, weights),
+// identical on every rank. reuse_columns: the same indices recur over many
+// steps (a contact moving along the wire), so J0^-1 e_g per index is worth
+// caching; otherwise J0^-1 u is solved directly.
+struct RankOne {
+  int key = 0;  // identifies the term within its Term (a solver reuses J0^-1 u while u stays)
+  std::vector<PetscInt> index;
+  std::vector<double> weight;
+  double coefficient = 0;
+  bool reuse_columns = false;
+};
+
+enum class TangentKind {
+  constant,  // never changes: part of J0 for good
+  low_rank,  // reference tangent in J0 + low_rank_change() (contact, slack droppers)
+  varying,   // general nonlinear: needs the full Newton path
+};
+
+// Power of the non-conservative forces of a term (energy balance tests):
+// dE/dt = external + dissipative.
+struct TermPower {
+  double dissipative = 0;  // <= 0 for passive elements (damping, friction)
+  double external = 0;     // work rate of prescribed forces (moving contact, uplift)
+};
+
+class Term {
+ public:
+  virtual ~Term() = default;
+  virtual std::string name() const = 0;
+  virtual TangentKind tangent_kind() const = 0;
+
+  virtual std::vector<LinearPart> linear_parts() const { return {}; }
+  // Residual and tangent beyond the linear parts. add_residual adds either
+  // with vector operations on the assembled F (scatters, AXPY) or, if
+  // adds_by_set_values(), with VecSetValues(ADD_VALUES) only: the system calls
+  // the former first and assembles F once after the latter. add_tangent adds
+  // with MatSetValues(ADD_VALUES); the system assembles J.
+  virtual bool adds_by_set_values() const { return false; }
+  virtual void add_residual(const CoupledState& state, Vec F) {}
+  virtual void add_tangent(const CoupledState& state, Shifts shifts, Mat J) {}
+  // Entries the term may ever touch (zeros), so that the Jacobian's pattern
+  // never changes during a run.
+  virtual void insert_pattern(Mat J) const {}
+
+  // Cheap path: the tangent that goes into J0 (default: the exact one) and
+  // the change of the exact tangent against it, as rank-one terms. Called on
+  // every rank (collective).
+  virtual void add_reference_tangent(const CoupledState& state, Shifts shifts, Mat J) {
+    add_tangent(state, shifts, J);
+  }
+  // Returns false when the change has grown too large to be worth it: the
+  // solver then rebuilds J0 at the current state.
+  virtual bool low_rank_change(const CoupledState& state, std::vector<RankOne>& terms) {
+    return true;
+  }
+
+  // Energy stored by the term (kinetic or potential) and the power of its
+  // non-conservative forces, summed over ranks (collective).
+  virtual double energy(const CoupledState& state) const { return 0; }
+  virtual TermPower power(const CoupledState& state) const { return {}; }
+};
+
+}  // namespace pcsim::assembly

@@ -1,0 +1,38 @@
+// Results of the catenary's static configuration (form-finding) and modes:
+// plain data filled by the solver drivers (solvers/statics.hpp,
+// solvers/modes.hpp) and written by the output writers.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace pcsim::catenary {
+
+struct StaticResult {
+  bool converged = false;
+  int snes_iterations = 0;
+  int linear_iterations = 0;
+  std::string converged_reason;
+  std::vector<double> residual_history;  // ||R|| per Newton iteration
+  double max_height_error_m = 0;         // over the height targets
+  double max_tension_error_rel = 0;      // over the tension segments
+  std::vector<double> target_heights;    // z of each target node
+  std::vector<double> segment_tensions;  // mean axial force of each segment
+  std::vector<double> bar_forces;        // axial force of every bar
+  std::vector<double> bar_lengths;       // deformed length of every bar
+  std::vector<double> node_values;       // 6 per node (r, r'), every rank
+  double wall_time_s = 0;
+};
+
+struct ModesResult {
+  std::vector<double> frequencies_hz;  // ascending
+  // Mode shapes as node displacements (3 per node, all nodes), mass-normalised;
+  // filled on every rank when requested.
+  std::vector<std::vector<double>> shapes;
+  int requested = 0;
+  int converged = 0;
+  double max_relative_residual = 0;  // ||K phi - w^2 M phi|| / (w^2 ||M phi||)
+  double wall_time_s = 0;
+};
+
+}  // namespace pcsim::catenary

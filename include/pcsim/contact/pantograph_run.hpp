@@ -1,0 +1,36 @@
+// How a pantograph travels along the line and starts, and which effects of the
+// interaction a run switches on (the scene's `pantographs:` and `effects:`).
+// Plain data: the scene readers fill it, the coupled system uses it.
+#pragma once
+
+#include <algorithm>
+#include <string>
+
+namespace pcsim::contact {
+
+struct InteractionEffects {
+  bool catenary_nonlinear = false;  // full ANCF forces; else cables linearised (constant K0)
+  bool dropper_slack = true;        // the bars' slack criteria; else linear bars
+  bool rayleigh_damping = true;     // C = alpha M + beta K_static (thesis eq. 3.1)
+};
+
+struct PantographRun {
+  std::string name;
+  double start_x = 0;         // contact point x at t = 0 [m]
+  double speed = 0;           // [m/s]
+  double static_force = 0;    // F0: static contact force [N]
+  bool static_start = false;  // start in static equilibrium in contact
+  double ramp_distance = 0;   // ramp-up: head force weighted 0 -> 1 over this distance [m]
+  // Height of the contact point above the pantograph's base at the start [m];
+  // <= 0: the model takes absolute heights (lumped models).
+  double working_height = 0;
+
+  double contact_x(double t) const { return start_x + speed * t; }
+  // Weight of the pantograph's own uplift during the ramp (thesis 3.3.1); 1 after it.
+  double ramp_factor(double t) const {
+    if (static_start || ramp_distance <= 0) return 1.0;
+    return std::clamp(speed * t / ramp_distance, 0.0, 1.0);
+  }
+};
+
+}  // namespace pcsim::contact

@@ -1,0 +1,29 @@
+// Results of `pcsim static` and `pcsim modes` on disk: static.h5 (node
+// values, droppers, tensions, Newton history), the deformed mesh
+// (static_mesh.h5 + static.xdmf for ParaView), modes.h5 + modes.xdmf (one
+// grid per mode, animatable) and summary.json. Called on rank 0.
+#pragma once
+
+#include <string>
+
+#include "pcsim/catenary/mesh.hpp"
+#include "pcsim/catenary/results.hpp"
+#include "pcsim/output/output_dir.hpp"
+
+namespace pcsim::output {
+
+struct CatenaryRunInfo {
+  std::string scene_name;
+  long dofs = 0;
+  int ranks = 1;
+  bool form_finding = false;
+};
+
+void write_static_results(const OutputDir& out, const catenary::CatenaryMesh& mesh,
+                          const catenary::StaticResult& result, const CatenaryRunInfo& info);
+
+void write_modes_results(const OutputDir& out, const catenary::CatenaryMesh& mesh,
+                         const catenary::StaticResult& statics, const catenary::ModesResult& modes,
+                         const CatenaryRunInfo& info);
+
+}  // namespace pcsim::output

@@ -1,0 +1,68 @@
+// A step matrix J = J0 + sum_k c_k u_k u_k^T with J0 factored once: the
+// operator (a MATSHELL, so that the SNES holds the true Jacobian and
+// -snes_test_jacobian or any -ksp_type work) and its exact inverse by the
+// Woodbury formula in a PCSHELL:
+//   J^-1 r = y - Z (C^-1 + U^T Z)^-1 U^T y,  y = J0^-1 r,  Z = J0^-1 U.
+// The rank-one terms come from the coupled system's terms (contact, switched
+// droppers); this class never knows what they are. A term whose u keeps
+// recurring on the same unknowns (reuse_columns: a contact moving along the
+// wire) gets z = J0^-1 u combined from cached unit solves J0^-1 e_g, so a new
+// solve is needed only when it reaches new unknowns. J0 is factored by an
+// inner KSP with options prefix -cheap_ (e.g. -cheap_pc_factor_mat_solver_type).
+#pragma once
+
+#include <petscksp.h>
+
+#include <Eigen/Core>
+#include <map>
+#include <vector>
+
+#include "pcsim/assembly/term.hpp"
+
+namespace pcsim::solvers {
+
+class LowRankStepSolver {
+ public:
+  // J0: the factored part (the SNES's preconditioning matrix).
+  LowRankStepSolver(Mat J0, const char* inner_prefix);
+  ~LowRankStepSolver();
+  LowRankStepSolver(const LowRankStepSolver&) = delete;
+  LowRankStepSolver& operator=(const LowRankStepSolver&) = delete;
+
+  Mat op() const { return op_; }  // J0 + sum c u u^T
+  // Makes pc the Woodbury preconditioner (exact inverse of op()).
+  void install(PC pc);
+  // J0 changed (reassembled): the factorisation and every J0^-1 u are stale
+  // until the PC is set up again.
+  void invalidate();
+  // The current rank-one terms (identical on every rank), at every Jacobian
+  // evaluation. Terms keep their J0^-1 u while their u stays the same.
+  void set_terms(const std::vector<assembly::RankOne>& terms);
+  KSP inner() const { return inner_; }
+
+ private:
+  struct Entry {
+    assembly::RankOne term;
+    Vec u = nullptr, z = nullptr;
+    bool z_valid = false;
+  };
+  static PetscErrorCode pc_setup(PC pc);
+  static PetscErrorCode pc_apply(PC pc, Vec r, Vec x);
+  static PetscErrorCode op_mult(Mat A, Vec x, Vec y);
+  void build_u(Entry& e) const;
+  void update_z(Entry& e);
+  Vec unit_solution(PetscInt g);
+  void evict_unused_columns();
+  void update_capacitance();
+  std::vector<Entry*> active();
+
+  Mat J0_, op_ = nullptr;
+  KSP inner_ = nullptr;
+  bool factored_ = false, capacitance_dirty_ = true;
+  std::map<int, Entry> entries_;
+  std::map<PetscInt, Vec> columns_;  // J0^-1 e_g
+  Eigen::MatrixXd capacitance_;      // C^-1 + U^T Z over the active terms
+  std::vector<Entry*> active_;
+};
+
+}  // namespace pcsim::solvers

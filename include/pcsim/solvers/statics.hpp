@@ -1,0 +1,33 @@
+// Static configuration and form-finding of the catenary (thesis 3.1.3) by
+// PETSc SNES: Newton with the exact Jacobian of assembly::StaticProblem and a
+// direct solve (MUMPS: the form-finding system has zero diagonal entries).
+// Every -snes_*, -ksp_*, -pc_* option applies (with the given prefix).
+#pragma once
+
+#include <vector>
+
+#include "pcsim/assembly/catenary_system.hpp"
+#include "pcsim/catenary/results.hpp"
+
+namespace pcsim::solvers {
+
+// Solves the static problem (form_finding false) or the form-finding problem
+// (true; 'system' built with assembly::form_finding_unknowns(mesh) extras).
+// On return the mesh of 'system' holds the found unstressed lengths and every
+// bar's equilibrium length and force, and 'x' the static configuration.
+// Throws SolverError if Newton does not converge.
+catenary::StaticResult solve_static(assembly::CatenarySystem& system, Vec x, bool form_finding,
+                                    const char* options_prefix = nullptr);
+
+// The step every command starts with: the design -> static configuration
+// (with form-finding when asked).
+struct StaticConfiguration {
+  catenary::CatenaryMesh mesh;    // with the found unstressed lengths, bar equilibria
+  catenary::StaticResult result;  // node values etc.
+  std::vector<int> node_owner;    // the partition used (reusable by later systems)
+  PetscInt catenary_dofs = 0;
+};
+StaticConfiguration static_configuration(MPI_Comm comm, const catenary::CatenaryMesh& design,
+                                         bool form_finding, const char* options_prefix = nullptr);
+
+}  // namespace pcsim::solvers

@@ -1,0 +1,128 @@
+// Bar forces and dropper slackening (thesis 3.1.2) as a term; see
+// catenary_terms.hpp for the cheap-path treatment of switching bars.
+#include <mpi.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+#include "pcsim/assembly/catenary_terms.hpp"
+#include "pcsim/assembly/coupled_state.hpp"
+#include "pcsim/catenary/elements.hpp"
+#include "pcsim/error.hpp"
+
+namespace pcsim::assembly {
+
+BarForces::BarForces(FECatenary& catenary, bool slack) : catenary_(catenary), slack_(slack) {
+  const auto& bars = catenary_.mesh().bars;
+  for (std::size_t b = 0; b < bars.size(); ++b)
+    if (bars[b].slack != catenary::SlackCriterion::none) slack_bars_.push_back(static_cast<int>(b));
+}
+
+void BarForces::add_residual(const CoupledState&, Vec F) {
+  catenary_.system().add_forces(F, nullptr, CatenarySystem::kBars);
+}
+
+void BarForces::add_tangent(const CoupledState&, Shifts, Mat J) {
+  catenary_.system().add_forces(nullptr, J, CatenarySystem::kBars);
+}
+
+double BarForces::energy(const CoupledState&) const {
+  double local = catenary_.system().local_potential_energy(CatenarySystem::kBars), total = 0;
+  MPI_Allreduce(&local, &total, 1, MPI_DOUBLE, MPI_SUM, catenary_.comm());
+  return total;
+}
+
+// Whether each slack-capable bar is stiff (taut) at the loaded state, on
+// every rank.
+std::vector<char> BarForces::bar_states() const {
+  const auto& L = catenary_.system().layout();
+  const auto& bars = catenary_.mesh().bars;
+  std::vector<char> states(slack_bars_.size(), 0);
+  for (std::size_t i = 0; i < slack_bars_.size(); ++i) {
+    const int b = slack_bars_[i];
+    if (L.owner(bars[b].nodes[0]) != L.rank()) continue;
+    catenary::Vec6 q;
+    catenary_.system().bar_values(b, q.data());
+    double dN_dl = 0;
+    catenary::bar_axial_force(catenary::bar_parameters(bars[b]), q, &dN_dl);
+    states[i] = dN_dl > 0 ? 1 : 0;
+  }
+  if (L.size() > 1)
+    MPI_Allreduce(MPI_IN_PLACE, states.data(), static_cast<int>(states.size()), MPI_CHAR, MPI_MAX,
+                  L.comm());
+  return states;
+}
+
+Eigen::Matrix3d BarForces::tangent_block(int bar) const {
+  catenary::Vec6 q, f;
+  catenary::Mat6 K;
+  catenary_.system().bar_values(bar, q.data());
+  catenary::bar_internal_force(catenary::bar_parameters(catenary_.mesh().bars[bar]), q, f, &K);
+  return K.topLeftCorner<3, 3>();
+}
+
+void BarForces::add_reference_tangent(const CoupledState& state, Shifts shifts, Mat J) {
+  add_tangent(state, shifts, J);
+  const auto& L = catenary_.system().layout();
+  reference_states_ = bar_states();
+  reference_blocks_.assign(slack_bars_.size(), Eigen::Matrix3d::Zero());
+  for (std::size_t i = 0; i < slack_bars_.size(); ++i)
+    if (L.owner(catenary_.mesh().bars[slack_bars_[i]].nodes[0]) == L.rank())
+      reference_blocks_[i] = tangent_block(slack_bars_[i]);
+  frozen_.clear();
+}
+
+// Change of bar i's tangent since J0, frozen now: B (x) dK3 = sum_j lambda_j
+// w_j w_j^T, w_j = [v_j; -v_j] for the eigenpairs (lambda_j, v_j) of dK3.
+std::vector<RankOne> BarForces::switch_terms(std::size_t i) const {
+  const auto& L = catenary_.system().layout();
+  const int b = slack_bars_[i];
+  std::array<double, 12> eig{};  // 3 eigenvalues, 3 eigenvectors
+  if (L.owner(catenary_.mesh().bars[b].nodes[0]) == L.rank()) {
+    const Eigen::Matrix3d dK = tangent_block(b) - reference_blocks_[i];
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(dK);
+    for (int j = 0; j < 3; ++j) {
+      eig[j] = solver.eigenvalues()[j];
+      for (int c = 0; c < 3; ++c) eig[3 + 3 * j + c] = solver.eigenvectors()(c, j);
+    }
+  }
+  if (L.size() > 1) MPI_Allreduce(MPI_IN_PLACE, eig.data(), 12, MPI_DOUBLE, MPI_SUM, L.comm());
+  double scale = 0;
+  for (int j = 0; j < 3; ++j) scale = std::max(scale, std::abs(eig[j]));
+  PetscInt idx[6];
+  catenary_.system().bar_indices(b, idx);
+  std::vector<RankOne> terms;
+  for (int j = 0; j < 3; ++j) {
+    if (std::abs(eig[j]) <= 1e-12 * scale) continue;
+    RankOne term;
+    term.key = static_cast<int>(3 * i + j);
+    term.coefficient = eig[j];
+    for (int c = 0; c < 3; ++c) {
+      const double v = eig[3 + 3 * j + c];
+      if (idx[c] >= 0) term.index.push_back(idx[c]), term.weight.push_back(v);
+      if (idx[3 + c] >= 0) term.index.push_back(idx[3 + c]), term.weight.push_back(-v);
+    }
+    terms.push_back(std::move(term));
+  }
+  return terms;
+}
+
+bool BarForces::low_rank_change(const CoupledState&, std::vector<RankOne>& terms) {
+  const std::vector<char> states = bar_states();
+  std::vector<std::size_t> switched;
+  for (std::size_t i = 0; i < slack_bars_.size(); ++i)
+    if (states[i] != reference_states_[i]) switched.push_back(i);
+  if (switched.size() > kMaxSwitched) return false;  // a new J0 is cheaper
+  for (auto it = frozen_.begin(); it != frozen_.end();) {
+    const bool still = std::find(switched.begin(), switched.end(), it->first) != switched.end();
+    it = still && it->second.state == states[it->first] ? std::next(it) : frozen_.erase(it);
+  }
+  for (std::size_t i : switched)
+    if (!frozen_.count(i)) frozen_[i] = {states[i], switch_terms(i)};
+  for (const auto& [i, frozen] : frozen_)
+    terms.insert(terms.end(), frozen.terms.begin(), frozen.terms.end());
+  return true;
+}
+
+}  // namespace pcsim::assembly

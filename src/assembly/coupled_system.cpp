@@ -1,0 +1,211 @@
+#include "pcsim/assembly/coupled_system.hpp"
+
+#include <mpi.h>
+
+#include <algorithm>
+
+#include "pcsim/assembly/interaction_terms.hpp"
+#include "pcsim/error.hpp"
+
+namespace pcsim::assembly {
+
+CoupledSystem::CoupledSystem(std::unique_ptr<CatenaryModel> catenary,
+                             std::vector<PantographSlot> pantographs,
+                             const contact::InteractionEffects& effects, double contact_stiffness)
+    : catenary_(std::move(catenary)),
+      pantographs_(std::move(pantographs)),
+      state_(*catenary_, pantographs_),
+      contact_stiffness_(contact_stiffness) {
+  PetscInt offset = 0;
+  std::vector<bool> wire_coupled;
+  for (auto& slot : pantographs_) {
+    slot.first_dof = catenary_->extra_global(offset);
+    slot.state_first = offset;
+    for (int i = 0; i < slot.dof_count(); ++i)
+      wire_coupled.push_back(i == slot.model->contact_dof());
+    offset += slot.dof_count();
+  }
+  std::vector<std::unique_ptr<Term>> interaction;
+  for (std::size_t p = 0; p < pantographs_.size(); ++p) {
+    interaction.push_back(std::make_unique<PantographTerm>(p, pantographs_[p]));
+    auto contact = std::make_unique<PenaltyContact>(p, pantographs_[p], contact_stiffness);
+    contacts_.push_back(contact.get());
+    interaction.push_back(std::move(contact));
+  }
+  pattern_ = catenary_->create_matrix(wire_coupled);
+  for (const auto& term : interaction) term->insert_pattern(pattern_);
+  PCSIM_PETSC(MatAssemblyBegin(pattern_, MAT_FINAL_ASSEMBLY));
+  PCSIM_PETSC(MatAssemblyEnd(pattern_, MAT_FINAL_ASSEMBLY));
+  terms_ = catenary_->make_terms(effects, pattern_);
+  for (auto& term : interaction) terms_.push_back(std::move(term));
+  // Merge the linear parts that share a matrix.
+  for (const auto& term : terms_)
+    for (const auto& part : term->linear_parts()) {
+      auto it = std::find_if(parts_.begin(), parts_.end(),
+                             [&](const MergedPart& m) { return m.matrix == part.matrix; });
+      if (it == parts_.end())
+        parts_.push_back({part.matrix, part.cu, part.cv, part.ca, part.structure});
+      else
+        it->cu += part.cu, it->cv += part.cv, it->ca += part.ca;
+    }
+  reference_ = catenary_->create_vector();
+  catenary_->reference_state(reference_);
+  work_ = catenary_->create_vector();
+}
+
+CoupledSystem::~CoupledSystem() {
+  terms_.clear();
+  MatDestroy(&pattern_);
+  VecDestroy(&reference_);
+  VecDestroy(&work_);
+}
+
+PetscInt CoupledSystem::global_size() const {
+  PetscInt n = catenary_->catenary_dofs();
+  for (const auto& slot : pantographs_) n += slot.dof_count();
+  return n;
+}
+
+bool CoupledSystem::cheap_path_possible() const {
+  return std::none_of(terms_.begin(), terms_.end(), [](const auto& term) {
+    return term->tangent_kind() == TangentKind::varying;
+  });
+}
+
+Mat CoupledSystem::create_matrix() const {
+  Mat J;
+  PCSIM_PETSC(MatDuplicate(pattern_, MAT_DO_NOT_COPY_VALUES, &J));
+  return J;
+}
+
+void CoupledSystem::load(double t, Vec U, Vec V, Vec A) {
+  state_.load(t, U, V, A);
+}
+
+// F += sum over constant matrices A_k (cu (U - U_ref) + cv V + ca A).
+void CoupledSystem::add_linear_parts(Vec U, Vec V, Vec A, Vec F) {
+  for (const auto& part : parts_) {
+    bool empty = true;
+    auto add = [&](double c, Vec x) {
+      if (c == 0 || !x) return;
+      if (empty)
+        PCSIM_PETSC(VecAXPBY(work_, c, 0.0, x));
+      else
+        PCSIM_PETSC(VecAXPY(work_, c, x));
+      empty = false;
+    };
+    if (part.cu != 0) {
+      PCSIM_PETSC(VecWAXPY(work_, -1.0, reference_, U));
+      if (part.cu != 1) PCSIM_PETSC(VecScale(work_, part.cu));
+      empty = false;
+    }
+    add(part.cv, V);
+    add(part.ca, A);
+    if (!empty) PCSIM_PETSC(MatMultAdd(part.matrix, work_, F, F));
+  }
+}
+
+void CoupledSystem::residual(double t, Vec U, Vec V, Vec A, Vec F) {
+  load(t, U, V, A);
+  PCSIM_PETSC(VecSet(F, 0.0));
+  add_linear_parts(U, V, A, F);
+  for (const auto& term : terms_)
+    if (!term->adds_by_set_values()) term->add_residual(state_, F);
+  for (const auto& term : terms_)
+    if (term->adds_by_set_values()) term->add_residual(state_, F);
+  PCSIM_PETSC(VecAssemblyBegin(F));
+  PCSIM_PETSC(VecAssemblyEnd(F));
+}
+
+void CoupledSystem::assemble_tangent(Shifts shifts, Mat J, bool reference) {
+  PCSIM_PETSC(MatZeroEntries(J));
+  for (const auto& term : terms_) {
+    if (reference)
+      term->add_reference_tangent(state_, shifts, J);
+    else
+      term->add_tangent(state_, shifts, J);
+  }
+  PCSIM_PETSC(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+  PCSIM_PETSC(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  for (const auto& part : parts_)
+    PCSIM_PETSC(
+        MatAXPY(J, part.cu + shifts.v * part.cv + shifts.a * part.ca, part.matrix, part.structure));
+}
+
+void CoupledSystem::jacobian(double t, Vec U, Vec V, Vec A, Shifts shifts, Mat J) {
+  load(t, U, V, A);
+  assemble_tangent(shifts, J, false);
+}
+
+void CoupledSystem::reference_jacobian(double t, Vec U, Vec V, Vec A, Shifts shifts, Mat J0) {
+  load(t, U, V, A);
+  assemble_tangent(shifts, J0, true);
+}
+
+bool CoupledSystem::low_rank_change(double t, Vec U, Vec V, Vec A, std::vector<RankOne>& terms) {
+  load(t, U, V, A);
+  terms.clear();
+  bool reference_ok = true;
+  for (std::size_t k = 0; k < terms_.size(); ++k) {
+    const std::size_t first = terms.size();
+    reference_ok = terms_[k]->low_rank_change(state_, terms) && reference_ok;
+    // Keys unique over the system: term number in the high bits.
+    for (std::size_t i = first; i < terms.size(); ++i)
+      terms[i].key = static_cast<int>(k << 20) + terms[i].key;
+  }
+  return reference_ok;
+}
+
+double CoupledSystem::energy(double t, Vec U, Vec V) {
+  load(t, U, V, nullptr);
+  double e = 0;
+  for (const auto& term : terms_) e += term->energy(state_);
+  return e;
+}
+
+TermPower CoupledSystem::power(double t, Vec U, Vec V) {
+  load(t, U, V, nullptr);
+  TermPower total;
+  for (const auto& term : terms_) {
+    const TermPower p = term->power(state_);
+    total.dissipative += p.dissipative;
+    total.external += p.external;
+  }
+  return total;
+}
+
+contact::StepRecord CoupledSystem::record(double t, Vec U) {
+  load(t, U, nullptr, nullptr);
+  const std::size_t np = pantographs_.size();
+  const auto supports = catenary_->support_heights();
+  const auto droppers = catenary_->dropper_forces();
+  const std::size_t ns = supports.size();
+  // Reduction buffer: per pantograph [Fc, x, z_wire], supports, droppers.
+  std::vector<double> buffer(3 * np + ns + droppers.size(), 0.0);
+  for (std::size_t p = 0; p < np; ++p) {
+    const auto e = contacts_[p]->evaluate(state_);
+    if (state_.rank() == 0) buffer[3 * p + 1] = e.x;
+    if (!e.wire.owned) continue;
+    buffer[3 * p] = e.force;
+    buffer[3 * p + 2] = e.wire.z;
+  }
+  std::copy(supports.begin(), supports.end(), buffer.begin() + 3 * np);
+  std::copy(droppers.begin(), droppers.end(), buffer.begin() + 3 * np + ns);
+  MPI_Reduce(state_.rank() == 0 ? MPI_IN_PLACE : buffer.data(), buffer.data(),
+             static_cast<int>(buffer.size()), MPI_DOUBLE, MPI_SUM, 0, comm());
+  contact::StepRecord rec;
+  rec.t = t;
+  if (state_.rank() != 0) return rec;
+  for (std::size_t p = 0; p < np; ++p) {
+    rec.contact_force.push_back(buffer[3 * p]);
+    rec.contact_x.push_back(buffer[3 * p + 1]);
+    rec.wire_z.push_back(buffer[3 * p + 2]);
+    const Eigen::VectorXd q = state_.q(p);
+    rec.q.emplace_back(q.data(), q.data() + q.size());
+  }
+  rec.support_z.assign(buffer.begin() + 3 * np, buffer.begin() + 3 * np + ns);
+  rec.dropper_force.assign(buffer.begin() + 3 * np + ns, buffer.end());
+  return rec;
+}
+
+}  // namespace pcsim::assembly

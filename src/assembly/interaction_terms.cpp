@@ -1,0 +1,152 @@
+#include "pcsim/assembly/interaction_terms.hpp"
+
+#include <mpi.h>
+
+#include <Eigen/Dense>
+
+#include "pcsim/error.hpp"
+
+namespace pcsim::assembly {
+
+namespace {
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+std::vector<PetscInt> dof_range(const PantographSlot& slot) {
+  std::vector<PetscInt> idx(slot.dof_count());
+  for (int i = 0; i < slot.dof_count(); ++i) idx[i] = slot.first_dof + i;
+  return idx;
+}
+
+double sum_over_ranks(MPI_Comm comm, double local) {
+  double total = 0;
+  MPI_Allreduce(&local, &total, 1, MPI_DOUBLE, MPI_SUM, comm);
+  return total;
+}
+}  // namespace
+
+// ------------------------------------------------------- pantograph ----
+
+void PantographTerm::add_residual(const CoupledState& state, Vec F) {
+  if (!state.on_last_rank()) return;
+  const auto& model = *slot_.model;
+  Eigen::VectorXd R(model.dof_count());
+  model.residual(state.t, state.q(index_), state.qd(index_), state.qdd(index_), R);
+  // Ramp-up (thesis 3.3.1): the head carries (1 - ramp) F0 downwards.
+  R[model.contact_dof()] += (1.0 - slot_.run.ramp_factor(state.t)) * slot_.run.static_force;
+  const auto idx = dof_range(slot_);
+  PCSIM_PETSC(VecSetValues(F, model.dof_count(), idx.data(), R.data(), ADD_VALUES));
+}
+
+void PantographTerm::add_tangent(const CoupledState& state, Shifts shifts, Mat J) {
+  if (!state.on_last_rank()) return;
+  const auto& model = *slot_.model;
+  const int n = model.dof_count();
+  Eigen::MatrixXd Kq(n, n), Cq(n, n), Mq(n, n);
+  model.tangents(state.t, state.q(index_), state.qd(index_), state.qdd(index_), Kq, Cq, Mq);
+  const RowMatrix Jp = Kq + shifts.v * Cq + shifts.a * Mq;
+  const auto idx = dof_range(slot_);
+  PCSIM_PETSC(MatSetValues(J, n, idx.data(), n, idx.data(), Jp.data(), ADD_VALUES));
+}
+
+void PantographTerm::insert_pattern(Mat J) const {
+  PetscMPIInt rank, size;
+  MPI_Comm_rank(PetscObjectComm(reinterpret_cast<PetscObject>(J)), &rank);
+  MPI_Comm_size(PetscObjectComm(reinterpret_cast<PetscObject>(J)), &size);
+  if (rank != size - 1) return;
+  const int n = slot_.dof_count();
+  const auto idx = dof_range(slot_);
+  const std::vector<double> zeros(n * n, 0.0);
+  PCSIM_PETSC(MatSetValues(J, n, idx.data(), n, idx.data(), zeros.data(), ADD_VALUES));
+}
+
+double PantographTerm::energy(const CoupledState& state) const {
+  double local = 0;
+  if (state.on_last_rank()) {
+    const auto& model = *slot_.model;
+    const Eigen::VectorXd q = state.q(index_), qd = state.qd(index_);
+    const int n = model.dof_count();
+    double external_potential = 0;
+    for (int i = 0; i < n; ++i)
+      external_potential -= model.power(state.t, q, Eigen::VectorXd::Unit(n, i)).external * q[i];
+    local =
+        model.kinetic_energy(q, qd) + model.potential_energy(q) + external_potential +
+        (1.0 - slot_.run.ramp_factor(state.t)) * slot_.run.static_force * q[model.contact_dof()];
+  }
+  return sum_over_ranks(state.catenary().comm(), local);
+}
+
+TermPower PantographTerm::power(const CoupledState& state) const {
+  TermPower p;
+  if (state.on_last_rank()) {
+    const auto split = slot_.model->power(state.t, state.q(index_), state.qd(index_));
+    p.dissipative = split.dissipative;
+    p.external = split.external;
+  }
+  MPI_Comm comm = state.catenary().comm();
+  p.dissipative = sum_over_ranks(comm, p.dissipative);
+  p.external = sum_over_ranks(comm, p.external);
+  return p;
+}
+
+// ---------------------------------------------------------- contact ----
+
+PenaltyContact::Evaluation PenaltyContact::evaluate(const CoupledState& state) const {
+  Evaluation e;
+  e.x = slot_.run.contact_x(state.t);
+  e.wire = state.catenary().wire_point(e.x);
+  e.head = state.head_height(index_);
+  if (e.wire.on_wire && e.wire.owned) {
+    e.gap = e.wire.z - e.head;
+    e.force = e.gap < 0 ? -kH_ * e.gap : 0.0;
+  }
+  return e;
+}
+
+void PenaltyContact::add_residual(const CoupledState& state, Vec F) {
+  const Evaluation e = evaluate(state);
+  if (e.force <= 0) return;
+  std::vector<double> r(e.wire.weight.size());
+  for (std::size_t i = 0; i < r.size(); ++i) r[i] = -e.force * e.wire.weight[i];
+  PCSIM_PETSC(
+      VecSetValues(F, static_cast<PetscInt>(r.size()), e.wire.index.data(), r.data(), ADD_VALUES));
+  PCSIM_PETSC(VecSetValue(F, slot_.contact_dof(), e.force, ADD_VALUES));
+}
+
+void PenaltyContact::add_tangent(const CoupledState& state, Shifts, Mat J) {
+  const Evaluation e = evaluate(state);
+  if (e.force <= 0) return;
+  std::vector<PetscInt> idx = e.wire.index;
+  std::vector<double> u = e.wire.weight;
+  idx.push_back(slot_.contact_dof());
+  u.push_back(-1.0);
+  const Eigen::Map<const Eigen::VectorXd> uv(u.data(), static_cast<long>(u.size()));
+  const RowMatrix K = kH_ * uv * uv.transpose();
+  const auto n = static_cast<PetscInt>(idx.size());
+  PCSIM_PETSC(MatSetValues(J, n, idx.data(), n, idx.data(), K.data(), ADD_VALUES));
+}
+
+// u = [dz/dU; -1] (known on every rank), coefficient kH while in contact: the
+// owner of the contact point decides.
+bool PenaltyContact::low_rank_change(const CoupledState& state, std::vector<RankOne>& terms) {
+  const Evaluation e = evaluate(state);
+  const double in_contact =
+      sum_over_ranks(state.catenary().comm(), e.wire.owned && e.force > 0 ? 1.0 : 0.0);
+  if (!e.wire.on_wire) return true;
+  RankOne term;
+  term.key = 0;
+  term.index = e.wire.index;
+  term.weight = e.wire.weight;
+  term.index.push_back(slot_.contact_dof());
+  term.weight.push_back(-1.0);
+  term.coefficient = in_contact > 0.5 ? kH_ : 0.0;
+  term.reuse_columns = true;
+  terms.push_back(std::move(term));
+  return true;
+}
+
+double PenaltyContact::energy(const CoupledState& state) const {
+  const Evaluation e = evaluate(state);
+  return sum_over_ranks(state.catenary().comm(), e.force > 0 ? 0.5 * kH_ * e.gap * e.gap : 0.0);
+}
+
+}  // namespace pcsim::assembly

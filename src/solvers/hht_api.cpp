@@ -1,0 +1,81 @@
+// Public functions of the HHT-alpha TS type (include/pcsim/solvers/hht.hpp).
+#include "hht_data.hpp"
+#include "pcsim/error.hpp"
+#include "pcsim/solvers/hht.hpp"
+
+namespace pcsim::solvers {
+
+using namespace hht_detail;
+
+namespace {
+HHTData* checked_data(TS ts) {
+  PetscBool is_hht = PETSC_FALSE;
+  PCSIM_PETSC(PetscObjectTypeCompare((PetscObject)ts, kTSHHT, &is_hht));
+  if (!is_hht) throw SolverError("TS is not of type hht");
+  return data_of(ts);
+}
+
+}  // namespace
+
+void register_hht_ts() {
+  PCSIM_PETSC(TSInitializePackage());
+  void (*existing)(void) = nullptr;
+  PCSIM_PETSC(PetscFunctionListFind(TSList, kTSHHT, &existing));
+  if (!existing) PCSIM_PETSC(TSRegister(kTSHHT, ts_create_hht));
+}
+
+void hht_set_initial_acceleration(TS ts, Vec A0) {
+  HHTData* th = checked_data(ts);
+  if (!th->A_user) PCSIM_PETSC(VecDuplicate(A0, &th->A_user));
+  PCSIM_PETSC(VecCopy(A0, th->A_user));
+  th->user_accel_pending = PETSC_TRUE;
+}
+
+void hht_recompute_initial_acceleration(TS ts) {
+  HHTData* th = checked_data(ts);
+  th->accel_valid = PETSC_FALSE;
+  th->user_accel_pending = PETSC_FALSE;
+}
+
+void hht_get_acceleration(TS ts, Vec A) {
+  HHTData* th = checked_data(ts);
+  if (!th->accel_valid) throw SolverError("hht_get_acceleration: no step taken yet");
+  PCSIM_PETSC(VecCopy(th->A1, A));
+}
+
+void hht_set_alpha(TS ts, PetscReal alpha) {
+  HHTData* th = checked_data(ts);
+  if (!(alpha >= 0 && alpha <= 1.0 / 3.0 + 1e-14))
+    throw SolverError("hht_set_alpha: alpha " + std::to_string(alpha) + " not in [0, 1/3]");
+  set_alpha(th, alpha);
+}
+
+void hht_get_params(TS ts, PetscReal* alpha, PetscReal* gamma, PetscReal* beta) {
+  HHTData* th = checked_data(ts);
+  if (alpha) *alpha = th->alpha;
+  if (gamma) *gamma = th->gamma;
+  if (beta) *beta = th->beta;
+}
+
+void hht_set_energy_norm_tol(TS ts, PetscReal tol) {
+  HHTData* th = checked_data(ts);
+  th->energy_tol = tol;
+  if (ts->setupcalled && tol > 0) {
+    SNES snes = nullptr;
+    PCSIM_PETSC(TSGetSNES(ts, &snes));
+    PCSIM_PETSC(SNESSetConvergenceTest(snes, converged_energy, ts, nullptr));
+  }
+}
+
+HHTNewtonInfo hht_get_info(TS ts) {
+  HHTData* th = checked_data(ts);
+  HHTNewtonInfo info;
+  info.last_energy_norm = th->last_energy_norm;
+  info.converged_by_energy = th->converged_by_energy;
+  info.accepted_steps = th->accepted;
+  info.rejected_steps = th->rejected;
+  info.user_time_step = th->dt_user;
+  return info;
+}
+
+}  // namespace pcsim::solvers

@@ -1,0 +1,70 @@
+// Private data of the HHT-alpha TS type (src/solvers/hht.cpp: the method,
+// src/solvers/hht_api.cpp: the public functions of pcsim/solvers/hht.hpp).
+#pragma once
+
+#include <petsc/private/tsimpl.h>
+
+namespace pcsim::solvers::hht_detail {
+
+enum class SolveMode { kStep, kInitialAcceleration };
+
+struct HHTData {
+  // Method parameters (3.24 with η = α).
+  PetscReal alpha = 0.1;
+  PetscReal gamma = 0.6;
+  PetscReal beta = 0.3025;
+  PetscReal energy_tol = 0;  // <= 0: energy-norm test off
+  PetscInt max_reject = 8;
+  PetscInt regrow_steps = 4;
+  // Inertia at the new level M(U_{n+1}) A_{n+1} (thesis) or averaged
+  // ((1-α) M(U_{n+1}) + α M(U_n)) A_{n+1} (second order when M depends on U).
+  PetscBool average_inertia = PETSC_FALSE;
+
+  // State at t_n, stage/new state, work vectors (created at setup).
+  Vec U0 = nullptr, V0 = nullptr, A0 = nullptr;
+  Vec U1 = nullptr, V1 = nullptr, A1 = nullptr;
+  Vec A1_arg = nullptr;  // A_{n+1}/(1-α): the acceleration argument of F
+  Vec F0 = nullptr;      // F(t_n, U_n, V_n, 0): non-inertial force at the old level
+  Vec zero = nullptr;    // zero vector (acceleration argument of F0)
+  Vec R_prev = nullptr;  // SNES residual the last Newton update was computed from
+  Vec A_user = nullptr;  // user-supplied initial acceleration
+  Vec work = nullptr;    // M(U_n) A_{n+1} (averaged inertia)
+  Mat M0 = nullptr;      // M(U_n) (averaged inertia), created at the first step
+  Mat K_work = nullptr;  // dF/dU while extracting a mass matrix
+  PetscBool user_accel_pending = PETSC_FALSE;
+
+  // A1 is the acceleration of (vec_sol, vec_dot) at accel_time when accel_valid.
+  PetscBool accel_valid = PETSC_FALSE;
+  PetscReal accel_time = 0;
+
+  // Current solve.
+  SolveMode mode = SolveMode::kStep;
+  PetscReal t0 = 0, t1 = 0, dt = 0;
+
+  // Step-size control after rejections.
+  PetscReal dt_user = 0;       // the Δt to grow back to
+  PetscReal dt_last_set = -1;  // Δt this type left in ts->time_step (detects user changes)
+  PetscInt accepted_since_cut = 0;
+
+  // Diagnostics.
+  PetscReal last_energy_norm = 0;
+  PetscBool converged_by_energy = PETSC_FALSE;
+  PetscInt accepted = 0, rejected = 0;
+};
+
+inline void set_alpha(HHTData* th, PetscReal alpha) {
+  th->alpha = alpha;
+  th->gamma = 0.5 + alpha;                      // (3.24)
+  th->beta = 0.25 * (1 + alpha) * (1 + alpha);  // (3.24)
+}
+
+inline HHTData* data_of(TS ts) {
+  return static_cast<HHTData*>(ts->data);
+}
+
+// The TS type's constructor (TSRegister) and the SNES test with the energy norm.
+PetscErrorCode ts_create_hht(TS ts);
+PetscErrorCode converged_energy(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm,
+                                PetscReal fnorm, SNESConvergedReason* reason, void* ctx);
+
+}  // namespace pcsim::solvers::hht_detail

@@ -1,0 +1,221 @@
+#include "pcsim/solvers/low_rank.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <set>
+
+#include "pcsim/error.hpp"
+
+namespace pcsim::solvers {
+
+LowRankStepSolver::LowRankStepSolver(Mat J0, const char* inner_prefix) : J0_(J0) {
+  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(J0));
+  PetscInt m, n, M, N;
+  PCSIM_PETSC(MatGetLocalSize(J0, &m, &n));
+  PCSIM_PETSC(MatGetSize(J0, &M, &N));
+  PCSIM_PETSC(MatCreateShell(comm, m, n, M, N, this, &op_));
+  PCSIM_PETSC(MatShellSetOperation(op_, MATOP_MULT, reinterpret_cast<void (*)(void)>(op_mult)));
+  PCSIM_PETSC(KSPCreate(comm, &inner_));
+  PCSIM_PETSC(KSPSetOptionsPrefix(inner_, inner_prefix));
+}
+
+LowRankStepSolver::~LowRankStepSolver() {
+  for (auto& [key, e] : entries_) {
+    VecDestroy(&e.u);
+    VecDestroy(&e.z);
+  }
+  for (auto& [g, v] : columns_) VecDestroy(&v);
+  KSPDestroy(&inner_);
+  MatDestroy(&op_);
+}
+
+void LowRankStepSolver::install(PC pc) {
+  PCSIM_PETSC(PCSetType(pc, PCSHELL));
+  PCSIM_PETSC(PCShellSetContext(pc, this));
+  PCSIM_PETSC(PCShellSetSetUp(pc, pc_setup));
+  PCSIM_PETSC(PCShellSetApply(pc, pc_apply));
+  PCSIM_PETSC(PCShellSetName(pc, "pcsim: J0 factored once + Woodbury low-rank terms"));
+}
+
+void LowRankStepSolver::invalidate() {
+  factored_ = false;
+  for (auto& [g, v] : columns_) VecDestroy(&v);
+  columns_.clear();
+  for (auto& [key, e] : entries_) e.z_valid = false;
+  capacitance_dirty_ = true;
+}
+
+void LowRankStepSolver::build_u(Entry& e) const {
+  if (!e.u) PCSIM_PETSC(MatCreateVecs(J0_, &e.u, &e.z));
+  PCSIM_PETSC(VecSet(e.u, 0.0));
+  PetscMPIInt rank;
+  MPI_Comm_rank(PetscObjectComm(reinterpret_cast<PetscObject>(J0_)), &rank);
+  if (rank == 0)  // every rank knows every index: one sets them
+    PCSIM_PETSC(VecSetValues(e.u, static_cast<PetscInt>(e.term.index.size()), e.term.index.data(),
+                             e.term.weight.data(), INSERT_VALUES));
+  PCSIM_PETSC(VecAssemblyBegin(e.u));
+  PCSIM_PETSC(VecAssemblyEnd(e.u));
+}
+
+// J0^-1 e_g, solved once per factorisation and cached.
+Vec LowRankStepSolver::unit_solution(PetscInt g) {
+  auto it = columns_.find(g);
+  if (it != columns_.end()) return it->second;
+  Vec e, z;
+  PCSIM_PETSC(MatCreateVecs(J0_, &e, &z));
+  PCSIM_PETSC(VecSet(e, 0.0));
+  PetscInt lo, hi;
+  PCSIM_PETSC(VecGetOwnershipRange(e, &lo, &hi));
+  if (g >= lo && g < hi) PCSIM_PETSC(VecSetValue(e, g, 1.0, INSERT_VALUES));
+  PCSIM_PETSC(VecAssemblyBegin(e));
+  PCSIM_PETSC(VecAssemblyEnd(e));
+  PCSIM_PETSC(KSPSolve(inner_, e, z));
+  PCSIM_PETSC(VecDestroy(&e));
+  columns_[g] = z;
+  return z;
+}
+
+void LowRankStepSolver::update_z(Entry& e) {
+  if (e.z_valid || !factored_) return;
+  if (e.term.reuse_columns) {
+    std::vector<Vec> columns;
+    for (PetscInt g : e.term.index) columns.push_back(unit_solution(g));
+    PCSIM_PETSC(VecSet(e.z, 0.0));
+    PCSIM_PETSC(
+        VecMAXPY(e.z, static_cast<PetscInt>(columns.size()), e.term.weight.data(), columns.data()));
+  } else {
+    PCSIM_PETSC(KSPSolve(inner_, e.u, e.z));
+  }
+  e.z_valid = true;
+  capacitance_dirty_ = true;
+}
+
+void LowRankStepSolver::evict_unused_columns() {
+  std::set<PetscInt> used;
+  for (const auto& [key, e] : entries_)
+    if (e.term.reuse_columns) used.insert(e.term.index.begin(), e.term.index.end());
+  for (auto it = columns_.begin(); it != columns_.end();) {
+    if (used.count(it->first)) {
+      ++it;
+    } else {
+      VecDestroy(&it->second);
+      it = columns_.erase(it);
+    }
+  }
+}
+
+void LowRankStepSolver::set_terms(const std::vector<assembly::RankOne>& terms) {
+  std::set<int> keys;
+  for (const auto& term : terms) {
+    keys.insert(term.key);
+    auto [it, added] = entries_.try_emplace(term.key);
+    Entry& e = it->second;
+    const bool same_u = !added && e.term.index == term.index && e.term.weight == term.weight;
+    if (e.term.coefficient != term.coefficient || !same_u) capacitance_dirty_ = true;
+    e.term = term;
+    if (!same_u) {
+      build_u(e);
+      e.z_valid = false;
+    }
+  }
+  for (auto it = entries_.begin(); it != entries_.end();) {
+    if (keys.count(it->first)) {
+      ++it;
+      continue;
+    }
+    VecDestroy(&it->second.u);
+    VecDestroy(&it->second.z);
+    it = entries_.erase(it);
+    capacitance_dirty_ = true;
+  }
+  if (!factored_) return;
+  evict_unused_columns();
+  for (auto& [key, e] : entries_) update_z(e);
+}
+
+PetscErrorCode LowRankStepSolver::pc_setup(PC pc) {
+  PCSIM_CALLBACK_BEGIN
+  LowRankStepSolver* self;
+  PCSIM_PETSC(PCShellGetContext(pc, &self));
+  Mat A, P;
+  PCSIM_PETSC(PCGetOperators(pc, &A, &P));
+  PCSIM_PETSC(KSPSetOperators(self->inner_, P, P));
+  PCSIM_PETSC(KSPSetUp(self->inner_));
+  self->invalidate();
+  self->factored_ = true;
+  // After a refactorisation every z is solved directly; later moves of a
+  // reuse_columns term combine cached unit solves.
+  for (auto& [key, e] : self->entries_) {
+    PCSIM_PETSC(KSPSolve(self->inner_, e.u, e.z));
+    e.z_valid = true;
+  }
+  PCSIM_CALLBACK_END
+}
+
+std::vector<LowRankStepSolver::Entry*> LowRankStepSolver::active() {
+  std::vector<Entry*> list;
+  for (auto& [key, e] : entries_)
+    if (e.term.coefficient != 0) list.push_back(&e);
+  return list;
+}
+
+void LowRankStepSolver::update_capacitance() {
+  active_ = active();
+  const std::size_t k = active_.size();
+  capacitance_.resize(k, k);
+  std::vector<Vec> zs(k);
+  for (std::size_t j = 0; j < k; ++j) zs[j] = active_[j]->z;
+  std::vector<PetscScalar> row(k);
+  for (std::size_t i = 0; i < k; ++i) {
+    PCSIM_PETSC(VecMDot(active_[i]->u, static_cast<PetscInt>(k), zs.data(), row.data()));
+    for (std::size_t j = 0; j < k; ++j)
+      capacitance_(i, j) = row[j] + (i == j ? 1.0 / active_[i]->term.coefficient : 0.0);
+  }
+  capacitance_dirty_ = false;
+}
+
+// x = (J0 + U C U^T)^-1 r = y - Z (C^-1 + U^T Z)^-1 U^T y,  y = J0^-1 r.
+PetscErrorCode LowRankStepSolver::pc_apply(PC pc, Vec r, Vec x) {
+  PCSIM_CALLBACK_BEGIN
+  LowRankStepSolver* self;
+  PCSIM_PETSC(PCShellGetContext(pc, &self));
+  PCSIM_PETSC(KSPSolve(self->inner_, r, x));
+  if (self->capacitance_dirty_) self->update_capacitance();
+  const std::size_t k = self->active_.size();
+  if (k == 0) return 0;
+  std::vector<Vec> us(k), zs(k);
+  for (std::size_t j = 0; j < k; ++j) {
+    us[j] = self->active_[j]->u;
+    zs[j] = self->active_[j]->z;
+  }
+  std::vector<PetscScalar> w(k);
+  PCSIM_PETSC(VecMDot(x, static_cast<PetscInt>(k), us.data(), w.data()));
+  Eigen::VectorXd s =
+      self->capacitance_.lu().solve(Eigen::Map<Eigen::VectorXd>(w.data(), static_cast<long>(k)));
+  s = -s;
+  PCSIM_PETSC(VecMAXPY(x, static_cast<PetscInt>(k), s.data(), zs.data()));
+  PCSIM_CALLBACK_END
+}
+
+// y = J0 x + sum_k c_k u_k (u_k . x).
+PetscErrorCode LowRankStepSolver::op_mult(Mat A, Vec x, Vec y) {
+  PCSIM_CALLBACK_BEGIN
+  LowRankStepSolver* self;
+  PCSIM_PETSC(MatShellGetContext(A, &self));
+  PCSIM_PETSC(MatMult(self->J0_, x, y));
+  std::vector<Vec> us;
+  std::vector<PetscScalar> c;
+  for (auto& [key, e] : self->entries_)
+    if (e.term.coefficient != 0) {
+      us.push_back(e.u);
+      c.push_back(e.term.coefficient);
+    }
+  if (us.empty()) return 0;
+  std::vector<PetscScalar> w(us.size());
+  PCSIM_PETSC(VecMDot(x, static_cast<PetscInt>(us.size()), us.data(), w.data()));
+  for (std::size_t j = 0; j < w.size(); ++j) w[j] *= c[j];
+  PCSIM_PETSC(VecMAXPY(y, static_cast<PetscInt>(us.size()), w.data(), us.data()));
+  PCSIM_CALLBACK_END
+}
+
+}  // namespace pcsim::solvers

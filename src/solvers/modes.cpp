@@ -1,0 +1,181 @@
+#include "pcsim/solvers/modes.hpp"
+
+#include <petsctime.h>
+#include <slepceps.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "pcsim/error.hpp"
+
+namespace pcsim::solvers {
+
+using catenary::ModesResult;
+
+namespace {
+PetscErrorCode read_modes_options(MPI_Comm comm, PetscInt* count, PetscReal* fmax) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "pcsim modes", "pcsim");
+  PetscCall(PetscOptionsInt("-eps_nev", "number of catenary modes (scene modes.count)",
+                            "pcsim modes", *count, count, nullptr));
+  PetscCall(PetscOptionsReal("-modes_fmax",
+                             "every mode below this frequency [Hz] (scene modes.max_frequency_hz; "
+                             "0: use the count)",
+                             "pcsim modes", *fmax, fmax, nullptr));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+}  // namespace
+
+ModesRequest modes_request_from_options(MPI_Comm comm, ModesRequest scene_values) {
+  ModesRequest r = scene_values;
+  PetscInt count = r.count;
+  PetscReal fmax = r.max_frequency_hz;
+  PCSIM_PETSC(read_modes_options(comm, &count, &fmax));
+  if (count < 1) throw InputError("command line", "-eps_nev", "must be at least 1");
+  if (fmax < 0) throw InputError("command line", "-modes_fmax", "must be >= 0 (0: use the count)");
+  r.count = static_cast<int>(count);
+  r.max_frequency_hz = fmax;
+  return r;
+}
+
+namespace {
+
+// Shift-and-invert about 0 for the nev lowest modes, or spectrum slicing
+// over [0, omega_max^2] (needs the inertia of a Cholesky factorisation).
+void configure_eps(EPS eps, int nev, double max_frequency_hz) {
+  ST st;
+  KSP ksp;
+  PC pc;
+  PCSIM_PETSC(EPSSetProblemType(eps, EPS_GHEP));
+  PCSIM_PETSC(EPSGetST(eps, &st));
+  PCSIM_PETSC(STSetType(st, STSINVERT));
+  if (max_frequency_hz > 0) {
+    const double omega_max = 2 * M_PI * max_frequency_hz;
+    PCSIM_PETSC(EPSSetType(eps, EPSKRYLOVSCHUR));
+    PCSIM_PETSC(EPSSetInterval(eps, 0.0, omega_max * omega_max));
+    PCSIM_PETSC(EPSSetWhichEigenpairs(eps, EPS_ALL));
+    PCSIM_PETSC(EPSKrylovSchurGetKSP(eps, &ksp));  // the slicing solver's KSP, with operators
+    PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
+    PCSIM_PETSC(KSPGetPC(ksp, &pc));
+    PCSIM_PETSC(PCSetType(pc, PCCHOLESKY));
+    PCSIM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+    // The inertia of a parallel MUMPS factorisation needs ICNTL(13) = 1 (no
+    // ScaLAPACK root); -st_mat_mumps_icntl_13 still wins (read at setup).
+    PCSIM_PETSC(PCFactorSetUpMatSolverType(pc));
+    Mat F;
+    PCSIM_PETSC(PCFactorGetMatrix(pc, &F));
+    PCSIM_PETSC(MatMumpsSetIcntl(F, 13, 1));
+  } else {
+    PCSIM_PETSC(STGetKSP(st, &ksp));
+    PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
+    PCSIM_PETSC(KSPGetPC(ksp, &pc));
+    PCSIM_PETSC(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT));
+    PCSIM_PETSC(EPSSetTarget(eps, 0.0));
+    PCSIM_PETSC(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE));
+    PCSIM_PETSC(PCSetType(pc, PCLU));
+    PCSIM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  }
+  PCSIM_PETSC(EPSSetTolerances(eps, 1e-12, 200));
+  PCSIM_PETSC(EPSSetFromOptions(eps));
+}
+
+// Mode j of the solution (ascending order): mass-normalised, sign fixed
+// (largest component positive) so that shapes compare across runs; its
+// relative residual into the result, its shape if asked.
+void extract_mode(EPS eps, PetscInt i, double lambda, Mat K, Mat M, Vec phi, Vec Kphi, Vec Mphi,
+                  const assembly::CatenarySystem& system, bool want_shape, ModesResult& result) {
+  result.frequencies_hz.push_back(std::sqrt(std::max(lambda, 0.0)) / (2 * M_PI));
+  PCSIM_PETSC(EPSGetEigenvector(eps, i, phi, nullptr));
+  PCSIM_PETSC(MatMult(M, phi, Mphi));
+  PetscScalar mnorm;
+  PCSIM_PETSC(VecDot(phi, Mphi, &mnorm));
+  PetscReal vmax, vmin;
+  PetscInt imax, imin;
+  PCSIM_PETSC(VecMax(phi, &imax, &vmax));
+  PCSIM_PETSC(VecMin(phi, &imin, &vmin));
+  double scale = 1.0 / std::sqrt(PetscRealPart(mnorm));
+  if (std::abs(vmin) > std::abs(vmax)) scale = -scale;
+  PCSIM_PETSC(VecScale(phi, scale));
+  PCSIM_PETSC(VecScale(Mphi, scale));
+  PCSIM_PETSC(MatMult(K, phi, Kphi));
+  PCSIM_PETSC(VecAXPY(Kphi, -lambda, Mphi));
+  PetscReal rn, mn;
+  PCSIM_PETSC(VecNorm(Kphi, NORM_2, &rn));
+  PCSIM_PETSC(VecNorm(Mphi, NORM_2, &mn));
+  result.max_relative_residual =
+      std::max(result.max_relative_residual, rn / (std::abs(lambda) * mn));
+  if (!want_shape) return;
+  // Displacement DOFs only; constrained ones are zero.
+  const auto& L = system.layout();
+  const auto& mesh = system.mesh();
+  std::vector<double> shape(3 * mesh.nodes.size(), 0.0);
+  const std::vector<double> values = system.all_node_values(phi);
+  for (std::size_t n = 0; n < mesh.nodes.size(); ++n)
+    for (int c = 0; c < 3; ++c)
+      shape[3 * n + c] = L.global_dof(static_cast<int>(n), c) >= 0 ? values[6 * n + c] : 0.0;
+  result.shapes.push_back(std::move(shape));
+}
+
+}  // namespace
+
+ModesResult compute_modes(assembly::CatenarySystem& system, Vec x, int nev, double max_frequency_hz,
+                          bool want_shapes) {
+  PetscLogDouble t0, t1;
+  PetscTime(&t0);
+  const auto& L = system.layout();
+  if (L.extra_dofs() != 0) throw SolverError("compute_modes needs a system without extra unknowns");
+  Mat K = L.create_matrix(), M = L.create_matrix();
+  system.load_state(x);
+  PCSIM_PETSC(MatZeroEntries(K));
+  system.add_forces(nullptr, K);
+  PCSIM_PETSC(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY));
+  PCSIM_PETSC(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
+  system.assemble_mass(M);
+  // The tangent of a conservative system is symmetric; remove round-off.
+  PCSIM_PETSC(MatSetOption(K, MAT_SYMMETRIC, PETSC_TRUE));
+  PCSIM_PETSC(MatSetOption(M, MAT_SYMMETRIC, PETSC_TRUE));
+  EPS eps;
+  PCSIM_PETSC(EPSCreate(L.comm(), &eps));
+  PCSIM_PETSC(EPSSetOperators(eps, K, M));
+  configure_eps(eps, nev, max_frequency_hz);
+  PCSIM_PETSC(EPSSolve(eps));
+
+  const bool slicing = max_frequency_hz > 0;
+  ModesResult result;
+  result.requested = slicing ? -1 : nev;
+  PetscInt nconv = 0;
+  PCSIM_PETSC(EPSGetConverged(eps, &nconv));
+  std::vector<double> lambdas(nconv);
+  for (PetscInt i = 0; i < nconv; ++i) {
+    PetscScalar kr, ki;
+    PCSIM_PETSC(EPSGetEigenvalue(eps, i, &kr, &ki));
+    lambdas[i] = PetscRealPart(kr);
+  }
+  std::vector<PetscInt> order(nconv);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(),
+            [&](PetscInt a, PetscInt b) { return lambdas[a] < lambdas[b]; });
+  const PetscInt keep = slicing ? nconv : std::min<PetscInt>(nconv, nev);
+  result.converged = static_cast<int>(nconv);
+  Vec phi, Kphi, Mphi;
+  PCSIM_PETSC(VecDuplicate(x, &phi));
+  PCSIM_PETSC(VecDuplicate(x, &Kphi));
+  PCSIM_PETSC(VecDuplicate(x, &Mphi));
+  for (PetscInt j = 0; j < keep; ++j)
+    extract_mode(eps, order[j], lambdas[order[j]], K, M, phi, Kphi, Mphi, system, want_shapes,
+                 result);
+  for (Vec* v : {&phi, &Kphi, &Mphi}) PCSIM_PETSC(VecDestroy(v));
+  PCSIM_PETSC(EPSDestroy(&eps));
+  PCSIM_PETSC(MatDestroy(&K));
+  PCSIM_PETSC(MatDestroy(&M));
+  if (!slicing && nconv < nev)
+    throw SolverError("SLEPc converged only " + std::to_string(nconv) + " of " +
+                      std::to_string(nev) + " modes; try -eps_ncv or -eps_max_it");
+  PetscTime(&t1);
+  result.wall_time_s = t1 - t0;
+  return result;
+}
+
+}  // namespace pcsim::solvers

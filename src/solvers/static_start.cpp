@@ -1,0 +1,149 @@
+#include "pcsim/solvers/static_start.hpp"
+
+#include <mpi.h>
+#include <petscsnes.h>
+
+#include "pcsim/assembly/fe_catenary.hpp"
+#include "pcsim/assembly/static_problem.hpp"
+#include "pcsim/error.hpp"
+#include "pcsim/solvers/direct.hpp"
+#include "pcsim/solvers/statics.hpp"
+
+namespace pcsim::solvers {
+
+namespace {
+
+std::string start_key(std::size_t p) {
+  return "pantographs[" + std::to_string(p) + "].start_x";
+}
+
+// The catenary part of U0: the static configuration, or for a static start
+// of the first pantograph the FE catenary under its static force F0 at its
+// start point (a guess for the coupled equilibrium).
+PetscInt catenary_start(assembly::CoupledSystem& system, Vec U0) {
+  auto& catenary = system.catenary();
+  catenary.reference_state(U0);
+  const auto& first = system.pantographs().front();
+  auto* fe = dynamic_cast<assembly::FECatenary*>(&catenary);
+  if (!first.run.static_start || !fe) return 0;
+  int element;
+  double chi;
+  if (!fe->locator().locate(first.run.start_x, element, chi))
+    throw InputError("", start_key(0), "the pantograph starts outside the contact wire");
+  assembly::CatenarySystem loaded(system.comm(), fe->mesh(), 0,
+                                  &fe->system().layout().node_owner());
+  loaded.point_loads().push_back({element, chi, Eigen::Vector3d(0, 0, first.run.static_force)});
+  Vec x = loaded.create_vector();
+  assembly::set_state_from_node_values(loaded, fe->static_node_values(), x);
+  const auto result = solve_static(loaded, x, false, "start_load_");
+  PCSIM_PETSC(VecDestroy(&x));
+  assembly::set_state_from_node_values(fe->system(), result.node_values, U0);
+  return result.snes_iterations;
+}
+
+// Contact-wire height at x for the catenary state in U0, on every rank.
+double wire_height(assembly::CatenaryModel& catenary, Vec U0, double x, std::size_t p) {
+  catenary.load_state(U0);
+  const auto point = catenary.wire_point(x);
+  if (!point.on_wire)
+    throw InputError("", start_key(p), "the pantograph starts outside the contact wire");
+  double z = point.owned ? point.z : 0.0, sum = 0;
+  MPI_Allreduce(&z, &sum, 1, MPI_DOUBLE, MPI_SUM, catenary.comm());
+  return sum;
+}
+
+struct CoupledStatic {
+  assembly::CoupledSystem* system;
+  Vec zero;
+};
+
+PetscErrorCode coupled_residual(SNES, Vec U, Vec F, void* ptr) {
+  PCSIM_CALLBACK_BEGIN
+  auto* c = static_cast<CoupledStatic*>(ptr);
+  c->system->residual(0.0, U, c->zero, c->zero, F);
+  PCSIM_CALLBACK_END
+}
+
+PetscErrorCode coupled_jacobian(SNES, Vec U, Mat J, Mat P, void* ptr) {
+  PCSIM_CALLBACK_BEGIN
+  auto* c = static_cast<CoupledStatic*>(ptr);
+  c->system->jacobian(0.0, U, c->zero, c->zero, {0.0, 0.0}, P);
+  if (J != P) {
+    PCSIM_PETSC(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+    PCSIM_PETSC(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  }
+  PCSIM_CALLBACK_END
+}
+
+PetscInt solve_coupled_static(assembly::CoupledSystem& system, Vec U0) {
+  CoupledStatic ctx{&system, system.create_vector()};
+  PCSIM_PETSC(VecSet(ctx.zero, 0.0));
+  Vec F = system.create_vector();
+  Mat J = system.create_matrix();
+  SNES snes;
+  PCSIM_PETSC(SNESCreate(system.comm(), &snes));
+  PCSIM_PETSC(SNESSetOptionsPrefix(snes, "start_"));
+  PCSIM_PETSC(SNESSetFunction(snes, F, coupled_residual, &ctx));
+  PCSIM_PETSC(SNESSetJacobian(snes, J, J, coupled_jacobian, &ctx));
+  // The start is an equilibrium to round-off: 1e-6 N on small meshes, ~6e-5 N
+  // on the EN 50318 one, where Newton then stops on its step (stol).
+  PCSIM_PETSC(SNESSetTolerances(snes, 1e-5, 1e-12, 1e-12, 50, 100000));
+  SNESLineSearch line_search;
+  PCSIM_PETSC(SNESGetLineSearch(snes, &line_search));
+  PCSIM_PETSC(SNESLineSearchSetType(line_search, SNESLINESEARCHBASIC));
+  KSP ksp;
+  PCSIM_PETSC(SNESGetKSP(snes, &ksp));
+  use_direct_lu(ksp, MATSOLVERMUMPS);
+  PCSIM_PETSC(SNESSetFromOptions(snes));
+  PCSIM_PETSC(SNESSolve(snes, nullptr, U0));
+  SNESConvergedReason reason;
+  PetscInt iterations = 0;
+  PCSIM_PETSC(SNESGetConvergedReason(snes, &reason));
+  PCSIM_PETSC(SNESGetIterationNumber(snes, &iterations));
+  PCSIM_PETSC(SNESDestroy(&snes));
+  PCSIM_PETSC(MatDestroy(&J));
+  PCSIM_PETSC(VecDestroy(&F));
+  PCSIM_PETSC(VecDestroy(&ctx.zero));
+  if (reason <= 0)
+    throw SolverError(std::string("static start (coupled equilibrium) did not converge: ") +
+                      SNESConvergedReasons[reason]);
+  return iterations;
+}
+
+}  // namespace
+
+StartInfo initial_state(assembly::CoupledSystem& system, Vec U0, Vec V0) {
+  StartInfo info;
+  auto& pantographs = system.pantographs();
+  PCSIM_PETSC(VecSet(V0, 0.0));
+  PCSIM_PETSC(VecSet(U0, 0.0));
+  if (pantographs.empty()) return info;
+  info.guess_iterations = catenary_start(system, U0);
+  // Pantographs in static equilibrium: touching the wire (ramp, zero contact
+  // force at t = 0) or pressing it with F0 (static start).
+  for (std::size_t p = 0; p < pantographs.size(); ++p) {
+    auto& slot = pantographs[p];
+    const double wire_z = wire_height(system.catenary(), U0, slot.run.start_x, p);
+    const double penetration =
+        slot.run.static_start ? slot.run.static_force / system.contact_stiffness() : 0.0;
+    const double contact_height = wire_z + penetration;
+    const Eigen::VectorXd q0 = slot.model->static_equilibrium(
+        slot.run.static_force,
+        slot.run.working_height > 0 ? slot.run.working_height : contact_height);
+    // Base of the pantograph: its contact point sits at the wire (thesis 3.3.1).
+    slot.head_offset =
+        contact_height - (q0[slot.model->contact_dof()] + slot.model->contact_offset());
+    PetscInt lo, hi;
+    PCSIM_PETSC(VecGetOwnershipRange(U0, &lo, &hi));
+    for (int i = 0; i < slot.dof_count(); ++i)
+      if (slot.first_dof + i >= lo && slot.first_dof + i < hi)
+        PCSIM_PETSC(VecSetValue(U0, slot.first_dof + i, q0[i], INSERT_VALUES));
+  }
+  PCSIM_PETSC(VecAssemblyBegin(U0));
+  PCSIM_PETSC(VecAssemblyEnd(U0));
+  if (pantographs.front().run.static_start)
+    info.coupled_iterations = solve_coupled_static(system, U0);
+  return info;
+}
+
+}  // namespace pcsim::solvers
