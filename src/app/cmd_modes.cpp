@@ -5,9 +5,9 @@
 
 #include "catenary_output.hpp"
 #include "command.hpp"
-#include "pcsim/catenary/catenary_scene.hpp"
 #include "pcsim/catenary/modes.hpp"
 #include "pcsim/catenary/statics.hpp"
+#include "pcsim/scene/catenary_scene.hpp"
 
 namespace {
 

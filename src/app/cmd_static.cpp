@@ -6,9 +6,9 @@
 #include "catenary_output.hpp"
 #include "command.hpp"
 #include "pcsim/assembly/catenary_system.hpp"
-#include "pcsim/catenary/catenary_scene.hpp"
 #include "pcsim/catenary/statics.hpp"
 #include "pcsim/output/output_dir.hpp"
+#include "pcsim/scene/catenary_scene.hpp"
 
 namespace {
 

@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "pcsim/assembly/catenary_system.hpp"
-#include "pcsim/catenary/design.hpp"
 #include "pcsim/catenary/elements.hpp"
 #include "pcsim/catenary/statics.hpp"
+#include "pcsim/scene/design_reader.hpp"
 
 using namespace pcsim;
 

@@ -23,8 +23,8 @@
 #include <string>
 #include <vector>
 
-#include "pcsim/catenary/catenary_scene.hpp"
 #include "pcsim/contact/interaction.hpp"
+#include "pcsim/scene/catenary_scene.hpp"
 
 namespace pcsim::contact {
 

@@ -1,8 +1,8 @@
-#include "pcsim/catenary/catenary_scene.hpp"
+#include "pcsim/scene/catenary_scene.hpp"
 
 #include <fstream>
 
-#include "pcsim/catenary/design.hpp"
+#include "pcsim/scene/design_reader.hpp"
 
 namespace pcsim::catenary {
 
