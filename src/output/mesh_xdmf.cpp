@@ -1,4 +1,4 @@
-// CatenaryMesh -> HDF5 + XDMF (see mesh_io.hpp for the layout).
+// CatenaryMesh -> HDF5 + XDMF (see mesh_xdmf.hpp for the layout).
 #include "pcsim/output/mesh_xdmf.hpp"
 
 #include <cctype>

@@ -2,7 +2,7 @@
 
 #include <fstream>
 
-#include "pcsim/catenary/design.hpp"
+#include "pcsim/scene/design_reader.hpp"
 
 namespace pcsim::catenary {
 

@@ -13,7 +13,7 @@
 
 #include "pcsim/assembly/catenary_system.hpp"
 #include "pcsim/assembly/static_problem.hpp"
-#include "pcsim/catenary/design.hpp"
+#include "pcsim/scene/design_reader.hpp"
 #include "pcsim/catenary/elements.hpp"
 #include "pcsim/solvers/statics.hpp"
 

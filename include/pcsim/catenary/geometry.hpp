@@ -1,0 +1,182 @@
+// Catenary geometry: plain design parameters -> CatenaryMesh (mesh.hpp).
+//
+// Two kinds of design (docs/design-format.md lists every key of the design
+// files that fill these structs):
+//  - ParametricDesign: a straight-track simple catenary (spans, wires,
+//    droppers, stagger, pre-sag, steady arms, optional stitch wires);
+//  - ExplicitDesign: arbitrary nodes, cable wires, bars, supports, masses,
+//    springs and form-finding targets, for small verification structures.
+//
+// The builders check every value that can be wrong whoever fills the struct
+// (ranges, geometry, references); a problem throws pcsim::InputError naming
+// design.file, the key path of the offending value in the design-file format
+// (e.g. 'droppers.positions[3]', 'bars[0].nodes[1]') and the reason.
+// Reading a design file (syntax, unknown keys) is pcsim/scene/design_reader.hpp.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pcsim/catenary/mesh.hpp"
+#include "pcsim/error.hpp"
+
+namespace pcsim::catenary {
+
+// Rayleigh damping C = alpha M + beta K (thesis 3.1); both >= 0.
+struct RayleighDamping {
+  double alpha = 0;  // [1/s]
+  double beta = 0;   // [s]
+};
+
+// ------------------------------------------------------------ parametric ----
+
+// Cable properties of one wire ('wires.contact', 'wires.messenger').
+struct CableDesign {
+  double mass_per_length = 0;  // [kg/m] > 0
+  double EA = 0;               // [N] > 0
+  double EI = 0;               // [N m^2] >= 0
+  double tension = 0;          // design tension [N] > 0
+};
+
+struct DropperDesign {
+  std::vector<double> positions;  // [m] from each span's first support, strictly in (0, L)
+  double stiffness = 0;           // [N/m] > 0
+  double mass_per_length = 0;     // [kg/m] >= 0
+  SlackCriterion slack = SlackCriterion::length;
+  double clamp_mass_messenger = 0;  // [kg] >= 0
+  double clamp_mass_contact = 0;    // [kg] >= 0
+};
+
+// Stitch wire at every intermediate support ('stitch_wire').
+struct StitchWireDesign {
+  double length = 0;  // total length [m], 0 < length < span length
+  double tension = 0;
+  double mass_per_length = 0;
+  double EA = 0;
+};
+
+struct ParametricDesign {
+  std::string file;  // design file, named in errors; mesh.source_file
+  std::string name;  // mesh.name
+  Eigen::Vector3d gravity{0.0, 0.0, -9.81};
+  RayleighDamping damping;
+  long span_count = 0;     // 'spans.count', 1..100000
+  double span_length = 0;  // 'spans.length' [m]
+  double system_height = 0;
+  double contact_wire_height = 0;
+  double presag = 0;
+  double stagger = 0;
+  double messenger_stagger = 0;
+  double element_length = 0.5;  // target element length along x [m]
+  CableDesign contact, messenger;
+  DropperDesign droppers;
+  double steady_arm_mass = 0;  // 'steady_arms.mass' [kg] (model: constraint)
+  std::optional<StitchWireDesign> stitch_wire;
+};
+
+// -------------------------------------------------------------- explicit ----
+
+// A node: an index into the design's nodes (listed, then created by wires in
+// order), or, when 'wire' is given, the 'node'-th node along a wire
+// defined earlier (negative counts from the wire's end).
+struct NodeRef {
+  long index = -1;
+  std::optional<std::string> wire;
+  long node = 0;
+
+  static NodeRef at(long node_index) { return {node_index, std::nullopt, 0}; }
+  static NodeRef on_wire(std::string wire_name, long k) { return {-1, std::move(wire_name), k}; }
+};
+
+// Straight wire from 'from' to 'to' cut into 'elements' equal elements.
+struct WireRun {
+  NodeRef from, to;
+  long elements = 0;
+};
+
+struct ExplicitWire {
+  std::string name;
+  WireKind kind = WireKind::other;
+  double mass_per_length = 0;  // > 0
+  double EA = 0;               // > 0
+  double EI = 0;               // >= 0
+  double tension = 0;          // >= 0
+  std::vector<NodeRef> nodes;  // the wire's nodes, used when 'run' is empty
+  std::optional<WireRun> run;
+  std::optional<double> unstressed_ratio;  // L0/Lref > 0; empty: taut at 'tension'
+};
+
+struct ExplicitBar {
+  std::array<NodeRef, 2> nodes;
+  BarKind kind = BarKind::other;
+  double stiffness = 0;                     // > 0
+  double mass = 0;                          // >= 0
+  std::optional<double> unstressed_length;  // > 0; empty: design length
+  SlackCriterion slack = SlackCriterion::none;
+  bool form_find = false;
+  long span = -1;  // -1: none
+  long index_in_span = -1;
+};
+
+struct ExplicitSupport {
+  NodeRef node;
+  std::vector<int> dofs = {0, 1, 2};  // held DOFs: 0..2 position, 3..5 slope
+};
+
+struct ExplicitPointMass {
+  NodeRef node;
+  double mass = 0;  // > 0
+  std::string label = "point_mass";
+};
+
+struct ExplicitSpring {
+  NodeRef node;
+  int dof = 0;  // 0..2 (x, y, z)
+  double stiffness = 0;
+};
+
+struct ExplicitTarget {
+  NodeRef node;
+  std::optional<double> z;  // empty: the node's design height
+  long bar = -1;            // a form-finding bar
+};
+
+struct ExplicitTensionSegment {
+  std::string wire;
+  std::optional<double> tension;  // empty: the wire's tension
+};
+
+struct ExplicitDesign {
+  std::string file;
+  std::string name;
+  Eigen::Vector3d gravity{0.0, 0.0, -9.81};
+  RayleighDamping damping;
+  bool form_finding = false;
+  std::vector<Eigen::Vector3d> nodes;
+  std::vector<ExplicitWire> wires;
+  std::vector<ExplicitBar> bars;
+  std::vector<ExplicitSupport> supports;
+  std::vector<ExplicitPointMass> point_masses;
+  std::vector<ExplicitSpring> springs;
+  std::vector<ExplicitTarget> targets;
+  std::vector<ExplicitTensionSegment> tension_segments;
+  std::vector<NodeRef> support_nodes;
+};
+
+// ------------------------------------------------------------- builders ----
+
+// Both throw pcsim::InputError(design.file, key, reason) on a bad value, and
+// on a mesh that fails mesh_consistency_error.
+CatenaryMesh build_parametric(const ParametricDesign& design);
+CatenaryMesh build_explicit(const ExplicitDesign& design);
+
+// Internal consistency of a mesh (indices in range, element lengths positive,
+// targets pointing at form-finding bars, ...). Returns an empty string when
+// the mesh is consistent, otherwise a description of the first problem.
+// Used by the builders, the tests, and code that builds meshes by hand.
+std::string mesh_consistency_error(const CatenaryMesh& mesh);
+
+}  // namespace pcsim::catenary

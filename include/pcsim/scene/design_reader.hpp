@@ -1,0 +1,29 @@
+// Catenary design files (meshes/*.yaml, docs/design-format.md) -> the plain
+// parameter structs of pcsim/catenary/geometry.hpp -> CatenaryMesh.
+//
+// The reader checks the syntax (unknown keys, types, list shapes, enumerated
+// choices); the builders of geometry.hpp check ranges and geometry. Every
+// problem throws pcsim::InputError naming the file, the key path and the
+// reason.
+#pragma once
+
+#include <string>
+
+#include "pcsim/catenary/geometry.hpp"
+#include "pcsim/catenary/mesh.hpp"
+#include "pcsim/scene/yaml_input.hpp"
+
+namespace pcsim::catenary {
+
+// Loads and builds the design in 'path'; mesh.source_file = path.
+CatenaryMesh load_catenary_design(const std::string& path);
+
+// Builds a design from an already-parsed YAML root (key 'type' selects the kind).
+CatenaryMesh build_catenary_design(const pcsim::InputNode& root);
+
+// The parameters of a design root of type parametric / explicit (the key
+// 'type' is accepted, not checked); range checks are left to the builders.
+ParametricDesign read_parametric_design(const pcsim::InputNode& root);
+ExplicitDesign read_explicit_design(const pcsim::InputNode& root);
+
+}  // namespace pcsim::catenary

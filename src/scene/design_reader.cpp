@@ -1,0 +1,135 @@
+// Catenary design files -> ParametricDesign / ExplicitDesign -> CatenaryMesh
+// (see docs/design-format.md). Syntax is checked here, ranges and geometry
+// by the builders of pcsim/catenary/geometry.hpp.
+#include "pcsim/scene/design_reader.hpp"
+
+#include "design_reader_internal.hpp"
+
+namespace pcsim::catenary {
+
+namespace reader {
+
+std::string file_stem(const std::string& path) {
+  auto slash = path.find_last_of('/');
+  std::string base = slash == std::string::npos ? path : path.substr(slash + 1);
+  auto dot = base.find_last_of('.');
+  return dot == std::string::npos ? base : base.substr(0, dot);
+}
+
+Eigen::Vector3d read_gravity(const InputNode& root) {
+  if (!root.has("gravity")) return {0.0, 0.0, -9.81};
+  InputNode g = root["gravity"];
+  if (g.is_sequence()) {
+    auto v = g.as_vec3();
+    return {v[0], v[1], v[2]};
+  }
+  return {0.0, 0.0, -root.get_nonnegative("gravity")};
+}
+
+RayleighDamping read_damping(const InputNode& root) {
+  RayleighDamping damping;
+  if (!root.has("damping")) return damping;
+  InputNode d = root["damping"];
+  d.allow_only({"rayleigh_alpha", "rayleigh_beta"});
+  damping.alpha = d.get_double("rayleigh_alpha", 0.0);
+  damping.beta = d.get_double("rayleigh_beta", 0.0);
+  return damping;
+}
+
+SlackCriterion read_slack(const InputNode& n, const char* fallback) {
+  const std::string s = n.get_choice("slack", {"none", "length", "force"}, fallback);
+  if (s == "length") return SlackCriterion::length;
+  if (s == "force") return SlackCriterion::force;
+  return SlackCriterion::none;
+}
+
+}  // namespace reader
+
+namespace {
+
+CableDesign read_cable(const InputNode& n) {
+  n.allow_only({"mass_per_length", "EA", "EI", "tension"});
+  CableDesign p;
+  p.mass_per_length = n.get_double("mass_per_length");
+  p.EA = n.get_double("EA");
+  p.EI = n.get_double("EI");
+  p.tension = n.get_double("tension");
+  return p;
+}
+
+DropperDesign read_droppers(const InputNode& drop) {
+  drop.allow_only({"positions", "stiffness", "mass_per_length", "slack", "clamp_mass_messenger",
+                   "clamp_mass_contact"});
+  DropperDesign d;
+  InputNode pos = drop["positions"];
+  if (!pos.is_sequence()) pos.fail("must be a list of distances from the span's first support [m]");
+  for (std::size_t i = 0; i < pos.size(); ++i) d.positions.push_back(pos.at(i).as_double());
+  d.stiffness = drop.get_double("stiffness");
+  d.mass_per_length = drop.get_double("mass_per_length", 0.0);
+  d.slack = reader::read_slack(drop, "length");
+  d.clamp_mass_messenger = drop.get_double("clamp_mass_messenger", 0.0);
+  d.clamp_mass_contact = drop.get_double("clamp_mass_contact", 0.0);
+  return d;
+}
+
+StitchWireDesign read_stitch_wire(const InputNode& st) {
+  st.allow_only({"length", "tension", "mass_per_length", "EA"});
+  StitchWireDesign s;
+  s.length = st.get_double("length");
+  s.tension = st.get_double("tension");
+  s.mass_per_length = st.get_double("mass_per_length");
+  s.EA = st.get_double("EA");
+  return s;
+}
+
+}  // namespace
+
+ParametricDesign read_parametric_design(const InputNode& root) {
+  root.allow_only({"type", "name", "spans", "system_height", "contact_wire_height", "presag",
+                   "stagger", "messenger_stagger", "element_length", "wires", "droppers",
+                   "steady_arms", "stitch_wire", "damping", "gravity"});
+  ParametricDesign d;
+  d.file = root.file();
+  d.name = root.get_string("name", reader::file_stem(root.file()));
+  InputNode spans = root["spans"];
+  spans.allow_only({"count", "length"});
+  d.span_count = spans.get_int("count");
+  d.span_length = spans.get_double("length");
+  d.system_height = root.get_double("system_height");
+  d.contact_wire_height = root.get_double("contact_wire_height");
+  d.presag = root.get_double("presag", 0.0);
+  d.stagger = root.get_double("stagger", 0.0);
+  d.messenger_stagger = root.get_double("messenger_stagger", 0.0);
+  d.element_length = root.get_double("element_length", 0.5);
+  InputNode wires = root["wires"];
+  wires.allow_only({"contact", "messenger"});
+  d.contact = read_cable(wires["contact"]);
+  d.messenger = read_cable(wires["messenger"]);
+  d.droppers = read_droppers(root["droppers"]);
+  if (root.has("steady_arms")) {
+    InputNode arms = root["steady_arms"];
+    arms.allow_only({"mass", "model"});
+    d.steady_arm_mass = arms.get_double("mass", 0.0);
+    arms.get_choice("model", {"constraint"}, "constraint");  // the only model
+  }
+  if (root.has("stitch_wire")) d.stitch_wire = read_stitch_wire(root["stitch_wire"]);
+  d.gravity = reader::read_gravity(root);
+  d.damping = reader::read_damping(root);
+  return d;
+}
+
+CatenaryMesh build_catenary_design(const InputNode& root) {
+  if (!root.is_map()) root.fail("a design must be a map of keys");
+  const std::string type = root.get_choice("type", {"parametric", "explicit"}, "");
+  if (type.empty()) root.fail_key("type", "required key is missing (parametric or explicit)");
+  if (type == "parametric") return build_parametric(read_parametric_design(root));
+  return build_explicit(read_explicit_design(root));
+}
+
+CatenaryMesh load_catenary_design(const std::string& path) {
+  CatenaryMesh mesh = build_catenary_design(InputNode::load_file(path));
+  mesh.source_file = path;
+  return mesh;
+}
+
+}  // namespace pcsim::catenary
