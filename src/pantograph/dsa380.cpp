@@ -23,6 +23,11 @@ Jet triangle_angle(const Jet& ax, const Jet& ay, const Jet& bx, const Jet& by, d
 
 }  // namespace
 
+const char* dsa380_mode_label(int dof) {
+  static const char* labels[4] = {"frame", "head horizontal", "head vertical", "head rotation"};
+  return dof >= 0 && dof < 4 ? labels[dof] : "";
+}
+
 Dsa380Kinematics dsa380_kinematics(const Dsa380Parameters& p, double theta_value) {
   Dsa380Kinematics k;
   const Jet th = Jet::variable(theta_value);

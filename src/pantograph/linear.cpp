@@ -1,7 +1,5 @@
 #include "pcsim/pantograph/linear.hpp"
 
-#include <slepceps.h>
-
 #include <algorithm>
 #include <cmath>
 
@@ -61,55 +59,6 @@ namespace {
 
 constexpr double kTwoPi = 2 * M_PI;
 
-Mat dense(const Eigen::MatrixXd& A) {
-  Mat m;
-  const int n = static_cast<int>(A.rows());
-  PCSIM_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, n, n, nullptr, &m));
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) PCSIM_PETSC(MatSetValue(m, i, j, A(i, j), INSERT_VALUES));
-  PCSIM_PETSC(MatAssemblyBegin(m, MAT_FINAL_ASSEMBLY));
-  PCSIM_PETSC(MatAssemblyEnd(m, MAT_FINAL_ASSEMBLY));
-  return m;
-}
-
-// All eigenpairs of A x = λ B x with SLEPc's dense (LAPACK) solver.
-void slepc_all_eigenpairs(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
-                          Eigen::VectorXcd* values, Eigen::MatrixXcd* vectors) {
-  const int n = static_cast<int>(A.rows());
-  Mat a = dense(A), b = dense(B);
-  EPS eps;
-  PCSIM_PETSC(EPSCreate(PETSC_COMM_SELF, &eps));
-  PCSIM_PETSC(EPSSetOperators(eps, a, b));
-  PCSIM_PETSC(EPSSetProblemType(eps, EPS_GNHEP));
-  PCSIM_PETSC(EPSSetType(eps, EPSLAPACK));
-  PCSIM_PETSC(EPSSetDimensions(eps, n, PETSC_DEFAULT, PETSC_DEFAULT));
-  PCSIM_PETSC(EPSSolve(eps));
-  PetscInt nconv = 0;
-  PCSIM_PETSC(EPSGetConverged(eps, &nconv));
-  if (nconv < n) throw SolverError("pantograph modes: SLEPc converged fewer eigenpairs than DOFs");
-  Vec xr, xi;
-  PCSIM_PETSC(MatCreateVecs(a, &xr, nullptr));
-  PCSIM_PETSC(VecDuplicate(xr, &xi));
-  values->resize(n);
-  vectors->resize(n, n);
-  for (int k = 0; k < n; ++k) {
-    PetscScalar kr, ki;
-    PCSIM_PETSC(EPSGetEigenpair(eps, k, &kr, &ki, xr, xi));
-    (*values)[k] = {kr, ki};
-    const PetscScalar *pr, *pi;
-    PCSIM_PETSC(VecGetArrayRead(xr, &pr));
-    PCSIM_PETSC(VecGetArrayRead(xi, &pi));
-    for (int i = 0; i < n; ++i) (*vectors)(i, k) = {pr[i], pi[i]};
-    PCSIM_PETSC(VecRestoreArrayRead(xr, &pr));
-    PCSIM_PETSC(VecRestoreArrayRead(xi, &pi));
-  }
-  PCSIM_PETSC(VecDestroy(&xr));
-  PCSIM_PETSC(VecDestroy(&xi));
-  PCSIM_PETSC(EPSDestroy(&eps));
-  PCSIM_PETSC(MatDestroy(&a));
-  PCSIM_PETSC(MatDestroy(&b));
-}
-
 void finish_shape(const LinearModel& lin, Mode* m) {
   const int n = static_cast<int>(lin.M.rows());
   Eigen::Index imax = 0;
@@ -122,8 +71,11 @@ void finish_shape(const LinearModel& lin, Mode* m) {
   }
 }
 
-std::vector<Mode> undamped_from(const LinearModel& lin, const Eigen::VectorXcd& lambda,
-                                const Eigen::MatrixXcd& vec) {
+}  // namespace
+
+std::vector<Mode> undamped_modes_from_eigenpairs(const LinearModel& lin,
+                                                 const Eigen::VectorXcd& lambda,
+                                                 const Eigen::MatrixXcd& vec) {
   // λ = ω² of K φ = λ M φ.
   std::vector<Mode> modes;
   const double scale = lin.K.cwiseAbs().maxCoeff() / lin.M.cwiseAbs().maxCoeff();
@@ -153,8 +105,9 @@ void state_space(const LinearModel& lin, Eigen::MatrixXd* A, Eigen::MatrixXd* B)
   B->bottomRightCorner(n, n) = -lin.M;
 }
 
-std::vector<Mode> damped_from(const LinearModel& lin, const Eigen::VectorXcd& lambda,
-                              const Eigen::MatrixXcd& vec) {
+std::vector<Mode> damped_modes_from_eigenpairs(const LinearModel& lin,
+                                               const Eigen::VectorXcd& lambda,
+                                               const Eigen::MatrixXcd& vec) {
   const int n = static_cast<int>(lin.M.rows());
   std::vector<Mode> modes;
   // Restrained coordinates give a (defective) double zero eigenvalue, perturbed by
@@ -182,34 +135,16 @@ std::vector<Mode> damped_from(const LinearModel& lin, const Eigen::VectorXcd& la
   return modes;
 }
 
-}  // namespace
-
-std::vector<Mode> undamped_modes_slepc(const LinearModel& lin) {
-  Eigen::VectorXcd lambda;
-  Eigen::MatrixXcd vec;
-  slepc_all_eigenpairs(lin.K, lin.M, &lambda, &vec);
-  return undamped_from(lin, lambda, vec);
-}
-
 std::vector<Mode> undamped_modes_eigen(const LinearModel& lin) {
   Eigen::EigenSolver<Eigen::MatrixXd> es(lin.M.lu().solve(lin.K));
-  return undamped_from(lin, es.eigenvalues(), es.eigenvectors());
-}
-
-std::vector<Mode> damped_modes_slepc(const LinearModel& lin) {
-  Eigen::MatrixXd A, B;
-  state_space(lin, &A, &B);
-  Eigen::VectorXcd lambda;
-  Eigen::MatrixXcd vec;
-  slepc_all_eigenpairs(-B, A, &lambda, &vec);  // (λ A + B) Y = 0
-  return damped_from(lin, lambda, vec);
+  return undamped_modes_from_eigenpairs(lin, es.eigenvalues(), es.eigenvectors());
 }
 
 std::vector<Mode> damped_modes_eigen(const LinearModel& lin) {
   Eigen::MatrixXd A, B;
   state_space(lin, &A, &B);
   Eigen::EigenSolver<Eigen::MatrixXd> es(A.lu().solve(-B));
-  return damped_from(lin, es.eigenvalues(), es.eigenvectors());
+  return damped_modes_from_eigenpairs(lin, es.eigenvalues(), es.eigenvectors());
 }
 
 std::complex<double> frf_direct(const LinearModel& lin, int i, int j, double omega) {

@@ -2,43 +2,6 @@
 
 namespace pcsim::pantograph {
 
-LumpedParameters load_lumped_parameters(const pcsim::InputNode& model) {
-  model.allow_only({"kind", "name", "source", "stages", "uplift", "gravity", "aerodynamic"});
-  LumpedParameters p;
-  p.name = model.get_string("name", "lumped");
-  const auto stages = model["stages"];
-  if (!stages.is_sequence() || stages.size() == 0) stages.fail("must be a non-empty list");
-  for (std::size_t i = 0; i < stages.size(); ++i) {
-    const auto s = stages.at(i);
-    s.allow_only({"name", "mass", "stiffness", "damping"});
-    LumpedStage st;
-    st.name = s.get_string("name", "stage" + std::to_string(i));
-    st.mass = s.get_positive("mass");
-    st.stiffness = s.get_nonnegative("stiffness");
-    st.damping = s.get_nonnegative("damping", 0.0);
-    p.stages.push_back(st);
-  }
-  if (model.has("uplift")) {
-    const auto u = model["uplift"];
-    u.allow_only({"force", "stage"});
-    p.uplift_force = u.get_double("force");
-    const std::string stage = u.get_string("stage", p.stages.back().name);
-    p.uplift_stage = -1;
-    for (std::size_t i = 0; i < p.stages.size(); ++i)
-      if (p.stages[i].name == stage) p.uplift_stage = static_cast<int>(i);
-    if (p.uplift_stage < 0) u.fail_key("stage", "no stage named '" + stage + "'");
-  }
-  p.gravity = model.get_bool("gravity", false);
-  if (model.has("aerodynamic")) {
-    const auto a = model["aerodynamic"];
-    a.allow_only({"a", "b", "c"});
-    p.aero_a = a.get_double("a", 0.0);
-    p.aero_b = a.get_double("b", 0.0);
-    p.aero_c = a.get_double("c", 0.0);
-  }
-  return p;
-}
-
 LumpedPantograph::LumpedPantograph(LumpedParameters params, bool aerodynamic, double speed_m_s)
     : p_(std::move(params)) {
   const int n = dof_count();

@@ -4,6 +4,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "pcsim/scene/pantograph_reader.hpp"
+
 namespace pcsim::scene {
 
 static std::string fmt(double v) {
@@ -49,7 +51,7 @@ RunScene load_run_scene(const InputNode& scene) {
     const std::string model_path = p.resolve_path(p.get_string("model"));
     if (!std::ifstream(model_path))
       p.fail_key("model", "cannot open pantograph model file '" + model_path + "'");
-    auto model = pantograph::load_pantograph_model(
+    auto model = load_pantograph_model(
         model_path, p.has("effects") ? &effects : nullptr, run.speed);
     pr.start_x = p.get_double("start_x", x_first + 5.0);
     if (pr.start_x < x_first || pr.start_x >= run.end_x)
@@ -62,9 +64,8 @@ RunScene load_run_scene(const InputNode& scene) {
       p.fail_key("start", "only the first pantograph can start in static equilibrium");
     pr.static_start = start == "static";
     pr.ramp_distance = p.get_positive("ramp_distance", 20.0);
-    // Rigid models work in heights above their base; lumped ones in absolute heights.
-    pr.working_height = p.get_positive("working_height", model->kind() == "dsa380" ? 1.2 : 1.0);
-    if (model->kind() != "dsa380" && !p.has("working_height")) pr.working_height = 0;
+    // The model states its default: a height above its base, or 0 (absolute heights).
+    pr.working_height = p.get_positive("working_height", model->default_working_height());
     run.pantographs.push_back(std::move(pr));
     run.models.push_back(std::move(model));
   }

@@ -8,8 +8,10 @@
 
 #include "pcsim/pantograph/dsa380.hpp"
 #include "pcsim/pantograph/lumped.hpp"
+#include "pcsim/scene/pantograph_reader.hpp"
 
 using namespace pcsim::pantograph;
+using namespace pcsim::scene;
 
 namespace {
 

@@ -8,8 +8,12 @@
 #include "pcsim/pantograph/calibration.hpp"
 #include "pcsim/pantograph/dsa380.hpp"
 #include "pcsim/pantograph/linear.hpp"
+#include "pcsim/scene/pantograph_reader.hpp"
+#include "pcsim/solvers/pantograph_modes.hpp"
 
 using namespace pcsim::pantograph;
+using namespace pcsim::scene;
+using namespace pcsim::solvers;
 
 namespace {
 const std::string kModels = std::string(PCSIM_SOURCE_DIR) + "/meshes/pantographs/";

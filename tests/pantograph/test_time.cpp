@@ -7,9 +7,12 @@
 
 #include "pcsim/pantograph/dsa380.hpp"
 #include "pcsim/pantograph/lumped.hpp"
-#include "pcsim/pantograph/time_integration.hpp"
+#include "pcsim/scene/pantograph_reader.hpp"
+#include "pcsim/solvers/pantograph_time.hpp"
 
 using namespace pcsim::pantograph;
+using namespace pcsim::scene;
+using namespace pcsim::solvers;
 
 namespace {
 const std::string kModels = std::string(PCSIM_SOURCE_DIR) + "/meshes/pantographs/";

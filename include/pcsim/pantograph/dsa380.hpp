@@ -58,7 +58,9 @@ struct Dsa380Effects {
   bool aerodynamic = false;
 };
 
-Dsa380Parameters load_dsa380_parameters(const pcsim::InputNode& model);
+// Name of the mode whose dominant coordinate is q[dof]: "frame", "head horizontal",
+// "head vertical", "head rotation" ("" outside 0..3).
+const char* dsa380_mode_label(int dof);
 
 // Positions of the mechanism for a frame angle θ, with derivatives d/dθ up to 3.
 struct Dsa380Kinematics {
@@ -91,6 +93,8 @@ class Dsa380Pantograph : public PantographModel {
   // Two-step procedure (2.12–2.14): head descent z, then θ with y5(θ) = h0 − L7p + z,
   // then the bellows torque M0. Sets M0 and returns q0.
   Eigen::VectorXd static_equilibrium(double contact_force, double working_height) override;
+  // Heights are measured above the pantograph's base: nominal working height 1.2 m.
+  double default_working_height() const override { return 1.2; }
   double kinetic_energy(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const override;
   double potential_energy(const Eigen::VectorXd& q) const override;
   PowerSplit power(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const override;

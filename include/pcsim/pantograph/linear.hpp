@@ -1,6 +1,7 @@
 // Linearised pantograph about a static equilibrium (thesis 2.1.2, Annex B), its modes
-// (2.21–2.28) with SLEPc and with Eigen (cross-check), and receptance FRFs: direct (2.36)
-// and by modal superposition of the damped state-space modes (2.37–2.40).
+// (2.21–2.28) with Eigen (the SLEPc solves, cross-checked against these, are in
+// solvers/pantograph_modes.hpp), and receptance FRFs: direct (2.36) and by modal
+// superposition of the damped state-space modes (2.37–2.40).
 #pragma once
 
 #include <complex>
@@ -62,12 +63,21 @@ struct Mode {
 
 // Undamped: (K − ω² M) φ = 0 (2.23); modes with ω > 0, ascending. Zero eigenvalues of
 // restrained coordinates (rows replaced by acceleration constraints) are dropped.
-std::vector<Mode> undamped_modes_slepc(const LinearModel& lin);
 std::vector<Mode> undamped_modes_eigen(const LinearModel& lin);
 // Damped: state-space form [C M; M 0] Ẏ + [K 0; 0 −M] Y = 0 (2.27); one mode per
 // complex-conjugate pair (Im λ > 0), ascending in ω.
-std::vector<Mode> damped_modes_slepc(const LinearModel& lin);
 std::vector<Mode> damped_modes_eigen(const LinearModel& lin);
+
+// State-space matrices A = [C M; M 0], B = [K 0; 0 −M] of (2.27): (λ A + B) Y = 0.
+void state_space(const LinearModel& lin, Eigen::MatrixXd* A, Eigen::MatrixXd* B);
+// Modes from all eigenpairs of K φ = λ M φ (λ = ω²), whichever solver found them.
+std::vector<Mode> undamped_modes_from_eigenpairs(const LinearModel& lin,
+                                                 const Eigen::VectorXcd& lambda,
+                                                 const Eigen::MatrixXcd& vectors);
+// Modes from all eigenpairs of (λ A + B) Y = 0 (2.27), whichever solver found them.
+std::vector<Mode> damped_modes_from_eigenpairs(const LinearModel& lin,
+                                               const Eigen::VectorXcd& lambda,
+                                               const Eigen::MatrixXcd& vectors);
 
 // Receptance H_ij(ω) = [K + iωC − ω²M]⁻¹_ij (2.36).
 std::complex<double> frf_direct(const LinearModel& lin, int i, int j, double omega);

@@ -29,8 +29,6 @@ struct LumpedParameters {
   double aero_a = 0, aero_b = 0, aero_c = 0;  // F = a + b v + c v² (N, v in m/s)
 };
 
-LumpedParameters load_lumped_parameters(const pcsim::InputNode& model);
-
 class LumpedPantograph : public PantographModel {
  public:
   LumpedPantograph(LumpedParameters params, bool aerodynamic, double speed_m_s);

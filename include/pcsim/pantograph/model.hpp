@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "pcsim/scene/yaml_input.hpp"
+#include "pcsim/error.hpp"
 
 namespace pcsim::pantograph {
 
@@ -28,7 +28,7 @@ class PantographModel {
  public:
   virtual ~PantographModel();
 
-  virtual std::string kind() const = 0;  // "lumped" | "dsa380"
+  virtual std::string kind() const = 0;  // "lumped" | "dsa380" | "linearised" (for reports)
   virtual int dof_count() const = 0;
   virtual std::vector<std::string> dof_names() const = 0;
   // Index in q of the head's vertical coordinate.
@@ -49,21 +49,15 @@ class PantographModel {
   // h0. Sets what the equilibrium fixes (DSA-380: bellows torque M0; lumped: the height
   // offset) and returns q0.
   virtual Eigen::VectorXd static_equilibrium(double contact_force, double working_height) = 0;
+  // Working height [m] to use when a scene gives none. Models whose heights are measured
+  // above their base (DSA-380) state their nominal height; models in absolute heights
+  // (lumped) return 0: the coupling then takes the height of the point the head meets.
+  virtual double default_working_height() const { return 0.0; }
 
   // Energies for the balance [T+V]_t − [T+V]_0 − W_dissipative − W_external = 0 (2.30–2.34).
   virtual double kinetic_energy(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const = 0;
   virtual double potential_energy(const Eigen::VectorXd& q) const = 0;
   virtual PowerSplit power(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const = 0;
 };
-
-// Builds a model from a scene's pantograph entry
-//   {model: <path to meshes/pantographs/*.yaml, relative to the scene>, effects: {...}}
-// Effects (all optional): aerodynamic: bool; DSA-380 only: head_restraint:
-// none|rotation|horizontal, friction: {force, kt}, damper: {enabled, one_way, quadratic}.
-std::unique_ptr<PantographModel> make_pantograph(const pcsim::InputNode& node, double speed_m_s);
-// Same, from a model file and an effects node (may be a null/absent node).
-std::unique_ptr<PantographModel> load_pantograph_model(const std::string& model_path,
-                                                       const pcsim::InputNode* effects,
-                                                       double speed_m_s);
 
 }  // namespace pcsim::pantograph

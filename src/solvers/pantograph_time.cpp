@@ -1,4 +1,4 @@
-#include "pcsim/pantograph/time_integration.hpp"
+#include "pcsim/solvers/pantograph_time.hpp"
 
 #include <petscts.h>
 
@@ -7,17 +7,15 @@
 #include "pcsim/error.hpp"
 #include "pcsim/solvers/hht.hpp"
 
-namespace pcsim::pantograph {
-
-std::vector<double> TimeHistory::energy_balance() const {
-  std::vector<double> b(t.size());
-  for (size_t k = 0; k < t.size(); ++k)
-    b[k] = (kinetic[k] + potential[k]) - (kinetic[0] + potential[0]) - work_dissipative[k] -
-           work_external[k];
-  return b;
-}
+namespace pcsim::solvers {
 
 namespace {
+
+using pantograph::ForceHistory;
+using pantograph::PantographModel;
+using pantograph::PowerSplit;
+using pantograph::TimeHistory;
+using pantograph::TimeOptions;
 
 // The single place that selects the implicit integrator: the project's HHT-α TS type
 // (pcsim::solvers, "hht"). To fall back to PETSc's generalised-α configured as HHT, set
@@ -26,9 +24,9 @@ constexpr bool kUseProjectHht = true;
 
 void configure_hht(TS ts, double alpha) {
   if (kUseProjectHht) {
-    pcsim::solvers::register_hht_ts();
-    PCSIM_PETSC(TSSetType(ts, pcsim::solvers::kTSHHT));
-    pcsim::solvers::hht_set_alpha(ts, alpha);
+    register_hht_ts();
+    PCSIM_PETSC(TSSetType(ts, kTSHHT));
+    hht_set_alpha(ts, alpha);
   } else {
     PCSIM_PETSC(TSSetType(ts, TSALPHA2));
     PCSIM_PETSC(
@@ -175,6 +173,53 @@ PetscErrorCode monitor_implicit(TS ts, PetscInt step, PetscReal t, Vec, void* p)
   PCSIM_CALLBACK_END
 }
 
+// RK4 on the first-order form; U = {q, q̇, W_diss, W_ext}.
+void set_up_rk4(TS ts, Context* ctx, const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0,
+                Vec* U) {
+  const int n = ctx->n;
+  PCSIM_PETSC(VecCreateSeq(PETSC_COMM_SELF, 2 * n + 2, U));
+  PetscScalar* y;
+  PCSIM_PETSC(VecGetArray(*U, &y));
+  for (int i = 0; i < n; ++i) y[i] = q0[i], y[n + i] = qd0[i];
+  y[2 * n] = y[2 * n + 1] = 0;
+  PCSIM_PETSC(VecRestoreArray(*U, &y));
+  PCSIM_PETSC(TSSetType(ts, TSRK));
+  PCSIM_PETSC(TSRKSetType(ts, TSRK4));
+  PCSIM_PETSC(TSSetRHSFunction(ts, nullptr, rhs_function, ctx));
+  PCSIM_PETSC(TSMonitorSet(ts, monitor_explicit, ctx, nullptr));
+  PCSIM_PETSC(TSSetSolution(ts, *U));
+}
+
+// HHT on the second-order form, Newton with dense LU.
+void set_up_hht(TS ts, Context* ctx, const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0,
+                double alpha, Vec* U, Vec* V, Vec* F, Mat* J) {
+  const int n = ctx->n;
+  PCSIM_PETSC(VecCreateSeq(PETSC_COMM_SELF, n, U));
+  PCSIM_PETSC(VecDuplicate(*U, V));
+  PCSIM_PETSC(VecDuplicate(*U, F));
+  PetscScalar *u, *v;
+  PCSIM_PETSC(VecGetArray(*U, &u));
+  PCSIM_PETSC(VecGetArray(*V, &v));
+  for (int i = 0; i < n; ++i) u[i] = q0[i], v[i] = qd0[i];
+  PCSIM_PETSC(VecRestoreArray(*U, &u));
+  PCSIM_PETSC(VecRestoreArray(*V, &v));
+  PCSIM_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, n, n, nullptr, J));
+  configure_hht(ts, alpha);
+  PCSIM_PETSC(TSSetI2Function(ts, *F, i2_function, ctx));
+  PCSIM_PETSC(TSSetI2Jacobian(ts, *J, *J, i2_jacobian, ctx));
+  PCSIM_PETSC(TS2SetSolution(ts, *U, *V));
+  PCSIM_PETSC(TSMonitorSet(ts, monitor_implicit, ctx, nullptr));
+  SNES snes;
+  KSP ksp;
+  PC pc;
+  PCSIM_PETSC(TSGetSNES(ts, &snes));
+  PCSIM_PETSC(SNESSetTolerances(snes, 1e-12, 1e-10, 1e-14, 30, PETSC_DEFAULT));
+  PCSIM_PETSC(SNESGetKSP(snes, &ksp));
+  PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
+  PCSIM_PETSC(KSPGetPC(ksp, &pc));
+  PCSIM_PETSC(PCSetType(pc, PCLU));
+}
+
 }  // namespace
 
 TimeHistory integrate_pantograph(const PantographModel& model, const Eigen::VectorXd& q0,
@@ -200,44 +245,10 @@ TimeHistory integrate_pantograph(const PantographModel& model, const Eigen::Vect
   PCSIM_PETSC(TSSetOptionsPrefix(ts, "pantograph_"));
   Vec U = nullptr, V = nullptr, F = nullptr;
   Mat J = nullptr;
-  if (!ctx.implicit) {
-    PCSIM_PETSC(VecCreateSeq(PETSC_COMM_SELF, 2 * n + 2, &U));
-    PetscScalar* y;
-    PCSIM_PETSC(VecGetArray(U, &y));
-    for (int i = 0; i < n; ++i) y[i] = q0[i], y[n + i] = qd0[i];
-    y[2 * n] = y[2 * n + 1] = 0;
-    PCSIM_PETSC(VecRestoreArray(U, &y));
-    PCSIM_PETSC(TSSetType(ts, TSRK));
-    PCSIM_PETSC(TSRKSetType(ts, TSRK4));
-    PCSIM_PETSC(TSSetRHSFunction(ts, nullptr, rhs_function, &ctx));
-    PCSIM_PETSC(TSMonitorSet(ts, monitor_explicit, &ctx, nullptr));
-    PCSIM_PETSC(TSSetSolution(ts, U));
-  } else {
-    PCSIM_PETSC(VecCreateSeq(PETSC_COMM_SELF, n, &U));
-    PCSIM_PETSC(VecDuplicate(U, &V));
-    PCSIM_PETSC(VecDuplicate(U, &F));
-    PetscScalar *u, *v;
-    PCSIM_PETSC(VecGetArray(U, &u));
-    PCSIM_PETSC(VecGetArray(V, &v));
-    for (int i = 0; i < n; ++i) u[i] = q0[i], v[i] = qd0[i];
-    PCSIM_PETSC(VecRestoreArray(U, &u));
-    PCSIM_PETSC(VecRestoreArray(V, &v));
-    PCSIM_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, n, n, nullptr, &J));
-    configure_hht(ts, opt.hht_alpha);
-    PCSIM_PETSC(TSSetI2Function(ts, F, i2_function, &ctx));
-    PCSIM_PETSC(TSSetI2Jacobian(ts, J, J, i2_jacobian, &ctx));
-    PCSIM_PETSC(TS2SetSolution(ts, U, V));
-    PCSIM_PETSC(TSMonitorSet(ts, monitor_implicit, &ctx, nullptr));
-    SNES snes;
-    KSP ksp;
-    PC pc;
-    PCSIM_PETSC(TSGetSNES(ts, &snes));
-    PCSIM_PETSC(SNESSetTolerances(snes, 1e-12, 1e-10, 1e-14, 30, PETSC_DEFAULT));
-    PCSIM_PETSC(SNESGetKSP(snes, &ksp));
-    PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
-    PCSIM_PETSC(KSPGetPC(ksp, &pc));
-    PCSIM_PETSC(PCSetType(pc, PCLU));
-  }
+  if (!ctx.implicit)
+    set_up_rk4(ts, &ctx, q0, qd0, &U);
+  else
+    set_up_hht(ts, &ctx, q0, qd0, opt.hht_alpha, &U, &V, &F, &J);
   PCSIM_PETSC(TSSetTime(ts, 0.0));
   PCSIM_PETSC(TSSetTimeStep(ts, opt.dt));
   PCSIM_PETSC(TSSetMaxTime(ts, opt.t_end));
@@ -258,4 +269,4 @@ TimeHistory integrate_pantograph(const PantographModel& model, const Eigen::Vect
   return hist;
 }
 
-}  // namespace pcsim::pantograph
+}  // namespace pcsim::solvers

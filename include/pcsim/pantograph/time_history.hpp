@@ -1,9 +1,7 @@
 // Time response of the pantograph alone under a prescribed contact force Fc(t) ≥ 0
-// (pushing the head down), as a PETSc TS problem on PETSC_COMM_SELF:
-//  - rk4: first-order form y = {q, q̇, W_diss, W_ext}, ẏ = {q̇, M⁻¹(−R(t,q,q̇,0) − Fc e_c),
-//    P_diss, P_ext}, TSRK/TSRK4; the work integrals ride along for the energy balance;
-//  - hht: second-order form F(t,U,V,A) = R + Fc e_c with TSSetI2Function/I2Jacobian and
-//    the project's "hht" TS type (thesis 3.3.2); works by the trapezoidal rule.
+// (pushing the head down): the options of a run and the recorded history with its
+// energy balance (2.30–2.34). The integrators (PETSc TS: RK4 and the project's HHT) are
+// in solvers/ (pantograph_time.hpp).
 #pragma once
 
 #include <functional>
@@ -32,10 +30,7 @@ struct TimeHistory {
   std::vector<double> energy_balance() const;
 };
 
+// Downward contact force Fc(t) [N].
 using ForceHistory = std::function<double(double)>;
-
-TimeHistory integrate_pantograph(const PantographModel& model, const Eigen::VectorXd& q0,
-                                 const Eigen::VectorXd& qd0, const ForceHistory& contact_force,
-                                 const TimeOptions& options);
 
 }  // namespace pcsim::pantograph

@@ -1,0 +1,20 @@
+// Time integration of the pantograph alone under a prescribed contact force Fc(t) ≥ 0
+// (pushing the head down), as a PETSc TS problem on PETSC_COMM_SELF:
+//  - rk4: first-order form y = {q, q̇, W_diss, W_ext}, ẏ = {q̇, M⁻¹(−R(t,q,q̇,0) − Fc e_c),
+//    P_diss, P_ext}, TSRK/TSRK4; the work integrals ride along for the energy balance;
+//  - hht: second-order form F(t,U,V,A) = R + Fc e_c with TSSetI2Function/I2Jacobian and
+//    the project's "hht" TS type (thesis 3.3.2); works by the trapezoidal rule.
+// Options prefix "pantograph_".
+#pragma once
+
+#include "pcsim/pantograph/model.hpp"
+#include "pcsim/pantograph/time_history.hpp"
+
+namespace pcsim::solvers {
+
+pantograph::TimeHistory integrate_pantograph(const pantograph::PantographModel& model,
+                                             const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0,
+                                             const pantograph::ForceHistory& contact_force,
+                                             const pantograph::TimeOptions& options);
+
+}  // namespace pcsim::solvers

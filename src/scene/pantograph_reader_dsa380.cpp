@@ -1,0 +1,107 @@
+// DSA-380 model files (geometry, bars, springs, damper; thesis Annex A) and its effects.
+#include <cmath>
+
+#include "pcsim/scene/pantograph_reader.hpp"
+
+namespace pcsim::scene {
+
+namespace {
+double deg(const InputNode& n, const std::string& key, double fallback) {
+  return n.get_double(key, fallback) * M_PI / 180.0;
+}
+
+void load_geometry(const InputNode& g, pantograph::Dsa380Parameters* p) {
+  g.allow_only({"x1", "y1", "L1", "L2", "L3", "L4", "L5", "L6", "L7", "L7p", "theta34_deg", "r",
+                "theta_r_deg", "L1p", "theta_1p_deg", "x13", "y13", "lower_branch",
+                "upper_branch"});
+  p->x1 = g.get_double("x1");
+  p->y1 = g.get_double("y1");
+  p->L1 = g.get_positive("L1");
+  p->L2 = g.get_positive("L2");
+  p->L3 = g.get_positive("L3");
+  p->L4 = g.get_positive("L4");
+  p->L5 = g.get_positive("L5");
+  p->L6 = g.get_positive("L6");
+  p->L7 = g.get_positive("L7");
+  p->L7p = g.get_double("L7p", 0.0);
+  p->theta34 = deg(g, "theta34_deg", 180.0);
+  p->r = g.get_positive("r");
+  p->theta_r = deg(g, "theta_r_deg", 0.0);
+  p->L1p = g.get_positive("L1p");
+  p->theta_1p = deg(g, "theta_1p_deg", 0.0);
+  p->x13 = g.get_double("x13");
+  p->y13 = g.get_double("y13");
+  p->lower_branch = g.get_int("lower_branch", 1) >= 0 ? 1 : -1;
+  p->upper_branch = g.get_int("upper_branch", 1) >= 0 ? 1 : -1;
+}
+}  // namespace
+
+pantograph::Dsa380Parameters load_dsa380_parameters(const InputNode& model) {
+  model.allow_only({"kind", "name", "source", "geometry", "bars", "springs", "damper",
+                    "aerodynamic", "gravity", "theta_guess_deg"});
+  pantograph::Dsa380Parameters p;
+  p.name = model.get_string("name", "dsa380");
+  load_geometry(model["geometry"], &p);
+  const auto bars = model["bars"];
+  if (!bars.is_sequence() || bars.size() != 7) bars.fail("must list the 7 bars in order");
+  for (std::size_t i = 0; i < 7; ++i) {
+    const auto b = bars.at(i);
+    b.allow_only({"name", "mass", "inertia", "LG", "thetaG_deg"});
+    p.m[i] = b.get_positive("mass");
+    p.I[i] = b.get_nonnegative("inertia");
+    p.LG[i] = b.get_nonnegative("LG", 0.0);
+    p.thetaG[i] = deg(b, "thetaG_deg", 0.0);
+  }
+  const auto s = model["springs"];
+  s.allow_only({"kr", "theta_r0_deg", "kl", "kl3", "l10", "l20"});
+  p.kr = s.get_nonnegative("kr");
+  p.theta_r0 = deg(s, "theta_r0_deg", 0.0);
+  p.kl = s.get_positive("kl");
+  p.kl3 = s.get_nonnegative("kl3", 0.0);
+  p.l10 = s.get_positive("l10");
+  p.l20 = s.get_positive("l20", p.l10);
+  if (model.has("damper")) {
+    const auto d = model["damper"];
+    d.allow_only({"c"});
+    p.c = d.get_nonnegative("c");
+  }
+  if (model.has("aerodynamic")) {
+    const auto a = model["aerodynamic"];
+    a.allow_only({"a", "b", "c"});
+    p.aero_a = a.get_double("a", 0.0);
+    p.aero_b = a.get_double("b", 0.0);
+    p.aero_c = a.get_double("c", 0.0);
+  }
+  p.g = model.get_nonnegative("gravity", 9.81);
+  p.theta_guess = deg(model, "theta_guess_deg", 35.0);
+  return p;
+}
+
+pantograph::Dsa380Effects load_dsa380_effects(const InputNode& effects) {
+  using HeadRestraint = pantograph::Dsa380Effects::HeadRestraint;
+  pantograph::Dsa380Effects e;
+  effects.allow_only({"aerodynamic", "head_restraint", "friction", "damper"});
+  e.aerodynamic = effects.get_bool("aerodynamic", false);
+  const std::string r =
+      effects.get_choice("head_restraint", {"none", "rotation", "horizontal"}, "none");
+  e.head_restraint = r == "rotation"     ? HeadRestraint::rotation
+                     : r == "horizontal" ? HeadRestraint::horizontal
+                                         : HeadRestraint::none;
+  if (effects.has("friction")) {
+    const auto f = effects["friction"];
+    f.allow_only({"force", "kt"});
+    e.friction_force = f.get_nonnegative("force");
+    e.friction_kt = f.get_positive("kt", 5e-4);
+    e.friction = e.friction_force > 0;
+  }
+  if (effects.has("damper")) {
+    const auto d = effects["damper"];
+    d.allow_only({"enabled", "one_way", "quadratic"});
+    e.damper = d.get_bool("enabled", true);
+    e.damper_one_way = d.get_bool("one_way", false);
+    e.damper_quadratic = d.get_nonnegative("quadratic", 0.0);
+  }
+  return e;
+}
+
+}  // namespace pcsim::scene

@@ -1,0 +1,78 @@
+#include "pcsim/solvers/pantograph_modes.hpp"
+
+#include <slepceps.h>
+
+#include "pcsim/error.hpp"
+
+namespace pcsim::solvers {
+
+namespace {
+
+Mat dense(const Eigen::MatrixXd& A) {
+  Mat m;
+  const int n = static_cast<int>(A.rows());
+  PCSIM_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, n, n, nullptr, &m));
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) PCSIM_PETSC(MatSetValue(m, i, j, A(i, j), INSERT_VALUES));
+  PCSIM_PETSC(MatAssemblyBegin(m, MAT_FINAL_ASSEMBLY));
+  PCSIM_PETSC(MatAssemblyEnd(m, MAT_FINAL_ASSEMBLY));
+  return m;
+}
+
+// All eigenpairs of A x = λ B x with SLEPc's dense (LAPACK) solver.
+void slepc_all_eigenpairs(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
+                          Eigen::VectorXcd* values, Eigen::MatrixXcd* vectors) {
+  const int n = static_cast<int>(A.rows());
+  Mat a = dense(A), b = dense(B);
+  EPS eps;
+  PCSIM_PETSC(EPSCreate(PETSC_COMM_SELF, &eps));
+  PCSIM_PETSC(EPSSetOperators(eps, a, b));
+  PCSIM_PETSC(EPSSetProblemType(eps, EPS_GNHEP));
+  PCSIM_PETSC(EPSSetType(eps, EPSLAPACK));
+  PCSIM_PETSC(EPSSetDimensions(eps, n, PETSC_DEFAULT, PETSC_DEFAULT));
+  PCSIM_PETSC(EPSSolve(eps));
+  PetscInt nconv = 0;
+  PCSIM_PETSC(EPSGetConverged(eps, &nconv));
+  if (nconv < n) throw SolverError("pantograph modes: SLEPc converged fewer eigenpairs than DOFs");
+  Vec xr, xi;
+  PCSIM_PETSC(MatCreateVecs(a, &xr, nullptr));
+  PCSIM_PETSC(VecDuplicate(xr, &xi));
+  values->resize(n);
+  vectors->resize(n, n);
+  for (int k = 0; k < n; ++k) {
+    PetscScalar kr, ki;
+    PCSIM_PETSC(EPSGetEigenpair(eps, k, &kr, &ki, xr, xi));
+    (*values)[k] = {kr, ki};
+    const PetscScalar *pr, *pi;
+    PCSIM_PETSC(VecGetArrayRead(xr, &pr));
+    PCSIM_PETSC(VecGetArrayRead(xi, &pi));
+    for (int i = 0; i < n; ++i) (*vectors)(i, k) = {pr[i], pi[i]};
+    PCSIM_PETSC(VecRestoreArrayRead(xr, &pr));
+    PCSIM_PETSC(VecRestoreArrayRead(xi, &pi));
+  }
+  PCSIM_PETSC(VecDestroy(&xr));
+  PCSIM_PETSC(VecDestroy(&xi));
+  PCSIM_PETSC(EPSDestroy(&eps));
+  PCSIM_PETSC(MatDestroy(&a));
+  PCSIM_PETSC(MatDestroy(&b));
+}
+
+}  // namespace
+
+std::vector<pantograph::Mode> undamped_modes_slepc(const pantograph::LinearModel& lin) {
+  Eigen::VectorXcd lambda;
+  Eigen::MatrixXcd vec;
+  slepc_all_eigenpairs(lin.K, lin.M, &lambda, &vec);
+  return pantograph::undamped_modes_from_eigenpairs(lin, lambda, vec);
+}
+
+std::vector<pantograph::Mode> damped_modes_slepc(const pantograph::LinearModel& lin) {
+  Eigen::MatrixXd A, B;
+  pantograph::state_space(lin, &A, &B);
+  Eigen::VectorXcd lambda;
+  Eigen::MatrixXcd vec;
+  slepc_all_eigenpairs(-B, A, &lambda, &vec);  // (λ A + B) Y = 0
+  return pantograph::damped_modes_from_eigenpairs(lin, lambda, vec);
+}
+
+}  // namespace pcsim::solvers

@@ -1,0 +1,125 @@
+// Pantograph model files through the registry of kinds and the `pcsim pantograph` study
+// scenes: the model built per kind, its stated default working height, and strict
+// messages (file, key, reason) for unknown kinds, effects of another kind and studies
+// the model cannot run.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <functional>
+
+#include "pcsim/scene/pantograph_reader.hpp"
+#include "pcsim/scene/pantograph_scene.hpp"
+
+using namespace pcsim;
+
+namespace {
+
+const std::string kModels = std::string(PCSIM_SOURCE_DIR) + "/meshes/pantographs/";
+
+std::string message_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// A file in the build folder (the tests run there), removed at the end of the test.
+struct TempFile {
+  std::string path;
+  TempFile(const std::string& name, const std::string& text) : path(name) {
+    std::ofstream(path) << text;
+  }
+  ~TempFile() { std::remove(path.c_str()); }
+};
+
+}  // namespace
+
+TEST(PantographReader, RegistryBuildsEachKind) {
+  const auto& kinds = scene::pantograph_kinds();
+  EXPECT_EQ(kinds.count("lumped"), 1u);
+  EXPECT_EQ(kinds.count("dsa380"), 1u);
+  const auto lumped = scene::load_pantograph_model(kModels + "en50318_two_mass.yaml", nullptr, 0);
+  EXPECT_EQ(lumped->kind(), "lumped");
+  EXPECT_EQ(lumped->dof_count(), 2);
+  EXPECT_EQ(lumped->default_working_height(), 0.0);  // absolute heights
+  const auto dsa = scene::load_pantograph_model(kModels + "dsa380_rigid.yaml", nullptr, 0);
+  EXPECT_EQ(dsa->kind(), "dsa380");
+  EXPECT_EQ(dsa->dof_count(), 4);
+  EXPECT_EQ(dsa->default_working_height(), 1.2);  // above the base
+}
+
+TEST(PantographReader, UnknownOrMissingKindNamesFileAndKey) {
+  const TempFile bad("pantograph_reader_bad_kind.yaml", "kind: flexibel\nname: x\n");
+  const auto msg = message_of([&] { scene::load_pantograph_model(bad.path, nullptr, 0); });
+  EXPECT_NE(msg.find(bad.path), std::string::npos) << msg;
+  EXPECT_NE(msg.find("'kind'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("must be one of dsa380, lumped"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("(got 'flexibel')"), std::string::npos) << msg;
+  const TempFile none("pantograph_reader_no_kind.yaml", "name: x\n");
+  const auto msg2 = message_of([&] { scene::load_pantograph_model(none.path, nullptr, 0); });
+  EXPECT_NE(msg2.find("'kind'"), std::string::npos) << msg2;
+  EXPECT_NE(msg2.find("missing"), std::string::npos) << msg2;
+}
+
+TEST(PantographReader, EffectOfAnotherKindRejected) {
+  const auto effects = InputNode::load_string("head_restraint: rotation\n", "scene.yaml");
+  const auto msg = message_of(
+      [&] { scene::load_pantograph_model(kModels + "en50318_two_mass.yaml", &effects, 0); });
+  EXPECT_NE(msg.find("scene.yaml"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("head_restraint"), std::string::npos) << msg;
+}
+
+TEST(PantographReader, RegisteredKindIsUsed) {
+  scene::register_pantograph_kind("test_single_mass", [](const InputNode& model, const InputNode*,
+                                                         double speed) {
+    model.allow_only({"kind", "mass", "stiffness"});
+    pantograph::LumpedParameters p;
+    p.stages.push_back({"head", model.get_positive("mass"), model.get_positive("stiffness"), 0.0});
+    return std::make_unique<pantograph::LumpedPantograph>(p, false, speed);
+  });
+  const TempFile file("pantograph_reader_single.yaml",
+                      "kind: test_single_mass\nmass: 3\nstiffness: 300\n");
+  const auto m = scene::load_pantograph_model(file.path, nullptr, 0);
+  EXPECT_EQ(m->dof_count(), 1);
+  // One stage under F0 = 30 N: K q0 = −F0, so q0 = −0.1 m.
+  EXPECT_NEAR(m->static_equilibrium(30.0, 1.0)[0], -0.1, 1e-14);
+}
+
+TEST(PantographScene, CalibrationNeedsDsa380AndTypeIsRequired) {
+  const TempFile calib(
+      "pantograph_scene_calibrate.yaml",
+      "pantograph: {model: " + kModels + "en50318_two_mass.yaml}\nstudy: {type: calibrate}\n");
+  const auto msg =
+      message_of([&] { scene::load_pantograph_study_scene(InputNode::load_file(calib.path)); });
+  EXPECT_NE(msg.find(calib.path), std::string::npos) << msg;
+  EXPECT_NE(msg.find("calibrate needs a dsa380 model"), std::string::npos) << msg;
+  const TempFile untyped("pantograph_scene_untyped.yaml",
+                         "pantograph: {model: " + kModels + "dsa380_rigid.yaml}\nstudy: {}\n");
+  const auto msg2 =
+      message_of([&] { scene::load_pantograph_study_scene(InputNode::load_file(untyped.path)); });
+  EXPECT_NE(msg2.find("'study.type'"), std::string::npos) << msg2;
+}
+
+TEST(PantographScene, TimeStudyRead) {
+  const TempFile file("pantograph_scene_time.yaml",
+                      "pantograph: {model: " + kModels +
+                          "dsa380_rigid.yaml, effects: {head_restraint: rotation}}\n"
+                          "equilibrium: {contact_force: 100, working_height: 1.1}\n"
+                          "study: {type: time, schemes: [hht], dt: 2.0e-3, t_end: 0.5,\n"
+                          "        force: {type: harmonic, mean: 120, amplitude: 30,"
+                          " frequency_hz: 2}}\n");
+  const auto s = scene::load_pantograph_study_scene(InputNode::load_file(file.path));
+  EXPECT_EQ(s.study_type, "time");
+  EXPECT_EQ(s.contact_force, 100.0);
+  EXPECT_EQ(s.working_height, 1.1);
+  const auto& d = dynamic_cast<const pantograph::Dsa380Pantograph&>(*s.model);
+  EXPECT_EQ(d.effects().head_restraint, pantograph::Dsa380Effects::HeadRestraint::rotation);
+  const auto& t = std::get<pantograph::TimeStudy>(s.study);
+  EXPECT_EQ(t.schemes, std::vector<std::string>{"hht"});
+  EXPECT_EQ(t.options.dt, 2e-3);
+  EXPECT_EQ(t.options.t_end, 0.5);
+  EXPECT_NEAR(t.force(0.125), 150.0, 1e-12);  // 120 + 30 sin(2π·2·0.125)
+}
