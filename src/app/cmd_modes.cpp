@@ -29,7 +29,7 @@ int run_modes(const app::CommandContext& ctx) {
   PetscReal fmax_opt = fmax;
   PetscOptionsGetInt(nullptr, nullptr, "-eps_nev", &nev, nullptr);
   PetscOptionsGetReal(nullptr, nullptr, "-modes_fmax", &fmax_opt, nullptr);
-  OutputDir out(ctx.comm, ctx.resolved_output_dir(scene));
+  OutputDir out(ctx.comm, ctx.output_request(scene));
 
   app::print0(ctx, "pcsim modes: scene '%s', design %s\n", ctx.scene_name(scene).c_str(),
               cat.design_path.c_str());

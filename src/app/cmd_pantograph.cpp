@@ -440,7 +440,7 @@ int run_pantograph(const CommandContext& ctx) {
   const std::string type =
       st.get_choice("type", {"time", "modes", "frf", "sweep", "calibrate"}, "");
   Setup s = make_setup(scene);
-  OutputDir out(ctx.comm, ctx.resolved_output_dir(scene));
+  OutputDir out(ctx.comm, ctx.output_request(scene));
   app::print0(ctx, "pcsim pantograph: scene '%s', %s model, study %s\n",
               ctx.scene_name(scene).c_str(), s.model->kind().c_str(), type.c_str());
   // The pantograph alone is tiny: rank 0 does the work; the others wait for its outcome.

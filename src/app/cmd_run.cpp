@@ -116,7 +116,7 @@ int run_dynamic(const app::CommandContext& ctx) {
   auto run = contact::load_run_scene(scene);
   const auto& design = run.catenary.mesh;
   const double c = contact::wave_speed(design.wires[design.contact_wire]);
-  OutputDir out(ctx.comm, ctx.resolved_output_dir(scene));
+  OutputDir out(ctx.comm, ctx.output_request(scene));
   app::print0(ctx, "pcsim run: scene '%s', design %s\n", ctx.scene_name(scene).c_str(),
               run.catenary.design_path.c_str());
   if (run.speed > 0.7 * c)

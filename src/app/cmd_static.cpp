@@ -17,7 +17,7 @@ using namespace pcsim;
 int run_static(const app::CommandContext& ctx) {
   const InputNode scene = InputNode::load_file(ctx.scene_path);
   auto cat = catenary::load_catenary_scene(scene);
-  OutputDir out(ctx.comm, ctx.resolved_output_dir(scene));
+  OutputDir out(ctx.comm, ctx.output_request(scene));
 
   const PetscInt extra = cat.form_finding ? catenary::form_finding_unknowns(cat.mesh) : 0;
   assembly::CatenarySystem system(ctx.comm, cat.mesh, extra);

@@ -32,14 +32,28 @@ void print0(const CommandContext& ctx, const char* format, ...) {
 }
 
 std::string CommandContext::scene_name(const InputNode& scene) const {
-  if (scene.has("name")) return scene.get_string("name");
+  if (scene.has("name")) {
+    const std::string name = scene.get_string("name");
+    const std::string why = invalid_folder_name_reason(name);
+    if (!why.empty()) throw InputError(scene_path, "name", why);
+    return name;
+  }
   std::string base = scene_path.substr(scene_path.find_last_of('/') + 1);
   auto dot = base.find_last_of('.');
-  return dot == std::string::npos ? base : base.substr(0, dot);
+  base = dot == std::string::npos ? base : base.substr(0, dot);
+  if (!invalid_folder_name_reason(base).empty())
+    throw InputError(scene_path, "name", "missing, and the file name gives no usable name");
+  return base;
 }
 
 std::string CommandContext::resolved_output_dir(const InputNode& scene) const {
-  return output_dir.empty() ? "out/" + scene_name(scene) : output_dir;
+  return output_request(scene).dir;
+}
+
+OutputRequest CommandContext::output_request(const InputNode& scene) const {
+  const std::string name = scene_name(scene);  // validated even when -o is given
+  if (output_dir.empty()) return {"out/" + name, scene_path, "name", command, scene_path, name};
+  return {output_dir, "command line", "-o", command, scene_path, name};
 }
 
 }  // namespace pcsim::app
@@ -78,6 +92,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   CommandContext ctx;
+  ctx.command = command_name;
   // Split our own arguments from PETSc's.
   std::vector<char*> petsc_argv = {argv[0]};
   for (int i = 2; i < argc; ++i) {
