@@ -4,6 +4,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "exit_status.hpp"
 #include "pcsim/catenary/mesh_io.hpp"
 #include "pcsim/output/h5_file.hpp"
 
@@ -98,39 +99,41 @@ void print_static_summary(const CommandContext& ctx, const assembly::CatenarySys
 void write_static_results(const CommandContext& ctx, const OutputDir& out,
                           const assembly::CatenarySystem& system, const catenary::StaticResult& r,
                           const std::string& scene_name) {
-  if (ctx.rank != 0) return;
-  const auto& mesh = system.mesh();
-  write_static_h5(out.file("static.h5"), mesh, r);
-  catenary::write_mesh_h5_xdmf(mesh, catenary::positions_from_node_values(r.node_values),
-                               out.file("static_mesh.h5"), out.file("static.xdmf"));
-  write_json(out.file("summary.json"), static_json(ctx, system, r, scene_name));
+  on_rank0(ctx, [&] {
+    const auto& mesh = system.mesh();
+    write_static_h5(out.file("static.h5"), mesh, r);
+    catenary::write_mesh_h5_xdmf(mesh, catenary::positions_from_node_values(r.node_values),
+                                 out.file("static_mesh.h5"), out.file("static.xdmf"));
+    write_json(out.file("summary.json"), static_json(ctx, system, r, scene_name));
+  });
 }
 
 void write_modes_results(const CommandContext& ctx, const OutputDir& out,
                          const assembly::CatenarySystem& system,
                          const catenary::StaticResult& statics, const catenary::ModesResult& modes,
                          const std::string& scene_name) {
-  if (ctx.rank != 0) return;
-  const auto& mesh = system.mesh();
-  write_static_h5(out.file("static.h5"), mesh, statics);
-  const auto positions = catenary::positions_from_node_values(statics.node_values);
-  catenary::write_mesh_h5_xdmf(mesh, positions, out.file("static_mesh.h5"),
-                               out.file("static.xdmf"));
-  {
-    H5File h5(out.file("modes.h5"));
-    h5.write("/frequencies_hz", modes.frequencies_hz);
-    h5.write("/geometry", positions, mesh.nodes.size(), 3);
-    for (std::size_t m = 0; m < modes.shapes.size(); ++m)
-      h5.write("/shapes/mode_" + std::to_string(m), modes.shapes[m], mesh.nodes.size(), 3);
-  }
-  catenary::write_modes_xdmf(mesh, "modes.h5", "static_mesh.h5", modes.frequencies_hz,
-                             out.file("modes.xdmf"));
-  nlohmann::json j = static_json(ctx, system, statics, scene_name);
-  j["catenary_frequencies_hz"] = modes.frequencies_hz;
-  j["modes_converged"] = modes.converged;
-  j["modes_max_relative_residual"] = modes.max_relative_residual;
-  j["modes_wall_time_s"] = modes.wall_time_s;
-  write_json(out.file("summary.json"), j);
+  on_rank0(ctx, [&] {
+    const auto& mesh = system.mesh();
+    write_static_h5(out.file("static.h5"), mesh, statics);
+    const auto positions = catenary::positions_from_node_values(statics.node_values);
+    catenary::write_mesh_h5_xdmf(mesh, positions, out.file("static_mesh.h5"),
+                                 out.file("static.xdmf"));
+    {
+      H5File h5(out.file("modes.h5"));
+      h5.write("/frequencies_hz", modes.frequencies_hz);
+      h5.write("/geometry", positions, mesh.nodes.size(), 3);
+      for (std::size_t m = 0; m < modes.shapes.size(); ++m)
+        h5.write("/shapes/mode_" + std::to_string(m), modes.shapes[m], mesh.nodes.size(), 3);
+    }
+    catenary::write_modes_xdmf(mesh, "modes.h5", "static_mesh.h5", modes.frequencies_hz,
+                               out.file("modes.xdmf"));
+    nlohmann::json j = static_json(ctx, system, statics, scene_name);
+    j["catenary_frequencies_hz"] = modes.frequencies_hz;
+    j["modes_converged"] = modes.converged;
+    j["modes_max_relative_residual"] = modes.max_relative_residual;
+    j["modes_wall_time_s"] = modes.wall_time_s;
+    write_json(out.file("summary.json"), j);
+  });
 }
 
 }  // namespace pcsim::app

@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "command.hpp"
+#include "exit_status.hpp"
 #include "pcsim/output/h5_file.hpp"
 #include "pcsim/output/output_dir.hpp"
 #include "pcsim/pantograph/calibration.hpp"
@@ -445,24 +446,13 @@ int run_pantograph(const CommandContext& ctx) {
               ctx.scene_name(scene).c_str(), s.model->kind().c_str(), type.c_str());
   // The pantograph alone is tiny: rank 0 does the work; the others wait for its outcome.
   int rc = 0;
-  std::exception_ptr error;
-  if (ctx.rank == 0) {
-    try {
-      if (type == "time") rc = study_time(ctx, scene, st, s, out);
-      if (type == "modes") rc = study_modes(ctx, scene, st, s, out);
-      if (type == "frf") rc = study_frf(ctx, scene, st, s, out);
-      if (type == "sweep") rc = study_sweep(ctx, scene, st, s, out);
-      if (type == "calibrate") rc = study_calibrate(ctx, scene, st, s, out);
-    } catch (...) {
-      error = std::current_exception();
-    }
-  }
-  int failed = error ? 1 : 0;
-  MPI_Bcast(&failed, 1, MPI_INT, 0, ctx.comm);
-  if (failed) {
-    if (ctx.rank == 0) std::rethrow_exception(error);
-    throw SolverError("pantograph study failed on rank 0");
-  }
+  app::on_rank0(ctx, [&] {
+    if (type == "time") rc = study_time(ctx, scene, st, s, out);
+    if (type == "modes") rc = study_modes(ctx, scene, st, s, out);
+    if (type == "frf") rc = study_frf(ctx, scene, st, s, out);
+    if (type == "sweep") rc = study_sweep(ctx, scene, st, s, out);
+    if (type == "calibrate") rc = study_calibrate(ctx, scene, st, s, out);
+  });
   out.commit();
   app::print0(ctx, "results in %s\n", out.final_dir().c_str());
   return rc;

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command.hpp"
+#include "exit_status.hpp"
 #include "pcsim/catenary/mesh_io.hpp"
 #include "pcsim/catenary/statics.hpp"
 #include "pcsim/contact/interaction.hpp"
@@ -201,7 +202,7 @@ int run_dynamic(const app::CommandContext& ctx) {
 
   // 3. Statistics (EN 50318) and outputs, on rank 0.
   nlohmann::json summary;
-  if (ctx.rank == 0) {
+  app::on_rank0(ctx, [&] {
     const auto& h = mon.history;
     const std::size_t n = h.size();
     std::vector<double> time(n);
@@ -317,7 +318,7 @@ int run_dynamic(const app::CommandContext& ctx) {
                 "peak memory %.0f MB/rank\n",
                 mon.steps, summary["newton_iterations_per_step"].get<double>(),
                 summary["time_per_step_ms"].get<double>(), simulated / wall, memory);
-  }
+  });
   out.commit();
   app::print0(ctx, "  results in %s/\n", out.final_dir().c_str());
   return 0;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "exit_status.hpp"
 #include "pcsim/error.hpp"
 
 namespace pcsim::app {
@@ -125,19 +126,21 @@ int main(int argc, char** argv) {
   MPI_Comm_rank(ctx.comm, &ctx.rank);
   MPI_Comm_size(ctx.comm, &ctx.size);
 
+  // Exit status agreed by all ranks (exit_status.hpp); may MPI_Abort.
+  MPI_Comm agreement_comm;
+  MPI_Comm_dup(ctx.comm, &agreement_comm);
   int status = 0;
+  std::string message;
+  bool failed = false;
   try {
+    debug_fail_if_asked(ctx);
     status = it->second.run(ctx);
-  } catch (const pcsim::InputError& e) {
-    if (ctx.rank == 0) std::fprintf(stderr, "pcsim: error: %s\n", e.what());
-    status = 2;
-  } catch (const pcsim::SolverError& e) {
-    std::fprintf(stderr, "pcsim: solver failure (rank %d): %s\n", ctx.rank, e.what());
-    status = 3;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "pcsim: internal error (rank %d): %s\n", ctx.rank, e.what());
-    status = 4;
+  } catch (...) {
+    failed = true;
+    status = exit_status_of(std::current_exception(), ctx, message);
   }
+  status = agree_exit_status(agreement_comm, status, message, failed);
+  MPI_Comm_free(&agreement_comm);
   SlepcFinalize();
   return status;
 }

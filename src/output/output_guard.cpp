@@ -99,6 +99,11 @@ int acquire_lock(const std::string& path, const std::string& owner, std::string&
       return -1;
     }
     if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+      if (errno != EWOULDBLOCK) {
+        why = "cannot lock " + path + ": " + std::strerror(errno);
+        close(fd);
+        return -1;
+      }
       char text[512] = {};
       const ssize_t n = pread(fd, text, sizeof text - 1, 0);
       std::string holder = n > 0 ? std::string(text, static_cast<std::size_t>(n)) : "";
@@ -111,13 +116,16 @@ int acquire_lock(const std::string& path, const std::string& owner, std::string&
             "); wait for it to end or give another folder";
       return -1;
     }
-    struct stat locked {
-    }, named{};
+    struct stat locked = {};
+    struct stat named = {};
     if (fstat(fd, &locked) == 0 && stat(path.c_str(), &named) == 0 &&
         locked.st_dev == named.st_dev && locked.st_ino == named.st_ino) {
-      char head[sizeof "pcsim output lock"] = {};
-      const ssize_t n = pread(fd, head, sizeof head - 1, 0);
-      if (n > 0 && std::strncmp(head, kLockMagic, std::strlen(kLockMagic)) != 0) {
+      // An existing file that is not a pcsim lock is not overwritten.
+      const std::string magic = kLockMagic;
+      std::string head(magic.size(), '\0');
+      const ssize_t n = pread(fd, head.data(), head.size(), 0);
+      if (n > 0 && head.compare(0, static_cast<std::size_t>(n), magic, 0,
+                                static_cast<std::size_t>(n)) != 0) {
         close(fd);
         why = path + " exists and is not a pcsim lock file";
         return -1;
