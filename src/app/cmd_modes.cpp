@@ -2,6 +2,7 @@
 //   modes: {count: 20}            # or {max_frequency_hz: 20}
 // -eps_nev overrides count; -modes_fmax overrides max_frequency_hz.
 #include "command.hpp"
+#include "exit_status.hpp"
 #include "pcsim/assembly/static_problem.hpp"
 #include "pcsim/output/catenary_results.hpp"
 #include "pcsim/scene/catenary_scene.hpp"
@@ -27,7 +28,7 @@ int run_modes(const app::CommandContext& ctx) {
   const InputNode scene = InputNode::load_file(ctx.scene_path);
   auto cat = catenary::load_catenary_scene(scene);
   const auto request = solvers::modes_request_from_options(ctx.comm, scene_modes(scene));
-  OutputDir out(ctx.comm, ctx.resolved_output_dir(scene));
+  OutputDir out(ctx.comm, ctx.output_request(scene));
   app::print0(ctx, "pcsim modes: scene '%s', design %s\n", ctx.scene_name(scene).c_str(),
               cat.design_path.c_str());
   // 1. Static configuration (with form-finding if the scene asks for it).
@@ -46,10 +47,11 @@ int run_modes(const app::CommandContext& ctx) {
   app::print0(ctx, "   mode  frequency [Hz]\n");
   for (std::size_t i = 0; i < modes.frequencies_hz.size(); ++i)
     app::print0(ctx, "   %4zu  %12.6f\n", i + 1, modes.frequencies_hz[i]);
-  if (ctx.rank == 0)
+  app::on_rank0(ctx, [&] {
     output::write_modes_results(out, statics.mesh, statics.result, modes,
                                 {ctx.scene_name(scene), static_cast<long>(statics.catenary_dofs),
                                  ctx.size, cat.form_finding});
+  });
   out.commit();
   app::print0(ctx, "  results in %s/\n", out.final_dir().c_str());
   return 0;

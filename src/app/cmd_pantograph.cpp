@@ -4,6 +4,7 @@
 #include <exception>
 
 #include "command.hpp"
+#include "exit_status.hpp"
 #include "pcsim/output/output_dir.hpp"
 #include "pcsim/output/pantograph_results.hpp"
 #include "pcsim/scene/pantograph_scene.hpp"
@@ -18,25 +19,14 @@ int run_pantograph(const CommandContext& ctx) {
   const auto node = InputNode::load_file(ctx.scene_path);
   pantograph::StudyScene study = scene::load_pantograph_study_scene(node);
   const std::string name = ctx.scene_name(node);
-  OutputDir out(ctx.comm, ctx.resolved_output_dir(node));
+  OutputDir out(ctx.comm, ctx.output_request(node));
   app::print0(ctx, "pcsim pantograph: scene '%s', %s model, study %s\n", name.c_str(),
               study.model->kind().c_str(), study.study_type.c_str());
   // The pantograph alone is tiny: rank 0 does the work; the others wait for its outcome.
-  std::exception_ptr error;
-  if (ctx.rank == 0) {
-    try {
-      const auto result = solvers::run_pantograph_study(study);
-      app::print0(ctx, "%s", output::write_pantograph_study(out, name, study, result).c_str());
-    } catch (...) {
-      error = std::current_exception();
-    }
-  }
-  int failed = error ? 1 : 0;
-  MPI_Bcast(&failed, 1, MPI_INT, 0, ctx.comm);
-  if (failed) {
-    if (ctx.rank == 0) std::rethrow_exception(error);
-    throw SolverError("pantograph study failed on rank 0");
-  }
+  app::on_rank0(ctx, [&] {
+    const auto result = solvers::run_pantograph_study(study);
+    app::print0(ctx, "%s", output::write_pantograph_study(out, name, study, result).c_str());
+  });
   out.commit();
   app::print0(ctx, "results in %s\n", out.final_dir().c_str());
   return 0;

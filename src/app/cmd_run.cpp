@@ -4,6 +4,7 @@
 #include <petscts.h>
 
 #include "command.hpp"
+#include "exit_status.hpp"
 #include "pcsim/assembly/coupled_system.hpp"
 #include "pcsim/assembly/fe_catenary.hpp"
 #include "pcsim/output/output_dir.hpp"
@@ -172,7 +173,7 @@ int run_dynamic(const app::CommandContext& ctx) {
   auto run = scene::load_run_scene(scene);
   const auto& design = run.catenary.mesh;
   const double c = catenary::wave_speed(design.wires[design.contact_wire]);
-  OutputDir out(ctx.comm, ctx.resolved_output_dir(scene));
+  OutputDir out(ctx.comm, ctx.output_request(scene));
   app::print0(ctx, "pcsim run: scene '%s', design %s\n", ctx.scene_name(scene).c_str(),
               run.catenary.design_path.c_str());
   if (run.speed > 0.7 * c)
@@ -204,7 +205,7 @@ int run_dynamic(const app::CommandContext& ctx) {
   const auto facts = run_facts(ctx, mon, *system, solver.cheap_path(), wall_end - mon.wall_start);
   PCSIM_PETSC(VecDestroy(&U0));
   PCSIM_PETSC(VecDestroy(&V0));
-  if (ctx.rank == 0) {
+  app::on_rank0(ctx, [&] {
     const auto stats = output::write_run_results(out, statics.mesh, statics.result.node_values,
                                                  settings, mon.history);
     output::write_run_summary(out, settings, stats, facts);
@@ -215,7 +216,7 @@ int run_dynamic(const app::CommandContext& ctx) {
                 mon.steps, facts["newton_iterations_per_step"].get<double>(),
                 facts["time_per_step_ms"].get<double>(), facts["real_time_factor"].get<double>(),
                 facts["peak_memory_mb"].get<double>());
-  }
+  });
   out.commit();
   app::print0(ctx, "  results in %s/\n", out.final_dir().c_str());
   return 0;

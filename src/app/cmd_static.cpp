@@ -1,6 +1,7 @@
 // `pcsim static SCENE.yaml`: form-finding and static configuration of the
 // catenary (thesis 3.1.3).
 #include "command.hpp"
+#include "exit_status.hpp"
 #include "pcsim/output/catenary_results.hpp"
 #include "pcsim/scene/catenary_scene.hpp"
 #include "pcsim/solvers/statics.hpp"
@@ -12,7 +13,7 @@ using namespace pcsim;
 int run_static(const app::CommandContext& ctx) {
   const InputNode scene = InputNode::load_file(ctx.scene_path);
   auto cat = catenary::load_catenary_scene(scene);
-  OutputDir out(ctx.comm, ctx.resolved_output_dir(scene));
+  OutputDir out(ctx.comm, ctx.output_request(scene));
   app::print0(ctx, "pcsim static: scene '%s', design %s\n", ctx.scene_name(scene).c_str(),
               cat.design_path.c_str());
   const auto statics = solvers::static_configuration(ctx.comm, cat.mesh, cat.form_finding);

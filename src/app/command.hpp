@@ -10,6 +10,7 @@
 
 #include "pcsim/catenary/mesh.hpp"
 #include "pcsim/catenary/results.hpp"
+#include "pcsim/output/output_dir.hpp"
 #include "pcsim/scene/yaml_input.hpp"
 
 namespace pcsim::app {
@@ -18,11 +19,14 @@ struct CommandContext {
   MPI_Comm comm = MPI_COMM_WORLD;
   int rank = 0;
   int size = 1;
+  std::string command;     // the command being run ("run", "static", ...)
   std::string scene_path;  // SCENE.yaml as given
   std::string output_dir;  // from -o, or "" for the default out/<scene name>
   // Scene name: 'name' key of the scene, else the file name without extension.
+  // InputError (scene file, key 'name') if it cannot name a folder.
   std::string scene_name(const InputNode& scene) const;
-  std::string resolved_output_dir(const InputNode& scene) const;
+  // The output folder (-o, or out/<scene name>) with who gave it, for OutputDir.
+  OutputRequest output_request(const InputNode& scene) const;
 };
 
 struct Command {

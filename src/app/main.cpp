@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "exit_status.hpp"
 #include "pcsim/error.hpp"
 
 namespace pcsim::app {
@@ -32,14 +33,24 @@ void print0(const CommandContext& ctx, const char* format, ...) {
 }
 
 std::string CommandContext::scene_name(const InputNode& scene) const {
-  if (scene.has("name")) return scene.get_string("name");
+  if (scene.has("name")) {
+    const std::string name = scene.get_string("name");
+    const std::string why = invalid_folder_name_reason(name);
+    if (!why.empty()) throw InputError(scene_path, "name", why);
+    return name;
+  }
   std::string base = scene_path.substr(scene_path.find_last_of('/') + 1);
   auto dot = base.find_last_of('.');
-  return dot == std::string::npos ? base : base.substr(0, dot);
+  base = dot == std::string::npos ? base : base.substr(0, dot);
+  if (!invalid_folder_name_reason(base).empty())
+    throw InputError(scene_path, "name", "missing, and the file name gives no usable name");
+  return base;
 }
 
-std::string CommandContext::resolved_output_dir(const InputNode& scene) const {
-  return output_dir.empty() ? "out/" + scene_name(scene) : output_dir;
+OutputRequest CommandContext::output_request(const InputNode& scene) const {
+  const std::string name = scene_name(scene);  // validated even when -o is given
+  if (output_dir.empty()) return {"out/" + name, scene_path, "name", command, scene_path, name};
+  return {output_dir, "command line", "-o", command, scene_path, name};
 }
 
 }  // namespace pcsim::app
@@ -78,6 +89,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   CommandContext ctx;
+  ctx.command = command_name;
   // Split our own arguments from PETSc's.
   std::vector<char*> petsc_argv = {argv[0]};
   for (int i = 2; i < argc; ++i) {
@@ -110,19 +122,21 @@ int main(int argc, char** argv) {
   MPI_Comm_rank(ctx.comm, &ctx.rank);
   MPI_Comm_size(ctx.comm, &ctx.size);
 
+  // Exit status agreed by all ranks (exit_status.hpp); may MPI_Abort.
+  MPI_Comm agreement_comm;
+  MPI_Comm_dup(ctx.comm, &agreement_comm);
   int status = 0;
+  std::string message;
+  bool failed = false;
   try {
+    debug_fail_if_asked(ctx);
     status = it->second.run(ctx);
-  } catch (const pcsim::InputError& e) {
-    if (ctx.rank == 0) std::fprintf(stderr, "pcsim: error: %s\n", e.what());
-    status = 2;
-  } catch (const pcsim::SolverError& e) {
-    std::fprintf(stderr, "pcsim: solver failure (rank %d): %s\n", ctx.rank, e.what());
-    status = 3;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "pcsim: internal error (rank %d): %s\n", ctx.rank, e.what());
-    status = 4;
+  } catch (...) {
+    failed = true;
+    status = exit_status_of(std::current_exception(), ctx, message);
   }
+  status = agree_exit_status(agreement_comm, status, message, failed);
+  MPI_Comm_free(&agreement_comm);
   SlepcFinalize();
   return status;
 }

@@ -53,11 +53,11 @@ bool valid_field_name(const std::string& name) {
   return true;
 }
 
-// One HDF5 data item of the XDMF file.
+// One HDF5 data item of the XDMF file (XDMF3 names the format "HDF", not "HDF5").
 std::string data_item(const std::string& h5_name, const std::string& dataset, bool is_int,
                       std::size_t rows, std::size_t cols) {
   std::ostringstream s;
-  s << "<DataItem Format=\"HDF5\" NumberType=\"" << (is_int ? "Int" : "Float")
+  s << "<DataItem Format=\"HDF\" NumberType=\"" << (is_int ? "Int" : "Float")
     << "\" Precision=\"8\" Dimensions=\"" << rows;
   if (cols > 1) s << " " << cols;
   s << "\">" << xml_escape(h5_name) << ":" << dataset << "</DataItem>";

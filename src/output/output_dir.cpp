@@ -1,39 +1,191 @@
 #include "pcsim/output/output_dir.hpp"
 
+#include <unistd.h>
+
+#include <cstdio>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <system_error>
 
+#include "output_guard.hpp"
 #include "pcsim/error.hpp"
 
 namespace fs = std::filesystem;
 
 namespace pcsim {
 
-OutputDir::OutputDir(MPI_Comm comm, std::string final_dir)
-    : comm_(comm), final_(std::move(final_dir)) {
-  while (final_.size() > 1 && final_.back() == '/') final_.pop_back();
-  partial_ = final_ + ".partial";
-  MPI_Comm_rank(comm_, &rank_);
-  int ok = 1;
-  std::string why;
-  if (rank_ == 0) {
-    std::error_code ec;
-    fs::remove_all(partial_, ec);
-    fs::create_directories(partial_, ec);
-    if (ec) {
-      ok = 0;
-      why = ec.message();
-    }
+namespace {
+
+// Rank 0's text, on every rank.
+std::string broadcast_text(MPI_Comm comm, std::string text) {
+  int size = static_cast<int>(text.size());
+  MPI_Bcast(&size, 1, MPI_INT, 0, comm);
+  text.resize(static_cast<std::size_t>(size));
+  MPI_Bcast(text.data(), size, MPI_CHAR, 0, comm);
+  return text;
+}
+
+// True if 'inner' is 'outer' or lies inside it (both absolute and normal).
+bool is_inside(const fs::path& inner, const fs::path& outer) {
+  auto i = inner.begin();
+  for (auto o = outer.begin(); o != outer.end(); ++o, ++i) {
+    if (o->empty()) continue;  // trailing separator
+    if (i == inner.end() || *i != *o) return false;
   }
-  MPI_Bcast(&ok, 1, MPI_INT, 0, comm_);
-  if (!ok) throw InputError(final_, "-o", "cannot create output folder: " + why);
+  return true;
+}
+
+std::string in_quotes(const std::string& path) {
+  return "'" + path + "'";
+}
+
+// Why pcsim may not put its results at 'dir' ("" if it may): the working
+// directory or a folder containing it, a folder holding the scene, a link, a
+// file, or a non-empty folder that is not an earlier pcsim result.
+std::string target_refusal(const std::string& dir, const std::string& scene_file) {
+  const std::string whole =
+      "pcsim replaces its output folder as a whole, so it must be new, "
+      "empty or an earlier pcsim result";
+  const fs::path target = fs::weakly_canonical(fs::absolute(dir));
+  const fs::path cwd = fs::current_path();
+  if (target == cwd) return in_quotes(dir) + " is the working directory; " + whole;
+  if (is_inside(cwd, target)) return in_quotes(dir) + " contains the working directory; " + whole;
+  std::error_code ec;
+  if (!scene_file.empty() && fs::exists(scene_file, ec) &&
+      is_inside(fs::weakly_canonical(fs::absolute(scene_file)), target))
+    return in_quotes(dir) + " holds the scene file " + scene_file + "; " + whole;
+  const auto status = fs::symlink_status(dir, ec);
+  if (status.type() == fs::file_type::not_found) return "";
+  if (status.type() == fs::file_type::symlink)
+    return in_quotes(dir) + " is a symbolic link; give the folder it points to";
+  if (status.type() != fs::file_type::directory)
+    return in_quotes(dir) + " exists and is not a folder";
+  nlohmann::json existing;
+  if (!fs::is_empty(dir) && !output_guard::read_manifest(dir, existing))
+    return in_quotes(dir) + " is not empty and was not written by pcsim (it has no " +
+           OutputDir::kManifestName + "); " + whole;
+  return "";
+}
+
+// A leftover "<dir>.partial" from an interrupted run: removed when it holds
+// nothing but its manifest, else kept and the run refused ("" if none left).
+std::string leftover_partial_refusal(const std::string& partial) {
+  std::error_code ec;
+  const auto status = fs::symlink_status(partial, ec);
+  if (status.type() == fs::file_type::not_found) return "";
+  nlohmann::json m;
+  if (status.type() != fs::file_type::directory || !output_guard::read_manifest(partial, m))
+    return in_quotes(partial) + " exists and was not written by pcsim; move it away";
+  if (output_guard::holds_only_manifest(partial)) {
+    fs::remove_all(partial);
+    return "";
+  }
+  return in_quotes(partial) + " holds the results of an interrupted pcsim run (" +
+         m.value("command", std::string("?")) + " " + m.value("scene_file", std::string("?")) +
+         ", started " + m.value("started", std::string("?")) +
+         "); move it away or delete it, then run again";
+}
+
+std::string normal_form(const std::string& dir) {
+  std::string normal = fs::path(dir).lexically_normal().string();
+  while (normal.size() > 1 && normal.back() == '/') normal.pop_back();
+  return normal;
+}
+
+std::string host_name() {
+  char name[256] = {};
+  gethostname(name, sizeof name - 1);
+  return name;
+}
+
+nlohmann::json manifest(const OutputRequest& request, const std::string& started, bool complete) {
+  nlohmann::json m = {{"pcsim_result", 1},
+                      {"command", request.command},
+                      {"scene_file", request.scene_file},
+                      {"scene_name", request.scene_name},
+                      {"started", started},
+                      {"host", host_name()},
+                      {"pid", static_cast<long>(getpid())},
+                      {"complete", complete}};
+  if (complete) m["finished"] = output_guard::utc_now();
+  return m;
+}
+
+}  // namespace
+
+std::string invalid_folder_name_reason(const std::string& name) {
+  if (name.empty()) return "must not be empty (it names the output folder out/<name>)";
+  if (name == "." || name == "..")
+    return "must not be '" + name + "' (it names the output folder out/<name>)";
+  if (name.find_first_of("/\\") != std::string::npos)
+    return "must not contain a path separator (it names the output folder out/<name>; "
+           "use -o to choose another folder)";
+  if (name.find('\0') != std::string::npos) return "must not contain a NUL character";
+  return "";
+}
+
+OutputDir::OutputDir(MPI_Comm comm, OutputRequest request)
+    : comm_(comm), request_(std::move(request)) {
+  MPI_Comm_rank(comm_, &rank_);
+  final_ = normal_form(request_.dir);
+  partial_ = final_ + ".partial";
+  lock_path_ = final_ + ".pcsim-lock";
+  std::string why;
+  if (rank_ == 0) why = prepare();
+  why = broadcast_text(comm_, why);
+  if (!why.empty()) fail(why);
+}
+
+std::string OutputDir::prepare() {
+  try {
+    if (request_.dir.empty()) return "the output folder is empty";
+    std::string why = target_refusal(final_, request_.scene_file);
+    if (!why.empty()) return why;
+    // Parent folders: made now, removed again if the run fails.
+    std::vector<fs::path> missing;
+    for (fs::path p = fs::absolute(final_).parent_path(); !fs::exists(p); p = p.parent_path())
+      missing.push_back(p);
+    for (auto p = missing.rbegin(); p != missing.rend(); ++p) {
+      fs::create_directory(*p);
+      created_parents_.push_back(p->string());
+    }
+    const std::string owner = "pcsim " + request_.command + " " + request_.scene_file + ", pid " +
+                              std::to_string(getpid()) + " on " + host_name() + ", started " +
+                              output_guard::utc_now();
+    lock_fd_ = output_guard::acquire_lock(lock_path_, owner, why);
+    // Under the lock: the folder may have changed since the check above.
+    if (why.empty()) why = target_refusal(final_, request_.scene_file);
+    if (why.empty()) why = leftover_partial_refusal(partial_);
+    if (why.empty()) {
+      fs::create_directory(partial_);
+      owns_partial_ = true;
+      started_ = output_guard::utc_now();
+      why = output_guard::write_manifest(partial_, manifest(request_, started_, false));
+    }
+    if (why.empty()) output_guard::arm_interrupt_cleanup(partial_, lock_path_);
+    if (!why.empty()) undo();
+    return why;
+  } catch (const std::exception& e) {
+    undo();
+    return std::string("cannot prepare the output folder: ") + e.what();
+  }
+}
+
+// Rank 0, on failure: removes what this run made (not a kept partial folder).
+void OutputDir::undo() {
+  output_guard::disarm_interrupt_cleanup();
+  std::error_code ec;
+  if (owns_partial_ && !keep_partial_) fs::remove_all(partial_, ec);
+  output_guard::release_lock(lock_fd_, lock_path_);
+  lock_fd_ = -1;
+  if (!keep_partial_)
+    for (auto p = created_parents_.rbegin(); p != created_parents_.rend(); ++p)
+      fs::remove(*p, ec);  // only if empty
+  created_parents_.clear();
 }
 
 OutputDir::~OutputDir() {
-  if (!committed_ && rank_ == 0) {
-    std::error_code ec;
-    fs::remove_all(partial_, ec);
-  }
+  if (rank_ == 0 && !committed_) undo();
 }
 
 std::string OutputDir::file(const std::string& name) const {
@@ -42,20 +194,72 @@ std::string OutputDir::file(const std::string& name) const {
 
 void OutputDir::commit() {
   MPI_Barrier(comm_);
-  int ok = 1;
+  std::string why;
   if (rank_ == 0) {
-    std::error_code ec;
-    fs::remove_all(final_, ec);
-    fs::rename(partial_, final_, ec);
-    ok = ec ? 0 : 1;
+    try {
+      why = swap_into_place();
+    } catch (const std::exception& e) {
+      keep_partial_ = true;
+      why = std::string("cannot put the results in place: ") + e.what() +
+            "; the new results are kept in " + partial_;
+    }
+    if (why.empty()) {
+      committed_ = true;
+      output_guard::disarm_interrupt_cleanup();
+      output_guard::release_lock(lock_fd_, lock_path_);
+      lock_fd_ = -1;
+    }
   }
-  MPI_Bcast(&ok, 1, MPI_INT, 0, comm_);
-  if (!ok) throw SolverError("cannot rename " + partial_ + " to " + final_);
+  why = broadcast_text(comm_, why);
+  if (!why.empty()) fail(why);
   committed_ = true;
 }
 
-std::string default_output_dir(const std::string& scene_name) {
-  return "out/" + scene_name;
+std::string OutputDir::swap_into_place() {
+  const std::string kept = "; the new results are kept in " + partial_;
+  std::string why = output_guard::write_manifest(partial_, manifest(request_, started_, true));
+  // The folder may have been changed by hand during the run.
+  if (why.empty()) why = target_refusal(final_, request_.scene_file);
+  if (!why.empty()) {
+    keep_partial_ = true;
+    return why + kept;
+  }
+  std::error_code ec;
+  std::string old;
+  if (fs::symlink_status(final_, ec).type() != fs::file_type::not_found) {
+    old = final_ + ".pcsim-old-" + std::to_string(getpid());
+    for (int k = 1; fs::symlink_status(old, ec).type() != fs::file_type::not_found; ++k)
+      old = final_ + ".pcsim-old-" + std::to_string(getpid()) + "-" + std::to_string(k);
+    fs::rename(final_, old, ec);
+    if (ec) {
+      keep_partial_ = true;
+      return "cannot move the earlier result " + in_quotes(final_) + " aside: " + ec.message() +
+             kept;
+    }
+  }
+  fs::rename(partial_, final_, ec);
+  if (ec) {
+    keep_partial_ = true;
+    why = "cannot rename " + in_quotes(partial_) + " to " + in_quotes(final_) + ": " +
+          ec.message() + kept;
+    if (!old.empty()) {
+      std::error_code back;
+      fs::rename(old, final_, back);
+      if (back) why += ", the earlier result in " + old;
+    }
+    return why;
+  }
+  if (!old.empty()) {
+    fs::remove_all(old, ec);
+    if (ec)
+      std::fprintf(stderr, "pcsim: warning: could not delete the earlier result, moved to %s: %s\n",
+                   old.c_str(), ec.message().c_str());
+  }
+  return "";
+}
+
+void OutputDir::fail(const std::string& reason) const {
+  throw InputError(request_.given_in, request_.given_by, reason);
 }
 
 }  // namespace pcsim

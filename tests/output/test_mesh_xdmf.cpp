@@ -215,7 +215,7 @@ void check_xdmf_references(const std::string& folder, const std::string& xdmf_na
   collect(root, "DataItem", items);
   ASSERT_FALSE(items.empty());
   for (const XmlElement* item : items) {
-    EXPECT_EQ(item->attributes.at("Format"), "HDF5");
+    EXPECT_EQ(item->attributes.at("Format"), "HDF");
     const std::string ref = trim(item->text);
     const auto colon = ref.find(':');
     ASSERT_NE(colon, std::string::npos) << ref;

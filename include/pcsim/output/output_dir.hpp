@@ -1,19 +1,43 @@
-// Output directory written atomically: results go to "<dir>.partial" and the
-// folder is renamed to "<dir>" only by commit(). If the run fails (exception,
-// bad input) the partial folder is removed, so no half-written results remain.
-// Collective over the communicator; only rank 0 touches the file system.
+// Output folder of one pcsim command, written so that no data is lost:
+//  - results go to "<dir>.partial", which holds a manifest ".pcsim-result"
+//    (JSON: command, scene, dates) marking it as pcsim's own;
+//  - pcsim writes into, replaces or deletes only folders that it created (that
+//    carry the manifest); "<dir>" must be new, empty or an earlier pcsim result,
+//    and neither the working directory nor a folder containing it;
+//  - a lock "<dir>.pcsim-lock" (flock, released when the process ends) keeps a
+//    second run from writing the same folder;
+//  - commit() swaps: the old result is moved aside, the new one renamed into
+//    place, and only then is the old one deleted; if a rename fails the new
+//    results stay in "<dir>.partial" and the error names it;
+//  - a failed run (exception) removes its partial folder; SIGINT/SIGTERM remove
+//    it only while it holds nothing but the manifest.
+// Collective over the communicator: only rank 0 touches the file system, and
+// every outcome is broadcast, so that all ranks succeed or throw together.
 #pragma once
 
 #include <mpi.h>
 
 #include <string>
+#include <vector>
 
 namespace pcsim {
 
+// What to create, and who asked (for the manifest and the error messages).
+struct OutputRequest {
+  std::string dir;         // the results folder
+  std::string given_in;    // where the folder was given: "command line" or the scene file
+  std::string given_by;    // the key that gave it: "-o" or "name"
+  std::string command;     // pcsim command ("run", "static", ...)
+  std::string scene_file;  // the scene, as given
+  std::string scene_name;
+};
+
 class OutputDir {
  public:
-  OutputDir(MPI_Comm comm, std::string final_dir);
-  ~OutputDir();  // removes the partial folder unless committed
+  // Throws InputError(given_in, given_by, reason) on every rank when the folder
+  // cannot be used; nothing is touched then.
+  OutputDir(MPI_Comm comm, OutputRequest request);
+  ~OutputDir();  // removes the partial folder unless committed (or kept by a failed commit)
   OutputDir(const OutputDir&) = delete;
   OutputDir& operator=(const OutputDir&) = delete;
 
@@ -21,17 +45,30 @@ class OutputDir {
   std::string file(const std::string& name) const;
   const std::string& final_dir() const { return final_; }
   const std::string& partial_dir() const { return partial_; }
-  // Replaces any previous <dir> by the finished results.
+  // Puts the finished results in place of any earlier result (collective).
   void commit();
 
+  static constexpr const char* kManifestName = ".pcsim-result";
+
  private:
+  std::string prepare();          // rank 0: checks, lock, partial folder; "" or the reason
+  std::string swap_into_place();  // rank 0: the commit's renames; "" or the reason
+  void undo();                    // rank 0: removes what this run made, releases the lock
+  [[noreturn]] void fail(const std::string& reason) const;
+
   MPI_Comm comm_;
   int rank_ = 0;
-  std::string final_, partial_;
+  OutputRequest request_;
+  std::string final_, partial_, lock_path_, started_;
+  std::vector<std::string> created_parents_;  // folders made for <dir>, removed on failure
+  int lock_fd_ = -1;
+  bool owns_partial_ = false;  // this run made partial_ (a leftover is never removed)
   bool committed_ = false;
+  bool keep_partial_ = false;  // a failed commit keeps the new results
 };
 
-// Default output folder for a scene: out/<scene name>.
-std::string default_output_dir(const std::string& scene_name);
+// Why 'name' cannot name an output folder ("" if it can): empty, ".", "..",
+// or with a path separator.
+std::string invalid_folder_name_reason(const std::string& name);
 
 }  // namespace pcsim

@@ -1,0 +1,97 @@
+#include "exit_status.hpp"
+
+#include <petscsys.h>
+#include <unistd.h>
+
+#include <cstdio>
+
+#include "pcsim/error.hpp"
+
+namespace pcsim::app {
+
+int exit_status_of(std::exception_ptr error, const CommandContext& ctx, std::string& message) {
+  const std::string where = ctx.size > 1 ? " (rank " + std::to_string(ctx.rank) + ")" : "";
+  try {
+    std::rethrow_exception(error);
+  } catch (const FailedOnOtherRank& e) {
+    message.clear();
+    return e.status();
+  } catch (const InputError& e) {
+    message = std::string("pcsim: error: ") + e.what();
+    return kExitInput;
+  } catch (const SolverError& e) {
+    message = "pcsim: solver failure" + where + ": " + e.what();
+    return kExitSolver;
+  } catch (const std::exception& e) {
+    message = "pcsim: internal error" + where + ": " + e.what();
+    return kExitInternal;
+  } catch (...) {
+    message = "pcsim: internal error" + where + ": unknown exception";
+    return kExitInternal;
+  }
+}
+
+void on_rank0(const CommandContext& ctx, const std::function<void()>& work) {
+  std::exception_ptr error;
+  int status = 0;
+  if (ctx.rank == 0) {
+    try {
+      work();
+    } catch (...) {
+      error = std::current_exception();
+      std::string unused;
+      status = exit_status_of(error, ctx, unused);
+    }
+  }
+  MPI_Bcast(&status, 1, MPI_INT, 0, ctx.comm);
+  if (status == 0) return;
+  if (ctx.rank == 0) std::rethrow_exception(error);
+  throw FailedOnOtherRank(status);
+}
+
+int agree_exit_status(MPI_Comm comm, int status, const std::string& message, bool failed_here,
+                      double timeout_s) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Request arrived;
+  MPI_Ibarrier(comm, &arrived);
+  const double deadline = MPI_Wtime() + timeout_s;
+  for (int done = 0;;) {
+    MPI_Test(&arrived, &done, MPI_STATUS_IGNORE);
+    if (done) break;
+    if (failed_here && MPI_Wtime() > deadline) {
+      // Another rank is stuck in a collective that this one left.
+      if (!message.empty()) std::fprintf(stderr, "%s\n", message.c_str());
+      std::fprintf(stderr, "  (rank %d: other ranks did not stop within %.0f s; ending the job)\n",
+                   rank, timeout_s);
+      std::fflush(stderr);
+      MPI_Abort(MPI_COMM_WORLD, status);
+    }
+    usleep(1000);
+  }
+  // Every rank is here: the highest status wins, printed by its lowest rank
+  // that has a message (MPI_MAXLOC takes the lowest rank among equals).
+  struct {
+    int key, rank;
+  } mine{2 * status + (message.empty() ? 0 : 1), rank}, agreed{0, 0};
+  MPI_Allreduce(&mine, &agreed, 1, MPI_2INT, MPI_MAXLOC, comm);
+  if (agreed.rank == rank && !message.empty()) std::fprintf(stderr, "%s\n", message.c_str());
+  std::fflush(stderr);
+  return agreed.key / 2;
+}
+
+void debug_fail_if_asked(const CommandContext& ctx) {
+  PetscInt fail_rank = -1;
+  char fail_class[16] = "";
+  PetscOptionsGetInt(nullptr, nullptr, "-pcsim_debug_fail_rank", &fail_rank, nullptr);
+  PetscOptionsGetString(nullptr, nullptr, "-pcsim_debug_fail_class", fail_class, sizeof fail_class,
+                        nullptr);
+  if (fail_rank != ctx.rank) return;
+  const std::string kind = fail_class;
+  const std::string text = "debug failure on rank " + std::to_string(ctx.rank);
+  if (kind == "input") throw InputError("command line", "-pcsim_debug_fail_class", text);
+  if (kind == "solver") throw SolverError(text);
+  throw std::runtime_error(text);
+}
+
+}  // namespace pcsim::app
