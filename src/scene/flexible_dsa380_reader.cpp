@@ -1,5 +1,7 @@
 #include "pcsim/scene/flexible_dsa380_reader.hpp"
 
+#include "pcsim/scene/pantograph_reader.hpp"
+
 #include <cmath>
 
 namespace pcsim::scene {
@@ -11,7 +13,7 @@ pantograph::FlexibleDsa380Parameters read_flexible_dsa380(const InputNode& model
     model.fail_key("kind", "must be 'dsa380_flexible' for this reader");
   pantograph::FlexibleDsa380Parameters p;
   const std::string rigid_path = model.resolve_path(model.get_string("rigid_model"));
-  p.rigid = pantograph::load_dsa380_parameters(InputNode::load_file(rigid_path));
+  p.rigid = load_dsa380_parameters(InputNode::load_file(rigid_path));
   if (model.has("material")) {
     const auto m = model["material"];
     m.allow_only({"density", "youngs_modulus"});

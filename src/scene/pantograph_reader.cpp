@@ -1,6 +1,8 @@
 // The registry of pantograph model kinds and the lumped-mass reader.
 #include "pcsim/scene/pantograph_reader.hpp"
 
+#include "pcsim/scene/flexible_dsa380_reader.hpp"
+
 namespace pcsim::scene {
 
 namespace {
@@ -26,9 +28,21 @@ std::unique_ptr<pantograph::PantographModel> read_dsa380(const InputNode& model,
                                                         speed_m_s);
 }
 
+// The flexible-bar DSA-380 (thesis 2.2): the rigid model's effects apply.
+std::unique_ptr<pantograph::PantographModel> read_dsa380_flexible(const InputNode& model,
+                                                                  const InputNode* effects,
+                                                                  double speed_m_s) {
+  const pantograph::Dsa380Effects e =
+      effects ? load_dsa380_effects(*effects) : pantograph::Dsa380Effects{};
+  return std::make_unique<pantograph::FlexibleDsa380Pantograph>(read_flexible_dsa380(model), e,
+                                                                speed_m_s);
+}
+
 std::map<std::string, PantographKindReader>& registry() {
-  static std::map<std::string, PantographKindReader> kinds = {{"lumped", read_lumped},
-                                                              {"dsa380", read_dsa380}};
+  static std::map<std::string, PantographKindReader> kinds = {
+      {"lumped", read_lumped},
+      {"dsa380", read_dsa380},
+      {"dsa380_flexible", read_dsa380_flexible}};
   return kinds;
 }
 

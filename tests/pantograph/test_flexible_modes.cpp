@@ -10,8 +10,12 @@
 #include "pcsim/pantograph/flexible_dsa380.hpp"
 #include "pcsim/pantograph/linear.hpp"
 #include "pcsim/scene/flexible_dsa380_reader.hpp"
+#include "pcsim/scene/pantograph_reader.hpp"
+#include "pcsim/solvers/pantograph_modes.hpp"
 
 using namespace pcsim::pantograph;
+using pcsim::scene::load_dsa380_parameters;
+using pcsim::solvers::undamped_modes_slepc;
 
 namespace {
 

@@ -56,7 +56,7 @@ TEST(PantographReader, UnknownOrMissingKindNamesFileAndKey) {
   const auto msg = message_of([&] { scene::load_pantograph_model(bad.path, nullptr, 0); });
   EXPECT_NE(msg.find(bad.path), std::string::npos) << msg;
   EXPECT_NE(msg.find("'kind'"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("must be one of dsa380, lumped"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("must be one of dsa380, dsa380_flexible, lumped"), std::string::npos) << msg;
   EXPECT_NE(msg.find("(got 'flexibel')"), std::string::npos) << msg;
   const TempFile none("pantograph_reader_no_kind.yaml", "name: x\n");
   const auto msg2 = message_of([&] { scene::load_pantograph_model(none.path, nullptr, 0); });
