@@ -5,7 +5,7 @@
 
 #include <cstdio>
 
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 
 namespace pcsim::app {
 

@@ -14,7 +14,7 @@
 
 #include "command.hpp"
 #include "exit_status.hpp"
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 
 namespace pcsim::app {
 

@@ -9,7 +9,7 @@
 #include "pcsim/assembly/catenary_terms.hpp"
 #include "pcsim/assembly/coupled_state.hpp"
 #include "pcsim/catenary/elements.hpp"
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 
 namespace pcsim::assembly {
 

@@ -3,7 +3,7 @@
 #include <Eigen/Dense>
 
 #include "pcsim/catenary/elements.hpp"
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 
 namespace pcsim::assembly {
 

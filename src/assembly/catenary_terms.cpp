@@ -3,7 +3,7 @@
 #include <mpi.h>
 
 #include "pcsim/assembly/coupled_state.hpp"
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 
 namespace pcsim::assembly {
 

@@ -2,7 +2,7 @@
 
 #include <mpi.h>
 
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 
 namespace pcsim::assembly {
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 
 #include "pcsim/assembly/interaction_terms.hpp"
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 
 namespace pcsim::assembly {
 

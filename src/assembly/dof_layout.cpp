@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <numeric>
 
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 
 namespace pcsim::assembly {
 

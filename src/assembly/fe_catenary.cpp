@@ -3,7 +3,7 @@
 #include "pcsim/assembly/catenary_terms.hpp"
 #include "pcsim/catenary/elements.hpp"
 #include "pcsim/contact/contact_kernel.hpp"
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 
 namespace pcsim::assembly {
 

@@ -4,7 +4,7 @@
 
 #include <Eigen/Dense>
 
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 
 namespace pcsim::assembly {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "pcsim/catenary/elements.hpp"
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 
 namespace pcsim::assembly {
 

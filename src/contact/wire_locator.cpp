@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "pcsim/contact/contact_kernel.hpp"
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 
 namespace pcsim::contact {
 

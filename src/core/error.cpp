@@ -1,4 +1,4 @@
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 
 namespace pcsim {
 

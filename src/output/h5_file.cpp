@@ -1,6 +1,6 @@
 #include "pcsim/output/h5_file.hpp"
 
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 
 namespace pcsim {
 

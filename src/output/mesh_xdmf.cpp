@@ -6,7 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 #include "pcsim/output/h5_file.hpp"
 
 namespace pcsim::output {
@@ -118,13 +118,11 @@ std::vector<double> design_positions(const CatenaryMesh& mesh) {
   return out;
 }
 
-void write_mesh_h5_xdmf(const CatenaryMesh& mesh, const std::vector<double>& node_positions,
-                        const std::string& h5_path, const std::string& xdmf_path,
-                        const std::vector<NodeField>& node_fields) {
+namespace {
+
+void check_mesh_output(const CatenaryMesh& mesh, const std::vector<double>& node_positions,
+                       const std::vector<NodeField>& node_fields) {
   const std::size_t n = mesh.nodes.size();
-  const std::size_t ne = mesh.cables.size();
-  const std::size_t nb = mesh.bars.size();
-  const std::size_t np = mesh.point_masses.size();
   if (node_positions.size() != 3 * n)
     throw std::invalid_argument("write_mesh_h5_xdmf: " + std::to_string(node_positions.size()) +
                                 " position values for " + std::to_string(n) + " nodes");
@@ -133,8 +131,12 @@ void write_mesh_h5_xdmf(const CatenaryMesh& mesh, const std::vector<double>& nod
         f.values.size() != n * static_cast<std::size_t>(f.components))
       throw std::invalid_argument("write_mesh_h5_xdmf: bad node field '" + f.name + "'");
   }
+}
 
-  // Per-node data.
+// /nodes/*: positions, design positions, displacement, wire, fixed DOFs, masses.
+void write_nodes_h5(H5File& h5, const CatenaryMesh& mesh,
+                    const std::vector<double>& node_positions) {
+  const std::size_t n = mesh.nodes.size();
   std::vector<double> design = design_positions(mesh), displacement(3 * n), point_mass(n, 0.0);
   for (std::size_t i = 0; i < 3 * n; ++i) displacement[i] = node_positions[i] - design[i];
   std::vector<long> node_wire(n, -1), fixed(6 * n, 0), fixed_mask(n, 0);
@@ -146,25 +148,31 @@ void write_mesh_h5_xdmf(const CatenaryMesh& mesh, const std::vector<double>& nod
       if (d < 3 && mesh.nodes[i].fixed[d]) fixed_mask[i] |= 1L << d;
     }
   for (const auto& pm : mesh.point_masses) point_mass[pm.node] += pm.mass;
+  h5.write("/nodes/position", node_positions, n, 3);
+  h5.write("/nodes/design_position", design, n, 3);
+  h5.write("/nodes/displacement", displacement, n, 3);
+  h5.write_int("/nodes/wire", node_wire);
+  h5.write_int("/nodes/fixed", fixed, n, 6);
+  h5.write_int("/nodes/fixed_mask", fixed_mask);
+  h5.write("/nodes/point_mass", point_mass);
+}
 
-  // Cables.
+// /cables/*, /bars/*, /point_masses/*, /wires/*.
+void write_elements_h5(H5File& h5, const CatenaryMesh& mesh) {
   std::vector<long> cable_conn, cable_wire, cable_kind, cable_segment;
   std::vector<double> cable_ref, cable_l0;
   for (const auto& c : mesh.cables) {
-    cable_conn.push_back(c.nodes[0]);
-    cable_conn.push_back(c.nodes[1]);
+    cable_conn.insert(cable_conn.end(), {c.nodes[0], c.nodes[1]});
     cable_wire.push_back(c.wire);
     cable_kind.push_back(static_cast<long>(mesh.wires[c.wire].kind));
     cable_segment.push_back(c.tension_segment);
     cable_ref.push_back(c.ref_length);
     cable_l0.push_back(c.unstressed_length);
   }
-  // Bars.
   std::vector<long> bar_conn, bar_kind, bar_span, bar_index;
   std::vector<double> bar_k, bar_mass, bar_l0;
   for (const auto& b : mesh.bars) {
-    bar_conn.push_back(b.nodes[0]);
-    bar_conn.push_back(b.nodes[1]);
+    bar_conn.insert(bar_conn.end(), {b.nodes[0], b.nodes[1]});
     bar_kind.push_back(static_cast<long>(b.kind));
     bar_span.push_back(b.span);
     bar_index.push_back(b.index_in_span);
@@ -172,10 +180,22 @@ void write_mesh_h5_xdmf(const CatenaryMesh& mesh, const std::vector<double>& nod
     bar_mass.push_back(b.mass);
     bar_l0.push_back(b.unstressed_length);
   }
-  std::vector<long> pm_node;
+  h5.write_int("/cables/connectivity", cable_conn, mesh.cables.size(), 2);
+  h5.write_int("/cables/wire", cable_wire);
+  h5.write_int("/cables/wire_kind", cable_kind);
+  h5.write_int("/cables/tension_segment", cable_segment);
+  h5.write("/cables/ref_length", cable_ref);
+  h5.write("/cables/unstressed_length", cable_l0);
+  h5.write_int("/bars/connectivity", bar_conn, mesh.bars.size(), 2);
+  h5.write_int("/bars/kind", bar_kind);
+  h5.write_int("/bars/span", bar_span);
+  h5.write_int("/bars/index_in_span", bar_index);
+  h5.write("/bars/stiffness", bar_k);
+  h5.write("/bars/mass", bar_mass);
+  h5.write("/bars/unstressed_length", bar_l0);
+  std::vector<long> pm_node, wire_kind;
   std::vector<double> pm_mass;
   std::vector<std::string> pm_label, wire_name;
-  std::vector<long> wire_kind;
   for (const auto& pm : mesh.point_masses) {
     pm_node.push_back(pm.node);
     pm_mass.push_back(pm.mass);
@@ -185,43 +205,19 @@ void write_mesh_h5_xdmf(const CatenaryMesh& mesh, const std::vector<double>& nod
     wire_name.push_back(w.name);
     wire_kind.push_back(static_cast<long>(w.kind));
   }
+  h5.write_int("/point_masses/node", pm_node);
+  h5.write("/point_masses/mass", pm_mass);
+  h5.write_strings("/point_masses/label", pm_label);
+  h5.write_strings("/wires/name", wire_name);
+  h5.write_int("/wires/kind", wire_kind);
+}
 
-  {
-    H5File h5(h5_path);
-    h5.write("/nodes/position", node_positions, n, 3);
-    h5.write("/nodes/design_position", design, n, 3);
-    h5.write("/nodes/displacement", displacement, n, 3);
-    h5.write_int("/nodes/wire", node_wire);
-    h5.write_int("/nodes/fixed", fixed, n, 6);
-    h5.write_int("/nodes/fixed_mask", fixed_mask);
-    h5.write("/nodes/point_mass", point_mass);
-    h5.write_int("/cables/connectivity", cable_conn, ne, 2);
-    h5.write_int("/cables/wire", cable_wire);
-    h5.write_int("/cables/wire_kind", cable_kind);
-    h5.write_int("/cables/tension_segment", cable_segment);
-    h5.write("/cables/ref_length", cable_ref);
-    h5.write("/cables/unstressed_length", cable_l0);
-    h5.write_int("/bars/connectivity", bar_conn, nb, 2);
-    h5.write_int("/bars/kind", bar_kind);
-    h5.write_int("/bars/span", bar_span);
-    h5.write_int("/bars/index_in_span", bar_index);
-    h5.write("/bars/stiffness", bar_k);
-    h5.write("/bars/mass", bar_mass);
-    h5.write("/bars/unstressed_length", bar_l0);
-    h5.write_int("/point_masses/node", pm_node);
-    h5.write("/point_masses/mass", pm_mass);
-    h5.write_strings("/point_masses/label", pm_label);
-    h5.write_strings("/wires/name", wire_name);
-    h5.write_int("/wires/kind", wire_kind);
-    for (const auto& f : node_fields)
-      h5.write("/fields/" + f.name, f.values, n, static_cast<std::size_t>(f.components));
-    h5.attribute("/", "name", mesh.name);
-    h5.attribute("/", "source_file", mesh.source_file);
-  }
-
-  // XDMF: one grid per kind of cell; empty grids are left out (ParaView
-  // does not accept zero-cell grids).
-  const std::string h5_name = base_name(h5_path);
+// XDMF: one grid per kind of cell; empty grids are left out (ParaView
+// does not accept zero-cell grids).
+std::string mesh_xdmf(const CatenaryMesh& mesh, const std::string& h5_name,
+                      const std::vector<NodeField>& node_fields) {
+  const std::size_t n = mesh.nodes.size(), ne = mesh.cables.size(), nb = mesh.bars.size(),
+                    np = mesh.point_masses.size();
   std::vector<XdmfAttribute> node_attributes = {
       {"displacement", "/nodes/displacement", false, false, n, 3},
       {"node_wire", "/nodes/wire", true, false, n, 1},
@@ -231,7 +227,6 @@ void write_mesh_h5_xdmf(const CatenaryMesh& mesh, const std::vector<double>& nod
   for (const auto& f : node_fields)
     node_attributes.push_back(
         {f.name, "/fields/" + f.name, false, false, n, static_cast<std::size_t>(f.components)});
-
   std::ostringstream x;
   x << "<?xml version=\"1.0\" ?>\n";
   x << "<Xdmf Version=\"3.0\">\n";
@@ -258,8 +253,26 @@ void write_mesh_h5_xdmf(const CatenaryMesh& mesh, const std::vector<double>& nod
   }
   x << "  </Domain>\n";
   x << "</Xdmf>\n";
+  return x.str();
+}
 
-  write_xdmf_file(xdmf_path, x.str());
+}  // namespace
+
+void write_mesh_h5_xdmf(const CatenaryMesh& mesh, const std::vector<double>& node_positions,
+                        const std::string& h5_path, const std::string& xdmf_path,
+                        const std::vector<NodeField>& node_fields) {
+  check_mesh_output(mesh, node_positions, node_fields);
+  {
+    H5File h5(h5_path);
+    write_nodes_h5(h5, mesh, node_positions);
+    write_elements_h5(h5, mesh);
+    for (const auto& f : node_fields)
+      h5.write("/fields/" + f.name, f.values, mesh.nodes.size(),
+               static_cast<std::size_t>(f.components));
+    h5.attribute("/", "name", mesh.name);
+    h5.attribute("/", "source_file", mesh.source_file);
+  }
+  write_xdmf_file(xdmf_path, mesh_xdmf(mesh, base_name(h5_path), node_fields));
 }
 
 void write_modes_xdmf(const CatenaryMesh& mesh, const std::string& modes_h5_name,

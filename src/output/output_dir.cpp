@@ -8,7 +8,7 @@
 #include <system_error>
 
 #include "output_guard.hpp"
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 
 namespace fs = std::filesystem;
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 
 namespace pcsim::pantograph {
 

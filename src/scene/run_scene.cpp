@@ -15,14 +15,10 @@ static std::string fmt(double v) {
   return s.str();
 }
 
-RunScene load_run_scene(const InputNode& scene) {
-  RunScene run;
-  run.catenary = catenary::load_catenary_scene(scene);
-  const auto& mesh = run.catenary.mesh;
-  if (mesh.contact_wire < 0 || mesh.support_x.size() < 2)
-    scene["catenary"].fail_key(
-        "design", "a dynamic run needs a parametric design (contact wire and supports)");
+namespace {
 
+void read_simulation(const InputNode& scene, RunScene& run) {
+  const auto& mesh = run.catenary.mesh;
   const InputNode sim = scene["simulation"];
   sim.allow_only({"speed_kmh", "end_x", "dt"});
   run.speed = sim.get_positive("speed_kmh") / 3.6;
@@ -37,50 +33,39 @@ RunScene load_run_scene(const InputNode& scene) {
   run.end_x = sim.get_double("end_x", x_last - 5.0);
   if (run.end_x <= x_first || run.end_x > x_last)
     sim.fail_key("end_x", "must lie on the line (" + fmt(x_first) + ", " + fmt(x_last) + "] m");
+}
 
-  const InputNode list = scene["pantographs"];
-  if (!list.is_sequence() || list.size() == 0) list.fail("must be a non-empty list of pantographs");
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const InputNode p = list.at(i);
-    p.allow_only({"name", "model", "start_x", "static_force", "start", "ramp_distance",
-                  "working_height", "effects"});
-    contact::PantographRun pr;
-    pr.name = p.get_string("name", "pantograph" + std::to_string(i + 1));
-    const InputNode effects =
-        p.has("effects") ? p["effects"] : InputNode(YAML::Node(), p.file(), "");
-    const std::string model_path = p.resolve_path(p.get_string("model"));
-    if (!std::ifstream(model_path))
-      p.fail_key("model", "cannot open pantograph model file '" + model_path + "'");
-    auto model = load_pantograph_model(
-        model_path, p.has("effects") ? &effects : nullptr, run.speed);
-    pr.start_x = p.get_double("start_x", x_first + 5.0);
-    if (pr.start_x < x_first || pr.start_x >= run.end_x)
-      p.fail_key("start_x", "must lie on the line before simulation.end_x (" + fmt(run.end_x) +
-                                " m), got " + fmt(pr.start_x));
-    pr.static_force = p.get_positive("static_force", 120.0);
-    pr.speed = run.speed;
-    const std::string start = p.get_choice("start", {"static", "ramp"}, i == 0 ? "static" : "ramp");
-    if (start == "static" && i > 0)
-      p.fail_key("start", "only the first pantograph can start in static equilibrium");
-    pr.static_start = start == "static";
-    pr.ramp_distance = p.get_positive("ramp_distance", 20.0);
-    // The model states its default: a height above its base, or 0 (absolute heights).
-    pr.working_height = p.get_positive("working_height", model->default_working_height());
-    run.pantographs.push_back(std::move(pr));
-    run.models.push_back(std::move(model));
-  }
-  if (scene.has("effects")) {
-    const InputNode e = scene["effects"];
-    e.allow_only({"catenary_nonlinear", "dropper_slack", "rayleigh_damping"});
-    run.effects.catenary_nonlinear = e.get_bool("catenary_nonlinear", false);
-    run.effects.dropper_slack = e.get_bool("dropper_slack", true);
-    run.effects.rayleigh_damping = e.get_bool("rayleigh_damping", true);
-  }
-  if (scene.has("contact")) {
-    const InputNode c2 = scene["contact"];
-    c2.allow_only({"stiffness"});
-    run.contact_stiffness = c2.get_positive("stiffness", 50000.0);
-  }
+// Entry i of the scene's pantographs: how it travels and starts, and its model.
+void read_pantograph(const InputNode& p, std::size_t i, RunScene& run) {
+  p.allow_only({"name", "model", "start_x", "static_force", "start", "ramp_distance",
+                "working_height", "effects"});
+  const double x_first = run.catenary.mesh.support_x.front();
+  contact::PantographRun pr;
+  pr.name = p.get_string("name", "pantograph" + std::to_string(i + 1));
+  const InputNode effects = p.has("effects") ? p["effects"] : InputNode(YAML::Node(), p.file(), "");
+  const std::string model_path = p.resolve_path(p.get_string("model"));
+  if (!std::ifstream(model_path))
+    p.fail_key("model", "cannot open pantograph model file '" + model_path + "'");
+  auto model = load_pantograph_model(model_path, p.has("effects") ? &effects : nullptr, run.speed);
+  pr.start_x = p.get_double("start_x", x_first + 5.0);
+  if (pr.start_x < x_first || pr.start_x >= run.end_x)
+    p.fail_key("start_x", "must lie on the line before simulation.end_x (" + fmt(run.end_x) +
+                              " m), got " + fmt(pr.start_x));
+  pr.static_force = p.get_positive("static_force", 120.0);
+  pr.speed = run.speed;
+  const std::string start = p.get_choice("start", {"static", "ramp"}, i == 0 ? "static" : "ramp");
+  if (start == "static" && i > 0)
+    p.fail_key("start", "only the first pantograph can start in static equilibrium");
+  pr.static_start = start == "static";
+  pr.ramp_distance = p.get_positive("ramp_distance", 20.0);
+  // The model states its default: a height above its base, or 0 (absolute heights).
+  pr.working_height = p.get_positive("working_height", model->default_working_height());
+  run.pantographs.push_back(std::move(pr));
+  run.models.push_back(std::move(model));
+}
+
+void read_analysis(const InputNode& scene, RunScene& run) {
+  const auto& mesh = run.catenary.mesh;
   const int n_spans = static_cast<int>(mesh.support_x.size()) - 1;
   run.analysis_from_span = std::min(5, n_spans);
   run.analysis_to_span = std::min(6, n_spans);
@@ -97,6 +82,7 @@ RunScene load_run_scene(const InputNode& scene) {
   run.analysis_from_x = mesh.support_x[run.analysis_from_span - 1];
   run.analysis_to_x = mesh.support_x[run.analysis_to_span];
   // Every pantograph must cross the whole analysis section during the run.
+  const InputNode list = scene["pantographs"];
   for (std::size_t i = 0; i < run.pantographs.size(); ++i) {
     const auto& p = run.pantographs[i];
     const double x_end = p.start_x + (run.end_x - run.pantographs.front().start_x);
@@ -106,6 +92,21 @@ RunScene load_run_scene(const InputNode& scene) {
                               fmt(x_end) + " m and does not cross the whole analysis section (" +
                               fmt(run.analysis_from_x) + ", " + fmt(run.analysis_to_x) + ") m");
   }
+}
+
+void read_effects_and_output(const InputNode& scene, RunScene& run) {
+  if (scene.has("effects")) {
+    const InputNode e = scene["effects"];
+    e.allow_only({"catenary_nonlinear", "dropper_slack", "rayleigh_damping"});
+    run.effects.catenary_nonlinear = e.get_bool("catenary_nonlinear", false);
+    run.effects.dropper_slack = e.get_bool("dropper_slack", true);
+    run.effects.rayleigh_damping = e.get_bool("rayleigh_damping", true);
+  }
+  if (scene.has("contact")) {
+    const InputNode c = scene["contact"];
+    c.allow_only({"stiffness"});
+    run.contact_stiffness = c.get_positive("stiffness", 50000.0);
+  }
   if (scene.has("output")) {
     const InputNode o = scene["output"];
     o.allow_only({"dropper_forces", "snapshot_every"});
@@ -114,6 +115,23 @@ RunScene load_run_scene(const InputNode& scene) {
     if (run.snapshot_every < 0)
       o.fail_key("snapshot_every", "must be 0 (none) or a number of steps");
   }
+}
+
+}  // namespace
+
+RunScene load_run_scene(const InputNode& scene) {
+  RunScene run;
+  run.catenary = catenary::load_catenary_scene(scene);
+  const auto& mesh = run.catenary.mesh;
+  if (mesh.contact_wire < 0 || mesh.support_x.size() < 2)
+    scene["catenary"].fail_key(
+        "design", "a dynamic run needs a parametric design (contact wire and supports)");
+  read_simulation(scene, run);
+  const InputNode list = scene["pantographs"];
+  if (!list.is_sequence() || list.size() == 0) list.fail("must be a non-empty list of pantographs");
+  for (std::size_t i = 0; i < list.size(); ++i) read_pantograph(list.at(i), i, run);
+  read_effects_and_output(scene, run);
+  read_analysis(scene, run);
   return run;
 }
 

@@ -2,7 +2,7 @@
 
 #include <cstring>
 
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 
 namespace pcsim::solvers {
 

@@ -3,7 +3,7 @@
 #include <cstring>
 #include <string>
 
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 #include "pcsim/solvers/direct.hpp"
 #include "pcsim/solvers/hht.hpp"
 

@@ -14,7 +14,7 @@
 #include <string>
 
 #include "hht_data.hpp"
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 
 namespace pcsim::solvers::hht_detail {
 

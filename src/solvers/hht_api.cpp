@@ -1,6 +1,6 @@
 // Public functions of the HHT-alpha TS type (include/pcsim/solvers/hht.hpp).
 #include "hht_data.hpp"
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 #include "pcsim/solvers/hht.hpp"
 
 namespace pcsim::solvers {

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <set>
 
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 
 namespace pcsim::solvers {
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 
 namespace pcsim::solvers {
 

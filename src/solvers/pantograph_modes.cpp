@@ -2,7 +2,7 @@
 
 #include <slepceps.h>
 
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 
 namespace pcsim::solvers {
 

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 #include "pcsim/solvers/hht.hpp"
 
 namespace pcsim::solvers {

@@ -5,7 +5,7 @@
 
 #include "pcsim/assembly/fe_catenary.hpp"
 #include "pcsim/assembly/static_problem.hpp"
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 #include "pcsim/solvers/direct.hpp"
 #include "pcsim/solvers/statics.hpp"
 

@@ -4,7 +4,7 @@
 #include <petsctime.h>
 
 #include "pcsim/assembly/static_problem.hpp"
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 #include "pcsim/solvers/direct.hpp"
 
 namespace pcsim::solvers {

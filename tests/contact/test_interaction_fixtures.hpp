@@ -11,7 +11,7 @@
 
 #include "pcsim/assembly/coupled_system.hpp"
 #include "pcsim/assembly/fe_catenary.hpp"
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 #include "pcsim/scene/run_scene.hpp"
 #include "pcsim/scene/yaml_input.hpp"
 #include "pcsim/solvers/dynamics.hpp"

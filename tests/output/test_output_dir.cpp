@@ -11,7 +11,7 @@
 #include <sstream>
 #include <string>
 
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 #include "pcsim/output/output_dir.hpp"
 
 namespace fs = std::filesystem;

@@ -27,8 +27,8 @@ double norm(Vec x) {
 double relative_error(pcsim::testing::Problem& problem, Mat op, double t, Vec U, Vec V, Vec A,
                       double sv, double sa, Vec d) {
   const double h = 1e-7;
-  Vec Ad = problem.create_vector(), Fp = problem.create_vector(), Fm = problem.create_vector(),
-      Up, Vp, Ap;
+  Vec Ad = problem.create_vector(), Fp = problem.create_vector(), Fm = problem.create_vector(), Up,
+      Vp, Ap;
   PCSIM_PETSC(MatMult(op, d, Ad));
   PCSIM_PETSC(VecDuplicate(U, &Up));
   PCSIM_PETSC(VecDuplicate(V, &Vp));
@@ -50,8 +50,8 @@ double relative_error(pcsim::testing::Problem& problem, Mat op, double t, Vec U,
 }
 
 TEST(CheapPath, OperatorIsTheJacobianAfterDroppersSwitch) {
-  auto run = pcsim::scene::load_run_scene(
-      pcsim::InputNode::load_file(contact_data("en50318-short.yaml")));
+  auto run =
+      pcsim::scene::load_run_scene(pcsim::InputNode::load_file(contact_data("en50318-short.yaml")));
   auto problem = make_problem(run);
   Vec U0 = problem->create_vector(), V0 = problem->create_vector();
   problem->initial_state(U0, V0);

@@ -13,7 +13,7 @@
 #include <sstream>
 #include <vector>
 
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 #include "pcsim/solvers/hht.hpp"
 
 namespace {

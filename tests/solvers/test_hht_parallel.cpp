@@ -11,7 +11,7 @@
 #include <iostream>
 #include <vector>
 
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 #include "pcsim/solvers/hht.hpp"
 
 namespace {

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "pcsim/catenary/mesh.hpp"
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 
 namespace pcsim::catenary {
 

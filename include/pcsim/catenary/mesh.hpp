@@ -14,9 +14,12 @@
 #include <string>
 #include <vector>
 
+#include "pcsim/core/node_values.hpp"
+
 namespace pcsim::catenary {
 
-constexpr int kNodeDofs = 6;
+using pcsim::kNodeDofs;
+using pcsim::positions_from_node_values;
 
 struct Node {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  // design position [m]
@@ -102,14 +105,6 @@ struct TensionSegment {
   std::vector<int> elements;
   double tension = 0;
 };
-
-// Positions (3 per node) from node values (r, r': 6 per node).
-inline std::vector<double> positions_from_node_values(const std::vector<double>& node_values) {
-  std::vector<double> positions(node_values.size() / kNodeDofs * 3);
-  for (std::size_t n = 0; n < node_values.size() / kNodeDofs; ++n)
-    for (int c = 0; c < 3; ++c) positions[3 * n + c] = node_values[kNodeDofs * n + c];
-  return positions;
-}
 
 struct CatenaryMesh {
   std::string name;

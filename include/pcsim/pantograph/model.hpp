@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 
 namespace pcsim::pantograph {
 

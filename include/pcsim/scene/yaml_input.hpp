@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "pcsim/error.hpp"
+#include "pcsim/core/error.hpp"
 
 namespace pcsim {
 
