@@ -2,6 +2,7 @@
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <cstdio>
 
 #include "command.hpp"
 
@@ -28,6 +29,8 @@ void print_static_summary(const CommandContext& ctx, const catenary::CatenaryMes
   if (n_droppers > 0)
     print0(ctx, "  %d droppers, static force %.1f .. %.1f N\n", n_droppers, fmin, fmax);
   print0(ctx, "  wall time %.3f s\n", r.wall_time_s);
+  if (ctx.rank == 0)
+    for (const auto& w : r.warnings) std::fprintf(stderr, "pcsim: warning: %s\n", w.c_str());
 }
 
 double peak_memory_mb(MPI_Comm comm) {

@@ -22,6 +22,10 @@ struct StaticResult {
   std::vector<double> bar_lengths;       // deformed length of every bar
   std::vector<double> node_values;       // 6 per node (r, r'), every rank
   double wall_time_s = 0;
+  double force_scale = 0;             // loads: max(total weight, largest design tension) [N]
+  double residual_norm = 0;           // final ||R||_2 [N]
+  int negative_eigenvalues = -1;      // of the static tangent (-1: not computed)
+  std::vector<std::string> warnings;  // compression, unstable tangent (printed by the app)
 };
 
 struct ModesResult {

@@ -15,7 +15,12 @@ namespace pcsim::solvers {
 // (true; 'system' built with assembly::form_finding_unknowns(mesh) extras).
 // On return the mesh of 'system' holds the found unstressed lengths and every
 // bar's equilibrium length and force, and 'x' the static configuration.
-// Throws SolverError if Newton does not converge.
+// Convergence is judged by forces scaled to the loads (max of the total weight
+// and the largest design tension): ||R||_2 < 1e-9 of it, or Newton stagnated
+// at rounding with max |R| < 1e-6 of it; otherwise SolverError. After
+// convergence, result.warnings names cables and droppers in compression and a
+// tangent that is not positive definite (MUMPS LDL^T inertia); a cable in
+// compression after form-finding is an InputError on the design's 'wires'.
 catenary::StaticResult solve_static(assembly::CatenarySystem& system, Vec x, bool form_finding,
                                     const char* options_prefix = nullptr);
 
