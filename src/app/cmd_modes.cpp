@@ -3,6 +3,7 @@
 // -eps_nev overrides count; -modes_fmax overrides max_frequency_hz.
 #include "command.hpp"
 #include "exit_status.hpp"
+#include "inputs.hpp"
 #include "pcsim/assembly/static_problem.hpp"
 #include "pcsim/output/catenary_results.hpp"
 #include "pcsim/scene/catenary_scene.hpp"
@@ -13,21 +14,11 @@ namespace {
 
 using namespace pcsim;
 
-solvers::ModesRequest scene_modes(const InputNode& scene) {
-  solvers::ModesRequest r;
-  if (!scene.has("modes")) return r;
-  const InputNode m = scene["modes"];
-  m.allow_only({"count", "max_frequency_hz"});
-  r.count = static_cast<int>(m.get_int("count", 20));
-  if (r.count < 1) m.fail_key("count", "must be at least 1");
-  r.max_frequency_hz = m.get_positive("max_frequency_hz", 0.0);
-  return r;
-}
-
 int run_modes(const app::CommandContext& ctx) {
-  const InputNode scene = InputNode::load_file(ctx.scene_path);
-  auto cat = catenary::load_catenary_scene(scene);
-  const auto request = solvers::modes_request_from_options(ctx.comm, scene_modes(scene));
+  const app::ModesInputs in = app::read_modes_inputs(ctx);
+  const InputNode& scene = in.statics.scene;
+  const auto& cat = in.statics.catenary;
+  const auto& request = in.request;
   OutputDir out(ctx.comm, ctx.output_request(scene));
   app::print0(ctx, "pcsim modes: scene '%s', design %s\n", ctx.scene_name(scene).c_str(),
               cat.design_path.c_str());

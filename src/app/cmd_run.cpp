@@ -5,6 +5,7 @@
 
 #include "command.hpp"
 #include "exit_status.hpp"
+#include "inputs.hpp"
 #include "pcsim/assembly/coupled_system.hpp"
 #include "pcsim/assembly/fe_catenary.hpp"
 #include "pcsim/output/output_dir.hpp"
@@ -169,13 +170,15 @@ nlohmann::json run_facts(const app::CommandContext& ctx, const RunMonitor& mon,
 }
 
 int run_dynamic(const app::CommandContext& ctx) {
-  const InputNode scene = InputNode::load_file(ctx.scene_path);
-  auto run = scene::load_run_scene(scene);
+  app::RunInputs inputs = app::read_run_inputs(ctx);  // every input checked: exit 2 before work
+  const InputNode& scene = inputs.scene;
+  auto& run = inputs.run;
   const auto& design = run.catenary.mesh;
   const double c = catenary::wave_speed(design.wires[design.contact_wire]);
   OutputDir out(ctx.comm, ctx.output_request(scene));
   app::print0(ctx, "pcsim run: scene '%s', design %s\n", ctx.scene_name(scene).c_str(),
               run.catenary.design_path.c_str());
+  app::print_warnings(ctx, run.warnings);
   if (run.speed > 0.7 * c)
     app::print0(ctx, "  warning: speed %.0f km/h is above 70%% of the wave speed (%.0f km/h)\n",
                 run.speed * 3.6, c * 3.6);
@@ -184,6 +187,7 @@ int run_dynamic(const app::CommandContext& ctx) {
   app::print0(ctx, "  static: %d Newton iterations, height error %.2e m, tension error %.2e\n",
               statics.result.snes_iterations, statics.result.max_height_error_m,
               statics.result.max_tension_error_rel);
+  app::print_warnings(ctx, statics.result.warnings);
   const auto settings = run_settings(ctx, scene, run);
   auto system = make_system(ctx, run, statics);
   Vec U0 = system->create_vector(), V0 = system->create_vector();

@@ -2,8 +2,8 @@
 // catenary (thesis 3.1.3).
 #include "command.hpp"
 #include "exit_status.hpp"
+#include "inputs.hpp"
 #include "pcsim/output/catenary_results.hpp"
-#include "pcsim/scene/catenary_scene.hpp"
 #include "pcsim/solvers/statics.hpp"
 
 namespace {
@@ -11,8 +11,9 @@ namespace {
 using namespace pcsim;
 
 int run_static(const app::CommandContext& ctx) {
-  const InputNode scene = InputNode::load_file(ctx.scene_path);
-  auto cat = catenary::load_catenary_scene(scene);
+  const app::StaticInputs in = app::read_static_inputs(ctx);
+  const InputNode& scene = in.scene;
+  const auto& cat = in.catenary;
   OutputDir out(ctx.comm, ctx.output_request(scene));
   app::print0(ctx, "pcsim static: scene '%s', design %s\n", ctx.scene_name(scene).c_str(),
               cat.design_path.c_str());

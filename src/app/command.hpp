@@ -22,6 +22,7 @@ struct CommandContext {
   std::string command;     // the command being run ("run", "static", ...)
   std::string scene_path;  // SCENE.yaml as given
   std::string output_dir;  // from -o, or "" for the default out/<scene name>
+  std::string check_as;    // `pcsim check --as CMD`: the command to check the scene for
   // Scene name: 'name' key of the scene, else the file name without extension.
   // InputError (scene file, key 'name') if it cannot name a folder.
   std::string scene_name(const InputNode& scene) const;

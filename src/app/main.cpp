@@ -67,9 +67,14 @@ void print_usage() {
   std::printf(
       "\noptions:\n"
       "  -o DIR       output folder (default out/<scene name>/)\n"
+      "  --as CMD     pcsim check: check the scene for this command (static, modes, run,\n"
+      "               pantograph) instead of the one its sections suggest\n"
       "  -h, --help   this text\n"
       "Any other option goes to PETSc's options database, e.g. -snes_monitor,\n"
-      "-snes_test_jacobian, -ksp_type, -ts_dt, -eps_nev, -log_view, -options_left.\n");
+      "-snes_test_jacobian, -ksp_type, -ts_dt, -eps_nev, -log_view, -options_left.\n"
+      "pcsim's own (checked before any work; `pcsim CMD SCENE -help` lists them with PETSc's):\n"
+      "  -ts_dt, -ts_type hht|alpha2, -ts_hht_alpha [0, 1/3], -pcsim_path auto|full|cheap (run);\n"
+      "  -eps_nev N, -modes_fmax F (modes).\n");
 }
 
 }  // namespace
@@ -99,6 +104,13 @@ int main(int argc, char** argv) {
         return 2;
       }
       ctx.output_dir = argv[++i];
+    } else if (!std::strcmp(argv[i], "--as") && command_name == "check") {
+      if (i + 1 >= argc) {
+        std::fprintf(
+            stderr, "pcsim: error: option --as needs a command (static, modes, run, pantograph)\n");
+        return 2;
+      }
+      ctx.check_as = argv[++i];
     } else if (!std::strcmp(argv[i], "-h") || !std::strcmp(argv[i], "--help")) {
       std::printf("usage: pcsim %s SCENE.yaml [-o DIR] [PETSc options]\n  %s\n",
                   command_name.c_str(), it->second.summary.c_str());

@@ -8,18 +8,13 @@
 
 namespace pcsim::catenary {
 
-namespace {
-
-using detail::fmt;
-using detail::require_nonnegative;
-using detail::require_positive;
-using detail::unit;
+namespace detail {
 
 // Key points (supports, dropper points, stitch clamps) closer than this are
 // rejected: they would make a needlessly tiny, very stiff element.
 constexpr double kMinKeyPointGap = 0.05;  // [m]
-// Key points closer than this are the same point.
-constexpr double kSamePoint = 1e-9;  // [m]
+
+namespace {
 
 // ----------------------------------------------------------------- checks ----
 
@@ -90,6 +85,8 @@ void check_stitch_wire(const std::string& file, const StitchWireDesign& st, doub
   require_positive(file, "stitch_wire.EA", st.EA);
 }
 
+}  // namespace
+
 void check_parametric(const ParametricDesign& in) {
   check_spans_and_heights(in);
   check_cable(in.file, "wires.contact", in.contact);
@@ -101,23 +98,12 @@ void check_parametric(const ParametricDesign& in) {
 
 // ------------------------------------------------------------- geometry ----
 
-// What a key point of a span is (for messages and for building the mesh).
-enum class KeyKind { support, dropper, stitch_clamp };
-struct KeyPoint {
-  double s = 0;  // distance from the span's first support [m]
-  KeyKind kind = KeyKind::support;
-  int index = -1;  // dropper index for droppers
-};
-
-std::string describe(const KeyPoint& k) {
+static std::string describe(const KeyPoint& k) {
   if (k.kind == KeyKind::dropper) return "the dropper at " + fmt(k.s) + " m";
   if (k.kind == KeyKind::stitch_clamp) return "the stitch-wire clamp at " + fmt(k.s) + " m";
   return "the support at " + fmt(k.s) + " m";
 }
 
-// Key points of span j (0-based), sorted; coincident points merged (a
-// stitch clamp on a dropper point stays a dropper point). Throws if two key
-// points are closer than kMinKeyPointGap.
 std::vector<KeyPoint> span_key_points(const ParametricDesign& in, int j) {
   const double L = in.span_length;
   const int N = static_cast<int>(in.span_count);
@@ -152,6 +138,16 @@ std::vector<KeyPoint> span_key_points(const ParametricDesign& in, int j) {
   }
   return merged;
 }
+
+}  // namespace detail
+
+namespace {
+
+using detail::fmt;
+using detail::KeyKind;
+using detail::KeyPoint;
+using detail::kSamePoint;
+using detail::unit;
 
 // Design geometry of the parametric catenary: s is the distance from the
 // first support of span j.
@@ -227,7 +223,7 @@ class ParametricBuilder {
 
   void make_stations() {
     for (int j = 0; j < N_; ++j) {
-      auto keys = span_key_points(in_, j);
+      auto keys = detail::span_key_points(in_, j);
       for (std::size_t k = 0; k + 1 < keys.size(); ++k) {
         const double a = keys[k].s, b = keys[k + 1].s;
         int n = std::max(1, static_cast<int>(std::ceil((b - a) / in_.element_length - 1e-9)));
@@ -459,7 +455,7 @@ class ParametricBuilder {
 }  // namespace
 
 CatenaryMesh build_parametric(const ParametricDesign& design) {
-  check_parametric(design);
+  detail::check_parametric(design);
   CatenaryMesh mesh = ParametricBuilder(design).build();
   detail::require_consistent(mesh, design.file);
   return mesh;

@@ -1,8 +1,8 @@
 #include "pcsim/scene/flexible_dsa380_reader.hpp"
 
-#include "pcsim/scene/pantograph_reader.hpp"
-
 #include <cmath>
+
+#include "pcsim/scene/pantograph_reader.hpp"
 
 namespace pcsim::scene {
 
@@ -12,7 +12,7 @@ pantograph::FlexibleDsa380Parameters read_flexible_dsa380(const InputNode& model
   if (model.get_string("kind") != "dsa380_flexible")
     model.fail_key("kind", "must be 'dsa380_flexible' for this reader");
   pantograph::FlexibleDsa380Parameters p;
-  const std::string rigid_path = model.resolve_path(model.get_string("rigid_model"));
+  const std::string rigid_path = model.get_file_path("rigid_model");
   p.rigid = load_dsa380_parameters(InputNode::load_file(rigid_path));
   if (model.has("material")) {
     const auto m = model["material"];

@@ -1,7 +1,6 @@
 #include "pcsim/scene/run_scene.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "pcsim/scene/pantograph_reader.hpp"
@@ -17,7 +16,7 @@ static std::string fmt(double v) {
 
 namespace {
 
-void read_simulation(const InputNode& scene, RunScene& run) {
+void read_simulation(const InputNode& scene, RunScene& run, std::optional<double> dt) {
   const auto& mesh = run.catenary.mesh;
   const InputNode sim = scene["simulation"];
   sim.allow_only({"speed_kmh", "end_x", "dt"});
@@ -29,6 +28,7 @@ void read_simulation(const InputNode& scene, RunScene& run) {
                      " km/h is not below the contact wire's wave speed sqrt(T/rho) = " +
                      fmt(c * 3.6) + " km/h");
   run.dt = sim.get_positive("dt", 1e-3);
+  if (dt) run.dt = *dt;
   const double x_first = mesh.support_x.front(), x_last = mesh.support_x.back();
   run.end_x = sim.get_double("end_x", x_last - 5.0);
   if (run.end_x <= x_first || run.end_x > x_last)
@@ -43,9 +43,7 @@ void read_pantograph(const InputNode& p, std::size_t i, RunScene& run) {
   contact::PantographRun pr;
   pr.name = p.get_string("name", "pantograph" + std::to_string(i + 1));
   const InputNode effects = p.has("effects") ? p["effects"] : InputNode(YAML::Node(), p.file(), "");
-  const std::string model_path = p.resolve_path(p.get_string("model"));
-  if (!std::ifstream(model_path))
-    p.fail_key("model", "cannot open pantograph model file '" + model_path + "'");
+  const std::string model_path = p.get_file_path("model");
   auto model = load_pantograph_model(model_path, p.has("effects") ? &effects : nullptr, run.speed);
   pr.start_x = p.get_double("start_x", x_first + 5.0);
   if (pr.start_x < x_first || pr.start_x >= run.end_x)
@@ -60,6 +58,8 @@ void read_pantograph(const InputNode& p, std::size_t i, RunScene& run) {
   pr.ramp_distance = p.get_positive("ramp_distance", 20.0);
   // The model states its default: a height above its base, or 0 (absolute heights).
   pr.working_height = p.get_positive("working_height", model->default_working_height());
+  if (pr.working_height > 0)  // else the head meets the wire wherever it is (lumped models)
+    check_working_height(p, *model, pr.static_force, pr.working_height, p.has("working_height"));
   run.pantographs.push_back(std::move(pr));
   run.models.push_back(std::move(model));
 }
@@ -119,19 +119,21 @@ void read_effects_and_output(const InputNode& scene, RunScene& run) {
 
 }  // namespace
 
-RunScene load_run_scene(const InputNode& scene) {
+RunScene load_run_scene(const InputNode& scene, const RunSceneOptions& options) {
   RunScene run;
-  run.catenary = catenary::load_catenary_scene(scene);
+  run.catenary = catenary::load_catenary_scene(scene, options.size_check);
   const auto& mesh = run.catenary.mesh;
   if (mesh.contact_wire < 0 || mesh.support_x.size() < 2)
     scene["catenary"].fail_key(
         "design", "a dynamic run needs a parametric design (contact wire and supports)");
-  read_simulation(scene, run);
+  read_simulation(scene, run, options.command_line_dt);
   const InputNode list = scene["pantographs"];
   if (!list.is_sequence() || list.size() == 0) list.fail("must be a non-empty list of pantographs");
   for (std::size_t i = 0; i < list.size(); ++i) read_pantograph(list.at(i), i, run);
+  check_pantograph_positions(scene, run);
   read_effects_and_output(scene, run);
   read_analysis(scene, run);
+  check_time_step(scene, run, options.command_line_dt ? "-ts_dt" : "simulation.dt");
   return run;
 }
 

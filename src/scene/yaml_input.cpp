@@ -1,6 +1,7 @@
 #include "pcsim/scene/yaml_input.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -15,9 +16,19 @@ std::string short_repr(const YAML::Node& n) {
 }
 }  // namespace
 
+std::string unreadable_file_reason(const std::string& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (status.type() == std::filesystem::file_type::not_found) return "no such file";
+  if (status.type() == std::filesystem::file_type::directory) return "is a folder, not a file";
+  if (ec || status.type() != std::filesystem::file_type::regular) return "is not a regular file";
+  if (!std::ifstream(path)) return "cannot be read (permissions?)";
+  return "";
+}
+
 InputNode InputNode::load_file(const std::string& path) {
-  std::ifstream probe(path);
-  if (!probe) throw InputError(path, "", "cannot open file (missing or unreadable)");
+  const std::string why = unreadable_file_reason(path);
+  if (!why.empty()) throw InputError(path, "", "cannot open file: " + why);
   try {
     YAML::Node root = YAML::LoadFile(path);
     if (!root.IsMap()) throw InputError(path, "", "top level must be a map of keys");
@@ -43,6 +54,13 @@ std::string InputNode::directory() const {
 std::string InputNode::resolve_path(const std::string& relative) const {
   if (!relative.empty() && relative[0] == '/') return relative;
   return directory() + relative;
+}
+
+std::string InputNode::get_file_path(const std::string& key) const {
+  const std::string path = resolve_path(get_string(key));
+  const std::string why = unreadable_file_reason(path);
+  if (!why.empty()) fail_key(key, "cannot open '" + path + "': " + why);
+  return path;
 }
 
 std::string InputNode::child_path(const std::string& key) const {

@@ -114,6 +114,8 @@ class Dsa380Pantograph : public PantographModel {
 
  private:
   double spring_force(double l, double l0, double* stiffness) const;
+  [[noreturn]] void fail_working_height(double theta, double h0, double z,
+                                        const std::string& what) const;
   Dsa380Parameters p_;
   Dsa380Effects e_;
   double aero_force_ = 0;

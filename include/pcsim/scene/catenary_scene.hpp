@@ -7,6 +7,7 @@
 #include <string>
 
 #include "pcsim/catenary/mesh.hpp"
+#include "pcsim/scene/design_reader.hpp"
 #include "pcsim/scene/yaml_input.hpp"
 
 namespace pcsim::catenary {
@@ -17,7 +18,8 @@ struct CatenaryScene {
   CatenaryMesh mesh;
 };
 
-CatenaryScene load_catenary_scene(const InputNode& scene);
+// 'size_check' sees the design's mesh size before the mesh is built.
+CatenaryScene load_catenary_scene(const InputNode& scene, const MeshSizeCheck& size_check = {});
 
 // Checks the top-level keys of a scene file (every pcsim command reads the
 // same scene format and rejects unknown sections).

@@ -17,6 +17,10 @@
 
 namespace pcsim {
 
+// Why 'path' cannot be read as an input file ("" if it can): missing, a
+// folder, not a regular file, or unreadable.
+std::string unreadable_file_reason(const std::string& path);
+
 class InputNode {
  public:
   // Loads a YAML file; throws InputError if it is missing or malformed.
@@ -33,6 +37,9 @@ class InputNode {
   std::string directory() const;
   // Resolves a path given in this file: absolute, or relative to the file's folder.
   std::string resolve_path(const std::string& relative) const;
+  // The file named by key 'key' (resolved as above); fails naming the key when it
+  // is missing, a folder or unreadable.
+  std::string get_file_path(const std::string& key) const;
 
   bool has(const std::string& key) const;
   bool is_map() const { return node_.IsMap(); }
