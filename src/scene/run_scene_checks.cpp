@@ -75,16 +75,17 @@ void check_time_step(const InputNode& scene, RunScene& run, const std::string& d
                          " Hz of the time step (" + dt_text + "); use a smaller time step");
   const double duration = run.duration();
   const double steps = duration / run.dt;
+  // The time step comes from the scene or from the command line (-ts_dt).
+  const std::string dt_file = dt_key[0] == '-' ? "command line" : scene.file();
+  const std::string too_few = "the contact-force filter needs more than ";
   if (steps <= kFilterPadding)
-    throw InputError(scene.file(), dt_key,
+    throw InputError(dt_file, dt_key,
                      "the run of " + fmt(duration) + " s takes only " + fmt(std::floor(steps)) +
-                         " steps of " + fmt(run.dt) +
-                         " s; the contact-force filter needs more "
-                         "than " +
+                         " steps of " + fmt(run.dt) + " s; " + too_few +
                          std::to_string(kFilterPadding));
   const double section_samples = (run.analysis_to_x - run.analysis_from_x) / (run.speed * run.dt);
   if (section_samples < kMinSectionSamples)
-    throw InputError(scene.file(), dt_key,
+    throw InputError(dt_file, dt_key,
                      "the analysis section (" + fmt(run.analysis_to_x - run.analysis_from_x) +
                          " m) holds only " + fmt(std::floor(section_samples)) + " samples at " +
                          fmt(run.speed * run.dt) + " m per step (" + dt_text +

@@ -115,6 +115,7 @@ run_scene second-static "  - {name: p, model: $two_mass, start_x: 13.1}
   - {name: q, model: $two_mass, start_x: 3.1, start: static}"
 run_scene cutoff "$one" "" ", cutoff_hz: 600"
 run_scene dt-one "$one" ", dt: 1.0"
+run_scene few-samples "$one" ", dt: 0.5" ", cutoff_hz: 0.5"
 run_scene spans "$one" "" ", to_span: 7"
 sed -i 's/from_span: 2, to_span: 2, to_span: 7/from_span: 2, to_span: 7/' "$w/spans.yaml"
 run_scene dsa-high "  - {name: p, model: $dsa, start_x: 13.1, working_height: 3.0}"
@@ -224,6 +225,7 @@ expect model-file 2 "negative-panto-model.yaml|key 'stages[0].mass'|positive" no
 expect second-static 2 "second-static.yaml|key 'pantographs[1].start'|first pantograph" yes run second-static.yaml
 expect cutoff 2 "cutoff.yaml|key 'analysis.cutoff_hz'|Nyquist frequency 500 Hz" yes run cutoff.yaml
 expect dt-one 2 "dt-one.yaml|key 'analysis.cutoff_hz'|Nyquist|simulation.dt = 1 s" yes run dt-one.yaml
+expect few-samples 2 "few-samples.yaml|key 'simulation.dt'|filter needs more than 15" yes run few-samples.yaml
 expect spans 2 "spans.yaml|key 'analysis'|to_span" yes run spans.yaml
 expect dsa-high 2 "dsa-high.yaml|key 'pantographs[0].working_height'|cannot be assembled at frame angle|working height 3 m" \
   yes run dsa-high.yaml
