@@ -129,6 +129,8 @@ WirePoint FECatenary::wire_point(double x) const {
     system_->cable_values(element, q.data());
     point.owned = true;
     point.z = S.dot(q);
+    const Eigen::Vector3d r_chi = catenary::cable_point(el.ref_length, q, chi).r_chi;
+    point.slope = r_chi[2] / r_chi[0];
   }
   return point;
 }

@@ -28,6 +28,7 @@ struct WirePoint {
   bool on_wire = false;         // x lies on the contact wire
   bool owned = false;           // this rank holds the state of the point: z is set
   double z = 0;                 // wire height at x at the loaded state [m]
+  double slope = 0;             // dz/dx of the wire at x at the loaded state
   std::vector<PetscInt> index;  // global unknowns z depends on (every rank)
   std::vector<double> weight;   // dz/dU for those unknowns (every rank)
 };

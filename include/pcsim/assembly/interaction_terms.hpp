@@ -49,7 +49,8 @@ class PenaltyContact : public Term {
   void add_tangent(const CoupledState& state, Shifts shifts, Mat J) override;
   void add_reference_tangent(const CoupledState&, Shifts, Mat) override {}
   bool low_rank_change(const CoupledState& state, std::vector<RankOne>& terms) override;
-  double energy(const CoupledState& state) const override;  // 1/2 kH dz^2 in contact
+  double energy(const CoupledState& state) const override;    // 1/2 kH dz^2 in contact
+  TermPower power(const CoupledState& state) const override;  // the moving contact's work
 
   struct Evaluation {
     WirePoint wire;    // at x_c
