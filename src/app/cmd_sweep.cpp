@@ -230,10 +230,15 @@ int run_sweep(const CommandContext& ctx) {
                      "(--ranks N gives each case N ranks)");
   const int jobs = positive_option(ctx, "-j");
   positive_option(ctx, "--ranks");
-  const InputNode scene = ctx.load_scene();
   Plan plan = make_plan(ctx);
   check_cases(ctx, plan);
-  OutputRequest request = ctx.output_request(scene);
+  // The scene with the overrides every case shares names the sweep; the
+  // provenance lists every --set as given.
+  CommandContext shared = ctx;
+  shared.overrides = plan.fixed;
+  const InputNode scene = shared.load_scene();
+  OutputRequest request = shared.output_request(scene);
+  request.provenance["overrides"] = ctx.overrides;
   if (ctx.output_dir.empty()) request.dir += "-sweep";
   OutputDir out(ctx.comm, request);
   app::print0(ctx, "pcsim sweep: scene '%s', %zu cases, %d at a time\n",
