@@ -7,6 +7,7 @@
 #include "exit_status.hpp"
 #include "pcsim/assembly/coupled_system.hpp"
 #include "pcsim/assembly/fe_catenary.hpp"
+#include "pcsim/output/en50318.hpp"
 #include "pcsim/output/output_dir.hpp"
 #include "pcsim/output/run_results.hpp"
 #include "pcsim/scene/run_scene.hpp"
@@ -14,6 +15,7 @@
 #include "pcsim/solvers/hht.hpp"
 #include "pcsim/solvers/static_start.hpp"
 #include "pcsim/solvers/statics.hpp"
+#include "processes.hpp"
 
 namespace {
 
@@ -112,24 +114,55 @@ void integrate(const app::CommandContext& ctx, assembly::CoupledSystem& system,
     throw SolverError(std::string("time integration failed: ") + TSConvergedReasons[reason]);
 }
 
-void print_statistics(const app::CommandContext& ctx, const output::RunSettings& s,
-                      const output::RunStatistics& stats) {
-  app::print0(ctx, "\n  EN 50318 statistics (contact force low-pass %.0f Hz, spans %d-%d)\n",
-              s.cutoff_hz, s.analysis_from_span, s.analysis_to_span);
+// The EN 50318 table of one pantograph: figure, unit, value, and the range
+// and verdict where the standard gives ranges at this speed.
+void print_en50318_table(const app::CommandContext& ctx,
+                         const std::vector<output::AssessedFigure>& figures) {
+  const bool ranges = !figures.empty() && figures.front().has_range;
+  app::print0(ctx, "    %-32s %-4s %9s%s\n", "figure", "unit", "value",
+              ranges ? "         range    verdict" : "");
+  int inside = 0;
+  for (const auto& a : figures) {
+    char range[64] = "", bounds[40];
+    std::snprintf(bounds, sizeof bounds, "%g .. %g", a.range.low, a.range.high);
+    if (a.has_range)
+      std::snprintf(range, sizeof range, "  %12s    %s", bounds, a.inside ? "pass" : "FAIL");
+    app::print0(ctx, "    %-32s %-4s %9.2f%s\n", a.figure.label.c_str(), a.figure.unit.c_str(),
+                a.value, range);
+    inside += a.inside;
+  }
+  if (ranges) app::print0(ctx, "    %d of %zu figures inside the ranges\n", inside, figures.size());
+}
+
+// The EN 50318 figures of every pantograph; their json for summary.json.
+nlohmann::json print_statistics(const app::CommandContext& ctx, const output::RunSettings& s,
+                                const output::RunStatistics& stats) {
+  const auto& reference = output::en50318_reference();
+  const double speed_kmh = s.speed * 3.6;
+  app::print0(ctx,
+              "\n  EN 50318 figures (contact force low-pass %.0f Hz, spans %d-%d, %.0f km/h)\n",
+              s.cutoff_hz, s.analysis_from_span, s.analysis_to_span, speed_kmh);
+  if (reference.ranges_at(speed_kmh))
+    app::print0(ctx, "  acceptance ranges of %s at %.0f km/h\n", reference.edition.c_str(),
+                speed_kmh);
+  else
+    app::print0(ctx, "  %s gives acceptance ranges at %s only: values without verdict\n",
+                reference.edition.c_str(), reference.speeds_with_ranges().c_str());
+  const nlohmann::json run = {{"max_uplift_at_support_m", stats.max_uplift_m}};
+  nlohmann::json assessed = nlohmann::json::object();
   for (const auto& p : stats.pantographs) {
     if (!p.complete) {
       app::print0(ctx, "  %-12s did not cross the analysis section: no statistics\n",
                   p.name.c_str());
       continue;
     }
-    const auto& st = p.force;
-    app::print0(ctx,
-                "  %-12s mean %7.2f N  std %6.2f N  stat max %7.2f  stat min %7.2f  "
-                "max %7.2f  min %7.2f  loss of contact %.2f%%\n",
-                p.name.c_str(), st.mean, st.std_dev, st.statistical_max, st.statistical_min,
-                st.actual_max, st.actual_min, st.loss_of_contact_percent);
+    const auto figures =
+        output::assess_en50318(run, output::force_statistics_json(p.force), speed_kmh);
+    app::print0(ctx, "  pantograph '%s'\n", p.name.c_str());
+    print_en50318_table(ctx, figures);
+    assessed[p.name] = output::en50318_json(figures, speed_kmh);
   }
-  app::print0(ctx, "  max uplift at a support in the section: %.1f mm\n", 1e3 * stats.max_uplift_m);
+  return assessed;
 }
 
 output::RunSettings run_settings(const app::CommandContext& ctx, const InputNode& scene,
@@ -168,8 +201,18 @@ nlohmann::json run_facts(const app::CommandContext& ctx, const RunMonitor& mon,
   return j;
 }
 
+// report.html (postproc/report.py) in the result folder; a warning if it
+// cannot be made (no Python with matplotlib).
+void write_report(const app::CommandContext& ctx, const OutputDir& out) {
+  const std::string why = app::run_postproc("report.py", {"run", out.partial_dir()});
+  if (why.empty())
+    app::print0(ctx, "  report: report.html\n");
+  else
+    std::fprintf(stderr, "pcsim: warning: no report.html: %s\n", why.c_str());
+}
+
 int run_dynamic(const app::CommandContext& ctx) {
-  const InputNode scene = InputNode::load_file(ctx.scene_path);
+  const InputNode scene = ctx.load_scene();
   auto run = scene::load_run_scene(scene);
   const auto& design = run.catenary.mesh;
   const double c = catenary::wave_speed(design.wires[design.contact_wire]);
@@ -208,8 +251,10 @@ int run_dynamic(const app::CommandContext& ctx) {
   app::on_rank0(ctx, [&] {
     const auto stats = output::write_run_results(out, statics.mesh, statics.result.node_values,
                                                  settings, mon.history);
-    output::write_run_summary(out, settings, stats, facts);
-    print_statistics(ctx, settings, stats);
+    auto summary_facts = facts;
+    summary_facts["en50318"] = print_statistics(ctx, settings, stats);
+    summary_facts["provenance"] = out.provenance();
+    output::write_run_summary(out, settings, stats, summary_facts);
     app::print0(ctx,
                 "  %ld steps, %.2f Newton iterations/step, %.2f ms/step, real-time factor %.2f, "
                 "peak memory %.0f MB/rank\n",
@@ -217,6 +262,7 @@ int run_dynamic(const app::CommandContext& ctx) {
                 facts["time_per_step_ms"].get<double>(), facts["real_time_factor"].get<double>(),
                 facts["peak_memory_mb"].get<double>());
   });
+  if (!ctx.has_option("--no-report")) app::on_rank0(ctx, [&] { write_report(ctx, out); });
   out.commit();
   app::print0(ctx, "  results in %s/\n", out.final_dir().c_str());
   return 0;
@@ -224,4 +270,20 @@ int run_dynamic(const app::CommandContext& ctx) {
 
 }  // namespace
 
+PCSIM_COMMAND_HELP(
+    run_help, "run",
+    "scene sections (docs/scene-format.md, \"Run scenes\"):\n"
+    "  name         scene name: results go to out/<name>/ (default: the file name)\n"
+    "  description  free text\n"
+    "  catenary     design: FILE (docs/design-format.md), form_finding: true|false\n"
+    "  pantographs  list of {name, model, start_x, static_force, start, ramp_distance,\n"
+    "               working_height, effects}\n"
+    "  simulation   speed_kmh, end_x [m], dt [s]\n"
+    "  effects      catenary_nonlinear, dropper_slack, rayleigh_damping\n"
+    "  contact      stiffness [N/m]\n"
+    "  analysis     from_span, to_span, cutoff_hz\n"
+    "  output       dropper_forces, snapshot_every\n"
+    "  base, set    composition: a base scene, keys set by path\n"
+    "results: results.h5, summary.json (EN 50318 figures, provenance), report.html\n",
+    {"--no-report", "", "no report.html (postproc/report.py)"});
 PCSIM_COMMAND("run", "dynamic pantograph-catenary interaction (HHT, penalty contact)", run_dynamic);

@@ -11,7 +11,7 @@ namespace {
 using namespace pcsim;
 
 int run_static(const app::CommandContext& ctx) {
-  const InputNode scene = InputNode::load_file(ctx.scene_path);
+  const InputNode scene = ctx.load_scene();
   auto cat = catenary::load_catenary_scene(scene);
   OutputDir out(ctx.comm, ctx.output_request(scene));
   app::print0(ctx, "pcsim static: scene '%s', design %s\n", ctx.scene_name(scene).c_str(),
@@ -31,4 +31,11 @@ int run_static(const app::CommandContext& ctx) {
 
 }  // namespace
 
+PCSIM_COMMAND_HELP(static_help, "static",
+                   "scene sections (docs/scene-format.md, \"Catenary scenes\"):\n"
+                   "  name         scene name: results go to out/<name>/ (default: the file name)\n"
+                   "  description  free text\n"
+                   "  catenary     design: FILE (docs/design-format.md), form_finding: true|false\n"
+                   "  base, set    composition: a base scene, keys set by path\n"
+                   "results: static.h5, static_mesh.h5 + static.xdmf (ParaView), summary.json\n");
 PCSIM_COMMAND("static", "form-finding and static configuration of the catenary", run_static);

@@ -4,6 +4,7 @@
 #include "pcsim/scene/design_reader.hpp"
 
 #include "design_reader_internal.hpp"
+#include "pcsim/scene/composition.hpp"
 
 namespace pcsim::catenary {
 
@@ -127,7 +128,7 @@ CatenaryMesh build_catenary_design(const InputNode& root) {
 }
 
 CatenaryMesh load_catenary_design(const std::string& path) {
-  CatenaryMesh mesh = build_catenary_design(InputNode::load_file(path));
+  CatenaryMesh mesh = build_catenary_design(load_composed(path));
   mesh.source_file = path;
   return mesh;
 }

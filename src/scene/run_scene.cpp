@@ -43,10 +43,11 @@ void read_pantograph(const InputNode& p, std::size_t i, RunScene& run) {
   contact::PantographRun pr;
   pr.name = p.get_string("name", "pantograph" + std::to_string(i + 1));
   const InputNode effects = p.has("effects") ? p["effects"] : InputNode(YAML::Node(), p.file(), "");
-  const std::string model_path = p.resolve_path(p.get_string("model"));
+  const std::string model_path = p.path_value("model");
   if (!std::ifstream(model_path))
     p.fail_key("model", "cannot open pantograph model file '" + model_path + "'");
-  auto model = load_pantograph_model(model_path, p.has("effects") ? &effects : nullptr, run.speed);
+  auto model = load_pantograph_model(p.load_referenced("model"),
+                                     p.has("effects") ? &effects : nullptr, run.speed);
   pr.start_x = p.get_double("start_x", x_first + 5.0);
   if (pr.start_x < x_first || pr.start_x >= run.end_x)
     p.fail_key("start_x", "must lie on the line before simulation.end_x (" + fmt(run.end_x) +

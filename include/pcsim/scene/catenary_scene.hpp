@@ -19,6 +19,13 @@ struct CatenaryScene {
 
 CatenaryScene load_catenary_scene(const InputNode& scene);
 
+// The 'modes' section (pcsim modes): {count: N >= 1 (20), max_frequency_hz: F > 0 (none: 0)}.
+struct ModesSection {
+  int count = 20;
+  double max_frequency_hz = 0;
+};
+ModesSection load_modes_section(const InputNode& scene);
+
 // Checks the top-level keys of a scene file (every pcsim command reads the
 // same scene format and rejects unknown sections).
 void check_scene_sections(const InputNode& scene);
