@@ -3,6 +3,8 @@
 #include <mpi.h>
 #include <petscsnes.h>
 
+#include <utility>
+
 #include "pcsim/assembly/fe_catenary.hpp"
 #include "pcsim/assembly/static_problem.hpp"
 #include "pcsim/core/error.hpp"
@@ -17,18 +19,48 @@ std::string start_key(std::size_t p) {
   return "pantographs[" + std::to_string(p) + "].start_x";
 }
 
+// The lowest contact wire at station x for the catenary state in U (its
+// number and height, on every rank; -1 if x lies on no contact wire).
+std::pair<int, double> lowest_wire(assembly::CatenaryModel& catenary, Vec U, double x) {
+  catenary.load_state(U);
+  const int n = catenary.contact_wire_count();
+  std::vector<char> on(n, 0);  // the same on every rank
+  std::vector<double> z(n, 0.0);
+  for (int w = 0; w < n; ++w) {
+    const auto point = catenary.wire_point(x, w);
+    on[w] = point.on_wire;
+    if (point.owned) z[w] = point.z;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, z.data(), n, MPI_DOUBLE, MPI_SUM, catenary.comm());
+  std::pair<int, double> lowest{-1, 0.0};
+  for (int w = 0; w < n; ++w)
+    if (on[w] && (lowest.first < 0 || z[w] < lowest.second)) lowest = {w, z[w]};
+  return lowest;
+}
+
+// Contact-wire height at x for the catenary state in U0 (the lowest wire
+// there), on every rank.
+double wire_height(assembly::CatenaryModel& catenary, Vec U0, double x, std::size_t p) {
+  const auto lowest = lowest_wire(catenary, U0, x);
+  if (lowest.first < 0)
+    throw InputError("", start_key(p), "the pantograph starts outside the contact wire");
+  return lowest.second;
+}
+
 // The catenary part of U0: the static configuration, or for a static start
 // of the first pantograph the FE catenary under its static force F0 at its
-// start point (a guess for the coupled equilibrium).
+// start point on the lowest contact wire (a guess for the coupled
+// equilibrium).
 PetscInt catenary_start(assembly::CoupledSystem& system, Vec U0) {
   auto& catenary = system.catenary();
   catenary.reference_state(U0);
   const auto& first = system.pantographs().front();
   auto* fe = dynamic_cast<assembly::FECatenary*>(&catenary);
   if (!first.run.static_start || !fe) return 0;
+  const int wire = lowest_wire(catenary, U0, first.run.start_x).first;
   int element;
   double chi;
-  if (!fe->locator().locate(first.run.start_x, element, chi))
+  if (wire < 0 || !fe->locator(wire).locate(first.run.start_x, element, chi))
     throw InputError("", start_key(0), "the pantograph starts outside the contact wire");
   assembly::CatenarySystem loaded(system.comm(), fe->mesh(), 0,
                                   &fe->system().layout().node_owner());
@@ -39,17 +71,6 @@ PetscInt catenary_start(assembly::CoupledSystem& system, Vec U0) {
   PCSIM_PETSC(VecDestroy(&x));
   assembly::set_state_from_node_values(fe->system(), result.node_values, U0);
   return result.snes_iterations;
-}
-
-// Contact-wire height at x for the catenary state in U0, on every rank.
-double wire_height(assembly::CatenaryModel& catenary, Vec U0, double x, std::size_t p) {
-  catenary.load_state(U0);
-  const auto point = catenary.wire_point(x);
-  if (!point.on_wire)
-    throw InputError("", start_key(p), "the pantograph starts outside the contact wire");
-  double z = point.owned ? point.z : 0.0, sum = 0;
-  MPI_Allreduce(&z, &sum, 1, MPI_DOUBLE, MPI_SUM, catenary.comm());
-  return sum;
 }
 
 struct CoupledStatic {
