@@ -4,6 +4,7 @@
 #include <petsctime.h>
 
 #include "pcsim/assembly/static_problem.hpp"
+#include "pcsim/catenary/reactions.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/solvers/direct.hpp"
 
@@ -96,6 +97,11 @@ StaticConfiguration static_configuration(MPI_Comm comm, const catenary::Catenary
   }
   PCSIM_PETSC(VecDestroy(&x));
   config.mesh = system.mesh();
+  // Pull-off forces, and the tensioning devices released with the anchors'
+  // forces: later systems (modes, dynamics) see the devices.
+  config.result.registration_forces =
+      catenary::registration_forces(config.mesh, config.result.node_values);
+  catenary::release_tensioning_devices(config.mesh, config.result.node_values);
   config.node_owner = system.layout().node_owner();
   config.catenary_dofs = system.layout().catenary_dofs();
   return config;

@@ -21,6 +21,8 @@ struct StaticResult {
   std::vector<double> bar_forces;        // axial force of every bar
   std::vector<double> bar_lengths;       // deformed length of every bar
   std::vector<double> node_values;       // 6 per node (r, r'), every rank
+  // Lateral force of every steady arm on its wire (mesh.registrations) [N].
+  std::vector<double> registration_forces;
   double wall_time_s = 0;
 };
 

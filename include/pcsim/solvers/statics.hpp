@@ -20,7 +20,8 @@ catenary::StaticResult solve_static(assembly::CatenarySystem& system, Vec x, boo
                                     const char* options_prefix = nullptr);
 
 // The step every command starts with: the design -> static configuration
-// (with form-finding when asked).
+// (with form-finding when asked). The returned mesh has its tensioning
+// devices released (catenary/reactions.hpp), the result the pull-off forces.
 struct StaticConfiguration {
   catenary::CatenaryMesh mesh;    // with the found unstressed lengths, bar equilibria
   catenary::StaticResult result;  // node values etc.
