@@ -7,6 +7,7 @@
 #include "exit_status.hpp"
 #include "pcsim/assembly/coupled_system.hpp"
 #include "pcsim/assembly/fe_catenary.hpp"
+#include "pcsim/output/line_results.hpp"
 #include "pcsim/output/output_dir.hpp"
 #include "pcsim/output/run_results.hpp"
 #include "pcsim/scene/run_scene.hpp"
@@ -132,6 +133,36 @@ void print_statistics(const app::CommandContext& ctx, const output::RunSettings&
   app::print0(ctx, "  max uplift at a support in the section: %.1f mm\n", 1e3 * stats.max_uplift_m);
 }
 
+// A line of several tension sections: statistics over each section and
+// overlap, forces on each contact wire (output/line_results.hpp); printed,
+// and returned for summary.json (null for a single section).
+nlohmann::json line_results(const app::CommandContext& ctx, const OutputDir& out,
+                            const catenary::CatenaryMesh& mesh, const output::RunSettings& s,
+                            const output::RunHistory& history) {
+  if (mesh.zones.size() < 2) return nullptr;
+  std::vector<output::ContactHistory> histories(s.pantograph_names.size());
+  for (std::size_t p = 0; p < histories.size(); ++p) {
+    histories[p].name = s.pantograph_names[p];
+    for (const auto& rec : history.steps) {
+      histories[p].time.push_back(rec.t);
+      histories[p].x.push_back(rec.contact_x[p]);
+      histories[p].force.push_back(rec.contact_force[p]);
+      histories[p].wire_force.push_back(rec.wire_force[p]);
+    }
+  }
+  const auto json = output::write_line_results(out, mesh, histories, s.cutoff_hz);
+  for (const auto& p : json)
+    for (const auto& z : p["zones"]) {
+      if (!z["complete"].get<bool>()) continue;
+      app::print0(ctx,
+                  "  %-12s %-12s mean %7.2f N  std %6.2f N  max %7.2f  min %7.2f  loss %.2f%%\n",
+                  p["name"].get<std::string>().c_str(), z["name"].get<std::string>().c_str(),
+                  z["mean_N"].get<double>(), z["std_N"].get<double>(), z["max_N"].get<double>(),
+                  z["min_N"].get<double>(), z["loss_of_contact_percent"].get<double>());
+    }
+  return json;
+}
+
 output::RunSettings run_settings(const app::CommandContext& ctx, const InputNode& scene,
                                  const scene::RunScene& run) {
   output::RunSettings s;
@@ -208,8 +239,11 @@ int run_dynamic(const app::CommandContext& ctx) {
   app::on_rank0(ctx, [&] {
     const auto stats = output::write_run_results(out, statics.mesh, statics.result.node_values,
                                                  settings, mon.history);
-    output::write_run_summary(out, settings, stats, facts);
     print_statistics(ctx, settings, stats);
+    auto summary = facts;
+    const auto zones = line_results(ctx, out, statics.mesh, settings, mon.history);
+    if (!zones.is_null()) summary["line_zones"] = zones;
+    output::write_run_summary(out, settings, stats, summary);
     app::print0(ctx,
                 "  %ld steps, %.2f Newton iterations/step, %.2f ms/step, real-time factor %.2f, "
                 "peak memory %.0f MB/rank\n",
