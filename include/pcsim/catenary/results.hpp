@@ -26,6 +26,16 @@ struct StaticResult {
   double wall_time_s = 0;
 };
 
+// Static elasticity of the contact wire (EN 50119): the uplift of the
+// lowest contact wire under a vertical force at each point, from the static
+// configuration.
+struct ElasticityResult {
+  double force = 0;            // [N], upward
+  std::vector<double> x;       // stations [m]
+  std::vector<double> uplift;  // [m]
+  std::vector<int> wire;       // contact wire loaded (index into mesh.contact_wire_list())
+};
+
 struct ModesResult {
   std::vector<double> frequencies_hz;  // ascending
   // Mode shapes as node displacements (3 per node, all nodes), mass-normalised;
