@@ -40,20 +40,22 @@ LineLayout make_line_layout(const ParametricDesign& in) {
     boundary.push_back(boundary.back() + static_cast<int>(sec.spans));
   for (int j = 0; j + 1 < S; ++j) line.overlap_first.push_back(boundary[j + 1] - m / 2);
   const auto& q = line.overlap_first;
+  for (int i = 0; i < S; ++i) {  // every section's range first: set_roles indexes supports
+    const int first = i > 0 ? q[i - 1] - 1 : 0, last = i + 1 < S ? q[i] + m + 1 : N;
+    if (first < 0 || last > N || (i > 0 && i + 1 < S && q[i - 1] + m >= q[i]))
+      throw InputError(in.file, "sections[" + std::to_string(i) + "].spans",
+                       "section " + std::to_string(i + 1) + " of " +
+                           std::to_string(sections[i].spans) +
+                           " spans is too short for its overlaps of " + std::to_string(m) +
+                           " spans (each needs " + std::to_string(m) +
+                           " spans and one anchor span on each side)");
+  }
   for (int i = 0; i < S; ++i) {
     SectionLayout sec;
     sec.own_first = boundary[i];
     sec.own_last = boundary[i + 1];
     sec.first = i > 0 ? q[i - 1] - 1 : 0;
     sec.last = i + 1 < S ? q[i] + m + 1 : N;
-    const std::string key = "sections[" + std::to_string(i) + "].spans";
-    if (sec.first < 0 || sec.last > N || (i > 0 && i + 1 < S && q[i - 1] + m >= q[i]))
-      throw InputError(in.file, key,
-                       "section " + std::to_string(i + 1) + " of " +
-                           std::to_string(sections[i].spans) +
-                           " spans is too short for its overlaps of " + std::to_string(m) +
-                           " spans (each needs " + std::to_string(m) +
-                           " spans and one anchor span on each side)");
     sec.role.assign(N + 1, Role::none);
     sec.overlap_side.assign(N + 1, 0.0);
     set_roles(sec, S, i, q, m);
