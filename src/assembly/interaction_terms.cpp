@@ -101,7 +101,7 @@ TermPower PantographTerm::power(const CoupledState& state) const {
 PenaltyContact::Evaluation PenaltyContact::evaluate(const CoupledState& state) const {
   Evaluation e;
   e.x = slot_.run.contact_x(state.t);
-  e.wire = state.catenary().wire_point(e.x);
+  e.wire = state.catenary().wire_point(e.x, wire_);
   e.head = state.head_height(index_);
   if (e.wire.on_wire && e.wire.owned) {
     e.gap = e.wire.z - e.head;

@@ -27,6 +27,14 @@ nlohmann::json static_json(const catenary::CatenaryMesh& mesh, const catenary::S
   j["max_height_error_m"] = r.max_height_error_m;
   j["max_tension_error_rel"] = r.max_tension_error_rel;
   j["segment_tensions_N"] = r.segment_tensions;
+  if (!r.registration_forces.empty()) j["steady_arm_pull_off_N"] = r.registration_forces;
+  for (const auto& d : mesh.tensioning_devices)
+    j["tensioning_devices"].push_back(
+        {{"wire", mesh.wires[d.wire].name},
+         {"device", d.kind == catenary::TensioningKind::weight ? "weight" : "spring"},
+         {"pull_N", d.pull},
+         {"mass_kg", d.mass},
+         {"stiffness_N_m", d.stiffness}});
   j["wall_time_s"] = r.wall_time_s;
   j["provenance"] = provenance;
   return j;
@@ -74,6 +82,18 @@ void write_static_h5(const std::string& path, const catenary::CatenaryMesh& mesh
   }
   h5.write("/targets/design_z", target_design, {"m", "height targets of form-finding (design)"});
   h5.write("/targets/static_z", target_z, {"m", "heights reached at the targets"});
+  if (!r.registration_forces.empty()) {
+    std::vector<long> support;
+    std::vector<double> station;
+    for (const auto& reg : mesh.registrations) {
+      support.push_back(reg.support);
+      station.push_back(mesh.support_x[reg.support]);
+    }
+    h5.write_int("/steady_arms/support", support, {"1", "support index of each steady arm"});
+    h5.write("/steady_arms/x", station, {"m", "station of each steady arm's support"});
+    h5.write("/steady_arms/pull_off_force", r.registration_forces,
+             {"N", "steady-arm pull-off force at the static configuration"});
+  }
   h5.attribute("/", "max_height_error_m", r.max_height_error_m);
   h5.attribute("/", "max_tension_error_rel", r.max_tension_error_rel);
 }
@@ -86,6 +106,16 @@ void write_static_results(const OutputDir& out, const catenary::CatenaryMesh& me
   write_mesh_h5_xdmf(mesh, catenary::positions_from_node_values(r.node_values),
                      out.file("static_mesh.h5"), out.file("static.xdmf"), {}, out.provenance());
   write_json(out.file("summary.json"), static_json(mesh, r, info, out.provenance()));
+}
+
+void write_elasticity(const OutputDir& out, const catenary::ElasticityResult& r) {
+  std::ofstream f(out.file("elasticity.csv"));
+  f << "# static uplift of the lowest contact wire under an upward force of " << r.force
+    << " N\n# x_m,uplift_mm_per_100N,uplift_m,contact_wire\n";
+  f.precision(10);
+  for (std::size_t i = 0; i < r.x.size(); ++i)
+    f << r.x[i] << "," << 1e3 * r.uplift[i] * 100.0 / r.force << "," << r.uplift[i] << ","
+      << r.wire[i] << "\n";
 }
 
 void write_modes_results(const OutputDir& out, const catenary::CatenaryMesh& mesh,
