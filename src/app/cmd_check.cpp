@@ -1,4 +1,4 @@
-// `pcsim check SCENE.yaml [--as CMD] [-o DIR] [options]`: runs every reader
+// `pcsim check SCENE.yaml [--as CMD] [-o DIR] [--set KEY=VALUE]... [options]`: runs every reader
 // and check of the command the scene is for (inputs.hpp: the same functions
 // the command calls) and the output folder's check, and solves nothing. Exit 0
 // only if the command would start. The command is the one given by --as, else
@@ -16,11 +16,12 @@ namespace {
 using namespace pcsim;
 
 std::string command_for(const app::CommandContext& ctx, const InputNode& file) {
-  if (!ctx.check_as.empty()) {
+  if (ctx.has_option("--as")) {
+    const std::string& as = ctx.options.at("--as");
     for (const char* known : {"static", "modes", "run", "pantograph"})
-      if (ctx.check_as == known) return known;
+      if (as == known) return known;
     throw InputError("command line", "--as",
-                     "must be static, modes, run or pantograph (got '" + ctx.check_as + "')");
+                     "must be static, modes, run or pantograph (got '" + as + "')");
   }
   if (file.has("type") && !file.has("catenary")) return "design";
   if (file.has("kind") && !file.has("pantograph")) return "model";
@@ -31,7 +32,7 @@ std::string command_for(const app::CommandContext& ctx, const InputNode& file) {
 }
 
 std::string why(const app::CommandContext& ctx, const std::string& command) {
-  if (!ctx.check_as.empty()) return "as asked by --as";
+  if (ctx.has_option("--as")) return "as asked by --as";
   if (command == "run") return "the scene has 'pantographs'";
   if (command == "pantograph") return "the scene has 'pantograph'";
   if (command == "modes") return "the scene has 'modes'";
@@ -78,13 +79,13 @@ std::string check_command(const app::CommandContext& ctx, const std::string& com
     return in.study.model->kind() + " model, study " + in.study.study_type;
   }
   if (command == "model")
-    return scene::load_pantograph_model(ctx.scene_path, nullptr, 0.0)->kind() + " model";
+    return scene::load_pantograph_model(ctx.load_scene(), nullptr, 0.0)->kind() + " model";
   const auto in = app::read_design_inputs(ctx);
   return memory_text(in.memory, ctx.size);
 }
 
 int check_scene(const app::CommandContext& ctx) {
-  const InputNode file = InputNode::load_file(ctx.scene_path);
+  const InputNode file = ctx.load_scene();
   const std::string command = command_for(ctx, file);
   const std::string summary = check_command(ctx, command);
   if (command == "design" || command == "model")
@@ -99,6 +100,14 @@ int check_scene(const app::CommandContext& ctx) {
 
 }  // namespace
 
+PCSIM_COMMAND_HELP(
+    check_help, "check",
+    "Reads SCENE.yaml (or a catenary design or pantograph model file) with every\n"
+    "reader and check of the command it is for, as that command would, and solves\n"
+    "nothing: the scene's sections decide the command ('pantographs' -> run,\n"
+    "'pantograph' -> pantograph, 'modes' -> modes, else static; docs/scene-format.md).\n"
+    "Exit 0 only if the command would start; 2 on bad input (file, key, reason).\n",
+    {"--as", "CMD", "check the scene for CMD (static, modes, run, pantograph)"});
 PCSIM_COMMAND("check",
               "run every reader and check of the scene's command (--as CMD to choose it), solve "
               "nothing",

@@ -50,4 +50,12 @@ int run_modes(const app::CommandContext& ctx) {
 
 }  // namespace
 
+PCSIM_COMMAND_HELP(modes_help, "modes",
+                   "scene sections (docs/scene-format.md, \"Catenary scenes\"):\n"
+                   "  name         scene name: results go to out/<name>/ (default: the file name)\n"
+                   "  description  free text\n"
+                   "  catenary     design: FILE (docs/design-format.md), form_finding: true|false\n"
+                   "  modes        count: N (20), max_frequency_hz: F (-eps_nev, -modes_fmax)\n"
+                   "  base, set    composition: a base scene, keys set by path\n"
+                   "results: modes.h5 + modes.xdmf, static.h5, static_mesh.h5, summary.json\n");
 PCSIM_COMMAND("modes", "catenary modes about the static configuration (SLEPc)", run_modes);

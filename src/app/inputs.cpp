@@ -21,13 +21,10 @@ catenary::MeshSizeCheck memory_check(const CommandContext& ctx, solvers::MemoryU
 }
 
 solvers::ModesRequest scene_modes(const InputNode& scene) {
+  const auto section = catenary::load_modes_section(scene);
   solvers::ModesRequest r;
-  if (!scene.has("modes")) return r;
-  const InputNode m = scene["modes"];
-  m.allow_only({"count", "max_frequency_hz"});
-  r.count = static_cast<int>(m.get_int("count", 20));
-  if (r.count < 1) m.fail_key("count", "must be at least 1");
-  r.max_frequency_hz = m.get_positive("max_frequency_hz", 0.0);
+  r.count = section.count;
+  r.max_frequency_hz = section.max_frequency_hz;
   return r;
 }
 
@@ -43,7 +40,7 @@ bool cheap_path_possible(const scene::RunScene& run) {
 }  // namespace
 
 StaticInputs read_static_inputs(const CommandContext& ctx) {
-  StaticInputs in{InputNode::load_file(ctx.scene_path), "", {}, {}};
+  StaticInputs in{ctx.load_scene(), "", {}, {}};
   in.name = ctx.scene_name(in.scene);
   in.catenary = catenary::load_catenary_scene(
       in.scene, memory_check(ctx, solvers::MemoryUse::statics, in.memory));
@@ -51,7 +48,7 @@ StaticInputs read_static_inputs(const CommandContext& ctx) {
 }
 
 ModesInputs read_modes_inputs(const CommandContext& ctx) {
-  const InputNode scene = InputNode::load_file(ctx.scene_path);
+  const InputNode scene = ctx.load_scene();
   // The count decides the eigensolver's memory: read it first.
   const auto request = solvers::modes_request_from_options(ctx.comm, scene_modes(scene));
   ModesInputs in{{scene, ctx.scene_name(scene), {}, {}}, request};
@@ -62,7 +59,11 @@ ModesInputs read_modes_inputs(const CommandContext& ctx) {
 }
 
 RunInputs read_run_inputs(const CommandContext& ctx) {
-  RunInputs in{InputNode::load_file(ctx.scene_path), "", {}, {}, false, {}};
+  return read_run_inputs(ctx, ctx.load_scene());
+}
+
+RunInputs read_run_inputs(const CommandContext& ctx, const InputNode& scene) {
+  RunInputs in{scene, "", {}, {}, false, {}};
   in.name = ctx.scene_name(in.scene);
   in.numerics = solvers::read_time_integration_options(ctx.comm);
   scene::RunSceneOptions options;
@@ -74,7 +75,7 @@ RunInputs read_run_inputs(const CommandContext& ctx) {
 }
 
 PantographInputs read_pantograph_inputs(const CommandContext& ctx) {
-  PantographInputs in{InputNode::load_file(ctx.scene_path), "", {}};
+  PantographInputs in{ctx.load_scene(), "", {}};
   in.name = ctx.scene_name(in.scene);
   in.study = scene::load_pantograph_study_scene(in.scene);
   return in;
@@ -82,8 +83,14 @@ PantographInputs read_pantograph_inputs(const CommandContext& ctx) {
 
 DesignInputs read_design_inputs(const CommandContext& ctx) {
   DesignInputs in;
-  in.mesh = catenary::load_catenary_design(
-      ctx.scene_path, memory_check(ctx, solvers::MemoryUse::statics, in.memory));
+  const InputNode design = ctx.load_scene();
+  try {
+    in.mesh = catenary::build_catenary_design(
+        design, memory_check(ctx, solvers::MemoryUse::statics, in.memory));
+  } catch (const InputError& e) {
+    design.rethrow_with_origin(e);
+  }
+  in.mesh.source_file = ctx.scene_path;
   return in;
 }
 

@@ -43,6 +43,8 @@ struct RunInputs {
   solvers::MemoryEstimate memory;
 };
 RunInputs read_run_inputs(const CommandContext& ctx);
+// The same for a scene composed by the caller (the cases of `pcsim sweep`).
+RunInputs read_run_inputs(const CommandContext& ctx, const InputNode& scene);
 
 struct PantographInputs {
   InputNode scene;
@@ -51,7 +53,7 @@ struct PantographInputs {
 };
 PantographInputs read_pantograph_inputs(const CommandContext& ctx);
 
-// A catenary design file alone (`pcsim check DESIGN.yaml`).
+// A catenary design file alone (`pcsim check DESIGN.yaml`, composed, with --set).
 struct DesignInputs {
   catenary::CatenaryMesh mesh;
   solvers::MemoryEstimate memory;

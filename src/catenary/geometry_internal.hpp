@@ -35,25 +35,4 @@ double taut_stretch(double tension, double EA);
 // mesh_consistency_error.
 void require_consistent(const CatenaryMesh& mesh, const std::string& file);
 
-// ---------------------------------------------------- parametric designs ----
-
-// Key points closer than this are the same point [m].
-constexpr double kSamePoint = 1e-9;
-
-// Every range check of a parametric design (InputError naming the key).
-void check_parametric(const ParametricDesign& in);
-
-// What a key point of a span is (for messages and for building the mesh).
-enum class KeyKind { support, dropper, stitch_clamp };
-struct KeyPoint {
-  double s = 0;  // distance from the span's first support [m]
-  KeyKind kind = KeyKind::support;
-  int index = -1;  // dropper index for droppers
-};
-
-// Key points of span j (0-based), sorted; coincident points merged (a
-// stitch clamp on a dropper point stays a dropper point). Throws if two key
-// points are closer than the minimum gap (0.05 m).
-std::vector<KeyPoint> span_key_points(const ParametricDesign& in, int j);
-
 }  // namespace pcsim::catenary::detail

@@ -1,59 +1,86 @@
 // Mesh sizes of designs, counted without building the mesh (geometry.hpp).
 #include <algorithm>
 #include <cmath>
-#include <set>
 
-#include "geometry_internal.hpp"
+#include "geometry_line.hpp"
 
 namespace pcsim::catenary {
 
+namespace detail {
+
 namespace {
 
-// Stations (nodes per wire) that span j contributes, its last support excluded.
-long span_stations(const ParametricDesign& in, int j) {
-  const auto keys = detail::span_key_points(in, j);
-  long n = 0;
-  for (std::size_t k = 0; k + 1 < keys.size(); ++k)
-    n += std::max(
-        1L, static_cast<long>(std::ceil((keys[k + 1].s - keys[k].s) / in.element_length - 1e-9)));
-  return n;
+// Fixed DOFs of a registration's lateral hold (hold_laterally): the y DOF on
+// straight track, a spring (none) where the track normal is not y.
+long lateral_hold_dofs(const SectionGeometry& geo, int k) {
+  return std::abs(geo.track_normal(k).x()) < 1e-12 ? 1 : 0;
 }
 
 }  // namespace
 
+// The same stations, droppers, stitch wires and supports as build() (geometry_section.cpp,
+// geometry_supports.cpp), counted.
+void SectionBuilder::add_size(MeshSize& size) const {
+  const auto& sec = geo_.layout();
+  long stations = 1, droppers = 0;  // the last support's station
+  for (int j = sec.first; j < sec.last; ++j) {
+    const auto keys = span_key_points(j);
+    for (std::size_t k = 0; k + 1 < keys.size(); ++k) {
+      const double a = keys[k].s, b = keys[k + 1].s;
+      stations += std::max(1L, static_cast<long>(std::ceil((b - a) / in_.element_length - 1e-9)));
+      droppers += keys[k].kind == KeyKind::dropper ? 1 : 0;
+    }
+  }
+  long stitch_nodes = 0, stitch_bars = 0, stitch_wires = 0;
+  for (int k = sec.first + 1; k < sec.last && in_.stitch_wire; ++k) {
+    if (!geo_.stitch_at(k)) continue;
+    const double half = 0.5 * in_.stitch_wire->length;
+    long inside = 0;  // dropper points strictly between the wire's two messenger clamps
+    for (int j : {k - 1, k})
+      for (const auto& key : span_key_points(j)) {
+        const double x = j * L_ + key.s;
+        inside += key.kind == KeyKind::dropper && x > k * L_ - half + kSamePoint &&
+                  x < k * L_ + half - kSamePoint;
+      }
+    stitch_nodes += inside;
+    stitch_bars += inside + 1;
+    ++stitch_wires;
+  }
+  long fixed = 12, pivots = 0;  // both wires held in x, y, z at both ends
+  for (int k = sec.first + 1; k < sec.last; ++k) {
+    fixed += messenger_support(k).model == MessengerSupportModel::fixed ? 3 : 2;
+    if (geo_.role(k) == Role::raised)
+      fixed += lateral_hold_dofs(geo_, k) + 1;
+    else if (steady_arm(k).model == SteadyArmModel::hinged)
+      ++pivots;  // a fixed pivot node and its bar
+    else
+      fixed += lateral_hold_dofs(geo_, k);
+  }
+  if (in_.tensioning.device == TensioningDeviceKind::weight) ++fixed;  // midpoint anchor
+  const long spans = sec.last - sec.first;
+  const long segments = spans + (line_.sections.size() == 1 ? spans : 1) + stitch_wires;
+  size.cable_nodes += 2 * stations;
+  size.nodes += 2 * stations + stitch_nodes + pivots;
+  size.cables += 2 * (stations - 1);
+  size.bars += droppers + stitch_bars + pivots;
+  size.fixed_dofs += fixed + 3 * pivots;
+  size.form_finding_unknowns += droppers + segments;
+}
+
+}  // namespace detail
+
 MeshSize mesh_size(const ParametricDesign& in) {
   detail::check_parametric(in);
-  const long N = in.span_count;
-  const long D = static_cast<long>(in.droppers.positions.size());
-  // Spans differ only by the stitch clamps of their end supports: the first,
-  // one inner and the last span give every kind.
-  long stations = 1;  // the last support
-  std::set<long> kinds = {0, std::min(1L, N - 1), N - 1};
-  for (long j : kinds) {
-    const long copies = (j == 1 && N > 2) ? N - 2 : 1;
-    stations += copies * span_stations(in, static_cast<int>(j));
-  }
-  // Stitch wires: one bar chain per intermediate support through the dropper
-  // points strictly inside its length.
-  long stitch_nodes = 0, stitch_bars = 0;
-  if (in.stitch_wire && N > 1) {
-    const double half = 0.5 * in.stitch_wire->length, L = in.span_length;
-    long inside = 0;
-    for (double s : in.droppers.positions)
-      if (s < half - detail::kSamePoint || s > L - half + detail::kSamePoint) ++inside;
-    stitch_nodes = (N - 1) * inside;
-    stitch_bars = (N - 1) * (inside + 1);
-  }
+  const detail::LineLayout line = detail::make_line_layout(in);
+  // The counts do not depend on the heights: no irregular profile, no mesh.
+  static const IrregularityDesign flat;
+  const detail::IrregularProfile profile(flat, 0.0);
+  CatenaryMesh unused;
   MeshSize size;
   size.file = in.file;
   size.key = "spans.count";
-  size.cable_nodes = 2 * stations;
-  size.nodes = size.cable_nodes + stitch_nodes;
-  size.cables = 2 * (stations - 1);
-  size.bars = N * D + stitch_bars;
-  // Messenger pinned at every support, contact wire at both ends, steady arms hold y.
-  size.fixed_dofs = 3 * (N + 1) + 6 + (N - 1);
-  size.form_finding_unknowns = N * D + 2 * N;
+  for (std::size_t i = 0; i < line.sections.size(); ++i)
+    detail::SectionBuilder(in, line, static_cast<int>(i), profile, unused).add_size(size);
   return size;
 }
 

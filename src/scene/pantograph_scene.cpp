@@ -137,7 +137,7 @@ ForceHistory load_force_history(const InputNode& f) {
 }
 
 StudyScene load_pantograph_study_scene(const InputNode& scene) {
-  scene.allow_only({"name", "pantograph", "speed_kmh", "equilibrium", "study"});
+  scene.allow_only({"name", "description", "pantograph", "speed_kmh", "equilibrium", "study"});
   const auto st = scene["study"];
   StudyScene s;
   s.study_type = st.get_choice("type", {"time", "modes", "frf", "sweep", "calibrate"}, "");

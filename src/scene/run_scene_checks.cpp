@@ -20,6 +20,12 @@ std::string entry_key(std::size_t i, const std::string& key) {
   return "pantographs[" + std::to_string(i) + "]." + key;
 }
 
+// What messages name for the value at 'key_path': the scene file, the base
+// file it came from, or the --set / 'set' entry that gave it.
+std::string origin(const InputNode& scene, const std::string& key_path) {
+  return scene.sources().origin_of(key_path).label;
+}
+
 // Pantographs closer than this interact through the wire within a few
 // milliseconds: allowed (a double unit has 200 m), but rarely meant.
 constexpr double kMinPantographSpacing = 10.0;  // [m]
@@ -41,12 +47,12 @@ void check_pantograph_positions(const InputNode& scene, RunScene& run) {
     const auto& p = run.pantographs[i];
     for (std::size_t j = 0; j < i; ++j)
       if (run.pantographs[j].name == p.name)
-        throw InputError(scene.file(), entry_key(i, "name"),
+        throw InputError(origin(scene, entry_key(i, "name")), entry_key(i, "name"),
                          "pantograph name '" + p.name + "' is already used by pantographs[" +
                              std::to_string(j) + "] (names label the results)");
     const double x_end = p.start_x + travel;
     if (x_end > x_last)
-      throw InputError(scene.file(), entry_key(i, "start_x"),
+      throw InputError(origin(scene, entry_key(i, "start_x")), entry_key(i, "start_x"),
                        "pantograph '" + p.name + "' would run from " + fmt(p.start_x) + " to " +
                            fmt(x_end) + " m, past the end of the contact wire at " + fmt(x_last) +
                            " m (the run ends when the first pantograph reaches "
@@ -57,7 +63,7 @@ void check_pantograph_positions(const InputNode& scene, RunScene& run) {
     for (std::size_t j = 0; j < i; ++j) {
       const double gap = std::abs(run.pantographs[i].start_x - run.pantographs[j].start_x);
       if (gap < kMinPantographSpacing)
-        run.warnings.push_back({scene.file(), entry_key(i, "start_x"),
+        run.warnings.push_back({origin(scene, entry_key(i, "start_x")), entry_key(i, "start_x"),
                                 "pantograph '" + run.pantographs[i].name + "' starts " + fmt(gap) +
                                     " m from '" + run.pantographs[j].name + "' (less than " +
                                     fmt(kMinPantographSpacing) +
@@ -69,14 +75,14 @@ void check_time_step(const InputNode& scene, RunScene& run, const std::string& d
   const std::string dt_text = dt_key + " = " + fmt(run.dt) + " s";
   const double nyquist = 0.5 / run.dt;
   if (!(run.cutoff_hz < nyquist))
-    throw InputError(scene.file(), "analysis.cutoff_hz",
+    throw InputError(origin(scene, "analysis.cutoff_hz"), "analysis.cutoff_hz",
                      "the contact-force filter's cut-off " + fmt(run.cutoff_hz) +
                          " Hz is not below the Nyquist frequency " + fmt(nyquist) +
                          " Hz of the time step (" + dt_text + "); use a smaller time step");
   const double duration = run.duration();
   const double steps = duration / run.dt;
   // The time step comes from the scene or from the command line (-ts_dt).
-  const std::string dt_file = dt_key[0] == '-' ? "command line" : scene.file();
+  const std::string dt_file = dt_key[0] == '-' ? "command line" : origin(scene, dt_key);
   const std::string too_few = "the contact-force filter needs more than ";
   if (steps <= kFilterPadding)
     throw InputError(dt_file, dt_key,

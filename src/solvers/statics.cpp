@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "pcsim/assembly/static_problem.hpp"
+#include "pcsim/catenary/reactions.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/solvers/direct.hpp"
 
@@ -163,7 +164,8 @@ std::string judge_convergence(SNESConvergedReason reason, double residual_inf, d
 }  // namespace
 
 catenary::StaticResult solve_static(assembly::CatenarySystem& system, Vec x, bool form_finding,
-                                    const char* options_prefix) {
+                                    const char* options_prefix, double abs_tolerance,
+                                    bool equilibrium_checks) {
   PetscLogDouble t0;
   PetscTime(&t0);
   assembly::StaticProblem problem(system, form_finding);
@@ -178,7 +180,8 @@ catenary::StaticResult solve_static(assembly::CatenarySystem& system, Vec x, boo
   PCSIM_PETSC(SNESSetFunction(snes, R, static_residual, &problem));
   PCSIM_PETSC(SNESSetJacobian(snes, J, J, static_jacobian, &problem));
   PCSIM_PETSC(SNESSetType(snes, SNESNEWTONLS));
-  PCSIM_PETSC(SNESSetTolerances(snes, kTargetTolerance * scale, 1e-12, 1e-14, 50, 10000));
+  const double target = abs_tolerance > 0 ? abs_tolerance : kTargetTolerance * scale;
+  PCSIM_PETSC(SNESSetTolerances(snes, target, 1e-12, 1e-14, 50, 10000));
   KSP ksp;
   PCSIM_PETSC(SNESGetKSP(snes, &ksp));
   use_direct_lu(ksp, MATSOLVERMUMPS);
@@ -206,12 +209,12 @@ catenary::StaticResult solve_static(assembly::CatenarySystem& system, Vec x, boo
   const std::string verdict = judge_convergence(reason, residual_inf, scale, its);
   catenary::StaticResult checks;
   checks.force_scale = scale;
-  check_tangent(problem, x, checks);
+  if (equilibrium_checks) check_tangent(problem, x, checks);
   catenary::StaticResult result = problem.finish(x);
   result.force_scale = scale;
   result.negative_eigenvalues = checks.negative_eigenvalues;
   result.warnings = std::move(checks.warnings);
-  check_compression(problem, system.mesh(), form_finding, result);
+  if (equilibrium_checks) check_compression(problem, system.mesh(), form_finding, result);
   result.converged = true;
   result.converged_reason = verdict;
   result.residual_norm = residual_2;
@@ -239,6 +242,11 @@ StaticConfiguration static_configuration(MPI_Comm comm, const catenary::Catenary
   }
   PCSIM_PETSC(VecDestroy(&x));
   config.mesh = system.mesh();
+  // Pull-off forces, and the tensioning devices released with the anchors'
+  // forces: later systems (modes, dynamics) see the devices.
+  config.result.registration_forces =
+      catenary::registration_forces(config.mesh, config.result.node_values);
+  catenary::release_tensioning_devices(config.mesh, config.result.node_values);
   config.node_owner = system.layout().node_owner();
   config.catenary_dofs = system.layout().catenary_dofs();
   return config;

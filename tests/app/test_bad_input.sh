@@ -123,6 +123,9 @@ run_scene dsa-cheap "  - {name: p, model: $dsa, start_x: 13.1}"
 run_scene huge-run "$one" "" "" "huge-design.yaml"
 run_scene close "  - {name: p, model: $two_mass, start_x: 13.1}
   - {name: q, model: $two_mass, start_x: 8.1}"
+run_scene gap "  - {name: p, model: $two_mass, start_x: 13.1, start: {gap: 0.8}}"
+run_scene hht-scene "$one" ", hht_alpha: 0.5"
+catenary_scene reference-static "$S/meshes/en50318-reference.yaml"
 run_scene crawl "$one"
 sed -i 's/speed_kmh: 200/speed_kmh: 0.001/' "$w/crawl.yaml"
 cat > "$w/study-high.yaml" << YAML
@@ -204,6 +207,10 @@ expect out-dot 2 "command line|key '-o'|working directory" yes static good-stati
 expect out-foreign 2 "command line|key '-o'|not written by pcsim" yes static good-static.yaml -o foreign
 expect huge 2 "huge-design.yaml|key 'spans.count'|too large for this machine|/proc/meminfo" yes static huge.yaml
 expect huge-run 2 "huge-design.yaml|key 'spans.count'|too large for this machine" yes run huge-run.yaml
+expect huge-set 2 "command line --set catenary.design.spans.count=100000|key 'spans.count'|too large" yes \
+  static reference-static.yaml --set catenary.design.spans.count=100000
+expect huge-design-set 2 "command line --set spans.count=100000|key 'spans.count'|too large" no \
+  check "$S/meshes/en50318-reference.yaml" --set spans.count=100000
 expect long-wire 2 "long-wire-design.yaml|key 'wires[0].nodes.elements'|too large" yes static long-wire.yaml
 expect eps-nev-0 2 "command line|key '-eps_nev'|from 1" yes modes modes-scene.yaml -eps_nev 0
 expect eps-nev-abc 2 "command line|key '-eps_nev'|integer" yes modes modes-scene.yaml -eps_nev abc
@@ -227,6 +234,10 @@ expect cutoff 2 "cutoff.yaml|key 'analysis.cutoff_hz'|Nyquist frequency 500 Hz" 
 expect dt-one 2 "dt-one.yaml|key 'analysis.cutoff_hz'|Nyquist|simulation.dt = 1 s" yes run dt-one.yaml
 expect few-samples 2 "few-samples.yaml|key 'simulation.dt'|filter needs more than 15" yes run few-samples.yaml
 expect spans 2 "spans.yaml|key 'analysis'|to_span" yes run spans.yaml
+expect gap 2 "gap.yaml|key 'pantographs[0].start.gap'|at most 0.5 m" yes run gap.yaml
+expect hht-scene 2 "hht-scene.yaml|key 'simulation.hht_alpha'|[0, 1/3]" yes run hht-scene.yaml
+expect set-dt 2 "command line --set simulation.dt=0.5|key 'simulation.dt'|filter needs more than 15" yes \
+  run good-run.yaml --set simulation.dt=0.5 --set analysis.cutoff_hz=0.5
 expect dsa-high 2 "dsa-high.yaml|key 'pantographs[0].working_height'|cannot be assembled at frame angle|working height 3 m" \
   yes run dsa-high.yaml
 expect study-high 2 "study-high.yaml|key 'equilibrium.working_height'|working height 3.5 m" yes \

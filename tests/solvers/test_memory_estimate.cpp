@@ -10,6 +10,8 @@
 #include "pcsim/assembly/catenary_system.hpp"
 #include "pcsim/assembly/static_problem.hpp"
 #include "pcsim/core/error.hpp"
+#include "pcsim/scene/composition.hpp"
+#include "pcsim/scene/design_reader.hpp"
 #include "pcsim/solvers/memory_estimate.hpp"
 
 using namespace pcsim;
@@ -47,6 +49,22 @@ TEST(MeshSize, CountedEqualsBuilt) {
   const auto taut = design_fixtures::taut_string_design();
   expect_same_size(catenary::mesh_size(taut), catenary::mesh_size(build_explicit(taut)));
   EXPECT_EQ(catenary::mesh_size(design_fixtures::reference_design(10)).key, "spans.count");
+}
+
+// Real lines (meshes/lines/): several tension sections with overlaps, per-span
+// droppers, stitch wires, support and steady-arm models (hinged arms add a
+// pivot node and a bar), tensioning devices (a midpoint anchor), curved track
+// (lateral springs instead of fixed y).
+TEST(MeshSize, CountedEqualsBuiltForLines) {
+  const std::string lines = std::string(PCSIM_SOURCE_DIR) + "/meshes/lines/";
+  for (const char* file :
+       {"three-sections.yaml", "three-sections-short.yaml", "stitched.yaml", "unstitched.yaml",
+        "presag-droppers.yaml", "presag-heights.yaml", "supports.yaml", "irregular-profile.yaml",
+        "irregular-random.yaml", "curved.yaml"}) {
+    SCOPED_TRACE(file);
+    const auto design = catenary::read_parametric_design(load_composed(lines + file));
+    expect_same_size(catenary::mesh_size(design), catenary::mesh_size(build_parametric(design)));
+  }
 }
 
 TEST(MeshSize, UnknownsAndNonzerosMatchTheSystem) {
