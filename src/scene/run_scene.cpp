@@ -54,8 +54,6 @@ void read_pantograph(const InputNode& p, std::size_t i, RunScene& run) {
   pr.static_force = p.get_positive("static_force", 120.0);
   pr.speed = run.speed;
   const std::string start = p.get_choice("start", {"static", "ramp"}, i == 0 ? "static" : "ramp");
-  if (start == "static" && i > 0)
-    p.fail_key("start", "only the first pantograph can start in static equilibrium");
   pr.static_start = start == "static";
   pr.ramp_distance = p.get_positive("ramp_distance", 20.0);
   // The model states its default: a height above its base, or 0 (absolute heights).

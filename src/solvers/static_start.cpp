@@ -17,22 +17,32 @@ std::string start_key(std::size_t p) {
   return "pantographs[" + std::to_string(p) + "].start_x";
 }
 
-// The catenary part of U0: the static configuration, or for a static start
-// of the first pantograph the FE catenary under its static force F0 at its
-// start point (a guess for the coupled equilibrium).
+bool any_static_start(assembly::CoupledSystem& system) {
+  for (const auto& slot : system.pantographs())
+    if (slot.run.static_start) return true;
+  return false;
+}
+
+// The catenary part of U0: the static configuration, or with static starts the
+// FE catenary under every such pantograph's static force F0 at its start point
+// (a guess for the coupled equilibrium).
 PetscInt catenary_start(assembly::CoupledSystem& system, Vec U0) {
   auto& catenary = system.catenary();
   catenary.reference_state(U0);
-  const auto& first = system.pantographs().front();
   auto* fe = dynamic_cast<assembly::FECatenary*>(&catenary);
-  if (!first.run.static_start || !fe) return 0;
-  int element;
-  double chi;
-  if (!fe->locator().locate(first.run.start_x, element, chi))
-    throw InputError("", start_key(0), "the pantograph starts outside the contact wire");
+  if (!any_static_start(system) || !fe) return 0;
   assembly::CatenarySystem loaded(system.comm(), fe->mesh(), 0,
                                   &fe->system().layout().node_owner());
-  loaded.point_loads().push_back({element, chi, Eigen::Vector3d(0, 0, first.run.static_force)});
+  const auto& pantographs = system.pantographs();
+  for (std::size_t p = 0; p < pantographs.size(); ++p) {
+    const auto& run = pantographs[p].run;
+    if (!run.static_start) continue;
+    int element;
+    double chi;
+    if (!fe->locator().locate(run.start_x, element, chi))
+      throw InputError("", start_key(p), "the pantograph starts outside the contact wire");
+    loaded.point_loads().push_back({element, chi, Eigen::Vector3d(0, 0, run.static_force)});
+  }
   Vec x = loaded.create_vector();
   assembly::set_state_from_node_values(loaded, fe->static_node_values(), x);
   const auto result = solve_static(loaded, x, false, "start_load_");
@@ -141,8 +151,7 @@ StartInfo initial_state(assembly::CoupledSystem& system, Vec U0, Vec V0) {
   }
   PCSIM_PETSC(VecAssemblyBegin(U0));
   PCSIM_PETSC(VecAssemblyEnd(U0));
-  if (pantographs.front().run.static_start)
-    info.coupled_iterations = solve_coupled_static(system, U0);
+  if (any_static_start(system)) info.coupled_iterations = solve_coupled_static(system, U0);
   return info;
 }
 
