@@ -204,29 +204,35 @@ std::complex<double> frf_direct(const LinearModel& lin, int i, int j, double ome
   return D.fullPivLu().solve(f)[i];
 }
 
-std::complex<double> frf_modal(const LinearModel& lin, const std::vector<Mode>& damped, int i,
-                               int j, double omega) {
+std::vector<std::complex<double>> frf_modal(const LinearModel& lin, const std::vector<Mode>& damped,
+                                            int i, int j, const std::vector<double>& omegas) {
   if (!lin.M.isApprox(lin.M.transpose()) || !lin.K.isApprox(lin.K.transpose()) ||
       !lin.C.isApprox(lin.C.transpose()))
     throw SolverError("frf_modal: needs symmetric M, C, K (use frf_direct with restraints)");
   Eigen::MatrixXd A, B;
   state_space(lin, &A, &B);
-  const std::complex<double> I(0, 1);
-  std::complex<double> h = 0;
+  const Eigen::MatrixXcd Ac = A.cast<std::complex<double>>();
+  std::vector<std::complex<double>> numerator;  // φ_i φ_j / a_r
   for (const auto& m : damped) {
     const Eigen::VectorXcd& phi = m.state_vector;
-    const std::complex<double> a = phi.transpose() * A.cast<std::complex<double>>() * phi;
-    const std::complex<double> term = phi[i] * phi[j] / (a * (I * omega - m.eigenvalue));
-    if (m.real_root) {
-      h += term;
-      continue;
-    }
-    // Conjugate pair: φ̄, λ̄.
-    const std::complex<double> conj_term = std::conj(phi[i]) * std::conj(phi[j]) /
-                                           (std::conj(a) * (I * omega - std::conj(m.eigenvalue)));
-    h += term + conj_term;
+    const std::complex<double> a = phi.transpose() * Ac * phi;
+    numerator.push_back(phi[i] * phi[j] / a);
   }
+  const std::complex<double> I(0, 1);
+  std::vector<std::complex<double>> h(omegas.size(), 0.0);
+  for (std::size_t k = 0; k < omegas.size(); ++k)
+    for (std::size_t r = 0; r < damped.size(); ++r) {
+      const std::complex<double> s = I * omegas[k], lambda = damped[r].eigenvalue;
+      h[k] += numerator[r] / (s - lambda);
+      // Conjugate pair: φ̄, λ̄.
+      if (!damped[r].real_root) h[k] += std::conj(numerator[r]) / (s - std::conj(lambda));
+    }
   return h;
+}
+
+std::complex<double> frf_modal(const LinearModel& lin, const std::vector<Mode>& damped, int i,
+                               int j, double omega) {
+  return frf_modal(lin, damped, i, j, std::vector<double>{omega})[0];
 }
 
 }  // namespace pcsim::pantograph

@@ -101,7 +101,10 @@ std::vector<Mode> damped_modes_from_eigenpairs(const LinearModel& lin,
 // Receptance H_ij(ω) = [K + iωC − ω²M]⁻¹_ij (2.36).
 std::complex<double> frf_direct(const LinearModel& lin, int i, int j, double omega);
 // H_ij(ω) = Σ_r φ_r,i φ_r,j / (a_r (iω − λ_r)) + conj. (2.40), a_r = φ_rᵀ A φ_r, with the
-// damped state-space modes; requires symmetric M, C, K.
+// damped state-space modes, at each ω of `omegas` (a_r computed once); requires symmetric
+// M, C, K.
+std::vector<std::complex<double>> frf_modal(const LinearModel& lin, const std::vector<Mode>& damped,
+                                            int i, int j, const std::vector<double>& omegas);
 std::complex<double> frf_modal(const LinearModel& lin, const std::vector<Mode>& damped, int i,
                                int j, double omega);
 
