@@ -138,8 +138,12 @@ TEST(PantographReader, BellowsCharacteristicReadAndChecked) {
   };
   const auto on = InputNode::load_string("uplift_characteristic: true\n", "scene.yaml");
   const auto dsa = scene::load_pantograph_model(kModels + "dsa380_rigid.yaml", &on, 0);
-  EXPECT_EQ(dsa->dof_count(), 5);  // the loop's torque change
-  EXPECT_EQ(dsa->dof_names().back(), "bellows_dM");
+  EXPECT_EQ(dsa->dof_count(), 4);  // the set's characteristic acts at once
+  const auto loop = model_with("pantograph_reader_bellows_loop.yaml",
+                               "bellows:\n  time_constant: 0.5\n  valve_time_constant: 0.05\n");
+  const auto with_loop = scene::load_pantograph_model(loop.path, &on, 0);
+  EXPECT_EQ(with_loop->dof_count(), 5);  // the loop's torque change
+  EXPECT_EQ(with_loop->dof_names().back(), "bellows_dM");
   const auto table = model_with("pantograph_reader_bellows_table.yaml",
                                 "bellows:\n  characteristic: {height: [1.0, 1.2, 1.4], force: "
                                 "[110, 120, 125]}\n");
