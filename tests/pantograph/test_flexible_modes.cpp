@@ -1,7 +1,7 @@
 // Modes of the flexible-bar DSA-380 about its static equilibrium under 120 N at 1.2 m
 // (prestressed tangent), against the rigid model, under mesh refinement, and the bending
 // modes of bars 5 and 4 against thesis Table 2.2. Prints the table of
-// docs/pantograph-flexible.md (run: build/tests/pantograph_test_flexible_modes).
+// docs/pantograph.md (run: build/tests/pantograph_test_flexible_modes).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -235,7 +235,7 @@ TEST(FlexibleDsa380Modes, BendingModesOfBars5And4AgainstThesisTable22) {
   EXPECT_GT(a.bending[m4][3], 0.5);
   EXPECT_NEAR(a.hz[m5] / f5, 1.046, 0.02);
   EXPECT_NEAR(a.hz[m4] / f4, 0.936, 0.03);
-  // Table of docs/pantograph-flexible.md.
+  // Table of docs/pantograph.md (flexible-bar DSA-380).
   Dsa380Pantograph rigid = rigid_model();
   const auto rigid_hz = undamped_modes_eigen(rigid_linear(&rigid));
   const Analysis a8 = analyse(8);
