@@ -20,9 +20,9 @@ stationary run; one-way it is c h² E[max(−θ̇, 0)] / (dy5/dθ) > 0 (a ratche
 import argparse
 import os
 
-import h5py
 import numpy as np
-import yaml
+
+import pcsim_post
 
 BANDS = [(0.0, 1.0), (1.0, 2.0), (2.0, 5.0), (5.0, 10.0), (10.0, 20.0)]
 # dy5/dθ of meshes/pantographs/dsa380_rigid.yaml at the working height 1.2 m: `pcsim
@@ -32,7 +32,8 @@ DY5_DTHETA = 1.595
 
 def lever_arm(model, theta):
     """h(θ) = dl_a/dθ of the damper between point 13 and point 1p on bar 1 (A.14)."""
-    with open(model) as f:
+    import yaml
+    with open(pcsim_post.need_file(model, "DSA-380 model")) as f:
         g = yaml.safe_load(f)["geometry"]
     a = theta + np.radians(g["theta_1p_deg"])
     dx = g["x1"] - g["x13"] + g["L1p"] * np.cos(a)
@@ -41,6 +42,8 @@ def lever_arm(model, theta):
 
 
 def analyse(folder, pantograph, damper=None, model=None, dy5_dtheta=DY5_DTHETA):
+    import h5py
+    pcsim_post.need_run_folder(folder, ("results.h5",))
     with h5py.File(os.path.join(folder, "results.h5"), "r") as h:
         names = list(h["/pantographs"])
         name = pantograph or names[0]
@@ -83,18 +86,26 @@ def analyse(folder, pantograph, damper=None, model=None, dy5_dtheta=DY5_DTHETA):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("runs", nargs="+")
-    ap.add_argument("--labels", default=None)
-    ap.add_argument("--markdown", action="store_true")
-    ap.add_argument("--pantograph", default=None)
-    ap.add_argument("--model", default="meshes/pantographs/dsa380_rigid.yaml",
-                    help="DSA-380 model file for the damper's lever geometry")
-    ap.add_argument("--dy5-dtheta", type=float, default=DY5_DTHETA)
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("runs", nargs="+", metavar="RUN[:C:W]",
+                    help="pcsim run result folder; :C:W adds the damper's mean lift "
+                         "(C damper constant [N s/m], W 1 one-way, 0 two-way)")
+    ap.add_argument("--labels", default=None, help="comma-separated labels, one per run")
+    ap.add_argument("--markdown", action="store_true", help="print a Markdown table")
+    ap.add_argument("--pantograph", default=None, help="pantograph name (default: the first)")
+    ap.add_argument("--model", default=os.path.join(pcsim_post.HERE, os.pardir, "meshes",
+                                                    "pantographs", "dsa380_rigid.yaml"),
+                    help="DSA-380 model file for the damper's lever geometry "
+                         "(meshes/pantographs/dsa380_rigid.yaml)")
+    ap.add_argument("--dy5-dtheta", type=float, default=DY5_DTHETA,
+                    help="dy5/dθ [m/rad] that turns the damper torque into a force at the head "
+                         "(%g)" % DY5_DTHETA)
     args = ap.parse_args()
     specs = [r.split(":") for r in args.runs]
     folders = [sp[0] for sp in specs]
     labels = args.labels.split(",") if args.labels else [os.path.basename(f.rstrip("/")) for f in folders]
+    if len(labels) != len(folders):
+        pcsim_post.fail("--labels: %d labels for %d runs" % (len(labels), len(folders)))
     head = ["run", "mean (N)", "σ (N)"] + ["σ %g-%g Hz" % b for b in BANDS] + [
         "θ mean (deg)", "σ θ (mrad)", "frame descending", "damper lift (N)"]
     rows = []
@@ -120,4 +131,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    pcsim_post.main(main)

@@ -12,7 +12,6 @@ usage:
       nonlinear (harmonic sweeps, peak-to-peak / 2A)); prints the resonance peaks.
 """
 import argparse
-import json
 import os
 
 import h5py
@@ -21,6 +20,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
+
+import pcsim_post
 
 # Thesis Table 2.2 with the motions of Tables 2.3-2.4: (motion, flexible model (ANSYS),
 # rigid model (MATLAB)). Mode 6 is "Flex. barra 5 y mov. mec." in Table 2.2 and "Flexión de
@@ -37,8 +38,8 @@ THESIS_TABLE_22 = [
 
 def load_modes(folder, f_max=30.0):
     """{motion label: (undamped Hz, damping ratio of the damped mode)} up to f_max."""
-    with open(os.path.join(folder, "summary.json")) as f:
-        s = json.load(f)
+    pcsim_post.need_run_folder(folder, ("summary.json",), "pcsim pantograph (study: modes)")
+    s = pcsim_post.load_json(os.path.join(folder, "summary.json"))
     zeta = {m["label"]: m["damping_ratio"] for m in s["damped_modes"]}
     return {m["label"]: (m["frequency_hz"], zeta.get(m["label"]))
             for m in s["undamped_modes"] if m["frequency_hz"] <= f_max}
@@ -94,10 +95,12 @@ def frf_figure(args):
         ("flexible, nonlinear (sweep %g N)" % args.amplitude, args.flexible_sweep, "sweep", "bs"),
     ):
         if kind == "frf":
+            pcsim_post.need_run_folder(folder, ("frf.h5",), "pcsim pantograph (study: frf)")
             with h5py.File(os.path.join(folder, "frf.h5"), "r") as f:
                 fr, h = f["frequency_hz"][:], f["direct/abs"][:]
             ax.loglog(fr, h, style, lw=1.2, label=label)
         else:
+            pcsim_post.need_run_folder(folder, ("sweep.h5",), "pcsim pantograph (study: sweep)")
             with h5py.File(os.path.join(folder, "sweep.h5"), "r") as f:
                 fr, h = f["frequency_hz"][:], f["nonlinear/A_%g" % args.amplitude][:]
             ax.loglog(fr, h, style, ms=4, mfc="none", label=label)
@@ -117,17 +120,20 @@ def frf_figure(args):
 
 
 def main():
-    ap = argparse.ArgumentParser()
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     sub = ap.add_subparsers(dest="command", required=True)
-    m = sub.add_parser("modes")
-    m.add_argument("rigid")
-    m.add_argument("flexible")
-    m.add_argument("--markdown", action="store_true")
-    f = sub.add_parser("frf")
-    f.add_argument("-o", "--output", required=True)
+    m = sub.add_parser("modes", help="Table 2.2: modes of the rigid and flexible models")
+    m.add_argument("rigid", help="pcsim pantograph modes folder of the rigid model")
+    m.add_argument("flexible", help="pcsim pantograph modes folder of the flexible model")
+    m.add_argument("--markdown", action="store_true", help="print a Markdown table")
+    f = sub.add_parser("frf", help="Fig. 2.22: FRFs of the four models")
+    f.add_argument("-o", "--output", required=True, help="PNG file to write")
     for key in ("rigid-frf", "rigid-sweep", "flexible-frf", "flexible-sweep"):
-        f.add_argument("--" + key, required=True)
-    f.add_argument("--amplitude", type=float, default=10.0)
+        f.add_argument("--" + key, required=True, metavar="DIR",
+                       help="pcsim pantograph %s study folder of the %s model"
+                       % (key.split("-")[1], key.split("-")[0]))
+    f.add_argument("--amplitude", type=float, default=10.0,
+                   help="force amplitude of the sweep to plot [N] (10)")
     args = ap.parse_args()
     if args.command == "modes":
         modes_table(args)
@@ -136,4 +142,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    pcsim_post.main(main)

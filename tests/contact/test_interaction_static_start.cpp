@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "pcsim/scene/composition.hpp"
 #include "test_interaction_fixtures.hpp"
 
 namespace {
@@ -112,5 +113,25 @@ INSTANTIATE_TEST_SUITE_P(Interaction, StaticStart,
                            std::replace(name.begin(), name.end(), '-', '_');
                            return name;
                          });
+
+// A gap start next to static starts is rejected (the coupled static equilibrium would
+// close the gap), naming the file and the key.
+TEST(StaticStartInput, GapStartBesideStaticStartsIsRejected) {
+  // A scene text placed beside the test data (not on disk): the three static pantographs,
+  // the third one now with a gap start.
+  const std::string file = contact_data("three-span-gap-beside-static.yaml");
+  const auto scene = pcsim::load_composed_text(
+      "base: three-span-three-pantographs.yaml\nset: {pantographs.2.start: {gap: 0.02}}\n", file);
+  std::string message;
+  try {
+    pcsim::scene::load_run_scene(scene);
+  } catch (const pcsim::InputError& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("pantographs[2].start"), std::string::npos) << message;
+  EXPECT_NE(message.find("gap start cannot be combined with static starts"), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("three-span-gap-beside-static.yaml"), std::string::npos) << message;
+}
 
 }  // namespace
