@@ -48,24 +48,33 @@ double wire_height(assembly::CatenaryModel& catenary, Vec U0, double x, std::siz
   return lowest.second;
 }
 
-// The catenary part of U0: the static configuration, or for a static start
-// of the first pantograph the FE catenary under its static force F0 at its
-// start point on the lowest contact wire (a guess for the coupled
-// equilibrium).
+bool any_static_start(assembly::CoupledSystem& system) {
+  for (const auto& slot : system.pantographs())
+    if (slot.run.static_start) return true;
+  return false;
+}
+
+// The catenary part of U0: the static configuration, or with static starts the
+// FE catenary under every such pantograph's static force F0 at its start point
+// on the lowest contact wire there (a guess for the coupled equilibrium).
 PetscInt catenary_start(assembly::CoupledSystem& system, Vec U0) {
   auto& catenary = system.catenary();
   catenary.reference_state(U0);
-  const auto& first = system.pantographs().front();
   auto* fe = dynamic_cast<assembly::FECatenary*>(&catenary);
-  if (!first.run.static_start || !fe) return 0;
-  const int wire = lowest_wire(catenary, U0, first.run.start_x).first;
-  int element;
-  double chi;
-  if (wire < 0 || !fe->locator(wire).locate(first.run.start_x, element, chi))
-    throw InputError("", start_key(0), "the pantograph starts outside the contact wire");
+  if (!any_static_start(system) || !fe) return 0;
   assembly::CatenarySystem loaded(system.comm(), fe->mesh(), 0,
                                   &fe->system().layout().node_owner());
-  loaded.point_loads().push_back({element, chi, Eigen::Vector3d(0, 0, first.run.static_force)});
+  const auto& pantographs = system.pantographs();
+  for (std::size_t p = 0; p < pantographs.size(); ++p) {
+    const auto& run = pantographs[p].run;
+    if (!run.static_start) continue;
+    const int wire = lowest_wire(catenary, U0, run.start_x).first;
+    int element;
+    double chi;
+    if (wire < 0 || !fe->locator(wire).locate(run.start_x, element, chi))
+      throw InputError("", start_key(p), "the pantograph starts outside the contact wire");
+    loaded.point_loads().push_back({element, chi, Eigen::Vector3d(0, 0, run.static_force)});
+  }
   Vec x = loaded.create_vector();
   assembly::set_state_from_node_values(loaded, fe->static_node_values(), x);
   const auto result = solve_static(loaded, x, false, "start_load_");
@@ -165,8 +174,7 @@ StartInfo initial_state(assembly::CoupledSystem& system, Vec U0, Vec V0) {
   }
   PCSIM_PETSC(VecAssemblyBegin(U0));
   PCSIM_PETSC(VecAssemblyEnd(U0));
-  if (pantographs.front().run.static_start)
-    info.coupled_iterations = solve_coupled_static(system, U0);
+  if (any_static_start(system)) info.coupled_iterations = solve_coupled_static(system, U0);
   return info;
 }
 
