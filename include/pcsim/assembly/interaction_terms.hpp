@@ -37,7 +37,9 @@ class PantographTerm : public Term {
 // dz = z_wire - z_head (3.9), force Fc = kH max(-dz, 0) (3.10), residual
 // -Fc dz/dU on the wire and +Fc on the head, tangent kH u u^T with
 // u = [dz/dU; -1] in contact. On the cheap path J0 holds no contact: the
-// whole tangent is the rank-one term (coefficient 0 out of contact).
+// whole tangent is the rank-one term (coefficient 0 out of contact). A
+// reduced catenary's residual flexibility r at x acts in series with the
+// penalty spring: kH is replaced by kH / (1 + kH r) (r = 0 for FE).
 class PenaltyContact : public Term {
  public:
   PenaltyContact(std::size_t index, const PantographSlot& slot, double stiffness)
@@ -52,11 +54,12 @@ class PenaltyContact : public Term {
   double energy(const CoupledState& state) const override;  // 1/2 kH dz^2 in contact
 
   struct Evaluation {
-    WirePoint wire;    // at x_c
-    double x = 0;      // contact point along the track
-    double head = 0;   // head height
-    double gap = 0;    // dz (owner rank)
-    double force = 0;  // Fc >= 0 (owner rank)
+    WirePoint wire;        // at x_c
+    double x = 0;          // contact point along the track
+    double head = 0;       // head height
+    double gap = 0;        // dz (owner rank)
+    double force = 0;      // Fc >= 0 (owner rank)
+    double stiffness = 0;  // kH in series with the wire's residual flexibility
   };
   // At the loaded state; gap and force only on the rank that owns the point.
   Evaluation evaluate(const CoupledState& state) const;
