@@ -3,10 +3,11 @@
 #include <petsctime.h>
 #include <petscts.h>
 
+#include "accuracy_estimate.hpp"
+#include "catenary_setup.hpp"
 #include "command.hpp"
 #include "exit_status.hpp"
 #include "pcsim/assembly/coupled_system.hpp"
-#include "pcsim/assembly/fe_catenary.hpp"
 #include "pcsim/output/output_dir.hpp"
 #include "pcsim/output/run_results.hpp"
 #include "pcsim/scene/run_scene.hpp"
@@ -64,10 +65,12 @@ PetscErrorCode monitor(TS ts, PetscInt step, PetscReal t, Vec U, void* ptr) {
   PCSIM_CALLBACK_END
 }
 
-// The coupled system of the scene on the static configuration.
+// The coupled system of the scene on the static configuration, its catenary
+// at the scene's fidelity (catenary_setup.hpp).
 std::unique_ptr<assembly::CoupledSystem> make_system(const app::CommandContext& ctx,
                                                      scene::RunScene& run,
-                                                     const solvers::StaticConfiguration& statics) {
+                                                     const solvers::StaticConfiguration& statics,
+                                                     app::CatenarySetup& setup) {
   std::vector<assembly::PantographSlot> slots;
   PetscInt panto_dofs = 0;
   for (std::size_t p = 0; p < run.pantographs.size(); ++p) {
@@ -77,9 +80,8 @@ std::unique_ptr<assembly::CoupledSystem> make_system(const app::CommandContext& 
     panto_dofs += slot.dof_count();
     slots.push_back(std::move(slot));
   }
-  auto catenary = std::make_unique<assembly::FECatenary>(
-      ctx.comm, statics.mesh, statics.result.node_values, panto_dofs, &statics.node_owner);
-  return std::make_unique<assembly::CoupledSystem>(std::move(catenary), std::move(slots),
+  setup = app::make_catenary_model(ctx, run, statics, panto_dofs);
+  return std::make_unique<assembly::CoupledSystem>(std::move(setup.model), std::move(slots),
                                                    run.effects, run.contact_stiffness);
 }
 
@@ -185,10 +187,13 @@ int run_dynamic(const app::CommandContext& ctx) {
               statics.result.snes_iterations, statics.result.max_height_error_m,
               statics.result.max_tension_error_rel);
   const auto settings = run_settings(ctx, scene, run);
-  auto system = make_system(ctx, run, statics);
+  app::CatenarySetup setup;
+  auto system = make_system(ctx, run, statics, setup);
+  app::print_catenary_setup(ctx, run, setup);
   Vec U0 = system->create_vector(), V0 = system->create_vector();
   solvers::initial_state(*system, U0, V0);
   solvers::DynamicSolver solver(*system, run.dt, run.duration());
+  const auto estimate = app::estimate_accuracy(ctx, run, *system, solver, U0);
   app::print0(ctx, "  %d catenary DOFs + %d pantograph DOFs on %d rank(s); %s path\n",
               static_cast<int>(system->catenary().catenary_dofs()),
               static_cast<int>(system->global_size() - system->catenary().catenary_dofs()),
@@ -198,11 +203,13 @@ int run_dynamic(const app::CommandContext& ctx) {
   mon.ctx = &ctx;
   mon.duration = run.duration();
   mon.keep_dropper_forces = run.dropper_forces;
+  system->set_record_dropper_forces(run.dropper_forces);
   mon.snapshot_every = run.snapshot_every;
   integrate(ctx, *system, solver, U0, V0, mon);
   PetscLogDouble wall_end;
   PetscTime(&wall_end);
-  const auto facts = run_facts(ctx, mon, *system, solver.cheap_path(), wall_end - mon.wall_start);
+  auto facts = run_facts(ctx, mon, *system, solver.cheap_path(), wall_end - mon.wall_start);
+  app::add_fidelity_facts(run, setup, *system, estimate, facts);
   PCSIM_PETSC(VecDestroy(&U0));
   PCSIM_PETSC(VecDestroy(&V0));
   app::on_rank0(ctx, [&] {

@@ -19,9 +19,11 @@ struct CommandContext {
   MPI_Comm comm = MPI_COMM_WORLD;
   int rank = 0;
   int size = 1;
-  std::string command;     // the command being run ("run", "static", ...)
-  std::string scene_path;  // SCENE.yaml as given
-  std::string output_dir;  // from -o, or "" for the default out/<scene name>
+  std::string command;                         // the command being run ("run", "static", ...)
+  std::string scene_path;                      // SCENE.yaml as given
+  std::string output_dir;                      // from -o, or "" for the default out/<scene name>
+  std::string cache_dir = "out/.pcsim-cache";  // --cache DIR (output/modal_cache.hpp)
+  std::string subcommand;  // commands with a subcommand: `pcsim study accuracy SCENE`
   // Scene name: 'name' key of the scene, else the file name without extension.
   // InputError (scene file, key 'name') if it cannot name a folder.
   std::string scene_name(const InputNode& scene) const;
@@ -32,14 +34,15 @@ struct CommandContext {
 struct Command {
   std::string summary;  // one line for `pcsim --help`
   std::function<int(const CommandContext&)> run;
+  bool has_subcommand = false;  // the first argument names a subcommand
 };
 
 std::map<std::string, Command>& command_registry();
 
 struct CommandRegistrar {
   CommandRegistrar(const std::string& name, std::string summary,
-                   std::function<int(const CommandContext&)> run) {
-    command_registry()[name] = Command{std::move(summary), std::move(run)};
+                   std::function<int(const CommandContext&)> run, bool has_subcommand = false) {
+    command_registry()[name] = Command{std::move(summary), std::move(run), has_subcommand};
   }
 };
 
@@ -57,3 +60,6 @@ double peak_memory_mb(MPI_Comm comm);
 
 #define PCSIM_COMMAND(name, summary, function) \
   static ::pcsim::app::CommandRegistrar pcsim_command_registrar_##function(name, summary, function)
+#define PCSIM_COMMAND_WITH_SUBCOMMAND(name, summary, function)                            \
+  static ::pcsim::app::CommandRegistrar pcsim_command_registrar_##function(name, summary, \
+                                                                           function, true)

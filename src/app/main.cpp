@@ -67,6 +67,7 @@ void print_usage() {
   std::printf(
       "\noptions:\n"
       "  -o DIR       output folder (default out/<scene name>/)\n"
+      "  --cache DIR  cache of reduced (modal) catenary bases (default out/.pcsim-cache)\n"
       "  -h, --help   this text\n"
       "Any other option goes to PETSc's options database, e.g. -snes_monitor,\n"
       "-snes_test_jacobian, -ksp_type, -ts_dt, -eps_nev, -log_view, -options_left.\n");
@@ -99,6 +100,14 @@ int main(int argc, char** argv) {
         return 2;
       }
       ctx.output_dir = argv[++i];
+    } else if (!std::strcmp(argv[i], "--cache")) {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "pcsim: error: option --cache needs a folder\n");
+        return 2;
+      }
+      ctx.cache_dir = argv[++i];
+    } else if (it->second.has_subcommand && ctx.subcommand.empty() && argv[i][0] != '-') {
+      ctx.subcommand = argv[i];
     } else if (!std::strcmp(argv[i], "-h") || !std::strcmp(argv[i], "--help")) {
       std::printf("usage: pcsim %s SCENE.yaml [-o DIR] [PETSc options]\n  %s\n",
                   command_name.c_str(), it->second.summary.c_str());

@@ -98,7 +98,15 @@ void read_effects_and_output(const InputNode& scene, RunScene& run) {
   if (scene.has("effects")) {
     const InputNode e = scene["effects"];
     e.allow_only({"catenary_nonlinear", "dropper_slack", "rayleigh_damping"});
-    run.effects.catenary_nonlinear = e.get_bool("catenary_nonlinear", false);
+    if (e.has("catenary_nonlinear")) {  // the old key of catenary.model
+      if (run.catenary.fidelity_given)
+        e.fail_key("catenary_nonlinear",
+                   "the catenary's fidelity is catenary.model (nonlinear | linear | modal); give "
+                   "it once, not also as effects.catenary_nonlinear");
+      run.catenary.fidelity = e.get_bool("catenary_nonlinear", false)
+                                  ? catenary::CatenaryFidelity::nonlinear
+                                  : catenary::CatenaryFidelity::linear;
+    }
     run.effects.dropper_slack = e.get_bool("dropper_slack", true);
     run.effects.rayleigh_damping = e.get_bool("rayleigh_damping", true);
   }
@@ -132,6 +140,14 @@ RunScene load_run_scene(const InputNode& scene) {
   for (std::size_t i = 0; i < list.size(); ++i) read_pantograph(list.at(i), i, run);
   read_effects_and_output(scene, run);
   read_analysis(scene, run);
+  run.effects.catenary_nonlinear = run.catenary.fidelity == catenary::CatenaryFidelity::nonlinear;
+  // Default modal cut-off: the modes the contact force shows below the filter
+  // cut-off, cutoff_hz / (1 - v/c) (docs/reduced-order.md).
+  if (!run.catenary.modal_cutoff_given) {
+    const double c = catenary::wave_speed(mesh.wires[mesh.contact_wire]);
+    run.catenary.modal.max_frequency_hz =
+        catenary::kModalCutoffMargin * catenary::doppler_frequency(run.cutoff_hz, run.speed, c);
+  }
   return run;
 }
 
