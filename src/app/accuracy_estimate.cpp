@@ -12,7 +12,7 @@ namespace pcsim::app {
 namespace {
 
 // Calibration: |error of sigma| [%] against the criterion's value, measured
-// by `pcsim study accuracy runs/en50318-300.yaml` (docs/reduced-order.md);
+// by `pcsim study accuracy runs/en50318-300.yaml` (docs/fidelity.md);
 // interpolated linearly in log(value), held beyond the ends.
 struct CalibrationPoint {
   double value, error_percent;
@@ -150,7 +150,7 @@ AccuracyEstimate assess_accuracy(const AccuracyInputs& in) {
 
 AccuracyEstimate estimate_accuracy(const CommandContext& ctx, const scene::RunScene& run,
                                    assembly::CoupledSystem& system,
-                                   const solvers::DynamicSolver& solver, Vec U0) {
+                                   const solvers::DynamicSolver& solver, Vec U0, bool print) {
   const auto& mesh = run.catenary.mesh;
   AccuracyInputs in;
   PetscReal dt;
@@ -164,7 +164,7 @@ AccuracyEstimate estimate_accuracy(const CommandContext& ctx, const scene::RunSc
   in.modal = run.catenary.fidelity == catenary::CatenaryFidelity::modal;
   in.modal_cutoff_hz = run.catenary.modal.max_frequency_hz;
   const auto estimate = assess_accuracy(in);
-  print_accuracy(ctx, estimate);
+  if (print) print_accuracy(ctx, estimate);
   return estimate;
 }
 
@@ -185,12 +185,9 @@ void print_catenary_setup(const CommandContext& ctx, const scene::RunScene& run,
                           const CatenarySetup& setup) {
   print0(ctx, "  catenary model: %s", catenary::fidelity_name(run.catenary.fidelity));
   if (setup.modal)
-    print0(ctx,
-           ", %d basis vectors (%d modes below %.1f Hz, %d left out), %s in %.2f s "
-           "(computed in %.1f s)",
+    print0(ctx, ", %d basis vectors (%d modes below %.1f Hz, %d left out), %s in %.2f s",
            setup.basis_size, setup.eigenmodes, setup.cutoff_hz, setup.dropped_modes,
-           setup.cache_hit ? "read from the cache" : "computed", setup.setup_seconds,
-           setup.basis_seconds);
+           setup.cache_hit ? "read from the cache" : "computed", setup.setup_seconds);
   print0(ctx, "\n");
 }
 

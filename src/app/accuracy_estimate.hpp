@@ -1,5 +1,5 @@
 // Where a run's time step, mesh and modal cut-off sit relative to the
-// converged region, from criteria that hold for any scene (docs/reduced-order.md,
+// converged region, from criteria that hold for any scene (docs/fidelity.md,
 // "Accuracy estimate"):
 //  - time step: steps per period of the highest frequency that matters, the
 //    larger of the pantograph's highest mode on the contact spring and the
@@ -56,7 +56,7 @@ AccuracyEstimate assess_accuracy(const AccuracyInputs& in);
 // at the initial state U0), assessed and printed before stepping.
 AccuracyEstimate estimate_accuracy(const CommandContext& ctx, const scene::RunScene& run,
                                    assembly::CoupledSystem& system,
-                                   const solvers::DynamicSolver& solver, Vec U0);
+                                   const solvers::DynamicSolver& solver, Vec U0, bool print = true);
 void print_accuracy(const CommandContext& ctx, const AccuracyEstimate& estimate);
 
 // Console line of the catenary model (fidelity, modal basis and cache).

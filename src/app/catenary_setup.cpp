@@ -139,4 +139,21 @@ CatenarySetup make_catenary_model(const CommandContext& ctx, const scene::RunSce
   return out;
 }
 
+std::unique_ptr<assembly::CoupledSystem> make_coupled_system(
+    const CommandContext& ctx, scene::RunScene& run, const solvers::StaticConfiguration& statics,
+    CatenarySetup& setup) {
+  std::vector<assembly::PantographSlot> slots;
+  PetscInt panto_dofs = 0;
+  for (std::size_t p = 0; p < run.pantographs.size(); ++p) {
+    assembly::PantographSlot slot;
+    slot.run = run.pantographs[p];
+    slot.model = std::move(run.models[p]);
+    panto_dofs += slot.dof_count();
+    slots.push_back(std::move(slot));
+  }
+  setup = make_catenary_model(ctx, run, statics, panto_dofs);
+  return std::make_unique<assembly::CoupledSystem>(std::move(setup.model), std::move(slots),
+                                                   run.effects, run.contact_stiffness);
+}
+
 }  // namespace pcsim::app

@@ -11,6 +11,7 @@
 
 #include "command.hpp"
 #include "pcsim/assembly/catenary_model.hpp"
+#include "pcsim/assembly/coupled_system.hpp"
 #include "pcsim/scene/run_scene.hpp"
 #include "pcsim/solvers/statics.hpp"
 
@@ -33,5 +34,12 @@ struct CatenarySetup {
 // shapes (run.snapshot_every > 0).
 CatenarySetup make_catenary_model(const CommandContext& ctx, const scene::RunScene& run,
                                   const solvers::StaticConfiguration& statics, PetscInt extra_dofs);
+
+// The coupled system of the scene on the static configuration (moves the
+// scene's pantograph models in), its catenary from make_catenary_model
+// (setup keeps the facts; its model is moved into the system).
+std::unique_ptr<assembly::CoupledSystem> make_coupled_system(
+    const CommandContext& ctx, scene::RunScene& run, const solvers::StaticConfiguration& statics,
+    CatenarySetup& setup);
 
 }  // namespace pcsim::app

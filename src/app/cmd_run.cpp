@@ -65,26 +65,6 @@ PetscErrorCode monitor(TS ts, PetscInt step, PetscReal t, Vec U, void* ptr) {
   PCSIM_CALLBACK_END
 }
 
-// The coupled system of the scene on the static configuration, its catenary
-// at the scene's fidelity (catenary_setup.hpp).
-std::unique_ptr<assembly::CoupledSystem> make_system(const app::CommandContext& ctx,
-                                                     scene::RunScene& run,
-                                                     const solvers::StaticConfiguration& statics,
-                                                     app::CatenarySetup& setup) {
-  std::vector<assembly::PantographSlot> slots;
-  PetscInt panto_dofs = 0;
-  for (std::size_t p = 0; p < run.pantographs.size(); ++p) {
-    assembly::PantographSlot slot;
-    slot.run = run.pantographs[p];
-    slot.model = std::move(run.models[p]);
-    panto_dofs += slot.dof_count();
-    slots.push_back(std::move(slot));
-  }
-  setup = app::make_catenary_model(ctx, run, statics, panto_dofs);
-  return std::make_unique<assembly::CoupledSystem>(std::move(setup.model), std::move(slots),
-                                                   run.effects, run.contact_stiffness);
-}
-
 // Integrates from the initial state; fills the monitor.
 void integrate(const app::CommandContext& ctx, assembly::CoupledSystem& system,
                solvers::DynamicSolver& solver, Vec U0, Vec V0, RunMonitor& mon) {
@@ -188,7 +168,7 @@ int run_dynamic(const app::CommandContext& ctx) {
               statics.result.max_tension_error_rel);
   const auto settings = run_settings(ctx, scene, run);
   app::CatenarySetup setup;
-  auto system = make_system(ctx, run, statics, setup);
+  auto system = app::make_coupled_system(ctx, run, statics, setup);
   app::print_catenary_setup(ctx, run, setup);
   Vec U0 = system->create_vector(), V0 = system->create_vector();
   solvers::initial_state(*system, U0, V0);

@@ -142,7 +142,7 @@ RunScene load_run_scene(const InputNode& scene) {
   read_analysis(scene, run);
   run.effects.catenary_nonlinear = run.catenary.fidelity == catenary::CatenaryFidelity::nonlinear;
   // Default modal cut-off: the modes the contact force shows below the filter
-  // cut-off, cutoff_hz / (1 - v/c) (docs/reduced-order.md).
+  // cut-off, cutoff_hz / (1 - v/c) (docs/fidelity.md).
   if (!run.catenary.modal_cutoff_given) {
     const double c = catenary::wave_speed(mesh.wires[mesh.contact_wire]);
     run.catenary.modal.max_frequency_hz =

@@ -23,7 +23,7 @@ enum class CatenaryFidelity { nonlinear, linear, modal };
 const char* fidelity_name(CatenaryFidelity f);
 
 // How the modal model treats its droppers and which ingredients it uses
-// (the scene's `catenary: {model: modal, ...}`; docs/reduced-order.md).
+// (the scene's `catenary: {model: modal, ...}`; docs/fidelity.md).
 struct ModalSettings {
   double max_frequency_hz = 0;      // cut-off; <= 0: every mode (small structures only)
   bool dropper_shapes = true;       // augment the modes with the droppers' static shapes
@@ -43,7 +43,7 @@ struct ModalSettings {
 inline double doppler_frequency(double filter_hz, double speed, double wave_speed) {
   return filter_hz / (1.0 - speed / wave_speed);
 }
-// Default modal cut-off over that frequency (measured: docs/reduced-order.md).
+// Default modal cut-off over that frequency (measured: docs/fidelity.md).
 constexpr double kModalCutoffMargin = 1.1;
 
 // A row of the basis: DOF c (0..5) of node n, stored as 6 n + c.
