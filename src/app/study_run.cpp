@@ -1,5 +1,6 @@
 #include "study_run.hpp"
 
+#include <malloc.h>
 #include <petsctime.h>
 
 #include <cstdio>
@@ -20,9 +21,11 @@ namespace pcsim::app {
 
 namespace {
 
-// The peak resident memory of this run: the kernel's high-water mark reset
+// The peak resident memory of this run: the heap freed by earlier runs given
+// back to the system (malloc_trim) and the kernel's high-water mark reset
 // before it (/proc/self/clear_refs), read after, largest over ranks [MB].
 void reset_peak_memory() {
+  malloc_trim(0);
   std::ofstream("/proc/self/clear_refs") << "5";
 }
 double peak_memory(MPI_Comm comm) {
