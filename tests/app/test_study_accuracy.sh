@@ -30,7 +30,7 @@ for bad in "study precision $scene|'study'" "study accuracy $scene -study_models
   "$PCSIM_BIN" ${bad%|*} -o "$tmp/bad" > "$tmp/bad.log" 2>&1
   code=$?
   set -e
-  [ $code -eq 2 ] && grep -q "${bad#*|}" "$tmp/bad.log" || { echo "$bad: exit $code"; cat "$tmp/bad.log"; exit 1; }
+  [ $code -eq 2 ] && grep -q -- "${bad#*|}" "$tmp/bad.log" || { echo "$bad: exit $code"; cat "$tmp/bad.log"; exit 1; }
 done
 
 "$PCSIM_BIN" study accuracy "$scene" -o "$tmp/np1" --cache "$tmp/cache" \
