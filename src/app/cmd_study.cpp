@@ -120,8 +120,14 @@ std::vector<app::StudyVariant> variants(const Grid& g, bool parametric, double s
                                [](CatenaryFidelity m) { return m != CatenaryFidelity::modal; });
   const bool linear =
       std::find(g.models.begin(), g.models.end(), CatenaryFidelity::linear) != g.models.end();
-  if (!g.full && fe != g.models.end() && (dt_min != 1 || h_min != 1))
-    list.push_back({linear ? CatenaryFidelity::linear : *fe, dt_min, h_min, 0, false});
+  if (!g.full && fe != g.models.end()) {
+    const app::StudyVariant finest{linear ? CatenaryFidelity::linear : *fe, dt_min, h_min, 0,
+                                   false};
+    const bool listed = std::any_of(list.begin(), list.end(), [&](const app::StudyVariant& v) {
+      return v.model == finest.model && v.dt_factor == dt_min && v.h_factor == h_min;
+    });
+    if (!listed) list.push_back(finest);
+  }
   // Modal runs per mesh by decreasing cut-off (later ones reuse the first one's modes).
   const auto effective = [](const app::StudyVariant& v) {
     return v.cutoff_factor > 0 ? v.cutoff_factor : catenary::kModalCutoffMargin;

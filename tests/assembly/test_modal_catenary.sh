@@ -93,6 +93,15 @@ assert rel <= 1e-11, rel
 assert bounded < checked, (bounded, checked)
 assert summary("lower")["modal"]["cutoff_hz"] == 30.0
 
+# The accuracy estimate of the modal run (docs/fidelity.md): its cut-off is 1.1
+# times cutoff_hz / (1 - v/c), inside; 1.5 m elements are 1.85 per wavelength
+# v / 20 Hz, outside (converged >= 4.4), with the advice to refine.
+criteria = {c["name"]: c for c in summary("modal")["accuracy_estimate"]["criteria"]}
+assert sorted(criteria) == ["element length", "modal cut-off", "time step"], criteria
+assert abs(criteria["modal cut-off"]["value"] - 1.1) < 1e-9 and criteria["modal cut-off"]["ok"]
+assert not criteria["element length"]["ok"] and "element_length" in criteria["element length"]["advice"]
+assert "modal cut-off" not in str(summary("linear")["accuracy_estimate"])
+
 figures = {"mean_N": 0.1, "std_N": 0.5, "stat_max_N": 0.2, "max_N": 2.0}
 fe, modal = summary("linear"), summary("modal")
 assert modal["modal"]["basis_size"] == 232, modal["modal"]
