@@ -24,7 +24,6 @@
 #include "exit_status.hpp"
 #include "pcsim/output/accuracy_study.hpp"
 #include "pcsim/output/output_dir.hpp"
-#include "pcsim/scene/design_variant.hpp"
 #include "pcsim/scene/run_scene.hpp"
 #include "study_run.hpp"
 
@@ -160,10 +159,10 @@ int study(const app::CommandContext& ctx) {
   if (ctx.subcommand != "accuracy")
     throw InputError("command line", "study",
                      "unknown study '" + ctx.subcommand + "' (pcsim study accuracy SCENE.yaml)");
-  const InputNode scene = InputNode::load_file(ctx.scene_path);
+  const InputNode scene = ctx.load_scene();
   const auto base = scene::load_run_scene(scene);  // checks the scene once
   const Grid grid = read_grid();
-  const bool parametric = catenary::design_element_length(base.catenary.design_path) > 0;
+  const bool parametric = app::design_element_length(scene) > 0;
   const auto& wire = base.catenary.mesh.wires[base.catenary.mesh.contact_wire];
   const double scene_cutoff =
       base.catenary.modal.max_frequency_hz /
@@ -190,7 +189,7 @@ int study(const app::CommandContext& ctx) {
                 probe.model.c_str(), list[i].dt_factor, list[i].h_factor,
                 cutoff_note(list[i]).c_str(), list[i].vertical_only ? ", vertical modes" : "");
     const std::string dir = out.file("runs/" + std::to_string(i + 1));
-    auto run = app::run_variant(ctx, ctx.scene_path, list[i], dir);
+    auto run = app::run_variant(ctx, scene, list[i], dir);
     if (run.ok)
       app::print0(ctx, " %.3f ms/step, RTF %.2f\n", run.ms_per_step, run.real_time_factor);
     else
@@ -215,6 +214,18 @@ int study(const app::CommandContext& ctx) {
 }
 
 }  // namespace
+
+PCSIM_COMMAND_HELP(
+    study_help, "study",
+    "subcommand: accuracy (pcsim study accuracy SCENE.yaml): a run scene (the sections of\n"
+    "'pcsim run --help') over a grid; the grid (PETSc options, docs/fidelity.md):\n"
+    "  -study_models nonlinear,linear,modal   fidelity levels\n"
+    "  -study_dt_factors 0.5,1,2,5            multiples of the scene's dt\n"
+    "  -study_h_factors 0.5,1,2               multiples of the design's element_length\n"
+    "  -study_cutoff_factors 0.6,0.8,1,1.2    modal cut-off over cutoff_hz / (1 - v/c)\n"
+    "  -study_vertical true                   also the modal run with vertical modes only\n"
+    "  -study_grid star|full                  one factor at a time, or every combination\n"
+    "results: accuracy.csv, accuracy.md, accuracy.svg, study.json, runs/<n>/\n", );
 
 PCSIM_COMMAND_WITH_SUBCOMMAND("study",
                               "studies of a run scene: 'study accuracy SCENE' (accuracy against "

@@ -11,7 +11,7 @@
 #include "exit_status.hpp"
 #include "pcsim/output/output_dir.hpp"
 #include "pcsim/output/run_results.hpp"
-#include "pcsim/scene/design_variant.hpp"
+#include "pcsim/scene/composition.hpp"
 #include "pcsim/scene/run_scene.hpp"
 #include "pcsim/solvers/dynamics.hpp"
 #include "pcsim/solvers/hht.hpp"
@@ -39,14 +39,32 @@ double peak_memory(MPI_Comm comm) {
   return max_mb > 0 ? max_mb : peak_memory_mb(comm);
 }
 
-// The scene changed as the variant says.
-scene::RunScene variant_scene(const std::string& scene_path, const StudyVariant& v) {
-  auto run = scene::load_run_scene(InputNode::load_file(scene_path));
+}  // namespace
+
+double design_element_length(const InputNode& scene) {
+  const InputNode design = scene["catenary"].load_referenced("design");
+  if (!design.has("type") || design.get_string("type") != "parametric") return 0.0;
+  return design.get_double("element_length", 0.5);  // the design reader's default
+}
+
+namespace {
+
+// The scene changed as the variant says: the element length through a --set
+// of the design's key (composition, like the user's own --set), the rest in
+// the scene read.
+scene::RunScene variant_scene(const CommandContext& ctx, const StudyVariant& v, double h) {
+  std::vector<std::string> overrides = ctx.overrides;
+  if (v.h_factor != 1) {
+    char value[64];
+    std::snprintf(value, sizeof(value), "%.17g", h);
+    overrides.push_back(std::string("catenary.design.element_length=") + value);
+  }
+  std::vector<InputOverride> parsed;
+  for (const auto& o : overrides)
+    parsed.push_back(parse_override(o, {"", "pcsim study --set " + o}));
+  auto run = scene::load_run_scene(load_composed(ctx.scene_path, parsed));
   run.catenary.fidelity = v.model;
   run.effects.catenary_nonlinear = v.model == catenary::CatenaryFidelity::nonlinear;
-  if (v.h_factor != 1)
-    run.catenary.mesh = catenary::load_catenary_design_scaled(run.catenary.design_path, v.h_factor,
-                                                              "command line", "-study_h_factors");
   run.dt *= v.dt_factor;
   if (v.cutoff_factor > 0) {
     const auto& mesh = run.catenary.mesh;
@@ -94,10 +112,15 @@ double integrate(assembly::CoupledSystem& system, solvers::DynamicSolver& solver
                  Recorder& recorder) {
   TS ts = solver.ts();
   PCSIM_PETSC(TS2SetSolution(ts, U0, V0));
-  Vec A0 = system.create_vector();
-  PCSIM_PETSC(VecSet(A0, 0.0));
-  solvers::hht_set_initial_acceleration(ts, A0);
-  PCSIM_PETSC(VecDestroy(&A0));
+  TSType ts_type;
+  PCSIM_PETSC(TSGetType(ts, &ts_type));
+  if (std::string(ts_type) == solvers::kTSHHT) {
+    // Static and ramp starts are equilibria (A0 = 0); a gap start is not.
+    Vec A0 = system.create_vector();
+    solvers::initial_acceleration(system, U0, V0, A0);
+    solvers::hht_set_initial_acceleration(ts, A0);
+    PCSIM_PETSC(VecDestroy(&A0));
+  }
   PCSIM_PETSC(TSMonitorSet(ts, record, &recorder, nullptr));
   PetscLogDouble t0, t1;
   PetscTime(&t0);
@@ -133,13 +156,14 @@ void fill_results(const output::RunStatistics& stats, const Recorder& recorder, 
 
 }  // namespace
 
-output::StudyRun run_variant(const CommandContext& ctx, const std::string& scene_path,
+output::StudyRun run_variant(const CommandContext& ctx, const InputNode& scene,
                              const StudyVariant& v, const std::string& run_dir) {
-  auto run = variant_scene(scene_path, v);
+  const double h = design_element_length(scene) * v.h_factor;
+  auto run = variant_scene(ctx, v, h);
   output::StudyRun out;
   out.model = catenary::fidelity_name(v.model);
   out.dt = run.dt;
-  out.element_length = catenary::design_element_length(run.catenary.design_path) * v.h_factor;
+  out.element_length = h;
   out.vertical_only = v.vertical_only;
   reset_peak_memory();
   PetscLogDouble t0, t1;
@@ -153,7 +177,7 @@ output::StudyRun run_variant(const CommandContext& ctx, const std::string& scene
     out.basis_size = setup.basis_size;
     Vec U0 = system->create_vector(), V0 = system->create_vector();
     solvers::initial_state(*system, U0, V0);
-    solvers::DynamicSolver solver(*system, run.dt, run.duration());
+    solvers::DynamicSolver solver(*system, run.dt, run.duration(), run.hht_alpha);
     PCSIM_PETSC(TSSetTimeStep(solver.ts(), run.dt));  // the variant's, over -ts_dt
     const auto estimate = estimate_accuracy(ctx, run, *system, solver, U0, false);
     out.predicted_error_percent = 0;
@@ -166,7 +190,9 @@ output::StudyRun run_variant(const CommandContext& ctx, const std::string& scene
     const double wall = integrate(*system, solver, U0, V0, recorder);
     PCSIM_PETSC(VecDestroy(&U0));
     PCSIM_PETSC(VecDestroy(&V0));
-    OutputDir dir(ctx.comm, {run_dir, "command line", "-o", "study", scene_path, out.label()});
+    OutputRequest request{run_dir,     "command line",       "-o", "study", ctx.scene_path,
+                          out.label(), ctx.provenance(scene)};
+    OutputDir dir(ctx.comm, request);
     output::RunStatistics stats;
     const auto settings = settings_of(run, out.label());
     on_rank0(ctx, [&] {

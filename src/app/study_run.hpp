@@ -18,9 +18,14 @@ struct StudyVariant {
   bool vertical_only = false;
 };
 
-// Runs the variant of the scene; results into run_dir (a new folder).
-// Solver failures are recorded in the returned run (ok = false).
-output::StudyRun run_variant(const CommandContext& ctx, const std::string& scene_path,
+// Runs the variant of the scene (ctx.load_scene(): composed, with the
+// --set overrides); results into run_dir (a new folder). Solver failures are
+// recorded in the returned run (ok = false).
+output::StudyRun run_variant(const CommandContext& ctx, const InputNode& scene,
                              const StudyVariant& variant, const std::string& run_dir);
+
+// The element length of the scene's catenary design (0 for an explicit
+// design, which has none: the study leaves its mesh alone).
+double design_element_length(const InputNode& scene);
 
 }  // namespace pcsim::app

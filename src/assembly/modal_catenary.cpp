@@ -29,15 +29,15 @@ ModalCatenary::ModalCatenary(MPI_Comm comm, catenary::CatenaryMesh mesh,
   MPI_Comm_size(comm_, &size_);
   if (basis_.rows.size() != basis_.row_keys.size() * basis_.size())
     throw SolverError("modal catenary: the basis rows do not match its size");
-  locator_ = std::make_unique<contact::ContactWireLocator>(mesh_, static_values_);
+  for (int w : mesh_.contact_wire_list())
+    locators_.push_back(std::make_unique<contact::ContactWireLocator>(mesh_, static_values_, w));
+  cached_.resize(locators_.size());
   row_index_.assign(6 * mesh_.nodes.size(), -1);
   for (std::size_t i = 0; i < basis_.row_keys.size(); ++i) row_index_[basis_.row_keys[i]] = i;
   omega_ = Eigen::Map<const Eigen::VectorXd>(basis_.omega2.data(), m_).cwiseSqrt();
   wire_position_.assign(mesh_.nodes.size(), -1);
-  if (mesh_.contact_wire >= 0) {
-    const auto& nodes = mesh_.wires[mesh_.contact_wire].nodes;
-    for (std::size_t i = 0; i < nodes.size(); ++i) wire_position_[nodes[i]] = static_cast<int>(i);
-  }
+  const auto nodes = catenary::contact_wire_nodes(mesh_);
+  for (std::size_t i = 0; i < nodes.size(); ++i) wire_position_[nodes[i]] = static_cast<int>(i);
   build_dropper_rows();
   eta_ = Eigen::VectorXd::Zero(m_);
   exact_anchor();
@@ -221,45 +221,65 @@ void ModalCatenary::update_slack_set() {
   }
 }
 
-WirePoint ModalCatenary::wire_point(double x) const {
-  if (x != cached_x_) {
-    WirePoint p;
-    int element;
-    double chi;
-    p.on_wire = locator_->locate(x, element, chi);
-    p.reuse_columns = false;
-    cached_z0_ = 0;
-    if (p.on_wire) {
-      const auto& el = mesh_.cables[element];
-      const auto s = contact::hermite_shape(chi, el.ref_length);
-      const int node[4] = {el.nodes[0], el.nodes[0], el.nodes[1], el.nodes[1]};
-      const int comp[4] = {2, 5, 2, 5};  // z, z' at each end (thesis 3.13)
-      Eigen::RowVectorXd w = Eigen::RowVectorXd::Zero(m_);
-      for (int k = 0; k < 4; ++k) {
-        w += s[k] * row(node[k], comp[k]);
-        cached_z0_ += s[k] * static_values_[6 * node[k] + comp[k]];
-      }
-      p.weight.assign(w.data(), w.data() + m_);
-      p.index.resize(m_);
-      for (PetscInt k = 0; k < m_; ++k) p.index[k] = k;
-      const auto at = [&](int n) { return basis_.contact_flexibility[wire_position_[n]]; };
-      const double xi = chi / el.ref_length;
-      p.residual_flexibility = (1 - xi) * at(el.nodes[0]) + xi * at(el.nodes[1]);
+// The weights of contact wire 'wire' at station x: z = z0 + w . eta with
+// w = S_z(chi) Phi_e (thesis 3.13), and the parts of the slope dz/dx.
+const ModalCatenary::CachedPoint& ModalCatenary::cached_point(double x, int wire) const {
+  CachedPoint& c = cached_[wire];
+  if (x == c.x) return c;
+  WirePoint p;
+  int element;
+  double chi;
+  p.on_wire = locators_[wire]->locate(x, element, chi);
+  p.reuse_columns = false;
+  c.z0 = c.z_chi0 = 0;
+  c.x_chi = 1;
+  if (p.on_wire) {
+    const auto& el = mesh_.cables[element];
+    const auto s = contact::hermite_shape(chi, el.ref_length);
+    const auto ds = contact::hermite_shape_derivative(chi, el.ref_length);
+    const int node[4] = {el.nodes[0], el.nodes[0], el.nodes[1], el.nodes[1]};
+    const int comp[4] = {2, 5, 2, 5};  // z, z' at each end (thesis 3.13)
+    Eigen::RowVectorXd w = Eigen::RowVectorXd::Zero(m_);
+    c.z_chi = Eigen::RowVectorXd::Zero(m_);
+    c.x_chi = 0;
+    for (int k = 0; k < 4; ++k) {
+      const auto r = row(node[k], comp[k]);
+      w += s[k] * r;
+      c.z_chi += ds[k] * r;
+      c.z0 += s[k] * static_values_[6 * node[k] + comp[k]];
+      c.z_chi0 += ds[k] * static_values_[6 * node[k] + comp[k]];
+      c.x_chi += ds[k] * static_values_[6 * node[k] + comp[k] - 2];  // x, x' (static)
     }
-    cached_point_ = std::move(p);
-    cached_x_ = x;
+    if (!mesh_.contact_gap_offsets.empty()) c.z0 += mesh_.contact_gap_offsets[wire].at(x);
+    p.weight.assign(w.data(), w.data() + m_);
+    p.index.resize(m_);
+    for (PetscInt k = 0; k < m_; ++k) p.index[k] = k;
+    const auto at = [&](int n) { return basis_.contact_flexibility[wire_position_[n]]; };
+    const double xi = chi / el.ref_length;
+    if (!basis_.contact_flexibility.empty())
+      p.residual_flexibility = (1 - xi) * at(el.nodes[0]) + xi * at(el.nodes[1]);
   }
-  WirePoint p = cached_point_;
+  c.point = std::move(p);
+  c.x = x;
+  return c;
+}
+
+WirePoint ModalCatenary::wire_point(double x, int wire) const {
+  const CachedPoint& c = cached_point(x, wire);
+  WirePoint p = c.point;
   if (p.on_wire && on_owner()) {
     p.owned = true;
-    p.z = cached_z0_ + Eigen::Map<const Eigen::VectorXd>(p.weight.data(), m_).dot(eta_);
+    p.z = c.z0 + Eigen::Map<const Eigen::VectorXd>(p.weight.data(), m_).dot(eta_);
+    // dz/dx with x(chi) static (the contact point moves along the track).
+    p.slope = (c.z_chi0 + c.z_chi.dot(eta_)) / c.x_chi;
+    if (!mesh_.contact_gap_offsets.empty()) p.slope += mesh_.contact_gap_offsets[wire].slope_at(x);
   }
   return p;
 }
 
 // eta = Omega^-2 w(x) F: the modal statics under the force (slack ignored).
-bool ModalCatenary::closed_form_point_load(double x, double force, Vec U) const {
-  const WirePoint p = wire_point(x);
+bool ModalCatenary::closed_form_point_load(double x, int wire, double force, Vec U) const {
+  const WirePoint p = wire_point(x, wire);
   if (!p.on_wire) return false;
   PCSIM_PETSC(VecSet(U, 0.0));
   if (on_owner()) {

@@ -16,13 +16,19 @@ const char* fidelity_name(CatenaryFidelity f) {
   return "?";
 }
 
+std::vector<int> contact_wire_nodes(const CatenaryMesh& mesh) {
+  std::vector<int> nodes;
+  for (int w : mesh.contact_wire_list())
+    nodes.insert(nodes.end(), mesh.wires[w].nodes.begin(), mesh.wires[w].nodes.end());
+  return nodes;
+}
+
 std::vector<long> reduced_basis_rows(const CatenaryMesh& mesh, bool full_shapes) {
   std::vector<long> keys;
-  if (mesh.contact_wire >= 0)
-    for (int n : mesh.wires[mesh.contact_wire].nodes) {
-      keys.push_back(basis_row_key(n, 2));
-      keys.push_back(basis_row_key(n, 5));
-    }
+  for (int n : contact_wire_nodes(mesh)) {
+    keys.push_back(basis_row_key(n, 2));
+    keys.push_back(basis_row_key(n, 5));
+  }
   for (const auto& bar : mesh.bars)
     for (int n : bar.nodes)
       for (int c = 0; c < 3; ++c) keys.push_back(basis_row_key(n, c));

@@ -19,11 +19,10 @@ long row_of(const std::vector<long>& keys, long key) {
   return it - keys.begin();
 }
 
-// Contact-wire z rows, in wire order.
+// Contact-wire z rows, at contact_wire_nodes().
 std::vector<long> contact_rows(const ModalData& data, const CatenaryMesh& mesh) {
   std::vector<long> rows;
-  for (int n : mesh.wires[mesh.contact_wire].nodes)
-    rows.push_back(row_of(data.row_keys, basis_row_key(n, 2)));
+  for (int n : contact_wire_nodes(mesh)) rows.push_back(row_of(data.row_keys, basis_row_key(n, 2)));
   return rows;
 }
 
@@ -112,7 +111,7 @@ ReducedBasis assemble_basis(const ModalData& data, const CatenaryMesh& mesh,
   RowMatrix rows(nr, m + ritz_rows.cols());
   rows << mode_rows, ritz_rows;
   b.rows.assign(rows.data(), rows.data() + rows.size());
-  if (mesh.contact_wire >= 0) {
+  if (!mesh.contact_wire_list().empty()) {
     const auto cw = contact_rows(data, mesh);
     b.contact_flexibility.assign(cw.size(), 0.0);
     if (s.contact_flexibility && data.contact_compliance.size() == cw.size())

@@ -70,16 +70,29 @@ void add_mesh(KeyBuffer& key, const catenary::CatenaryMesh& mesh) {
   }
   for (const auto& e : mesh.cables) {
     key.add(e.nodes), key.add(e.wire), key.add(e.ref_length), key.add(e.unstressed_length);
+    key.add(e.section_factor);
   }
   for (const auto& b : mesh.bars) {
     key.add(b.nodes), key.add(b.kind), key.add(b.stiffness), key.add(b.mass);
     key.add(b.unstressed_length), key.add(b.slack);
   }
   for (const auto& p : mesh.point_masses) key.add(p.node), key.add(p.mass);
-  for (const auto& s : mesh.springs) key.add(s.node), key.add(s.dof), key.add(s.stiffness);
+  for (const auto& s : mesh.springs) {
+    key.add(s.node), key.add(s.dof), key.add(s.stiffness);
+    for (int c = 0; c < 3; ++c) key.add(s.direction[c]);
+  }
+  for (const auto& f : mesh.node_forces) {
+    key.add(f.node);
+    for (int c = 0; c < 3; ++c) key.add(f.force[c]);
+  }
+  for (const auto& d : mesh.tensioning_devices) {
+    key.add(d.node), key.add(d.wire), key.add(d.kind), key.add(d.mass), key.add(d.stiffness);
+    for (int c = 0; c < 3; ++c) key.add(d.direction[c]);
+  }
   for (int c = 0; c < 3; ++c) key.add(mesh.gravity[c]);
   key.add_all(mesh.support_nodes);
   key.add(mesh.contact_wire);
+  key.add_all(mesh.contact_wire_list());
 }
 
 // A dataset of doubles or longs, whatever its size; false if absent.
@@ -105,15 +118,29 @@ bool read_attribute(hid_t file, const char* name, double& value) {
   return ok;
 }
 
+// The key attribute: a variable-length string (H5File::attribute), or a
+// fixed-length one (files of earlier versions).
 bool read_key(hid_t file, std::string& key) {
   if (H5Aexists(file, "key") <= 0) return false;
   const hid_t attr = H5Aopen(file, "key", H5P_DEFAULT);
   const hid_t type = H5Aget_type(attr);
-  std::string value(H5Tget_size(type), '\0');
-  const bool ok = H5Aread(attr, type, value.data()) >= 0;
+  bool ok = false;
+  if (H5Tis_variable_str(type) > 0) {
+    char* text = nullptr;
+    const hid_t memory = H5Tcopy(H5T_C_S1);
+    H5Tset_size(memory, H5T_VARIABLE);
+    H5Tset_cset(memory, H5Tget_cset(type));
+    ok = H5Aread(attr, memory, &text) >= 0 && text;
+    if (ok) key = text;
+    if (text) H5free_memory(text);
+    H5Tclose(memory);
+  } else {
+    std::string value(H5Tget_size(type), '\0');
+    ok = H5Aread(attr, type, value.data()) >= 0;
+    key = value.c_str();
+  }
   H5Tclose(type);
   H5Aclose(attr);
-  key = value.c_str();
   return ok;
 }
 

@@ -6,6 +6,7 @@
 
 #include "pcsim/output/h5_file.hpp"
 #include "pcsim/output/mesh_xdmf.hpp"
+#include "pcsim/output/provenance.hpp"
 
 namespace pcsim::output {
 
@@ -64,7 +65,8 @@ void write_snapshots(const OutputDir& out, H5File& h5, const catenary::CatenaryM
                      const std::vector<double>& static_values, const RunHistory& h) {
   // Static mesh + displacement snapshots: ParaView animation of the wires.
   const auto static_positions = catenary::positions_from_node_values(static_values);
-  write_mesh_h5_xdmf(mesh, static_positions, out.file("static_mesh.h5"), out.file("static.xdmf"));
+  write_mesh_h5_xdmf(mesh, static_positions, out.file("static_mesh.h5"), out.file("static.xdmf"),
+                     {}, out.provenance());
   for (std::size_t k = 0; k < h.snapshots.size(); ++k) {
     std::vector<double> d(h.snapshots[k]);
     for (std::size_t i = 0; i < d.size(); ++i) d[i] -= static_positions[i];
@@ -114,6 +116,7 @@ RunStatistics write_run_results(const OutputDir& out, const catenary::CatenaryMe
   std::vector<double> time(n);
   for (std::size_t i = 0; i < n; ++i) time[i] = h.steps[i].t;
   H5File h5(out.file("results.h5"));
+  stamp_provenance(h5, out.provenance());
   h5.write("/time", time);
   h5.write("/supports/x", mesh.support_x);
   h5.write("/supports/uplift", support_uplift(mesh, static_values, s, h, stats.max_uplift_m), n,

@@ -138,7 +138,7 @@ std::vector<double> DropperShapes::mass_products(Vec phi) const {
   return c;
 }
 
-// g_i = (K^-1)_zz at every contact-wire node (0 where z is fixed).
+// g_i = (K^-1)_zz at every contact-wire node, contact_wire_nodes() (0 where z is fixed).
 std::vector<double> contact_compliance(const assembly::CatenarySystem& system,
                                        const StiffnessSolver& K) {
   const auto& mesh = system.mesh();
@@ -147,7 +147,7 @@ std::vector<double> contact_compliance(const assembly::CatenarySystem& system,
   Vec e = system.create_vector(), y = system.create_vector();
   PetscInt lo, hi;
   PCSIM_PETSC(VecGetOwnershipRange(e, &lo, &hi));
-  for (int node : mesh.wires[mesh.contact_wire].nodes) {
+  for (int node : catenary::contact_wire_nodes(mesh)) {
     const PetscInt dof = L.global_dof(node, 2);
     if (dof < 0) {
       g.push_back(0.0);
@@ -219,7 +219,8 @@ ModalData compute_modal_data(assembly::CatenarySystem& system, Vec x, double max
     data.shape_mass = row_major(shapes->psi_M_psi());
     data.shape_flexibility = row_major(shapes->flexibility());
   }
-  if (K && mesh.contact_wire >= 0) data.contact_compliance = contact_compliance(system, *K);
+  if (K && !mesh.contact_wire_list().empty())
+    data.contact_compliance = contact_compliance(system, *K);
   PetscTime(&t1);
   data.wall_time_s = t1 - t0;
   return data;

@@ -10,8 +10,9 @@
 // slack correction -k min(dl, 0) b_d (dl = s_d + b_d . eta, rank one per
 // slack dropper) or every bar's exact nonlinear force minus its
 // linearisation (settings.bars = exact: the all-modes check against FE), and
-// the contact through wire_point(): z(x) = z0(x) + S_z(chi) Phi_e eta, a dense
-// row over the modes, with the truncated flexibility of the contact point.
+// the contact through wire_point(x, wire): z(x) = z0(x) + S_z(chi) Phi_e eta, a
+// dense row over the modes, with the truncated flexibility of the contact
+// point (every contact wire of a line with overlaps).
 //
 // Which droppers are evaluated at each state (dropper_check = bounded): the
 // elongations dl_a of every dropper are known at an anchor state eta_a to
@@ -56,10 +57,11 @@ class ModalCatenary : public CatenaryModel {
   Mat create_reference_matrix(const std::vector<bool>& wire_coupled) const override;
   void reference_state(Vec U) const override;
   void load_state(Vec U) override;
-  WirePoint wire_point(double x) const override;
-  double wire_x_min() const override { return locator_->x_min(); }
-  double wire_x_max() const override { return locator_->x_max(); }
-  bool closed_form_point_load(double x, double force, Vec U) const override;
+  int contact_wire_count() const override { return static_cast<int>(locators_.size()); }
+  WirePoint wire_point(double x, int wire) const override;
+  double wire_x_min(int wire) const override { return locators_[wire]->x_min(); }
+  double wire_x_max(int wire) const override { return locators_[wire]->x_max(); }
+  bool closed_form_point_load(double x, int wire, double force, Vec U) const override;
   std::vector<double> support_heights() const override;
   std::vector<double> dropper_forces() const override;
   std::vector<double> node_positions_to_root(Vec U) const override;
@@ -102,11 +104,11 @@ class ModalCatenary : public CatenaryModel {
   catenary::ReducedBasis basis_;
   catenary::ModalSettings settings_;
   PetscInt m_ = 0, extra_ = 0;
-  std::unique_ptr<contact::ContactWireLocator> locator_;
+  std::vector<std::unique_ptr<contact::ContactWireLocator>> locators_;  // per contact wire
   std::vector<long> row_index_;     // basis_row_key -> row, -1 if not kept (dense over keys)
   std::vector<int> droppers_;       // the droppers (records), as indices into slack_bars_
   std::vector<int> slack_bars_;     // bars tracked over the basis
-  std::vector<int> wire_position_;  // node -> position along the contact wire, -1
+  std::vector<int> wire_position_;  // node -> position in contact_wire_nodes(), -1
   bool slack_active_ = false;       // the slack correction is a term
   std::vector<double> stretch_, bnorm_, bnorm_omega_;  // s_d, |b_d|, |Omega^-1 b_d|
   RowMatrix B_;
@@ -126,10 +128,17 @@ class ModalCatenary : public CatenaryModel {
   void exact_anchor() const;
   void single_precision_anchor(double step);
   void find_candidates(double step, double step_omega);
-  // Wire-point weights of the last x (they depend on x only).
-  mutable double cached_x_ = -1e300;
-  mutable WirePoint cached_point_;
-  mutable double cached_z0_ = 0;
+  // Wire-point weights of the last x of each contact wire (they depend on x
+  // only): the point, its static height and the slope's parts.
+  struct CachedPoint {
+    double x = -1e300;
+    WirePoint point;
+    double z0 = 0, x_chi = 1;  // static height, dx/dchi
+    Eigen::RowVectorXd z_chi;  // d(dz/dchi)/d eta
+    double z_chi0 = 0;         // static dz/dchi
+  };
+  mutable std::vector<CachedPoint> cached_;
+  const CachedPoint& cached_point(double x, int wire) const;
 };
 
 }  // namespace pcsim::assembly

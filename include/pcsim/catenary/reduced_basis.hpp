@@ -65,7 +65,7 @@ struct ModalData {
   std::vector<double> mode_shape_mass;     // phi_k^T M psi_d, modes x shapes
   std::vector<double> shape_mass;          // psi_d^T M psi_e, shapes x shapes
   std::vector<double> shape_flexibility;   // b_d^T psi_e = b_d^T K^-1 b_e, shapes x shapes
-  std::vector<double> contact_compliance;  // (K^-1)_zz at the contact-wire nodes (wire order)
+  std::vector<double> contact_compliance;  // (K^-1)_zz at contact_wire_nodes()
   double max_relative_residual = 0;        // of the eigenpairs
   double wall_time_s = 0;                  // to compute it (0 when read from the cache)
   std::size_t modes() const { return omega2.size(); }
@@ -80,7 +80,7 @@ struct ReducedBasis {
   std::vector<long> row_keys;  // the kept rows (basis_row_key), ascending
   std::vector<double> rows;    // row-major, row_keys.size() x size()
   // Contact point's residual flexibility r = g(x,x) - sum_k phi_k(x)^2 / omega_k^2
-  // at every contact-wire node, in wire order [m/N] (0 when not computed).
+  // at contact_wire_nodes() [m/N] (0 when not computed).
   std::vector<double> contact_flexibility;
   double cutoff_hz = 0;
   std::size_t size() const { return omega2.size(); }
@@ -97,6 +97,10 @@ struct ReducedBasis {
 // contact-wire nodes.
 ReducedBasis assemble_basis(const ModalData& data, const CatenaryMesh& mesh,
                             const ModalSettings& settings);
+
+// The nodes of every contact wire, wire after wire (mesh.contact_wire_list()
+// order): the order of the contact compliance and residual flexibility.
+std::vector<int> contact_wire_nodes(const CatenaryMesh& mesh);
 
 // The rows a modal model of 'mesh' needs: z and z' of the contact-wire nodes,
 // x, y, z of every bar's ends, z of the supports; with full_shapes x, y, z

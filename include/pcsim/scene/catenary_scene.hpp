@@ -6,15 +6,26 @@
 //     max_frequency_hz: 70     # modal cut-off [Hz] or 'all'; default: set by the run scene
 //     modal: {dropper_shapes: true, contact_flexibility: true, modes: all | vertical,
 //             participation: 0.03, droppers: bounded | all, bars: slack | exact}
+//   elasticity: {force: 100, from_x: 240, to_x: 300, step: 1}   # pcsim static
 #pragma once
 
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "pcsim/catenary/mesh.hpp"
 #include "pcsim/catenary/reduced_basis.hpp"
 #include "pcsim/scene/yaml_input.hpp"
 
 namespace pcsim::catenary {
+
+// 'elasticity' (pcsim static): uplift under 'force' at from_x, from_x + step,
+// ..., to_x (stations on the line).
+struct ElasticityRequest {
+  double force = 100;  // [N]
+  double from_x = 0, to_x = 0, step = 1;
+  std::vector<double> stations() const;
+};
 
 struct CatenaryScene {
   std::string design_path;
@@ -25,11 +36,19 @@ struct CatenaryScene {
   ModalSettings modal;              // model: modal
   bool modal_cutoff_given = false;  // catenary.max_frequency_hz (else the run scene sets it)
   std::string scene_file;           // for messages about these keys
+  std::optional<ElasticityRequest> elasticity;
 };
 
 CatenaryScene load_catenary_scene(const InputNode& scene);
 // The fidelity keys of a catenary section (model, max_frequency_hz, modal).
 void read_catenary_model(const InputNode& section, CatenaryScene& out);
+
+// The 'modes' section (pcsim modes): {count: N >= 1 (20), max_frequency_hz: F > 0 (none: 0)}.
+struct ModesSection {
+  int count = 20;
+  double max_frequency_hz = 0;
+};
+ModesSection load_modes_section(const InputNode& scene);
 
 // Checks the top-level keys of a scene file (every pcsim command reads the
 // same scene format and rejects unknown sections).
