@@ -3,6 +3,8 @@
 #include <petsctime.h>
 #include <petscts.h>
 
+#include "accuracy_estimate.hpp"
+#include "catenary_setup.hpp"
 #include "command.hpp"
 #include "exit_status.hpp"
 #include "pcsim/assembly/coupled_system.hpp"
@@ -82,25 +84,6 @@ PetscErrorCode monitor(TS ts, PetscInt step, PetscReal t, Vec U, void* ptr) {
                 100 * done, static_cast<long>(step), eta);
   }
   PCSIM_CALLBACK_END
-}
-
-// The coupled system of the scene on the static configuration.
-std::unique_ptr<assembly::CoupledSystem> make_system(const app::CommandContext& ctx,
-                                                     scene::RunScene& run,
-                                                     const solvers::StaticConfiguration& statics) {
-  std::vector<assembly::PantographSlot> slots;
-  PetscInt panto_dofs = 0;
-  for (std::size_t p = 0; p < run.pantographs.size(); ++p) {
-    assembly::PantographSlot slot;
-    slot.run = run.pantographs[p];
-    slot.model = std::move(run.models[p]);
-    panto_dofs += slot.dof_count();
-    slots.push_back(std::move(slot));
-  }
-  auto catenary = std::make_unique<assembly::FECatenary>(
-      ctx.comm, statics.mesh, statics.result.node_values, panto_dofs, &statics.node_owner);
-  return std::make_unique<assembly::CoupledSystem>(std::move(catenary), std::move(slots),
-                                                   run.effects, run.contact_stiffness);
 }
 
 // Integrates from the initial state; fills the monitor.
@@ -298,10 +281,13 @@ int run_dynamic(const app::CommandContext& ctx) {
               statics.result.snes_iterations, statics.result.max_height_error_m,
               statics.result.max_tension_error_rel);
   const auto settings = run_settings(ctx, scene, run);
-  auto system = make_system(ctx, run, statics);
+  app::CatenarySetup setup;
+  auto system = app::make_coupled_system(ctx, run, statics, setup);
+  app::print_catenary_setup(ctx, run, setup);
   Vec U0 = system->create_vector(), V0 = system->create_vector();
   solvers::initial_state(*system, U0, V0);
   solvers::DynamicSolver solver(*system, run.dt, run.duration(), run.hht_alpha);
+  const auto estimate = app::estimate_accuracy(ctx, run, *system, solver, U0);
   app::print0(ctx, "  %d catenary DOFs + %d pantograph DOFs on %d rank(s); %s path\n",
               static_cast<int>(system->catenary().catenary_dofs()),
               static_cast<int>(system->global_size() - system->catenary().catenary_dofs()),
@@ -311,12 +297,14 @@ int run_dynamic(const app::CommandContext& ctx) {
   mon.ctx = &ctx;
   mon.duration = run.duration();
   mon.keep_dropper_forces = run.dropper_forces;
+  system->set_record_dropper_forces(run.dropper_forces);
   mon.snapshot_every = run.snapshot_every;
   mon.energy = run.energy;
   integrate(ctx, *system, solver, U0, V0, mon);
   PetscLogDouble wall_end;
   PetscTime(&wall_end);
   auto facts = run_facts(ctx, mon, *system, solver.cheap_path(), wall_end - mon.wall_start);
+  app::add_fidelity_facts(run, setup, *system, estimate, facts);
   facts["rejected_steps"] = rejected_steps(solver.ts());
   PCSIM_PETSC(VecDestroy(&U0));
   PCSIM_PETSC(VecDestroy(&V0));
@@ -353,7 +341,8 @@ PCSIM_COMMAND_HELP(
     "scene sections (docs/scene-format.md, \"Run scenes\"):\n"
     "  name         scene name: results go to out/<name>/ (default: the file name)\n"
     "  description  free text\n"
-    "  catenary     design: FILE (docs/design-format.md), form_finding: true|false\n"
+    "  catenary     design: FILE (docs/design-format.md), form_finding: true|false,\n"
+    "               model: nonlinear|linear|modal, max_frequency_hz, modal (docs/fidelity.md)\n"
     "  pantographs  list of {name, model, start_x, static_force, start, ramp_distance,\n"
     "               working_height, effects}\n"
     "  simulation   speed_kmh, end_x [m], dt [s]\n"

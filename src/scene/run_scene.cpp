@@ -112,7 +112,20 @@ void read_effects_and_output(const InputNode& scene, RunScene& run) {
   if (scene.has("effects")) {
     const InputNode e = scene["effects"];
     e.allow_only({"catenary_nonlinear", "dropper_slack", "rayleigh_damping"});
-    run.effects.catenary_nonlinear = e.get_bool("catenary_nonlinear", false);
+    if (e.has("catenary_nonlinear")) {  // the old key of catenary.model
+      // With catenary.model too (a scene composed on one that has this key),
+      // the two must agree: false goes with linear and modal.
+      const bool nonlinear = e.get_bool("catenary_nonlinear", false);
+      const bool model_nonlinear = run.catenary.fidelity == catenary::CatenaryFidelity::nonlinear;
+      if (run.catenary.fidelity_given && nonlinear != model_nonlinear)
+        e.fail_key("catenary_nonlinear",
+                   std::string("contradicts catenary.model: ") +
+                       catenary::fidelity_name(run.catenary.fidelity) +
+                       " (the catenary's fidelity; give it once, as catenary.model)");
+      if (!run.catenary.fidelity_given)
+        run.catenary.fidelity =
+            nonlinear ? catenary::CatenaryFidelity::nonlinear : catenary::CatenaryFidelity::linear;
+    }
     run.effects.dropper_slack = e.get_bool("dropper_slack", true);
     run.effects.rayleigh_damping = e.get_bool("rayleigh_damping", true);
   }
@@ -158,6 +171,14 @@ RunScene load_run_scene(const InputNode& scene) {
                           "the gap)");
   read_effects_and_output(scene, run);
   read_analysis(scene, run);
+  run.effects.catenary_nonlinear = run.catenary.fidelity == catenary::CatenaryFidelity::nonlinear;
+  // Default modal cut-off: the modes the contact force shows below the filter
+  // cut-off, cutoff_hz / (1 - v/c) (docs/fidelity.md).
+  if (!run.catenary.modal_cutoff_given) {
+    const double c = catenary::wave_speed(mesh.wires[mesh.contact_wire]);
+    run.catenary.modal.max_frequency_hz =
+        catenary::kModalCutoffMargin * catenary::doppler_frequency(run.cutoff_hz, run.speed, c);
+  }
   return run;
 }
 

@@ -47,7 +47,7 @@ DynamicSolver::DynamicSolver(assembly::CoupledSystem& system, double dt, double 
   Vec F = system.create_vector();
   PCSIM_PETSC(TSSetI2Function(ts_, F, residual, this));
   PCSIM_PETSC(VecDestroy(&F));
-  P_ = system.create_matrix();
+  P_ = cheap ? system.create_reference_matrix() : system.create_matrix();
   if (cheap) low_rank_ = std::make_unique<LowRankStepSolver>(P_, "cheap_");
   PCSIM_PETSC(TSSetI2Jacobian(ts_, cheap ? low_rank_->op() : P_, P_, jacobian, this));
   PCSIM_PETSC(TSSetTimeStep(ts_, dt));

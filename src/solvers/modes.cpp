@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "modes_internal.hpp"
 #include "pcsim/core/error.hpp"
 
 namespace pcsim::solvers {
@@ -40,43 +41,57 @@ ModesRequest modes_request_from_options(MPI_Comm comm, ModesRequest scene_values
   return r;
 }
 
-namespace {
-
-// Shift-and-invert about 0 for the nev lowest modes, or spectrum slicing
-// over [0, omega_max^2] (needs the inertia of a Cholesky factorisation).
-void configure_eps(EPS eps, int nev, double max_frequency_hz) {
+// Spectrum slicing over [lambda_lo, lambda_hi] (needs the inertia of a
+// Cholesky factorisation: MUMPS).
+void configure_slicing(EPS eps, double lambda_lo, double lambda_hi) {
   ST st;
   KSP ksp;
   PC pc;
   PCSIM_PETSC(EPSSetProblemType(eps, EPS_GHEP));
   PCSIM_PETSC(EPSGetST(eps, &st));
   PCSIM_PETSC(STSetType(st, STSINVERT));
+  PCSIM_PETSC(EPSSetType(eps, EPSKRYLOVSCHUR));
+  PCSIM_PETSC(EPSSetInterval(eps, lambda_lo, lambda_hi));
+  PCSIM_PETSC(EPSSetWhichEigenpairs(eps, EPS_ALL));
+  PCSIM_PETSC(EPSKrylovSchurGetKSP(eps, &ksp));  // the slicing solver's KSP, with operators
+  PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
+  PCSIM_PETSC(KSPGetPC(ksp, &pc));
+  PCSIM_PETSC(PCSetType(pc, PCCHOLESKY));
+  PCSIM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  // The inertia of a parallel MUMPS factorisation needs ICNTL(13) = 1 (no
+  // ScaLAPACK root); -st_mat_mumps_icntl_13 still wins (read at setup).
+  PCSIM_PETSC(PCFactorSetUpMatSolverType(pc));
+  Mat F;
+  PCSIM_PETSC(PCFactorGetMatrix(pc, &F));
+  PCSIM_PETSC(MatMumpsSetIcntl(F, 13, 1));
+  PCSIM_PETSC(EPSSetTolerances(eps, 1e-12, 200));
+}
+
+namespace {
+
+// Shift-and-invert about 0 for the nev lowest modes, or spectrum slicing
+// over [0, omega_max^2].
+void configure_eps(EPS eps, int nev, double max_frequency_hz) {
   if (max_frequency_hz > 0) {
     const double omega_max = 2 * M_PI * max_frequency_hz;
-    PCSIM_PETSC(EPSSetType(eps, EPSKRYLOVSCHUR));
-    PCSIM_PETSC(EPSSetInterval(eps, 0.0, omega_max * omega_max));
-    PCSIM_PETSC(EPSSetWhichEigenpairs(eps, EPS_ALL));
-    PCSIM_PETSC(EPSKrylovSchurGetKSP(eps, &ksp));  // the slicing solver's KSP, with operators
-    PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
-    PCSIM_PETSC(KSPGetPC(ksp, &pc));
-    PCSIM_PETSC(PCSetType(pc, PCCHOLESKY));
-    PCSIM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-    // The inertia of a parallel MUMPS factorisation needs ICNTL(13) = 1 (no
-    // ScaLAPACK root); -st_mat_mumps_icntl_13 still wins (read at setup).
-    PCSIM_PETSC(PCFactorSetUpMatSolverType(pc));
-    Mat F;
-    PCSIM_PETSC(PCFactorGetMatrix(pc, &F));
-    PCSIM_PETSC(MatMumpsSetIcntl(F, 13, 1));
-  } else {
-    PCSIM_PETSC(STGetKSP(st, &ksp));
-    PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
-    PCSIM_PETSC(KSPGetPC(ksp, &pc));
-    PCSIM_PETSC(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT));
-    PCSIM_PETSC(EPSSetTarget(eps, 0.0));
-    PCSIM_PETSC(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE));
-    PCSIM_PETSC(PCSetType(pc, PCLU));
-    PCSIM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+    configure_slicing(eps, 0.0, omega_max * omega_max);
+    PCSIM_PETSC(EPSSetFromOptions(eps));
+    return;
   }
+  ST st;
+  KSP ksp;
+  PC pc;
+  PCSIM_PETSC(EPSSetProblemType(eps, EPS_GHEP));
+  PCSIM_PETSC(EPSGetST(eps, &st));
+  PCSIM_PETSC(STSetType(st, STSINVERT));
+  PCSIM_PETSC(STGetKSP(st, &ksp));
+  PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
+  PCSIM_PETSC(KSPGetPC(ksp, &pc));
+  PCSIM_PETSC(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT));
+  PCSIM_PETSC(EPSSetTarget(eps, 0.0));
+  PCSIM_PETSC(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE));
+  PCSIM_PETSC(PCSetType(pc, PCLU));
+  PCSIM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
   PCSIM_PETSC(EPSSetTolerances(eps, 1e-12, 200));
   PCSIM_PETSC(EPSSetFromOptions(eps));
 }
