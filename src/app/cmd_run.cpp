@@ -1,68 +1,30 @@
-// `pcsim run SCENE.yaml`: dynamic pantograph-catenary interaction.
-//   scene -> static configuration -> coupled system -> initial state -> TS -> results
-#include <petsctime.h>
+// `pcsim run SCENE.yaml [--restart DIR]`: dynamic pantograph-catenary interaction.
+//   scene -> static configuration -> coupled system -> initial state (or a
+//   checkpoint) -> TS, results streamed to results.h5 -> statistics
 #include <petscts.h>
+
+#include <algorithm>
+#include <filesystem>
 
 #include "command.hpp"
 #include "exit_status.hpp"
 #include "pcsim/assembly/coupled_system.hpp"
 #include "pcsim/assembly/fe_catenary.hpp"
+#include "pcsim/output/checkpoint.hpp"
 #include "pcsim/output/output_dir.hpp"
 #include "pcsim/output/run_results.hpp"
+#include "pcsim/output/run_stream.hpp"
 #include "pcsim/scene/run_scene.hpp"
 #include "pcsim/solvers/dynamics.hpp"
 #include "pcsim/solvers/hht.hpp"
 #include "pcsim/solvers/static_start.hpp"
 #include "pcsim/solvers/statics.hpp"
+#include "run_checkpoint.hpp"
+#include "run_session.hpp"
 
 namespace {
 
 using namespace pcsim;
-
-struct RunMonitor {
-  assembly::CoupledSystem* system = nullptr;
-  const app::CommandContext* ctx = nullptr;
-  double duration = 0;
-  PetscLogDouble wall_start = 0, last_print = 0;
-  output::RunHistory history;
-  long newton_iterations = 0;
-  long steps = 0;
-  bool keep_dropper_forces = true;
-  long snapshot_every = 0;
-};
-
-PetscErrorCode monitor(TS ts, PetscInt step, PetscReal t, Vec U, void* ptr) {
-  PCSIM_CALLBACK_BEGIN
-  auto& m = *static_cast<RunMonitor*>(ptr);
-  auto rec = m.system->record(t, U);
-  if (!m.keep_dropper_forces) rec.dropper_force.clear();
-  if (m.ctx->rank == 0) m.history.steps.push_back(std::move(rec));
-  if (m.snapshot_every > 0 && step % m.snapshot_every == 0) {
-    auto positions = m.system->catenary().node_positions_to_root(U);  // collective
-    if (m.ctx->rank == 0) {
-      m.history.snapshot_times.push_back(t);
-      m.history.snapshots.push_back(std::move(positions));
-    }
-  }
-  if (step > 0) {
-    SNES snes;
-    PetscInt its;
-    PCSIM_PETSC(TSGetSNES(ts, &snes));
-    PCSIM_PETSC(SNESGetIterationNumber(snes, &its));
-    m.newton_iterations += its;
-    m.steps = step;
-  }
-  PetscLogDouble now;
-  PetscTime(&now);
-  if (now - m.last_print > 5.0 || (step > 0 && t >= m.duration - 1e-12)) {
-    m.last_print = now;
-    const double done = t / m.duration;
-    const double eta = done > 0 ? (now - m.wall_start) * (1 - done) / done : 0;
-    app::print0(*m.ctx, "  t = %7.3f s of %.3f s (%5.1f%%), step %ld, ETA %.0f s\n", t, m.duration,
-                100 * done, static_cast<long>(step), eta);
-  }
-  PCSIM_CALLBACK_END
-}
 
 // The coupled system of the scene on the static configuration.
 std::unique_ptr<assembly::CoupledSystem> make_system(const app::CommandContext& ctx,
@@ -83,9 +45,10 @@ std::unique_ptr<assembly::CoupledSystem> make_system(const app::CommandContext& 
                                                    run.effects, run.contact_stiffness);
 }
 
-// Integrates from the initial state; fills the monitor.
-void integrate(const app::CommandContext& ctx, assembly::CoupledSystem& system,
-               solvers::DynamicSolver& solver, Vec U0, Vec V0, RunMonitor& mon) {
+// The initial state of a new run: the static start, at rest.
+void set_initial_state(assembly::CoupledSystem& system, solvers::DynamicSolver& solver) {
+  Vec U0 = system.create_vector(), V0 = system.create_vector();
+  solvers::initial_state(system, U0, V0);
   TS ts = solver.ts();
   PCSIM_PETSC(TS2SetSolution(ts, U0, V0));
   TSType ts_type;
@@ -97,19 +60,19 @@ void integrate(const app::CommandContext& ctx, assembly::CoupledSystem& system,
     solvers::hht_set_initial_acceleration(ts, A0);
     PCSIM_PETSC(VecDestroy(&A0));
   }
-  PetscTime(&mon.wall_start);
-  mon.last_print = mon.wall_start;
-  PCSIM_PETSC(TSMonitorSet(ts, monitor, &mon, nullptr));
-  PetscReal dt;
-  PCSIM_PETSC(TSGetTimeStep(ts, &dt));
-  app::print0(ctx, "  %s at %.0f km/h, %.3f s simulated, dt = %.2e s, TS %s\n",
-              system.pantographs().size() > 1 ? "pantographs" : "pantograph",
-              system.pantographs().front().run.speed * 3.6, mon.duration, dt, ts_type);
-  PCSIM_PETSC(TSSolve(ts, nullptr));
-  TSConvergedReason reason;
-  PCSIM_PETSC(TSGetConvergedReason(ts, &reason));
-  if (reason < 0)
-    throw SolverError(std::string("time integration failed: ") + TSConvergedReasons[reason]);
+  PCSIM_PETSC(VecDestroy(&U0));
+  PCSIM_PETSC(VecDestroy(&V0));
+}
+
+void warn_if_start_differs(const app::CommandContext& ctx, assembly::CoupledSystem& system,
+                           const solvers::DynamicState& checkpointed) {
+  const auto& slots = system.pantographs();
+  for (std::size_t p = 0; p < slots.size() && p < checkpointed.head_offsets.size(); ++p)
+    if (slots[p].head_offset != checkpointed.head_offsets[p])
+      app::print0(ctx,
+                  "  warning: pantograph '%s' starts %.3g m from where the checkpointed run "
+                  "started it; the restart will not equal an uninterrupted run\n",
+                  slots[p].run.name.c_str(), slots[p].head_offset - checkpointed.head_offsets[p]);
 }
 
 void print_statistics(const app::CommandContext& ctx, const output::RunSettings& s,
@@ -147,25 +110,110 @@ output::RunSettings run_settings(const app::CommandContext& ctx, const InputNode
   return s;
 }
 
-// Performance and solver facts for summary.json and the console.
-nlohmann::json run_facts(const app::CommandContext& ctx, const RunMonitor& mon,
-                         const assembly::CoupledSystem& system, bool cheap, double wall) {
-  const auto& h = mon.history.steps;
-  const double simulated = h.empty() ? 0.0 : h.back().t - h.front().t;
-  nlohmann::json j;
-  j["steps"] = mon.steps;
-  j["newton_iterations"] = mon.newton_iterations;
-  j["newton_iterations_per_step"] =
-      mon.steps > 0 ? static_cast<double>(mon.newton_iterations) / mon.steps : 0.0;
-  j["wall_time_s"] = wall;
-  j["time_per_step_ms"] = mon.steps > 0 ? 1e3 * wall / mon.steps : 0.0;
-  j["simulated_time_s"] = simulated;
-  j["real_time_factor"] = simulated / wall;
-  j["peak_memory_mb"] = app::peak_memory_mb(ctx.comm);
-  j["ranks"] = ctx.size;
-  j["dofs"] = system.global_size();
-  j["path"] = cheap ? "cheap" : "full";
-  return j;
+output::RunLayout run_layout(const scene::RunScene& run, assembly::CoupledSystem& system,
+                             const solvers::StaticConfiguration& statics) {
+  const auto& mesh = statics.mesh;
+  const auto& values = statics.result.node_values;
+  output::RunLayout layout;
+  for (const auto& slot : system.pantographs()) {
+    layout.q_sizes.push_back(slot.dof_count());
+    layout.q_labels.push_back(slot.model->dof_names());
+  }
+  layout.support_x = mesh.support_x;
+  for (int node : mesh.support_nodes) layout.support_static_z.push_back(values[6 * node + 2]);
+  if (run.dropper_forces)
+    layout.droppers = static_cast<std::size_t>(
+        std::count_if(mesh.bars.begin(), mesh.bars.end(),
+                      [](const auto& b) { return b.kind == catenary::BarKind::dropper; }));
+  layout.snapshots = run.snapshot_every > 0;
+  if (layout.snapshots) layout.static_positions = catenary::positions_from_node_values(values);
+  return layout;
+}
+
+// results.h5 on rank 0: new, or a copy of the restart folder's records up to
+// its checkpoint; the static mesh for the snapshots.
+std::unique_ptr<output::RunStream> open_stream(const app::CommandContext& ctx, const OutputDir& out,
+                                               const output::RunSettings& settings,
+                                               output::RunLayout layout,
+                                               const solvers::StaticConfiguration& statics,
+                                               const app::RunCheckpoint* restart) {
+  std::unique_ptr<output::RunStream> stream;
+  app::on_rank0(ctx, [&] {
+    const bool snapshots = layout.snapshots;
+    const std::string path = out.file("results.h5");
+    if (restart) {
+      std::filesystem::copy_file(ctx.restart_dir + "/results.h5", path);
+      stream = std::make_unique<output::RunStream>(path, settings, std::move(layout),
+                                                   restart->progress.records,
+                                                   restart->progress.snapshots);
+    } else {
+      stream = std::make_unique<output::RunStream>(path, settings, std::move(layout));
+    }
+    if (snapshots) output::write_static_mesh(out, statics.mesh, statics.result.node_values);
+  });
+  return stream;
+}
+
+// An interrupted run keeps its partial folder: data up to this step, a
+// checkpoint, a summary saying it is incomplete.
+int keep_interrupted(const app::CommandContext& ctx, OutputDir& out, app::RunSession& session,
+                     std::unique_ptr<output::RunStream>& stream, const output::RunSettings& s,
+                     const catenary::CatenaryMesh& mesh, int signal) {
+  const bool checkpointed = session.checkpoint_last_step();
+  nlohmann::json facts = session.facts();
+  facts["interrupted_by"] = app::signal_name(signal);
+  app::on_rank0(ctx, [&] {
+    stream->close();
+    output::write_run_summary(out, s, nullptr, facts);
+    output::write_snapshots_view(out, mesh);
+  });
+  out.keep_partial();
+  app::print0(ctx,
+              "\n  interrupted (%s) at t = %.4f s, step %ld: results up to this step%s in %s/\n",
+              app::signal_name(signal), session.time(), session.steps(),
+              checkpointed ? " and a checkpoint" : "", out.partial_dir().c_str());
+  if (checkpointed)
+    app::print0(ctx, "  continue with: pcsim run %s --restart %s -o NEW_FOLDER\n",
+                ctx.scene_path.c_str(), out.partial_dir().c_str());
+  return 128 + signal;
+}
+
+// A run that ended by itself: statistics, summary, the result in place.
+int finish_complete(const app::CommandContext& ctx, OutputDir& out, app::RunSession& session,
+                    std::unique_ptr<output::RunStream>& stream, const output::RunSettings& settings,
+                    const catenary::CatenaryMesh& mesh, const app::RunCheckpoint* restart) {
+  nlohmann::json facts = session.facts();
+  if (restart) {
+    facts["restarted_from"] = ctx.restart_dir;
+    facts["restart_step"] = restart->state.step;
+  }
+  app::on_rank0(ctx, [&] {
+    stream->close();
+    const auto stats = output::finish_run_results(out, mesh, settings);
+    output::write_run_summary(out, settings, &stats, facts);
+    print_statistics(ctx, settings, stats);
+    app::print0(ctx,
+                "  %ld steps, %.2f Newton iterations/step, %.2f ms/step, real-time factor %.2f, "
+                "peak memory %.0f MB/rank\n",
+                session.steps(), facts["newton_iterations_per_step"].get<double>(),
+                facts["time_per_step_ms"].get<double>(), facts["real_time_factor"].get<double>(),
+                facts["peak_memory_mb"].get<double>());
+  });
+  out.commit();
+  app::print0(ctx, "  results in %s/\n", out.final_dir().c_str());
+  return 0;
+}
+
+app::RunSession::Options session_options(const scene::RunScene& run, const OutputDir& out,
+                                         const std::vector<app::InputFile>& inputs) {
+  app::RunSession::Options options;
+  options.duration = run.duration();
+  options.snapshot_every = run.snapshot_every;
+  options.checkpoint_every = run.checkpoint_every;
+  options.keep_dropper_forces = run.dropper_forces;
+  options.checkpoint_file = out.file(output::kCheckpointName);
+  options.inputs = inputs;
+  return options;
 }
 
 int run_dynamic(const app::CommandContext& ctx) {
@@ -173,7 +221,14 @@ int run_dynamic(const app::CommandContext& ctx) {
   auto run = scene::load_run_scene(scene);
   const auto& design = run.catenary.mesh;
   const double c = catenary::wave_speed(design.wires[design.contact_wire]);
-  OutputDir out(ctx.comm, ctx.output_request(scene));
+  const auto inputs = app::run_input_files(ctx.scene_path, scene, run.catenary.design_path);
+  const OutputRequest request = ctx.output_request(scene);
+  std::unique_ptr<app::RunCheckpoint> restart;
+  if (!ctx.restart_dir.empty()) {
+    app::check_restart_target(ctx, request.dir);
+    restart = std::make_unique<app::RunCheckpoint>(app::load_run_checkpoint(ctx, inputs));
+  }
+  OutputDir out(ctx.comm, request);
   app::print0(ctx, "pcsim run: scene '%s', design %s\n", ctx.scene_name(scene).c_str(),
               run.catenary.design_path.c_str());
   if (run.speed > 0.7 * c)
@@ -186,40 +241,40 @@ int run_dynamic(const app::CommandContext& ctx) {
               statics.result.max_tension_error_rel);
   const auto settings = run_settings(ctx, scene, run);
   auto system = make_system(ctx, run, statics);
-  Vec U0 = system->create_vector(), V0 = system->create_vector();
-  solvers::initial_state(*system, U0, V0);
   solvers::DynamicSolver solver(*system, run.dt, run.duration());
   app::print0(ctx, "  %d catenary DOFs + %d pantograph DOFs on %d rank(s); %s path\n",
               static_cast<int>(system->catenary().catenary_dofs()),
               static_cast<int>(system->global_size() - system->catenary().catenary_dofs()),
               ctx.size, solver.cheap_path() ? "cheap (Jacobian reused)" : "full Newton");
-  RunMonitor mon;
-  mon.system = system.get();
-  mon.ctx = &ctx;
-  mon.duration = run.duration();
-  mon.keep_dropper_forces = run.dropper_forces;
-  mon.snapshot_every = run.snapshot_every;
-  integrate(ctx, *system, solver, U0, V0, mon);
-  PetscLogDouble wall_end;
-  PetscTime(&wall_end);
-  const auto facts = run_facts(ctx, mon, *system, solver.cheap_path(), wall_end - mon.wall_start);
-  PCSIM_PETSC(VecDestroy(&U0));
-  PCSIM_PETSC(VecDestroy(&V0));
-  app::on_rank0(ctx, [&] {
-    const auto stats = output::write_run_results(out, statics.mesh, statics.result.node_values,
-                                                 settings, mon.history);
-    output::write_run_summary(out, settings, stats, facts);
-    print_statistics(ctx, settings, stats);
-    app::print0(ctx,
-                "  %ld steps, %.2f Newton iterations/step, %.2f ms/step, real-time factor %.2f, "
-                "peak memory %.0f MB/rank\n",
-                mon.steps, facts["newton_iterations_per_step"].get<double>(),
-                facts["time_per_step_ms"].get<double>(), facts["real_time_factor"].get<double>(),
-                facts["peak_memory_mb"].get<double>());
-  });
-  out.commit();
-  app::print0(ctx, "  results in %s/\n", out.final_dir().c_str());
-  return 0;
+  TSType ts_type;
+  PCSIM_PETSC(TSGetType(solver.ts(), &ts_type));
+  if ((run.checkpoint_every > 0 || restart) && std::string(ts_type) != solvers::kTSHHT)
+    throw InputError("command line", "-ts_type",
+                     std::string("checkpoints and restarts need the TS type hht, not ") + ts_type);
+  // A restart starts as a new run (the models keep parameters of their static
+  // equilibrium), then takes the checkpoint's state.
+  set_initial_state(*system, solver);
+  if (restart) {
+    warn_if_start_differs(ctx, *system, restart->state);
+    solver.restore_state(restart->state);
+    app::print0(ctx, "  restarted from %s at t = %.4f s, step %ld\n", ctx.restart_dir.c_str(),
+                restart->state.t, restart->state.step);
+  }
+  const app::GracefulStop stop;  // from here SIGINT/SIGTERM stop at the next step, data kept
+  auto stream =
+      open_stream(ctx, out, settings, run_layout(run, *system, statics), statics, restart.get());
+  app::RunSession session(ctx, *system, solver, stream.get(), session_options(run, out, inputs),
+                          restart.get(), stop);
+  PetscReal dt;
+  PCSIM_PETSC(TSGetTimeStep(solver.ts(), &dt));
+  app::print0(ctx, "  %s at %.0f km/h, %.3f s simulated, dt = %.2e s, TS %s\n",
+              system->pantographs().size() > 1 ? "pantographs" : "pantograph",
+              system->pantographs().front().run.speed * 3.6, run.duration(), dt, ts_type);
+  const int signal = session.integrate();
+  if (signal != 0)
+    return keep_interrupted(ctx, out, session, stream, settings, statics.mesh, signal);
+  if (session.stopped_early()) session.checkpoint_last_step();  // -ts_max_steps: can go on
+  return finish_complete(ctx, out, session, stream, settings, statics.mesh, restart.get());
 }
 
 }  // namespace

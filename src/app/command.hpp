@@ -19,9 +19,10 @@ struct CommandContext {
   MPI_Comm comm = MPI_COMM_WORLD;
   int rank = 0;
   int size = 1;
-  std::string command;     // the command being run ("run", "static", ...)
-  std::string scene_path;  // SCENE.yaml as given
-  std::string output_dir;  // from -o, or "" for the default out/<scene name>
+  std::string command;      // the command being run ("run", "static", ...)
+  std::string scene_path;   // SCENE.yaml as given
+  std::string output_dir;   // from -o, or "" for the default out/<scene name>
+  std::string restart_dir;  // from --restart (pcsim run only), or ""
   // Scene name: 'name' key of the scene, else the file name without extension.
   // InputError (scene file, key 'name') if it cannot name a folder.
   std::string scene_name(const InputNode& scene) const;

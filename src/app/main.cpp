@@ -67,6 +67,7 @@ void print_usage() {
   std::printf(
       "\noptions:\n"
       "  -o DIR       output folder (default out/<scene name>/)\n"
+      "  --restart DIR  (run) continue the run whose checkpoint is in DIR, into a new folder\n"
       "  -h, --help   this text\n"
       "Any other option goes to PETSc's options database, e.g. -snes_monitor,\n"
       "-snes_test_jacobian, -ksp_type, -ts_dt, -eps_nev, -log_view, -options_left.\n");
@@ -99,9 +100,18 @@ int main(int argc, char** argv) {
         return 2;
       }
       ctx.output_dir = argv[++i];
+    } else if (!std::strcmp(argv[i], "--restart")) {
+      if (command_name != "run" || i + 1 >= argc) {
+        std::fprintf(stderr, "pcsim: error: %s\n",
+                     command_name != "run" ? "only 'pcsim run' takes --restart"
+                                           : "option --restart needs a result folder");
+        return 2;
+      }
+      ctx.restart_dir = argv[++i];
     } else if (!std::strcmp(argv[i], "-h") || !std::strcmp(argv[i], "--help")) {
-      std::printf("usage: pcsim %s SCENE.yaml [-o DIR] [PETSc options]\n  %s\n",
-                  command_name.c_str(), it->second.summary.c_str());
+      std::printf("usage: pcsim %s SCENE.yaml [-o DIR]%s [PETSc options]\n  %s\n",
+                  command_name.c_str(), command_name == "run" ? " [--restart DIR]" : "",
+                  it->second.summary.c_str());
       return 0;
     } else if (ctx.scene_path.empty() && argv[i][0] != '-') {
       ctx.scene_path = argv[i];

@@ -17,7 +17,10 @@
 //   effects: {catenary_nonlinear: false, dropper_slack: true, rayleigh_damping: true}
 //   contact: {stiffness: 50000}
 //   analysis: {from_span: 5, to_span: 6, cutoff_hz: 20}   # 1-based spans
-//   output: {dropper_forces: true, snapshot_every: 0}   # field snapshots every N steps (0: none)
+//   output: {dropper_forces: true, snapshot_every: 0, checkpoint_every: 0}
+//     snapshot_every: field snapshots every N steps (0: none)
+//     checkpoint_every: checkpoint.h5 every N steps, for --restart (0: only when
+//     the run stops early: SIGINT/SIGTERM, -ts_max_steps)
 #pragma once
 
 #include <memory>
@@ -43,7 +46,8 @@ struct RunScene {
   int analysis_from_span = 0, analysis_to_span = 0;  // 1-based
   double cutoff_hz = 20;
   bool dropper_forces = true;
-  long snapshot_every = 0;  // steps between field snapshots (XDMF animation); 0: none
+  long snapshot_every = 0;    // steps between field snapshots (XDMF animation); 0: none
+  long checkpoint_every = 0;  // steps between checkpoints (restart); 0: none
   // Duration of the run: from t = 0 until the first pantograph reaches end_x.
   double duration() const { return (end_x - pantographs.front().start_x) / speed; }
 };
