@@ -17,6 +17,8 @@ import sys
 import h5py
 import numpy as np
 
+import pcsim_post
+
 
 def zero_runs(mask):
     """Number of maximal runs of True in a boolean array."""
@@ -26,9 +28,10 @@ def zero_runs(mask):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("run", help="pcsim run output folder")
-    ap.add_argument("--json", help="also write the counts to this JSON file")
+    ap.add_argument("run", metavar="RUN_DIR", help="pcsim run output folder")
+    ap.add_argument("--json", metavar="FILE", help="also write the counts to this JSON file")
     a = ap.parse_args()
+    pcsim_post.need_run_folder(a.run, ("results.h5",))
     report = {"run": a.run, "non_finite": {}, "pantographs": {}, "droppers": {}}
     with h5py.File(os.path.join(a.run, "results.h5"), "r") as h:
         def visit(name, obj):
@@ -80,4 +83,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    pcsim_post.main(main)

@@ -1,36 +1,38 @@
 #!/usr/bin/python3
 """Plots of `pcsim run` results (results.h5 + summary.json in each output folder).
 
-    interaction_plots.py force    OUT_DIR [OUT_DIR ...] -o force.png    [--labels A,B] [--pantograph NAME] [--raw]
-    interaction_plots.py spectrum OUT_DIR [OUT_DIR ...] -o spectrum.png [--labels A,B] [--pantograph NAME]
-    interaction_plots.py uplift   OUT_DIR -o uplift.png
+    interaction_plots.py force    RUN [RUN ...] -o force.png    [--labels A,B] [--pantograph NAME] [--raw] [--xlim X0 X1]
+    interaction_plots.py spectrum RUN [RUN ...] -o spectrum.png [--labels A,B] [--pantograph NAME]
+    interaction_plots.py uplift   RUN [RUN ...] -o uplift.png   [--labels A,B]
 
 force:    contact force along the track (position of the contact point); with one run the raw
-          and the 20 Hz filtered force, with several the filtered forces overlaid (--raw adds
+          and the low-pass filtered force, with several the filtered forces overlaid (--raw adds
           the raw ones); the analysis section is shaded.
 spectrum: single-sided amplitude spectrum (FFT, Hann window) of the raw contact force over
-          the analysis section, 0-20 Hz (zero-padded 16x); dashed lines at the span-passing frequency v/L
-          and its harmonics.
-uplift:   contact-wire uplift at the supports vs time (supports of the analysis section and
-          their neighbours) and the maximum uplift per support.
+          the analysis section, 0 to the cut-off frequency (zero-padded 16x); dashed lines at
+          the span-passing frequency v/L and its harmonics.
+uplift:   one run: contact-wire uplift at the supports vs time (supports of the analysis
+          section and their neighbours) and the maximum uplift per support; several runs: the
+          maximum uplift per support of every run, and the uplift history at the support of
+          the largest uplift in the section of every run.
+Uplift is stored in metres (results.h5 /supports/uplift) and shown in mm.
 """
 import argparse
-import json
 import os
 
-import h5py
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import pcsim_post
 
 
 class Run:
+    """A pcsim run result folder."""
+
     def __init__(self, folder, label=None):
+        import h5py
+        pcsim_post.need_run_folder(folder, ("summary.json", "results.h5"))
         self.folder = folder
-        with open(os.path.join(folder, "summary.json")) as f:
-            self.summary = json.load(f)
+        self.summary = pcsim_post.load_json(os.path.join(folder, "summary.json"))
         self.label = label or self.summary.get("scene", os.path.basename(folder.rstrip("/")))
         with h5py.File(os.path.join(folder, "results.h5"), "r") as h:
             self.time = h["/time"][()]
@@ -48,56 +50,59 @@ class Run:
     def pantograph(self, name=None):
         if name is None:
             name = next(iter(self.pantographs))
+        if name not in self.pantographs:
+            pcsim_post.fail("run %s has no pantograph '%s' (it has: %s)"
+                            % (self.folder, name, ", ".join(self.pantographs)))
         return name, self.pantographs[name]
+
+    def in_section(self, x):
+        return self.x_from - 1e-9 <= x <= self.x_to + 1e-9
 
 
 def load_runs(folders, labels):
     labels = labels.split(",") if labels else [None] * len(folders)
     if len(labels) != len(folders):
-        raise SystemExit("--labels: %d labels for %d runs" % (len(labels), len(folders)))
+        pcsim_post.fail("--labels: %d labels for %d runs" % (len(labels), len(folders)))
     return [Run(f, l) for f, l in zip(folders, labels)]
 
 
-def shade_section(ax, run):
-    ax.axvspan(run.x_from, run.x_to, color="0.85", zorder=0, label="analysis section")
-
-
-def plot_force(a):
-    runs = load_runs(a.runs, a.labels)
+def force_figure(runs, pantograph=None, raw=False, xlim=None, title=None):
+    plt = pcsim_post.pyplot()
     fig, ax = plt.subplots(figsize=(11, 4.2))
-    shade_section(ax, runs[0])
-    names = [a.pantograph] if a.pantograph else list(runs[0].pantographs) if len(runs) == 1 else [None]
+    ax.axvspan(runs[0].x_from, runs[0].x_to, color="0.85", zorder=0, label="analysis section")
+    names = [pantograph] if pantograph else list(runs[0].pantographs) if len(runs) == 1 else [None]
+    cutoff = runs[0].summary["analysis"]["cutoff_hz"]
     for run in runs:
         for pname in names:
             name, p = run.pantograph(pname)
             tag = run.label if len(names) == 1 else "%s %s" % (run.label, name)
-            if len(runs) == 1 or a.raw:
-                ax.plot(p["position"], p["contact_force"], lw=0.5, alpha=0.6,
-                        label="%s raw" % tag)
+            if len(runs) == 1 or raw:
+                ax.plot(p["position"], p["contact_force"], lw=0.5, alpha=0.6, label="%s raw" % tag)
             ax.plot(p["position"], p["contact_force_filtered"], lw=1.1,
-                    label="%s filtered %g Hz" % (tag, runs[0].summary["analysis"]["cutoff_hz"]))
+                    label="%s filtered %g Hz" % (tag, cutoff))
     ax.set_xlabel("contact point position x (m)")
     ax.set_ylabel("contact force (N)")
-    ax.set_title(a.title or "Contact force, %s" % ", ".join(r.label for r in runs))
+    ax.set_title(title or "Contact force, %s" % ", ".join(r.label for r in runs))
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, loc="upper right", ncol=2)
-    if a.xlim:
-        ax.set_xlim(*a.xlim)
+    if xlim:
+        ax.set_xlim(*xlim)
     fig.tight_layout()
-    fig.savefig(a.output, dpi=110)
+    return fig
 
 
-def plot_spectrum(a):
-    runs = load_runs(a.runs, a.labels)
+def spectrum_figure(runs, pantograph=None, title=None):
+    plt = pcsim_post.pyplot()
     fig, ax = plt.subplots(figsize=(9, 4.2))
     fmax = runs[0].summary["analysis"]["cutoff_hz"]
     for run in runs:
-        name, p = run.pantograph(a.pantograph)
+        name, p = run.pantograph(pantograph)
         inside = (p["position"] >= run.x_from) & (p["position"] <= run.x_to)
         t = run.time[inside]
         f = p["contact_force"][inside]
-        # Uniform grid (the TS may have changed the step).
-        dt = np.min(np.diff(t))
+        if len(t) < 4:
+            pcsim_post.fail("run %s has fewer than 4 samples in the analysis section" % run.folder)
+        dt = np.min(np.diff(t))  # uniform grid (the TS may have changed the step)
         tg = np.arange(t[0], t[-1], dt)
         fg = np.interp(tg, t, f)
         window = np.hanning(len(fg))
@@ -114,57 +119,94 @@ def plot_spectrum(a):
     ax.set_xlim(0, fmax)
     ax.set_xlabel("frequency (Hz)  (dashed: span passing v/L = %.2f Hz and harmonics)" % fs)
     ax.set_ylabel("amplitude (N)")
-    ax.set_title(a.title or "Contact force spectrum over the analysis section")
+    ax.set_title(title or "Contact force spectrum over the analysis section")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(a.output, dpi=110)
+    return fig
 
 
-def plot_uplift(a):
-    run = Run(a.runs[0], a.labels)
-    xs = run.support_x
-    up = 1e3 * run.uplift
+def uplift_one(run, title=None):
+    plt = pcsim_post.pyplot()
+    xs, up = run.support_x, 1e3 * run.uplift
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12, 4.2), gridspec_kw={"width_ratios": [3, 2]})
-    show = [i for i, x in enumerate(xs) if run.x_from - 60.5 <= x <= run.x_to + 60.5]
-    for i in show:
-        inside = run.x_from - 1e-9 <= xs[i] <= run.x_to + 1e-9
+    for i, x in enumerate(xs):
+        if not run.x_from - 60.5 <= x <= run.x_to + 60.5:
+            continue
+        inside = run.in_section(x)
         ax1.plot(run.time, up[:, i], lw=1.3 if inside else 0.7, ls="-" if inside else ":",
-                 label="support x = %.0f m%s" % (xs[i], " (section)" if inside else ""))
+                 label="support x = %.0f m%s" % (x, " (section)" if inside else ""))
     ax1.set_xlabel("time (s)")
     ax1.set_ylabel("contact-wire uplift at the support (mm)")
     ax1.grid(alpha=0.3)
     ax1.legend(fontsize=7)
-    peak = up.max(axis=0)
-    colors = ["C3" if run.x_from - 1e-9 <= x <= run.x_to + 1e-9 else "C0" for x in xs]
-    ax2.bar(xs, peak, width=25, color=colors)
+    colors = ["C3" if run.in_section(x) else "C0" for x in xs]
+    ax2.bar(xs, up.max(axis=0), width=0.4 * (xs[1] - xs[0]) if len(xs) > 1 else 10, color=colors)
     ax2.set_xlabel("support position x (m)  (red: analysis section)")
     ax2.set_ylabel("max uplift (mm)")
     ax2.grid(alpha=0.3, axis="y")
-    fig.suptitle(a.title or "Uplift at the supports, %s (max in section %.1f mm)"
+    fig.suptitle(title or "Uplift at the supports, %s (max in section %.1f mm)"
                  % (run.label, 1e3 * run.summary["max_uplift_at_support_m"]))
     fig.tight_layout()
-    fig.savefig(a.output, dpi=110)
+    return fig
+
+
+def uplift_many(runs, title=None):
+    plt = pcsim_post.pyplot()
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12, 4.2), gridspec_kw={"width_ratios": [3, 2]})
+    for k, run in enumerate(runs):
+        up = 1e3 * run.uplift
+        section = [i for i, x in enumerate(run.support_x) if run.in_section(x)]
+        worst = max(section, key=lambda i: up[:, i].max()) if section else int(np.argmax(up.max(axis=0)))
+        ax1.plot(run.time, up[:, worst], lw=1.0, color="C%d" % k,
+                 label="%s, support x = %.0f m" % (run.label, run.support_x[worst]))
+        ax2.plot(run.support_x, up.max(axis=0), "o-", ms=3, color="C%d" % k,
+                 label="%s (max in section %.1f mm)" % (run.label, 1e3 * run.summary["max_uplift_at_support_m"]))
+    ax2.axvspan(runs[0].x_from, runs[0].x_to, color="0.85", zorder=0)
+    ax1.set_xlabel("time (s)")
+    ax1.set_ylabel("uplift at the support of the largest uplift (mm)")
+    ax1.grid(alpha=0.3)
+    ax1.legend(fontsize=7)
+    ax2.set_xlabel("support position x (m)  (shaded: analysis section)")
+    ax2.set_ylabel("max uplift (mm)")
+    ax2.grid(alpha=0.3)
+    ax2.legend(fontsize=7)
+    fig.suptitle(title or "Uplift at the supports, %s" % ", ".join(r.label for r in runs))
+    fig.tight_layout()
+    return fig
+
+
+def uplift_figure(runs, title=None):
+    return uplift_one(runs[0], title) if len(runs) == 1 else uplift_many(runs, title)
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    sub = ap.add_subparsers(dest="plot", required=True)
-    for name, fn in (("force", plot_force), ("spectrum", plot_spectrum), ("uplift", plot_uplift)):
-        p = sub.add_parser(name)
-        p.add_argument("runs", nargs="+" if name != "uplift" else 1, help="pcsim run output folder(s)")
-        p.add_argument("-o", "--output", required=True, help="PNG file")
-        p.add_argument("--labels", help="comma-separated labels, one per run")
-        p.add_argument("--title")
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0], epilog=__doc__.split("\n\n", 2)[2],
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = ap.add_subparsers(dest="plot", required=True, metavar="PLOT",
+                            help="force, spectrum or uplift (see below)")
+    for name in ("force", "spectrum", "uplift"):
+        p = sub.add_parser(name, help="%s plot" % name)
+        p.add_argument("runs", nargs="+", metavar="RUN", help="pcsim run output folder(s)")
+        p.add_argument("-o", "--output", required=True, help="PNG file to write")
+        p.add_argument("--labels", help="comma-separated labels, one per run (default: scene names)")
+        p.add_argument("--title", help="title of the plot (default: one naming the runs)")
         if name != "uplift":
-            p.add_argument("--pantograph", help="pantograph name (default: the first)")
+            p.add_argument("--pantograph", metavar="NAME", help="pantograph name (default: the first)")
         if name == "force":
             p.add_argument("--raw", action="store_true", help="also the raw force with several runs")
-            p.add_argument("--xlim", type=float, nargs=2)
-        p.set_defaults(fn=fn)
+            p.add_argument("--xlim", type=float, nargs=2, metavar=("X0", "X1"),
+                           help="range of positions shown (m)")
     a = ap.parse_args()
-    a.fn(a)
+    runs = load_runs(a.runs, a.labels)
+    if a.plot == "force":
+        fig = force_figure(runs, a.pantograph, a.raw, a.xlim, a.title)
+    elif a.plot == "spectrum":
+        fig = spectrum_figure(runs, a.pantograph, a.title)
+    else:
+        fig = uplift_figure(runs, a.title)
+    fig.savefig(a.output, dpi=110)
 
 
 if __name__ == "__main__":
-    main()
+    pcsim_post.main(main)

@@ -24,6 +24,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+import pcsim_post  # noqa: E402
+
 
 def bellows_torque(pcsim, model, force, height, workdir):
     scene = os.path.join(workdir, "scene.yaml")
@@ -42,15 +44,19 @@ def bellows_torque(pcsim, model, force, height, workdir):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("pcsim")
-    ap.add_argument("model")
-    ap.add_argument("-o", "--output", required=True)
-    ap.add_argument("--json")
-    ap.add_argument("--F0", type=float, default=120.0)
-    ap.add_argument("--h0", type=float, default=1.2)
-    ap.add_argument("--heights", default="1.15:1.24:0.005")
-    ap.add_argument("--forces", default="0,40,80,120,160,200,240,280,320")
+    ap.add_argument("pcsim", metavar="PCSIM_BIN", help="the pcsim executable")
+    ap.add_argument("model", metavar="MODEL.yaml", help="pantograph model file (meshes/pantographs/)")
+    ap.add_argument("-o", "--output", required=True, help="PNG file of the curve")
+    ap.add_argument("--json", metavar="FILE", help="also write the curve to this JSON file")
+    ap.add_argument("--F0", type=float, default=120.0, help="reference static force [N] (120)")
+    ap.add_argument("--h0", type=float, default=1.2, help="reference working height [m] (1.2)")
+    ap.add_argument("--heights", default="1.15:1.24:0.005",
+                    help="working heights FROM:TO:STEP [m] (1.15:1.24:0.005)")
+    ap.add_argument("--forces", default="0,40,80,120,160,200,240,280,320",
+                    help="comma-separated force grid [N] (0,40,...,320)")
     a = ap.parse_args()
+    pcsim_post.need_file(a.pcsim, "pcsim executable")
+    pcsim_post.need_file(a.model, "pantograph model")
     lo, hi, step = (float(v) for v in a.heights.split(":"))
     heights = np.round(np.arange(lo, hi + step / 2, step), 6)
     forces = np.array([float(v) for v in a.forces.split(",")])
@@ -96,4 +102,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    pcsim_post.main(main)

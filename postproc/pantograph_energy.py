@@ -15,14 +15,19 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
+import pcsim_post
+
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("outdir")
-    ap.add_argument("-o", "--output", required=True)
-    ap.add_argument("--scheme", default="rk4")
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("outdir", metavar="OUTDIR", help="pcsim pantograph result folder of a time study")
+    ap.add_argument("-o", "--output", required=True, help="PNG file to write")
+    ap.add_argument("--scheme", default="rk4", help="group of time.h5 to plot (rk4, hht, ...; rk4)")
     args = ap.parse_args()
+    pcsim_post.need_run_folder(args.outdir, ("time.h5",), "pcsim pantograph (study: time)")
     with h5py.File(os.path.join(args.outdir, "time.h5"), "r") as f:
+        if args.scheme not in f:
+            pcsim_post.fail("--scheme %s: not in time.h5 (it has: %s)" % (args.scheme, ", ".join(f)))
         g = f[args.scheme]["energy"]
         t = f[args.scheme]["t"][:]
         T, V = g["kinetic"][:], g["potential"][:]
@@ -47,4 +52,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    pcsim_post.main(main)

@@ -13,12 +13,17 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
+import pcsim_post
+
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("outdirs", nargs="+")
-    ap.add_argument("-o", "--output", required=True)
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("outdirs", nargs="+", metavar="OUTDIR",
+                    help="pcsim pantograph result folder(s) of frf studies")
+    ap.add_argument("-o", "--output", required=True, help="PNG file to write")
     args = ap.parse_args()
+    for d in args.outdirs:
+        pcsim_post.need_run_folder(d, ("frf.h5",), "pcsim pantograph (study: frf)")
     fig, ax = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
     for d in args.outdirs:
         lab = os.path.basename(d.rstrip("/"))
@@ -44,4 +49,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    pcsim_post.main(main)

@@ -11,15 +11,23 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
-import numpy as np
+import numpy as np  # noqa: F401
+
+import pcsim_post
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("outdirs", nargs="+")
-    ap.add_argument("-o", "--output", required=True)
-    ap.add_argument("--frf", default=None, help="frf study folder to overlay |H33|")
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("outdirs", nargs="+", metavar="OUTDIR",
+                    help="pcsim pantograph result folder(s) of sweep studies")
+    ap.add_argument("-o", "--output", required=True, help="PNG file to write")
+    ap.add_argument("--frf", default=None, metavar="FRF_OUTDIR",
+                    help="frf study folder to overlay |H33|")
     args = ap.parse_args()
+    for d in args.outdirs:
+        pcsim_post.need_run_folder(d, ("sweep.h5",), "pcsim pantograph (study: sweep)")
+    if args.frf:
+        pcsim_post.need_run_folder(args.frf, ("frf.h5",), "pcsim pantograph (study: frf)")
     fig, axes = plt.subplots(len(args.outdirs), 1, figsize=(8, 4 * len(args.outdirs)), squeeze=False)
     for ax, d in zip(axes[:, 0], args.outdirs):
         with h5py.File(os.path.join(d, "sweep.h5"), "r") as f:
@@ -43,4 +51,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    pcsim_post.main(main)

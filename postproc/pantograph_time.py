@@ -16,15 +16,20 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
+import pcsim_post
+
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("outdirs", nargs="+")
-    ap.add_argument("-o", "--output", required=True)
-    ap.add_argument("--labels", default=None)
-    ap.add_argument("--title", default="")
-    ap.add_argument("--schemes", default=None, help="comma list, default: all")
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("outdirs", nargs="+", metavar="OUTDIR",
+                    help="pcsim pantograph result folder(s) of time studies")
+    ap.add_argument("-o", "--output", required=True, help="PNG file to write")
+    ap.add_argument("--labels", default=None, help="comma-separated labels, one per folder")
+    ap.add_argument("--title", default="", help="title of the plot")
+    ap.add_argument("--schemes", default=None, help="comma list of groups of time.h5 (default: all)")
     args = ap.parse_args()
+    for d in args.outdirs:
+        pcsim_post.need_run_folder(d, ("time.h5",), "pcsim pantograph (study: time)")
     labels = args.labels.split(",") if args.labels else [os.path.basename(d.rstrip("/")) for d in args.outdirs]
     fig, axes = plt.subplots(3, 1, figsize=(8, 8), sharex=True)
     for d, lab in zip(args.outdirs, labels):
@@ -58,4 +63,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    pcsim_post.main(main)

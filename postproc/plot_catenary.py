@@ -11,7 +11,6 @@ the stagger) and a table of the catenary frequencies.
 import argparse
 import json
 import os
-import sys
 
 import h5py
 import matplotlib
@@ -20,15 +19,16 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+import pcsim_post  # noqa: E402
+
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("out_dir")
-    parser.add_argument("-o", "--output", default=None)
+    parser.add_argument("out_dir", metavar="OUT_DIR", help="pcsim static or pcsim modes result folder")
+    parser.add_argument("-o", "--output", default=None, help="PNG file (default: OUT_DIR/catenary.png)")
     args = parser.parse_args()
+    pcsim_post.need_run_folder(args.out_dir, ("static_mesh.h5",), "pcsim static or pcsim modes")
     mesh_path = os.path.join(args.out_dir, "static_mesh.h5")
-    if not os.path.exists(mesh_path):
-        sys.exit(f"plot_catenary: {mesh_path} not found (run pcsim static or modes first)")
     with h5py.File(mesh_path, "r") as f:
         pos = f["/nodes/position"][:]
         cables = f["/cables/connectivity"][:]
@@ -91,4 +91,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    pcsim_post.main(main)

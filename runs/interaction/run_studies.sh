@@ -31,14 +31,15 @@ run() {
   fi
   echo "run    $name: pcsim run runs/interaction/$scene.yaml $*"
   rm -rf "${OUT:?}/$name"
-  if ! "$PCSIM" run "$SCENES/$scene.yaml" -o "$OUT/$name" "$@" >"$OUT/$name.log" 2>&1; then
+  if ! "$PCSIM" run "$SCENES/$scene.yaml" -o "$OUT/$name" --no-report "$@" >"$OUT/$name.log" 2>&1; then
     # A failed run is reported (and left out of the tables), the others still run.
     echo "FAILED $name (log: $OUT/$name.log):"
     grep -v "Configure options" "$OUT/$name.log" | tail -n 4 | sed 's/^/       /'
     FAILED="$FAILED $name"
     return 0
   fi
-  grep -E "mean .* std|max uplift|steps," "$OUT/$name.log" | sed 's/^/       /'
+  grep -E "mean contact force|standard deviation|maximum uplift|figures inside|steps," "$OUT/$name.log" |
+    sed 's/^/       /'
 }
 FAILED=""
 # table FILE "OPTIONS" RUN=LABEL ...: Markdown table in $TAB/FILE (text on stdout) of the

@@ -14,18 +14,15 @@ namespace {
 using namespace pcsim;
 
 solvers::ModesRequest scene_modes(const InputNode& scene) {
+  const auto section = catenary::load_modes_section(scene);
   solvers::ModesRequest r;
-  if (!scene.has("modes")) return r;
-  const InputNode m = scene["modes"];
-  m.allow_only({"count", "max_frequency_hz"});
-  r.count = static_cast<int>(m.get_int("count", 20));
-  if (r.count < 1) m.fail_key("count", "must be at least 1");
-  r.max_frequency_hz = m.get_positive("max_frequency_hz", 0.0);
+  r.count = section.count;
+  r.max_frequency_hz = section.max_frequency_hz;
   return r;
 }
 
 int run_modes(const app::CommandContext& ctx) {
-  const InputNode scene = InputNode::load_file(ctx.scene_path);
+  const InputNode scene = ctx.load_scene();
   auto cat = catenary::load_catenary_scene(scene);
   const auto request = solvers::modes_request_from_options(ctx.comm, scene_modes(scene));
   OutputDir out(ctx.comm, ctx.output_request(scene));
@@ -59,4 +56,12 @@ int run_modes(const app::CommandContext& ctx) {
 
 }  // namespace
 
+PCSIM_COMMAND_HELP(modes_help, "modes",
+                   "scene sections (docs/scene-format.md, \"Catenary scenes\"):\n"
+                   "  name         scene name: results go to out/<name>/ (default: the file name)\n"
+                   "  description  free text\n"
+                   "  catenary     design: FILE (docs/design-format.md), form_finding: true|false\n"
+                   "  modes        count: N (20), max_frequency_hz: F (-eps_nev, -modes_fmax)\n"
+                   "  base, set    composition: a base scene, keys set by path\n"
+                   "results: modes.h5 + modes.xdmf, static.h5, static_mesh.h5, summary.json\n");
 PCSIM_COMMAND("modes", "catenary modes about the static configuration (SLEPc)", run_modes);

@@ -16,7 +16,7 @@ using namespace pcsim;
 using pcsim::app::CommandContext;
 
 int run_pantograph(const CommandContext& ctx) {
-  const auto node = InputNode::load_file(ctx.scene_path);
+  const auto node = ctx.load_scene();
   pantograph::StudyScene study = scene::load_pantograph_study_scene(node);
   const std::string name = ctx.scene_name(node);
   OutputDir out(ctx.comm, ctx.output_request(node));
@@ -34,5 +34,14 @@ int run_pantograph(const CommandContext& ctx) {
 
 }  // namespace
 
+PCSIM_COMMAND_HELP(pantograph_help, "pantograph",
+                   "scene sections (docs/scene-format.md, \"Pantograph study scenes\"):\n"
+                   "  name         scene name: results go to out/<name>/ (default: the file name)\n"
+                   "  pantograph   model: FILE (meshes/pantographs/), effects: {...}\n"
+                   "  speed_kmh    train speed for the aerodynamic force [km/h] (0)\n"
+                   "  equilibrium  contact_force [N], working_height [m]\n"
+                   "  study        type: time|modes|frf|sweep|calibrate and its keys\n"
+                   "  base, set    composition: a base scene, keys set by path\n"
+                   "results: summary.json; time.h5, frf.h5 or sweep.h5 by study\n");
 PCSIM_COMMAND("pantograph", "pantograph alone: time response, modes, FRFs, calibration",
               run_pantograph);

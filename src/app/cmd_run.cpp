@@ -11,6 +11,9 @@
 #include "pcsim/assembly/coupled_system.hpp"
 #include "pcsim/assembly/fe_catenary.hpp"
 #include "pcsim/output/checkpoint.hpp"
+#include "pcsim/output/en50318.hpp"
+#include "pcsim/output/energy_results.hpp"
+#include "pcsim/output/line_results.hpp"
 #include "pcsim/output/output_dir.hpp"
 #include "pcsim/output/run_results.hpp"
 #include "pcsim/output/run_stream.hpp"
@@ -19,6 +22,7 @@
 #include "pcsim/solvers/hht.hpp"
 #include "pcsim/solvers/static_start.hpp"
 #include "pcsim/solvers/statics.hpp"
+#include "processes.hpp"
 #include "run_checkpoint.hpp"
 #include "run_session.hpp"
 
@@ -45,18 +49,17 @@ std::unique_ptr<assembly::CoupledSystem> make_system(const app::CommandContext& 
                                                    run.effects, run.contact_stiffness);
 }
 
-// The initial state of a new run: the static start, at rest.
-void set_initial_state(assembly::CoupledSystem& system, solvers::DynamicSolver& solver) {
-  Vec U0 = system.create_vector(), V0 = system.create_vector();
-  solvers::initial_state(system, U0, V0);
+// Starts the TS from the initial state (solvers::initial_state) and destroys it.
+void set_initial_state(assembly::CoupledSystem& system, solvers::DynamicSolver& solver, Vec U0,
+                       Vec V0) {
   TS ts = solver.ts();
   PCSIM_PETSC(TS2SetSolution(ts, U0, V0));
   TSType ts_type;
   PCSIM_PETSC(TSGetType(ts, &ts_type));
   if (std::string(ts_type) == solvers::kTSHHT) {
-    // Both starts are equilibria: zero initial acceleration.
+    // Static and ramp starts are equilibria (A0 = 0); a gap start is not.
     Vec A0 = system.create_vector();
-    PCSIM_PETSC(VecSet(A0, 0.0));
+    solvers::initial_acceleration(system, U0, V0, A0);
     solvers::hht_set_initial_acceleration(ts, A0);
     PCSIM_PETSC(VecDestroy(&A0));
   }
@@ -75,24 +78,92 @@ void warn_if_start_differs(const app::CommandContext& ctx, assembly::CoupledSyst
                   slots[p].run.name.c_str(), slots[p].head_offset - checkpointed.head_offsets[p]);
 }
 
-void print_statistics(const app::CommandContext& ctx, const output::RunSettings& s,
-                      const output::RunStatistics& stats) {
-  app::print0(ctx, "\n  EN 50318 statistics (contact force low-pass %.0f Hz, spans %d-%d)\n",
-              s.cutoff_hz, s.analysis_from_span, s.analysis_to_span);
+// The EN 50318 table of one pantograph: figure, unit, value, and the range
+// and verdict where the standard gives ranges at this speed.
+void print_en50318_table(const app::CommandContext& ctx,
+                         const std::vector<output::AssessedFigure>& figures) {
+  const bool ranges = !figures.empty() && figures.front().has_range;
+  app::print0(ctx, "    %-32s %-4s %9s%s\n", "figure", "unit", "value",
+              ranges ? "         range    verdict" : "");
+  int inside = 0;
+  for (const auto& a : figures) {
+    char range[64] = "", bounds[40];
+    std::snprintf(bounds, sizeof bounds, "%g .. %g", a.range.low, a.range.high);
+    if (a.has_range)
+      std::snprintf(range, sizeof range, "  %12s    %s", bounds, a.inside ? "pass" : "FAIL");
+    app::print0(ctx, "    %-32s %-4s %9.2f%s\n", a.figure.label.c_str(), a.figure.unit.c_str(),
+                a.value, range);
+    inside += a.inside;
+  }
+  if (ranges) app::print0(ctx, "    %d of %zu figures inside the ranges\n", inside, figures.size());
+}
+
+// The EN 50318 figures of every pantograph; their json for summary.json.
+nlohmann::json print_statistics(const app::CommandContext& ctx, const output::RunSettings& s,
+                                const output::RunStatistics& stats) {
+  const auto& reference = output::en50318_reference();
+  const double speed_kmh = s.speed * 3.6;
+  app::print0(ctx,
+              "\n  EN 50318 figures (contact force low-pass %.0f Hz, spans %d-%d, %.0f km/h)\n",
+              s.cutoff_hz, s.analysis_from_span, s.analysis_to_span, speed_kmh);
+  if (reference.ranges_at(speed_kmh))
+    app::print0(ctx, "  acceptance ranges of %s at %.0f km/h\n", reference.edition.c_str(),
+                speed_kmh);
+  else
+    app::print0(ctx, "  %s gives acceptance ranges at %s only: values without verdict\n",
+                reference.edition.c_str(), reference.speeds_with_ranges().c_str());
+  const nlohmann::json run = {{"max_uplift_at_support_m", stats.max_uplift_m}};
+  nlohmann::json assessed = nlohmann::json::object();
   for (const auto& p : stats.pantographs) {
     if (!p.complete) {
       app::print0(ctx, "  %-12s did not cross the analysis section: no statistics\n",
                   p.name.c_str());
       continue;
     }
-    const auto& st = p.force;
-    app::print0(ctx,
-                "  %-12s mean %7.2f N  std %6.2f N  stat max %7.2f  stat min %7.2f  "
-                "max %7.2f  min %7.2f  loss of contact %.2f%%\n",
-                p.name.c_str(), st.mean, st.std_dev, st.statistical_max, st.statistical_min,
-                st.actual_max, st.actual_min, st.loss_of_contact_percent);
+    const auto figures =
+        output::assess_en50318(run, output::force_statistics_json(p.force), speed_kmh);
+    app::print0(ctx, "  pantograph '%s'\n", p.name.c_str());
+    print_en50318_table(ctx, figures);
+    assessed[p.name] = output::en50318_json(figures, speed_kmh);
   }
-  app::print0(ctx, "  max uplift at a support in the section: %.1f mm\n", 1e3 * stats.max_uplift_m);
+  return assessed;
+}
+
+// A line of several tension sections: statistics over each section and
+// overlap, forces on each contact wire (output/line_results.hpp); printed,
+// and returned for summary.json (null for a single section).
+// The histories come from results.h5 (run_layout keeps the wire forces).
+nlohmann::json line_results(const app::CommandContext& ctx, const OutputDir& out,
+                            const catenary::CatenaryMesh& mesh, const output::RunSettings& s) {
+  if (mesh.zones.size() < 2) return nullptr;
+  const auto histories = output::read_contact_histories(out, s);
+  const auto json = output::write_line_results(out, mesh, histories, s.cutoff_hz);
+  for (const auto& p : json)
+    for (const auto& z : p["zones"]) {
+      if (!z["complete"].get<bool>()) continue;
+      app::print0(ctx,
+                  "  %-12s %-12s mean %7.2f N  std %6.2f N  max %7.2f  min %7.2f  loss %.2f%%\n",
+                  p["name"].get<std::string>().c_str(), z["name"].get<std::string>().c_str(),
+                  z["mean_N"].get<double>(), z["std_N"].get<double>(), z["max_N"].get<double>(),
+                  z["min_N"].get<double>(), z["loss_of_contact_percent"].get<double>());
+    }
+  return json;
+}
+
+// energy.h5 and the balance on the console (output.energy), from the
+// energy streamed into results.h5.
+nlohmann::json energy_results(const app::CommandContext& ctx, const OutputDir& out) {
+  const auto history = output::read_energy_history(out);
+  const auto balance = output::energy_balance(history);
+  app::print0(ctx,
+              "  energy: W_ext %.4g J, W_diss %.4g J, E - E0 %.4g J; balance residual max %.3g J "
+              "(%.2g of the turnover %.4g J)\n",
+              balance.work_external.empty() ? 0.0 : balance.work_external.back(),
+              balance.work_dissipated.empty() ? 0.0 : balance.work_dissipated.back(),
+              balance.change.empty() ? 0.0 : balance.change.back(), balance.max_residual,
+              balance.turnover > 0 ? balance.max_residual / balance.turnover : 0.0,
+              balance.turnover);
+  return output::write_energy_results(out.file("energy.h5"), history, balance);
 }
 
 output::RunSettings run_settings(const app::CommandContext& ctx, const InputNode& scene,
@@ -125,6 +196,8 @@ output::RunLayout run_layout(const scene::RunScene& run, assembly::CoupledSystem
     layout.droppers = static_cast<std::size_t>(
         std::count_if(mesh.bars.begin(), mesh.bars.end(),
                       [](const auto& b) { return b.kind == catenary::BarKind::dropper; }));
+  if (mesh.zones.size() >= 2) layout.contact_wires = mesh.contact_wire_list().size();
+  layout.energy = run.energy;
   layout.snapshots = run.snapshot_every > 0;
   if (layout.snapshots) layout.static_positions = catenary::positions_from_node_values(values);
   return layout;
@@ -142,12 +215,13 @@ std::unique_ptr<output::RunStream> open_stream(const app::CommandContext& ctx, c
     const bool snapshots = layout.snapshots;
     const std::string path = out.file("results.h5");
     if (restart) {
-      std::filesystem::copy_file(ctx.restart_dir + "/results.h5", path);
+      std::filesystem::copy_file(app::restart_dir(ctx) + "/results.h5", path);
       stream = std::make_unique<output::RunStream>(path, settings, std::move(layout),
                                                    restart->progress.records,
-                                                   restart->progress.snapshots);
+                                                   restart->progress.snapshots, out.provenance());
     } else {
-      stream = std::make_unique<output::RunStream>(path, settings, std::move(layout));
+      stream =
+          std::make_unique<output::RunStream>(path, settings, std::move(layout), out.provenance());
     }
     if (snapshots) output::write_static_mesh(out, statics.mesh, statics.result.node_values);
   });
@@ -162,6 +236,7 @@ int keep_interrupted(const app::CommandContext& ctx, OutputDir& out, app::RunSes
   const bool checkpointed = session.checkpoint_last_step();
   nlohmann::json facts = session.facts();
   facts["interrupted_by"] = app::signal_name(signal);
+  facts["provenance"] = out.provenance();
   app::on_rank0(ctx, [&] {
     stream->close();
     output::write_run_summary(out, s, nullptr, facts);
@@ -178,27 +253,53 @@ int keep_interrupted(const app::CommandContext& ctx, OutputDir& out, app::RunSes
   return 128 + signal;
 }
 
+// report.html (postproc/report.py) in the result folder; a warning if it
+// cannot be made (no Python with matplotlib).
+void write_report(const app::CommandContext& ctx, const OutputDir& out) {
+  const std::string why = app::run_postproc("report.py", {"run", out.partial_dir()});
+  if (why.empty())
+    app::print0(ctx, "  report: report.html\n");
+  else
+    std::fprintf(stderr, "pcsim: warning: no report.html: %s\n", why.c_str());
+}
+
+// The statistics, line and energy results of a complete run, and its summary.
+void write_complete_results(const app::CommandContext& ctx, const OutputDir& out,
+                            const output::RunSettings& settings, const catenary::CatenaryMesh& mesh,
+                            bool energy, nlohmann::json facts) {
+  const auto stats = output::finish_run_results(out, mesh, settings);
+  facts["en50318"] = print_statistics(ctx, settings, stats);
+  facts["provenance"] = out.provenance();
+  const auto zones = line_results(ctx, out, mesh, settings);
+  if (!zones.is_null()) facts["line_zones"] = zones;
+  if (energy) facts["energy"] = energy_results(ctx, out);
+  output::write_run_summary(out, settings, &stats, facts);
+}
+
 // A run that ended by itself: statistics, summary, the result in place.
 int finish_complete(const app::CommandContext& ctx, OutputDir& out, app::RunSession& session,
                     std::unique_ptr<output::RunStream>& stream, const output::RunSettings& settings,
-                    const catenary::CatenaryMesh& mesh, const app::RunCheckpoint* restart) {
+                    const catenary::CatenaryMesh& mesh, bool energy,
+                    const app::RunCheckpoint* restart) {
   nlohmann::json facts = session.facts();
   if (restart) {
-    facts["restarted_from"] = ctx.restart_dir;
+    facts["restarted_from"] = app::restart_dir(ctx);
     facts["restart_step"] = restart->state.step;
   }
   app::on_rank0(ctx, [&] {
     stream->close();
-    const auto stats = output::finish_run_results(out, mesh, settings);
-    output::write_run_summary(out, settings, &stats, facts);
-    print_statistics(ctx, settings, stats);
+    write_complete_results(ctx, out, settings, mesh, energy, facts);
     app::print0(ctx,
                 "  %ld steps, %.2f Newton iterations/step, %.2f ms/step, real-time factor %.2f, "
                 "peak memory %.0f MB/rank\n",
                 session.steps(), facts["newton_iterations_per_step"].get<double>(),
                 facts["time_per_step_ms"].get<double>(), facts["real_time_factor"].get<double>(),
                 facts["peak_memory_mb"].get<double>());
+    if (facts["rejected_steps"].get<long>() > 0)
+      app::print0(ctx, "  %ld steps rejected by Newton and retried with a smaller time step\n",
+                  facts["rejected_steps"].get<long>());
   });
+  if (!ctx.has_option("--no-report")) app::on_rank0(ctx, [&] { write_report(ctx, out); });
   out.commit();
   app::print0(ctx, "  results in %s/\n", out.final_dir().c_str());
   return 0;
@@ -211,20 +312,21 @@ app::RunSession::Options session_options(const scene::RunScene& run, const Outpu
   options.snapshot_every = run.snapshot_every;
   options.checkpoint_every = run.checkpoint_every;
   options.keep_dropper_forces = run.dropper_forces;
+  options.energy = run.energy;
   options.checkpoint_file = out.file(output::kCheckpointName);
   options.inputs = inputs;
   return options;
 }
 
 int run_dynamic(const app::CommandContext& ctx) {
-  const InputNode scene = InputNode::load_file(ctx.scene_path);
+  const InputNode scene = ctx.load_scene();
   auto run = scene::load_run_scene(scene);
   const auto& design = run.catenary.mesh;
   const double c = catenary::wave_speed(design.wires[design.contact_wire]);
-  const auto inputs = app::run_input_files(ctx.scene_path, scene, run.catenary.design_path);
+  const auto inputs = app::run_input_files(ctx.scene_path, scene);
   const OutputRequest request = ctx.output_request(scene);
   std::unique_ptr<app::RunCheckpoint> restart;
-  if (!ctx.restart_dir.empty()) {
+  if (!app::restart_dir(ctx).empty()) {
     app::check_restart_target(ctx, request.dir);
     restart = std::make_unique<app::RunCheckpoint>(app::load_run_checkpoint(ctx, inputs));
   }
@@ -241,7 +343,9 @@ int run_dynamic(const app::CommandContext& ctx) {
               statics.result.max_tension_error_rel);
   const auto settings = run_settings(ctx, scene, run);
   auto system = make_system(ctx, run, statics);
-  solvers::DynamicSolver solver(*system, run.dt, run.duration());
+  Vec U0 = system->create_vector(), V0 = system->create_vector();
+  solvers::initial_state(*system, U0, V0);
+  solvers::DynamicSolver solver(*system, run.dt, run.duration(), run.hht_alpha);
   app::print0(ctx, "  %d catenary DOFs + %d pantograph DOFs on %d rank(s); %s path\n",
               static_cast<int>(system->catenary().catenary_dofs()),
               static_cast<int>(system->global_size() - system->catenary().catenary_dofs()),
@@ -253,11 +357,11 @@ int run_dynamic(const app::CommandContext& ctx) {
                      std::string("checkpoints and restarts need the TS type hht, not ") + ts_type);
   // A restart starts as a new run (the models keep parameters of their static
   // equilibrium), then takes the checkpoint's state.
-  set_initial_state(*system, solver);
+  set_initial_state(*system, solver, U0, V0);
   if (restart) {
     warn_if_start_differs(ctx, *system, restart->state);
     solver.restore_state(restart->state);
-    app::print0(ctx, "  restarted from %s at t = %.4f s, step %ld\n", ctx.restart_dir.c_str(),
+    app::print0(ctx, "  restarted from %s at t = %.4f s, step %ld\n", app::restart_dir(ctx).c_str(),
                 restart->state.t, restart->state.step);
   }
   const app::GracefulStop stop;  // from here SIGINT/SIGTERM stop at the next step, data kept
@@ -274,9 +378,29 @@ int run_dynamic(const app::CommandContext& ctx) {
   if (signal != 0)
     return keep_interrupted(ctx, out, session, stream, settings, statics.mesh, signal);
   if (session.stopped_early()) session.checkpoint_last_step();  // -ts_max_steps: can go on
-  return finish_complete(ctx, out, session, stream, settings, statics.mesh, restart.get());
+  return finish_complete(ctx, out, session, stream, settings, statics.mesh, run.energy,
+                         restart.get());
 }
 
 }  // namespace
 
+PCSIM_COMMAND_HELP(
+    run_help, "run",
+    "scene sections (docs/scene-format.md, \"Run scenes\"):\n"
+    "  name         scene name: results go to out/<name>/ (default: the file name)\n"
+    "  description  free text\n"
+    "  catenary     design: FILE (docs/design-format.md), form_finding: true|false\n"
+    "  pantographs  list of {name, model, start_x, static_force, start, ramp_distance,\n"
+    "               working_height, effects}\n"
+    "  simulation   speed_kmh, end_x [m], dt [s]\n"
+    "  effects      catenary_nonlinear, dropper_slack, rayleigh_damping\n"
+    "  contact      stiffness [N/m]\n"
+    "  analysis     from_span, to_span, cutoff_hz\n"
+    "  output       dropper_forces, snapshot_every, energy, checkpoint_every\n"
+    "  base, set    composition: a base scene, keys set by path\n"
+    "results: results.h5, summary.json (EN 50318 figures, provenance), report.html;\n"
+    "an interrupted run (SIGINT, SIGTERM) keeps <dir>.partial with its data and a\n"
+    "checkpoint (README \"Interrupted runs and restarts\")\n",
+    {"--no-report", "", "no report.html (postproc/report.py)"},
+    {"--restart", "DIR", "continue the run whose checkpoint is in DIR, into a new folder"});
 PCSIM_COMMAND("run", "dynamic pantograph-catenary interaction (HHT, penalty contact)", run_dynamic);

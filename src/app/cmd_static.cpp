@@ -1,9 +1,12 @@
 // `pcsim static SCENE.yaml`: form-finding and static configuration of the
 // catenary (thesis 3.1.3).
+#include <algorithm>
+
 #include "command.hpp"
 #include "exit_status.hpp"
 #include "pcsim/output/catenary_results.hpp"
 #include "pcsim/scene/catenary_scene.hpp"
+#include "pcsim/solvers/elasticity.hpp"
 #include "pcsim/solvers/statics.hpp"
 
 namespace {
@@ -11,7 +14,7 @@ namespace {
 using namespace pcsim;
 
 int run_static(const app::CommandContext& ctx) {
-  const InputNode scene = InputNode::load_file(ctx.scene_path);
+  const InputNode scene = ctx.load_scene();
   auto cat = catenary::load_catenary_scene(scene);
   OutputDir out(ctx.comm, ctx.output_request(scene));
   app::print0(ctx, "pcsim static: scene '%s', design %s\n", ctx.scene_name(scene).c_str(),
@@ -24,6 +27,17 @@ int run_static(const app::CommandContext& ctx) {
     output::write_static_results(out, statics.mesh, statics.result,
                                  {ctx.scene_name(scene), static_cast<long>(statics.catenary_dofs),
                                   ctx.size, cat.form_finding});
+  if (cat.elasticity) {
+    const auto e = solvers::static_elasticity(ctx.comm, statics, cat.elasticity->stations(),
+                                              cat.elasticity->force);
+    const auto [lo, hi] = std::minmax_element(e.uplift.begin(), e.uplift.end());
+    app::print0(ctx,
+                "  elasticity (%g N at %zu points): uplift %.2f .. %.2f mm per 100 N, "
+                "non-uniformity (max - min) / (max + min) = %.1f%%\n",
+                e.force, e.x.size(), 1e5 * *lo / e.force, 1e5 * *hi / e.force,
+                100.0 * (*hi - *lo) / (*hi + *lo));
+    if (ctx.rank == 0) output::write_elasticity(out, e);
+  }
   out.commit();
   app::print0(ctx, "  results in %s/\n", out.final_dir().c_str());
   return 0;
@@ -31,4 +45,11 @@ int run_static(const app::CommandContext& ctx) {
 
 }  // namespace
 
+PCSIM_COMMAND_HELP(static_help, "static",
+                   "scene sections (docs/scene-format.md, \"Catenary scenes\"):\n"
+                   "  name         scene name: results go to out/<name>/ (default: the file name)\n"
+                   "  description  free text\n"
+                   "  catenary     design: FILE (docs/design-format.md), form_finding: true|false\n"
+                   "  base, set    composition: a base scene, keys set by path\n"
+                   "results: static.h5, static_mesh.h5 + static.xdmf (ParaView), summary.json\n");
 PCSIM_COMMAND("static", "form-finding and static configuration of the catenary", run_static);

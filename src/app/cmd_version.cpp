@@ -3,7 +3,7 @@
 
 namespace {
 int check_scene(const pcsim::app::CommandContext& ctx) {
-  auto scene = pcsim::InputNode::load_file(ctx.scene_path);
+  auto scene = ctx.load_scene();
   pcsim::app::print0(ctx, "%s: readable scene '%s'\n", ctx.scene_path.c_str(),
                      ctx.scene_name(scene).c_str());
   return 0;

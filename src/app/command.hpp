@@ -1,12 +1,15 @@
 // Subcommands of the pcsim executable. Each file cmd_*.cpp registers one
-// command with PCSIM_COMMAND; main.cpp dispatches on the first argument.
+// command with PCSIM_COMMAND (and its --help text and own options with
+// PCSIM_COMMAND_HELP); main.cpp dispatches on the first argument.
 #pragma once
 
 #include <mpi.h>
 
 #include <functional>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "pcsim/catenary/mesh.hpp"
 #include "pcsim/catenary/results.hpp"
@@ -19,19 +22,37 @@ struct CommandContext {
   MPI_Comm comm = MPI_COMM_WORLD;
   int rank = 0;
   int size = 1;
-  std::string command;      // the command being run ("run", "static", ...)
-  std::string scene_path;   // SCENE.yaml as given
-  std::string output_dir;   // from -o, or "" for the default out/<scene name>
-  std::string restart_dir;  // from --restart (pcsim run only), or ""
+  std::string command;                         // the command being run ("run", "static", ...)
+  std::string scene_path;                      // SCENE.yaml as given
+  std::string output_dir;                      // from -o, or "" for the default out/<scene name>
+  std::vector<std::string> arguments;          // the whole command line (argv)
+  std::vector<std::string> overrides;          // --set KEY=VALUE, in order
+  std::vector<std::string> petsc_arguments;    // what went to PETSc's options database
+  std::map<std::string, std::string> options;  // the command's own options ("" for a flag)
+  bool has_option(const std::string& name) const { return options.count(name) > 0; }
+  // The scene: the file with its base files and 'set' entries, then the --set
+  // overrides (pcsim/scene/composition.hpp).
+  InputNode load_scene() const;
   // Scene name: 'name' key of the scene, else the file name without extension.
   // InputError (scene file, key 'name') if it cannot name a folder.
   std::string scene_name(const InputNode& scene) const;
+  // What produced the results (output/provenance.hpp): version, command line,
+  // scene text and its composed form, PETSc options, ranks, date, host.
+  nlohmann::json provenance(const InputNode& scene) const;
   // The output folder (-o, or out/<scene name>) with who gave it, for OutputDir.
   OutputRequest output_request(const InputNode& scene) const;
 };
 
+struct CommandOption {
+  std::string name;   // "-j", "--no-report"
+  std::string value;  // what the value is ("N"), "" for a flag
+  std::string help;
+};
+
 struct Command {
   std::string summary;  // one line for `pcsim --help`
+  std::string help;     // `pcsim <command> --help`: the scene sections it reads
+  std::vector<CommandOption> options;
   std::function<int(const CommandContext&)> run;
 };
 
@@ -40,7 +61,16 @@ std::map<std::string, Command>& command_registry();
 struct CommandRegistrar {
   CommandRegistrar(const std::string& name, std::string summary,
                    std::function<int(const CommandContext&)> run) {
-    command_registry()[name] = Command{std::move(summary), std::move(run)};
+    command_registry()[name].summary = std::move(summary);
+    command_registry()[name].run = std::move(run);
+  }
+};
+
+struct CommandHelpRegistrar {
+  CommandHelpRegistrar(const std::string& name, std::string help,
+                       std::vector<CommandOption> options) {
+    command_registry()[name].help = std::move(help);
+    command_registry()[name].options = std::move(options);
   }
 };
 
@@ -58,3 +88,6 @@ double peak_memory_mb(MPI_Comm comm);
 
 #define PCSIM_COMMAND(name, summary, function) \
   static ::pcsim::app::CommandRegistrar pcsim_command_registrar_##function(name, summary, function)
+// --help text (scene sections, docs) and the command's own options.
+#define PCSIM_COMMAND_HELP(tag, name, help, ...) \
+  static ::pcsim::app::CommandHelpRegistrar pcsim_command_help_##tag(name, help, {__VA_ARGS__})

@@ -27,6 +27,12 @@ void print_static_summary(const CommandContext& ctx, const catenary::CatenaryMes
     }
   if (n_droppers > 0)
     print0(ctx, "  %d droppers, static force %.1f .. %.1f N\n", n_droppers, fmin, fmax);
+  if (!r.registration_forces.empty()) {
+    const auto [lo, hi] =
+        std::minmax_element(r.registration_forces.begin(), r.registration_forces.end());
+    print0(ctx, "  %zu steady arms, lateral (pull-off) force %.1f .. %.1f N\n",
+           r.registration_forces.size(), *lo, *hi);
+  }
   print0(ctx, "  wall time %.3f s\n", r.wall_time_s);
 }
 

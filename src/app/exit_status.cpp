@@ -80,12 +80,23 @@ int agree_exit_status(MPI_Comm comm, int status, const std::string& message, boo
   return agreed.key / 2;
 }
 
+// Declared (not only read) so that -help lists them.
+static PetscErrorCode read_debug_options(MPI_Comm comm, PetscInt& rank, char* kind,
+                                         std::size_t size) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "pcsim exit-code tests", "pcsim");
+  PetscCall(PetscOptionsInt("-pcsim_debug_fail_rank", "rank that fails as the command starts", "",
+                            rank, &rank, nullptr));
+  PetscCall(PetscOptionsString("-pcsim_debug_fail_class", "its error: input, solver or internal",
+                               "", kind, kind, size, nullptr));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
 void debug_fail_if_asked(const CommandContext& ctx) {
   PetscInt fail_rank = -1;
   char fail_class[16] = "";
-  PetscOptionsGetInt(nullptr, nullptr, "-pcsim_debug_fail_rank", &fail_rank, nullptr);
-  PetscOptionsGetString(nullptr, nullptr, "-pcsim_debug_fail_class", fail_class, sizeof fail_class,
-                        nullptr);
+  PCSIM_PETSC(read_debug_options(ctx.comm, fail_rank, fail_class, sizeof fail_class));
   if (fail_rank != ctx.rank) return;
   const std::string kind = fail_class;
   const std::string text = "debug failure on rank " + std::to_string(ctx.rank);

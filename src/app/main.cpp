@@ -1,12 +1,11 @@
 // pcsim: pantograph-catenary dynamic interaction simulator.
 //
-//   pcsim <command> SCENE.yaml [-o DIR] [PETSc options]
+//   pcsim <command> SCENE.yaml [-o DIR] [--set KEY=VALUE]... [options] [PETSc options]
 //
-// The scene (YAML) gives the physics; numerics come from PETSc's options
-// database (-snes_*, -ksp_*, -ts_*, -eps_*, -log_view, ...).
+// The scene (YAML, docs/scene-format.md) gives the physics; numerics come from
+// PETSc's options database (-snes_*, -ksp_*, -ts_*, -eps_*, -log_view, ...).
 #include <slepcsys.h>
 
-#include <cstdarg>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -15,115 +14,135 @@
 #include "command.hpp"
 #include "exit_status.hpp"
 #include "pcsim/core/error.hpp"
-
-namespace pcsim::app {
-
-std::map<std::string, Command>& command_registry() {
-  static std::map<std::string, Command> registry;
-  return registry;
-}
-
-void print0(const CommandContext& ctx, const char* format, ...) {
-  if (ctx.rank != 0) return;
-  va_list args;
-  va_start(args, format);
-  std::vfprintf(stdout, format, args);
-  va_end(args);
-  std::fflush(stdout);
-}
-
-std::string CommandContext::scene_name(const InputNode& scene) const {
-  if (scene.has("name")) {
-    const std::string name = scene.get_string("name");
-    const std::string why = invalid_folder_name_reason(name);
-    if (!why.empty()) throw InputError(scene_path, "name", why);
-    return name;
-  }
-  std::string base = scene_path.substr(scene_path.find_last_of('/') + 1);
-  auto dot = base.find_last_of('.');
-  base = dot == std::string::npos ? base : base.substr(0, dot);
-  if (!invalid_folder_name_reason(base).empty())
-    throw InputError(scene_path, "name", "missing, and the file name gives no usable name");
-  return base;
-}
-
-OutputRequest CommandContext::output_request(const InputNode& scene) const {
-  const std::string name = scene_name(scene);  // validated even when -o is given
-  if (output_dir.empty()) return {"out/" + name, scene_path, "name", command, scene_path, name};
-  return {output_dir, "command line", "-o", command, scene_path, name};
-}
-
-}  // namespace pcsim::app
+#include "pcsim/core/version.hpp"
 
 namespace {
 
+using pcsim::app::Command;
+using pcsim::app::CommandContext;
+
+const char* const kCommonOptions =
+    "  -o DIR           output folder (default out/<scene name>/)\n"
+    "  --set KEY=VALUE  sets a scene key by its path, e.g. simulation.speed_kmh=320 or\n"
+    "                   pantographs[0].static_force=100; a path through a key that names a\n"
+    "                   file sets a key of that file, e.g. catenary.design.spans.count=20\n"
+    "                   (repeatable, applied in order, checked like the file's keys)\n"
+    "  -h, --help       this text\n";
+
 void print_usage() {
   std::printf(
-      "pcsim - parallel pantograph-catenary interaction simulator\n\n"
-      "usage: pcsim <command> SCENE.yaml [-o DIR] [PETSc options]\n\n"
-      "commands:\n");
+      "pcsim %s - parallel pantograph-catenary interaction simulator\n\n"
+      "usage: pcsim <command> SCENE.yaml [-o DIR] [--set KEY=VALUE]... [PETSc options]\n"
+      "       pcsim <command> --help     the scene sections and options of a command\n"
+      "       pcsim --version\n\n"
+      "commands:\n",
+      pcsim::version());
   for (const auto& [name, command] : pcsim::app::command_registry())
     std::printf("  %-12s %s\n", name.c_str(), command.summary.c_str());
   std::printf(
-      "\noptions:\n"
-      "  -o DIR       output folder (default out/<scene name>/)\n"
-      "  --restart DIR  (run) continue the run whose checkpoint is in DIR, into a new folder\n"
-      "  -h, --help   this text\n"
+      "\noptions:\n%s"
       "Any other option goes to PETSc's options database, e.g. -snes_monitor,\n"
-      "-snes_test_jacobian, -ksp_type, -ts_dt, -eps_nev, -log_view, -options_left.\n");
+      "-snes_test_jacobian, -ksp_type, -ts_dt, -eps_nev, -log_view, -options_left;\n"
+      "-help lists every option a command reads (pcsim's own: -pcsim_*, -modes_fmax).\n"
+      "Scene files: docs/scene-format.md; catenary designs: docs/design-format.md.\n",
+      kCommonOptions);
+}
+
+void print_command_help(const std::string& name, const Command& command) {
+  std::string own;
+  for (const auto& o : command.options)
+    own += " [" + o.name + (o.value.empty() ? "" : " " + o.value) + "]";
+  std::printf("usage: pcsim %s SCENE.yaml [-o DIR] [--set KEY=VALUE]...%s [PETSc options]\n  %s\n",
+              name.c_str(), own.c_str(), command.summary.c_str());
+  if (!command.help.empty()) std::printf("\n%s", command.help.c_str());
+  std::printf("\noptions:\n%s", kCommonOptions);
+  for (const auto& o : command.options) {
+    const std::string left = o.name + (o.value.empty() ? "" : " " + o.value);
+    std::printf("  %-16s %s\n", left.c_str(), o.help.c_str());
+  }
+  std::printf("PETSc options: add -help to a run to list every option it reads.\n");
+}
+
+bool is_help(const char* arg) {
+  return !std::strcmp(arg, "-h") || !std::strcmp(arg, "--help") || !std::strcmp(arg, "help");
+}
+
+const pcsim::app::CommandOption* own_option(const Command& command, const char* arg) {
+  for (const auto& o : command.options)
+    if (o.name == arg) return &o;
+  return nullptr;
+}
+
+// Splits the arguments after the command into pcsim's and PETSc's; returns
+// -1 to go on, else the exit status (help printed, or a usage error).
+int parse_arguments(int argc, char** argv, const Command& command, CommandContext& ctx,
+                    std::vector<char*>& petsc_argv) {
+  auto needs = [&](int i, const char* what) {
+    if (i + 1 < argc) return true;
+    std::fprintf(stderr, "pcsim: error: option %s needs %s\n", argv[i], what);
+    return false;
+  };
+  for (int i = 2; i < argc; ++i) {
+    const char* arg = argv[i];
+    if (!std::strcmp(arg, "-o") || !std::strcmp(arg, "--output")) {
+      if (!needs(i, "a folder")) return 2;
+      ctx.output_dir = argv[++i];
+    } else if (!std::strcmp(arg, "--set")) {
+      if (!needs(i, "KEY=VALUE")) return 2;
+      ctx.overrides.push_back(argv[++i]);
+    } else if (!std::strncmp(arg, "--set=", 6)) {
+      ctx.overrides.push_back(arg + 6);
+    } else if (is_help(arg)) {
+      print_command_help(ctx.command, command);
+      return 0;
+    } else if (const auto* o = own_option(command, arg)) {
+      if (!o->value.empty() && !needs(i, o->value.c_str())) return 2;
+      ctx.options[o->name] = o->value.empty() ? "" : argv[++i];
+    } else if (ctx.scene_path.empty() && arg[0] != '-') {
+      ctx.scene_path = arg;
+    } else {
+      petsc_argv.push_back(argv[i]);
+      ctx.petsc_arguments.push_back(arg);
+    }
+  }
+  if (ctx.scene_path.empty()) {
+    for (const auto& a : ctx.petsc_arguments)
+      if (a == "-help") {
+        print_command_help(ctx.command, command);
+        return 0;
+      }
+    std::fprintf(stderr, "pcsim: error: '%s' needs a scene file (pcsim %s SCENE.yaml)\n",
+                 ctx.command.c_str(), ctx.command.c_str());
+    return 2;
+  }
+  return -1;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   using namespace pcsim::app;
-  if (argc < 2 || !std::strcmp(argv[1], "-h") || !std::strcmp(argv[1], "--help") ||
-      !std::strcmp(argv[1], "help")) {
+  if (argc < 2 || is_help(argv[1])) {
     print_usage();
     return argc < 2 ? 1 : 0;
   }
+  if (!std::strcmp(argv[1], "--version") || !std::strcmp(argv[1], "version")) {
+    std::printf("pcsim %s (git %s)\n", pcsim::version(), pcsim::git_commit());
+    return 0;
+  }
   const std::string command_name = argv[1];
   auto it = command_registry().find(command_name);
-  if (it == command_registry().end()) {
+  if (it == command_registry().end() || !it->second.run) {
     std::fprintf(stderr, "pcsim: error: unknown command '%s' (see pcsim --help)\n",
                  command_name.c_str());
     return 2;
   }
   CommandContext ctx;
   ctx.command = command_name;
-  // Split our own arguments from PETSc's.
+  ctx.arguments.assign(argv, argv + argc);
   std::vector<char*> petsc_argv = {argv[0]};
-  for (int i = 2; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "-o") || !std::strcmp(argv[i], "--output")) {
-      if (i + 1 >= argc) {
-        std::fprintf(stderr, "pcsim: error: option -o needs a folder\n");
-        return 2;
-      }
-      ctx.output_dir = argv[++i];
-    } else if (!std::strcmp(argv[i], "--restart")) {
-      if (command_name != "run" || i + 1 >= argc) {
-        std::fprintf(stderr, "pcsim: error: %s\n",
-                     command_name != "run" ? "only 'pcsim run' takes --restart"
-                                           : "option --restart needs a result folder");
-        return 2;
-      }
-      ctx.restart_dir = argv[++i];
-    } else if (!std::strcmp(argv[i], "-h") || !std::strcmp(argv[i], "--help")) {
-      std::printf("usage: pcsim %s SCENE.yaml [-o DIR]%s [PETSc options]\n  %s\n",
-                  command_name.c_str(), command_name == "run" ? " [--restart DIR]" : "",
-                  it->second.summary.c_str());
-      return 0;
-    } else if (ctx.scene_path.empty() && argv[i][0] != '-') {
-      ctx.scene_path = argv[i];
-    } else {
-      petsc_argv.push_back(argv[i]);
-    }
-  }
-  if (ctx.scene_path.empty()) {
-    std::fprintf(stderr, "pcsim: error: '%s' needs a scene file (pcsim %s SCENE.yaml)\n",
-                 command_name.c_str(), command_name.c_str());
-    return 2;
-  }
+  const int early = parse_arguments(argc, argv, it->second, ctx, petsc_argv);
+  if (early >= 0) return early;
   int petsc_argc = static_cast<int>(petsc_argv.size());
   petsc_argv.push_back(nullptr);
   char** petsc_args = petsc_argv.data();

@@ -4,13 +4,13 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
 
 #include "exit_status.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/output/checkpoint.hpp"
+#include "pcsim/scene/composition.hpp"
 
 namespace fs = std::filesystem;
 
@@ -18,14 +18,10 @@ namespace pcsim::app {
 
 namespace {
 
-std::string file_sha256(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "", "cannot read the file to fingerprint it");
+std::string sha256_hex(const std::string& text) {
   std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> md(EVP_MD_CTX_new(), EVP_MD_CTX_free);
   EVP_DigestInit_ex(md.get(), EVP_sha256(), nullptr);
-  std::vector<char> buffer(1 << 16);
-  while (in.read(buffer.data(), static_cast<std::streamsize>(buffer.size())) || in.gcount() > 0)
-    EVP_DigestUpdate(md.get(), buffer.data(), static_cast<std::size_t>(in.gcount()));
+  EVP_DigestUpdate(md.get(), text.data(), text.size());
   unsigned char digest[EVP_MAX_MD_SIZE];
   unsigned int length = 0;
   EVP_DigestFinal_ex(md.get(), digest, &length);
@@ -80,6 +76,7 @@ nlohmann::json scalars_json(const RunCheckpoint& c) {
           {"records", c.progress.records},
           {"snapshots", c.progress.snapshots},
           {"newton_iterations", c.progress.newton_iterations},
+          {"rejected_steps", c.progress.rejected_steps},
           {"wall_time_s", c.progress.wall_time_s},
           {"path", c.path},
           {"ranks", c.ranks},
@@ -102,6 +99,7 @@ void from_scalars_json(const nlohmann::json& j, RunCheckpoint& c) {
   c.progress.records = j.at("records");
   c.progress.snapshots = j.at("snapshots");
   c.progress.newton_iterations = j.at("newton_iterations");
+  c.progress.rejected_steps = j.at("rejected_steps");
   c.progress.wall_time_s = j.at("wall_time_s");
   c.path = j.at("path");
   c.ranks = j.at("ranks");
@@ -139,8 +137,8 @@ RunCheckpoint from_data(output::CheckpointData& d) {
   for (const auto& [key, value] : d.numbers) j[key] = value;
   for (const auto& [key, value] : d.texts) j[key] = value;
   j["has_reference"] = d.numbers.at("has_reference") != 0;
-  for (const char* key :
-       {"step", "accepted_since_cut", "records", "snapshots", "newton_iterations", "ranks"})
+  for (const char* key : {"step", "accepted_since_cut", "records", "snapshots", "newton_iterations",
+                          "rejected_steps", "ranks"})
     j[key] = static_cast<long>(d.numbers.at(key));
   j["inputs"] = nlohmann::json::parse(d.texts.at("inputs"));
   j["head_offsets"] = d.arrays.at("/pantographs/head_offset");
@@ -173,9 +171,10 @@ std::string mismatch(const CommandContext& ctx, const RunCheckpoint& c,
       if (f.role == was.role) now = &f;
     if (!now || now->sha256 != was.sha256)
       return "the " + was.role + " file " + (now ? "'" + now->path + "' " : "") +
-             "differs from the one the checkpoint was written with ('" + was.path + "', SHA-256 " +
-             was.sha256.substr(0, 12) +
-             "...); a restart needs the same scene, design and pantograph model files";
+             "(with its base files and overrides) differs from the one the checkpoint was "
+             "written with ('" +
+             was.path + "', SHA-256 " + was.sha256.substr(0, 12) +
+             "...); a restart needs the same scene, design and pantograph models";
   }
   if (c.inputs.size() != inputs.size())
     return "the scene has other input files than the checkpointed run";
@@ -184,15 +183,20 @@ std::string mismatch(const CommandContext& ctx, const RunCheckpoint& c,
 
 }  // namespace
 
-std::vector<InputFile> run_input_files(const std::string& scene_path, const InputNode& scene,
-                                       const std::string& design_path) {
-  std::vector<InputFile> files = {{"scene", scene_path, file_sha256(scene_path)},
-                                  {"design", design_path, file_sha256(design_path)}};
+std::string restart_dir(const CommandContext& ctx) {
+  const auto it = ctx.options.find("--restart");
+  return it == ctx.options.end() ? "" : it->second;
+}
+
+std::vector<InputFile> run_input_files(const std::string& scene_path, const InputNode& scene) {
+  const InputNode catenary = scene["catenary"];
+  std::vector<InputFile> files = {{"scene", scene_path, sha256_hex(to_yaml(scene))},
+                                  {"design", catenary.path_value("design"),
+                                   sha256_hex(to_yaml(catenary.load_referenced("design")))}};
   const InputNode list = scene["pantographs"];
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const std::string model = list.at(i).resolve_path(list.at(i).get_string("model"));
-    files.push_back({"pantograph model " + std::to_string(i + 1), model, file_sha256(model)});
-  }
+  for (std::size_t i = 0; i < list.size(); ++i)
+    files.push_back({"pantograph model " + std::to_string(i + 1), list.at(i).path_value("model"),
+                     sha256_hex(to_yaml(list.at(i).load_referenced("model")))});
   return files;
 }
 
@@ -202,7 +206,7 @@ void write_run_checkpoint(const CommandContext& ctx, const std::string& file,
 }
 
 RunCheckpoint load_run_checkpoint(const CommandContext& ctx, const std::vector<InputFile>& inputs) {
-  const std::string dir = ctx.restart_dir, file = dir + "/" + output::kCheckpointName;
+  const std::string dir = restart_dir(ctx), file = dir + "/" + output::kCheckpointName;
   RunCheckpoint c;
   std::string why;
   if (ctx.rank == 0) {
@@ -233,13 +237,13 @@ RunCheckpoint load_run_checkpoint(const CommandContext& ctx, const std::vector<I
 }
 
 void check_restart_target(const CommandContext& ctx, const std::string& final_dir) {
-  const auto restart = fs::weakly_canonical(fs::absolute(ctx.restart_dir));
+  const std::string dir = restart_dir(ctx);
+  const auto restart = fs::weakly_canonical(fs::absolute(dir));
   const auto target = fs::weakly_canonical(fs::absolute(final_dir));
   const auto partial = fs::weakly_canonical(fs::absolute(final_dir + ".partial"));
   if (restart == target || restart == partial)
     throw InputError("command line", "--restart",
-                     "'" + ctx.restart_dir + "' would become the new result's folder ('" +
-                         final_dir +
+                     "'" + dir + "' would become the new result's folder ('" + final_dir +
                          "'); a restart reads it and writes a new result: give that "
                          "one another folder with -o");
 }

@@ -11,23 +11,25 @@
 
 namespace pcsim::app {
 
-// An input file of the run and its SHA-256 (hex).
+// An input file of the run and the SHA-256 (hex) of its content as the run
+// reads it: composed with its base files, 'set' entries and --set overrides
+// (scene/composition.hpp), as YAML.
 struct InputFile {
-  std::string role;  // "scene", "design", "pantograph model <name>"
+  std::string role;  // "scene", "design", "pantograph model <n>"
   std::string path;
   std::string sha256;
 };
 
-// The scene file, its design and every pantograph's model file (every rank).
-std::vector<InputFile> run_input_files(const std::string& scene_path, const InputNode& scene,
-                                       const std::string& design_path);
+// The scene (composed), its design and every pantograph's model (every rank).
+std::vector<InputFile> run_input_files(const std::string& scene_path, const InputNode& scene);
 
 // Where the run stands besides the solver's state.
 struct RunProgress {
   std::size_t records = 0;    // rows of results.h5 (accepted steps + the start)
   std::size_t snapshots = 0;  // snapshots in results.h5
   long newton_iterations = 0;
-  double wall_time_s = 0;  // of the time integration so far
+  long rejected_steps = 0;  // HHT steps rejected and retried with a smaller Δt
+  double wall_time_s = 0;   // of the time integration so far
 };
 
 struct RunCheckpoint {
@@ -42,7 +44,10 @@ struct RunCheckpoint {
 void write_run_checkpoint(const CommandContext& ctx, const std::string& file,
                           const RunCheckpoint& checkpoint);
 
-// The checkpoint of ctx.restart_dir, checked against this run: the same input
+// The folder given with --restart, or "".
+std::string restart_dir(const CommandContext& ctx);
+
+// The checkpoint of restart_dir(ctx), checked against this run: the same input
 // files and rank count; else InputError("command line", "--restart", why) on
 // every rank. Collective: rank 0 reads, the rest is broadcast (vectors stay on
 // rank 0).

@@ -45,6 +45,7 @@ RunSession::RunSession(const CommandContext& ctx, assembly::CoupledSystem& syste
     first_step_ = restart->state.step;
     skip_first_record_ = true;
     newton_iterations_ = restart->progress.newton_iterations;
+    earlier_rejected_ = restart->progress.rejected_steps;
     earlier_wall_ = restart->progress.wall_time_s;
     last_checkpoint_ = first_step_;
     steps_ = first_step_;
@@ -88,7 +89,7 @@ PetscErrorCode RunSession::monitor(TS ts, PetscInt step, PetscReal t, Vec U, voi
   if (s.skip_first_record_) {
     s.skip_first_record_ = false;
   } else {
-    s.record(step, t, U);
+    s.record(ts, step, t, U);
     if (step > s.first_step_) {
       SNES snes;
       PetscInt its;
@@ -105,10 +106,19 @@ PetscErrorCode RunSession::monitor(TS ts, PetscInt step, PetscReal t, Vec U, voi
   PCSIM_CALLBACK_END
 }
 
-void RunSession::record(PetscInt step, PetscReal t, Vec U) {
+void RunSession::record(TS ts, PetscInt step, PetscReal t, Vec U) {
   auto rec = system_.record(t, U);  // collective
   if (!options_.keep_dropper_forces) rec.dropper_force.clear();
-  if (stream_) stream_->append(rec);
+  output::EnergySample energy;
+  if (options_.energy) {  // collective
+    Vec Ut, V;
+    PCSIM_PETSC(TS2GetSolution(ts, &Ut, &V));
+    energy.energy = system_.energy(t, Ut, V);
+    const auto power = system_.power(t, Ut, V);
+    energy.power_external = power.external;
+    energy.power_dissipative = power.dissipative;
+  }
+  if (stream_) stream_->append(rec, energy);
   if (options_.snapshot_every > 0 && step % options_.snapshot_every == 0) {
     auto positions = system_.catenary().node_positions_to_root(U);  // collective
     if (stream_) stream_->append_snapshot(positions, rec);
@@ -157,6 +167,7 @@ void RunSession::write_checkpoint() {
     c.progress.snapshots = stream_->snapshots();
   }
   c.progress.newton_iterations = newton_iterations_;
+  c.progress.rejected_steps = rejected_steps();
   c.progress.wall_time_s = wall_time();
   c.path = path_;
   c.ranks = ctx_.size;
@@ -171,6 +182,10 @@ bool RunSession::checkpoint_last_step() {
   if (std::string(type) != solvers::kTSHHT) return false;
   if (last_checkpoint_ != steps_) write_checkpoint();
   return true;
+}
+
+long RunSession::rejected_steps() const {
+  return earlier_rejected_ + solvers::hht_get_info(solver_.ts()).rejected_steps;
 }
 
 nlohmann::json RunSession::facts() const {
@@ -189,6 +204,9 @@ nlohmann::json RunSession::facts() const {
   j["ranks"] = ctx_.size;
   j["dofs"] = system_.global_size();
   j["path"] = path_;
+  TSType type;
+  PCSIM_PETSC(TSGetType(solver_.ts(), &type));
+  j["rejected_steps"] = std::string(type) == solvers::kTSHHT ? rejected_steps() : 0;
   return j;
 }
 

@@ -23,6 +23,7 @@ class RunSession {
     double duration = 0;  // [s]
     long snapshot_every = 0, checkpoint_every = 0;
     bool keep_dropper_forces = true;
+    bool energy = false;            // E(t) and the powers every step (output.energy)
     std::string checkpoint_file;    // in the partial output folder
     std::vector<InputFile> inputs;  // fingerprint stored in checkpoints
   };
@@ -51,7 +52,8 @@ class RunSession {
  private:
   static PetscErrorCode monitor(TS ts, PetscInt step, PetscReal t, Vec U, void* ptr);
   static PetscErrorCode post_step(TS ts);
-  void record(PetscInt step, PetscReal t, Vec U);
+  void record(TS ts, PetscInt step, PetscReal t, Vec U);
+  long rejected_steps() const;  // earlier runs included
   void print_progress(PetscInt step, PetscReal t) const;
   void write_checkpoint();
   double wall_time() const;  // of the integration, earlier runs included
@@ -65,7 +67,7 @@ class RunSession {
   int stop_signal_ = 0;
   long first_step_ = 0;             // step the integration starts from
   bool skip_first_record_ = false;  // a restart's first step is in results.h5 already
-  long steps_ = 0, newton_iterations_ = 0, last_checkpoint_ = -1;
+  long steps_ = 0, newton_iterations_ = 0, earlier_rejected_ = 0, last_checkpoint_ = -1;
   double time_ = 0, start_time_ = 0, earlier_wall_ = 0, wall_start_ = 0;
   mutable double last_print_ = 0;
   long debug_signal_step_ = -1;  // -pcsim_debug_signal_step: raise SIGTERM there (tests)

@@ -153,7 +153,7 @@ void CatenarySystem::add_cable_forces(double* r, Mat J, bool cables, bool loads)
   PetscInt idx12[12];
   for (int e : layout_->local_cables()) {
     const auto& el = mesh_.cables[e];
-    const auto section = cable_section(mesh_.wires[el.wire]);
+    const auto section = cable_section(mesh_.wires[el.wire], el);
     f12.setZero();
     if (cables) {
       cable_values(e, q12.data());
@@ -192,7 +192,7 @@ void CatenarySystem::add_bar_forces(double* r, Mat J, bool bars, bool loads) con
   }
 }
 
-// Gravity of point masses, point loads and support springs.
+// Gravity of point masses, point loads, node forces and support springs.
 void CatenarySystem::add_point_forces(double* r, Mat J) const {
   const auto& L = *layout_;
   for (int i : L.local_point_masses()) {
@@ -210,13 +210,33 @@ void CatenarySystem::add_point_forces(double* r, Mat J) const {
         add_node_residual(r, el.nodes[a], 3 + c, -h.s[2 * a + 1] * load.force[c]);
       }
   }
-  for (int i : L.local_springs()) {
-    const auto& s = mesh_.springs[i];
-    const double u = node_values(s.node)[s.dof] - mesh_.nodes[s.node].position[s.dof];
-    if (r) add_node_residual(r, s.node, s.dof, s.stiffness * u);
+  for (const auto& nf : mesh_.node_forces)
+    if (r && L.owner(nf.node) == L.rank())
+      for (int c = 0; c < 3; ++c) add_node_residual(r, nf.node, c, -nf.force[c]);
+  for (int i : L.local_springs()) add_spring(r, J, mesh_.springs[i]);
+}
+
+// A support spring: along its coordinate, or k (u . d) d along a direction.
+void CatenarySystem::add_spring(double* r, Mat J, const SupportSpring& s) const {
+  const auto& L = *layout_;
+  const Eigen::Vector3d u = node_values(s.node).head<3>() - mesh_.nodes[s.node].position;
+  if (s.direction.isZero()) {
+    if (r) add_node_residual(r, s.node, s.dof, s.stiffness * u[s.dof]);
     const PetscInt g = L.global_dof(s.node, s.dof);
     if (J && g >= 0) PCSIM_PETSC(MatSetValue(J, g, g, s.stiffness, ADD_VALUES));
+    return;
   }
+  const Eigen::Vector3d& d = s.direction;
+  const double f = s.stiffness * u.dot(d);
+  if (r)
+    for (int c = 0; c < 3; ++c) add_node_residual(r, s.node, c, f * d[c]);
+  if (!J) return;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) {
+      const PetscInt ga = L.global_dof(s.node, a), gb = L.global_dof(s.node, b);
+      if (ga >= 0 && gb >= 0 && d[a] * d[b] != 0)
+        PCSIM_PETSC(MatSetValue(J, ga, gb, s.stiffness * d[a] * d[b], ADD_VALUES));
+    }
 }
 
 void CatenarySystem::add_forces(Vec R, Mat J, unsigned terms) {
@@ -235,7 +255,7 @@ double CatenarySystem::local_potential_energy(unsigned terms) const {
   Vec12 q12;
   for (int e : L.local_cables()) {
     const auto& el = mesh_.cables[e];
-    const auto section = cable_section(mesh_.wires[el.wire]);
+    const auto section = cable_section(mesh_.wires[el.wire], el);
     cable_values(e, q12.data());
     if (cables) energy += cable_strain_energy(section, el.ref_length, el.unstressed_length, q12);
     if (loads) energy -= cable_gravity_force(section, el.ref_length, mesh_.gravity).dot(q12);
@@ -258,10 +278,13 @@ double CatenarySystem::local_potential_energy(unsigned terms) const {
     cable_values(load.element, q12.data());
     energy -= load.force.dot(cable_point(el.ref_length, q12, load.chi).r);
   }
+  for (const auto& nf : mesh_.node_forces)
+    if (L.owner(nf.node) == L.rank()) energy -= nf.force.dot(node_values(nf.node).head<3>());
   for (int i : L.local_springs()) {
     const auto& s = mesh_.springs[i];
-    const double u = node_values(s.node)[s.dof] - mesh_.nodes[s.node].position[s.dof];
-    energy += 0.5 * s.stiffness * u * u;
+    const Eigen::Vector3d u = node_values(s.node).head<3>() - mesh_.nodes[s.node].position;
+    const double e = s.direction.isZero() ? u[s.dof] : u.dot(s.direction);
+    energy += 0.5 * s.stiffness * e * e;
   }
   return energy;
 }
@@ -272,7 +295,7 @@ void CatenarySystem::assemble_mass(Mat M) {
   PetscInt idx12[12];
   for (int e : L.local_cables()) {
     const auto& el = mesh_.cables[e];
-    M12 = cable_mass_matrix(cable_section(mesh_.wires[el.wire]), el.ref_length);
+    M12 = cable_mass_matrix(cable_section(mesh_.wires[el.wire], el), el.ref_length);
     cable_indices(e, idx12);
     PCSIM_PETSC(MatSetValues(M, 12, idx12, 12, idx12, M12.data(), ADD_VALUES));
   }
@@ -299,7 +322,7 @@ double CatenarySystem::cable_mean_tension(int element) const {
   const auto& el = mesh_.cables[element];
   Vec12 q12;
   cable_values(element, q12.data());
-  return cable_mean_axial_force(cable_section(mesh_.wires[el.wire]), el.ref_length,
+  return cable_mean_axial_force(cable_section(mesh_.wires[el.wire], el), el.ref_length,
                                 el.unstressed_length, q12, nullptr, nullptr);
 }
 

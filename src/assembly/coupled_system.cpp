@@ -3,6 +3,7 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "pcsim/assembly/interaction_terms.hpp"
 #include "pcsim/core/error.hpp"
@@ -28,9 +29,12 @@ CoupledSystem::CoupledSystem(std::unique_ptr<CatenaryModel> catenary,
   std::vector<std::unique_ptr<Term>> interaction;
   for (std::size_t p = 0; p < pantographs_.size(); ++p) {
     interaction.push_back(std::make_unique<PantographTerm>(p, pantographs_[p]));
-    auto contact = std::make_unique<PenaltyContact>(p, pantographs_[p], contact_stiffness);
-    contacts_.push_back(contact.get());
-    interaction.push_back(std::move(contact));
+    contacts_.emplace_back();
+    for (int w = 0; w < catenary_->contact_wire_count(); ++w) {
+      auto contact = std::make_unique<PenaltyContact>(p, pantographs_[p], contact_stiffness, w);
+      contacts_.back().push_back(contact.get());
+      interaction.push_back(std::move(contact));
+    }
   }
   pattern_ = catenary_->create_matrix(wire_coupled);
   for (const auto& term : interaction) term->insert_pattern(pattern_);
@@ -190,34 +194,50 @@ TermPower CoupledSystem::power(double t, Vec U, Vec V) {
 contact::StepRecord CoupledSystem::record(double t, Vec U) {
   load(t, U, nullptr, nullptr);
   const std::size_t np = pantographs_.size();
+  const std::size_t nw = static_cast<std::size_t>(catenary_->contact_wire_count());
   const auto supports = catenary_->support_heights();
   const auto droppers = catenary_->dropper_forces();
-  const std::size_t ns = supports.size();
-  // Reduction buffer: per pantograph [Fc, x, z_wire], supports, droppers.
-  std::vector<double> buffer(3 * np + ns + droppers.size(), 0.0);
+  const std::size_t ns = supports.size(), nc = np * (1 + 3 * nw);
+  // Reduction buffer: per pantograph [x, per wire (Fc, z, on wire)],
+  // supports, droppers.
+  std::vector<double> buffer(nc + ns + droppers.size(), 0.0);
   for (std::size_t p = 0; p < np; ++p) {
-    const auto e = contacts_[p]->evaluate(state_);
-    if (state_.rank() == 0) buffer[3 * p + 1] = e.x;
-    if (!e.wire.owned) continue;
-    buffer[3 * p] = e.force;
-    buffer[3 * p + 2] = e.wire.z;
+    double* b = &buffer[p * (1 + 3 * nw)];
+    for (std::size_t w = 0; w < nw; ++w) {
+      const auto e = contacts_[p][w]->evaluate(state_);
+      if (state_.rank() == 0) b[0] = e.x;
+      if (!e.wire.owned) continue;
+      b[1 + 3 * w] = e.force;
+      b[2 + 3 * w] = e.wire.z;
+      b[3 + 3 * w] = 1.0;
+    }
   }
-  std::copy(supports.begin(), supports.end(), buffer.begin() + 3 * np);
-  std::copy(droppers.begin(), droppers.end(), buffer.begin() + 3 * np + ns);
+  std::copy(supports.begin(), supports.end(), buffer.begin() + nc);
+  std::copy(droppers.begin(), droppers.end(), buffer.begin() + nc + ns);
   MPI_Reduce(state_.rank() == 0 ? MPI_IN_PLACE : buffer.data(), buffer.data(),
              static_cast<int>(buffer.size()), MPI_DOUBLE, MPI_SUM, 0, comm());
   contact::StepRecord rec;
   rec.t = t;
   if (state_.rank() != 0) return rec;
   for (std::size_t p = 0; p < np; ++p) {
-    rec.contact_force.push_back(buffer[3 * p]);
-    rec.contact_x.push_back(buffer[3 * p + 1]);
-    rec.wire_z.push_back(buffer[3 * p + 2]);
+    const double* b = &buffer[p * (1 + 3 * nw)];
+    double total = 0, z = 0, pressed = 0, lowest = HUGE_VAL;
+    rec.wire_force.emplace_back();
+    for (std::size_t w = 0; w < nw; ++w) {
+      const double f = b[1 + 3 * w], zw = b[2 + 3 * w];
+      total += f;
+      rec.wire_force.back().push_back(f);
+      if (f > pressed) pressed = f, z = zw;
+      if (pressed == 0 && b[3 + 3 * w] > 0.5 && zw < lowest) lowest = zw, z = zw;
+    }
+    rec.contact_force.push_back(total);
+    rec.contact_x.push_back(b[0]);
+    rec.wire_z.push_back(z);
     const Eigen::VectorXd q = state_.q(p);
     rec.q.emplace_back(q.data(), q.data() + q.size());
   }
-  rec.support_z.assign(buffer.begin() + 3 * np, buffer.begin() + 3 * np + ns);
-  rec.dropper_force.assign(buffer.begin() + 3 * np + ns, buffer.end());
+  rec.support_z.assign(buffer.begin() + nc, buffer.begin() + nc + ns);
+  rec.dropper_force.assign(buffer.begin() + nc + ns, buffer.end());
   return rec;
 }
 

@@ -1,5 +1,7 @@
 #include "pcsim/assembly/fe_catenary.hpp"
 
+#include <algorithm>
+
 #include "pcsim/assembly/catenary_terms.hpp"
 #include "pcsim/catenary/elements.hpp"
 #include "pcsim/contact/contact_kernel.hpp"
@@ -14,7 +16,11 @@ FECatenary::FECatenary(MPI_Comm comm, catenary::CatenaryMesh mesh,
                        const std::vector<int>* node_owner)
     : static_values_(std::move(static_node_values)) {
   system_ = std::make_unique<CatenarySystem>(comm, std::move(mesh), extra_dofs, node_owner);
-  locator_ = std::make_unique<contact::ContactWireLocator>(system_->mesh(), static_values_);
+  const auto& m = system_->mesh();
+  const auto wires = m.contact_wire_list();
+  if (wires.empty()) throw InputError(m.source_file, "wires", "the design has no contact wire");
+  for (int w : wires)
+    locators_.push_back(std::make_unique<contact::ContactWireLocator>(m, static_values_, w));
   const auto& bars = system_->mesh().bars;
   for (std::size_t b = 0; b < bars.size(); ++b)
     if (bars[b].kind == BarKind::dropper) droppers_.push_back(static_cast<int>(b));
@@ -45,10 +51,13 @@ void FECatenary::reference_state(Vec U) const {
 
 // Element couplings, the extras' dense block and, for the wire-coupled
 // extras, every DOF of every contact-wire node (the contact point moves along
-// the wire: the pattern never changes during a run).
+// the wires: the pattern never changes during a run).
 Mat FECatenary::create_matrix(const std::vector<bool>& wire_coupled) const {
   const auto& L = system_->layout();
-  const auto& contact_nodes = mesh().wires[mesh().contact_wire].nodes;
+  std::vector<int> contact_nodes;
+  for (int w : mesh().contact_wire_list())
+    contact_nodes.insert(contact_nodes.end(), mesh().wires[w].nodes.begin(),
+                         mesh().wires[w].nodes.end());
   std::vector<std::vector<int>> couplings(L.extra_dofs());
   for (std::size_t k = 0; k < wire_coupled.size(); ++k)
     if (wire_coupled[k]) couplings[k] = contact_nodes;
@@ -108,11 +117,30 @@ Vec FECatenary::static_forces(unsigned mask) {
   return b;
 }
 
-WirePoint FECatenary::wire_point(double x) const {
+namespace {
+// Contact-gap offset at station x (linear in the table, zero outside).
+double gap_offset(const catenary::ContactGapOffset& g, double x) {
+  if (g.x.size() < 2 || x <= g.x.front() || x >= g.x.back()) return 0.0;
+  const auto it = std::upper_bound(g.x.begin(), g.x.end(), x);
+  const std::size_t i = static_cast<std::size_t>(it - g.x.begin()) - 1;
+  const double w = (x - g.x[i]) / (g.x[i + 1] - g.x[i]);
+  return (1 - w) * g.offset[i] + w * g.offset[i + 1];
+}
+
+// d(offset)/dx at station x (the slope of the piece holding x).
+double gap_offset_slope(const catenary::ContactGapOffset& g, double x) {
+  if (g.x.size() < 2 || x <= g.x.front() || x >= g.x.back()) return 0.0;
+  const auto it = std::upper_bound(g.x.begin(), g.x.end(), x);
+  const std::size_t i = static_cast<std::size_t>(it - g.x.begin()) - 1;
+  return (g.offset[i + 1] - g.offset[i]) / (g.x[i + 1] - g.x[i]);
+}
+}  // namespace
+
+WirePoint FECatenary::wire_point(double x, int wire) const {
   WirePoint point;
   int element;
   double chi;
-  point.on_wire = locator_->locate(x, element, chi);
+  point.on_wire = locators_[wire]->locate(x, element, chi);
   if (!point.on_wire) return point;
   const auto& el = mesh().cables[element];
   const contact::Vector12d S = contact::shape_row(chi, el.ref_length, 2);
@@ -129,6 +157,12 @@ WirePoint FECatenary::wire_point(double x) const {
     system_->cable_values(element, q.data());
     point.owned = true;
     point.z = S.dot(q);
+    const Eigen::Vector3d r_chi = catenary::cable_point(el.ref_length, q, chi).r_chi;
+    point.slope = r_chi[2] / r_chi[0];
+    if (!mesh().contact_gap_offsets.empty()) {
+      point.z += gap_offset(mesh().contact_gap_offsets[wire], x);
+      point.slope += gap_offset_slope(mesh().contact_gap_offsets[wire], x);
+    }
   }
   return point;
 }

@@ -75,12 +75,20 @@ double PantographTerm::energy(const CoupledState& state) const {
   return sum_over_ranks(state.catenary().comm(), local);
 }
 
+// The model's constant external forces (uplift, bellows torque, aerodynamic
+// force) are potentials in energy(): only their explicit change with time,
+// the ramp (1 - ramp(t)) F0 q_c, does work here.
 TermPower PantographTerm::power(const CoupledState& state) const {
   TermPower p;
   if (state.on_last_rank()) {
-    const auto split = slot_.model->power(state.t, state.q(index_), state.qd(index_));
-    p.dissipative = split.dissipative;
-    p.external = split.external;
+    const Eigen::VectorXd q = state.q(index_);
+    p.dissipative = slot_.model->power(state.t, q, state.qd(index_)).dissipative;
+    const auto& run = slot_.run;
+    const bool ramping =
+        !run.static_start && run.ramp_distance > 0 && run.speed * state.t < run.ramp_distance;
+    if (ramping)
+      p.external =
+          -run.speed / run.ramp_distance * run.static_force * q[slot_.model->contact_dof()];
   }
   MPI_Comm comm = state.catenary().comm();
   p.dissipative = sum_over_ranks(comm, p.dissipative);
@@ -93,7 +101,7 @@ TermPower PantographTerm::power(const CoupledState& state) const {
 PenaltyContact::Evaluation PenaltyContact::evaluate(const CoupledState& state) const {
   Evaluation e;
   e.x = slot_.run.contact_x(state.t);
-  e.wire = state.catenary().wire_point(e.x);
+  e.wire = state.catenary().wire_point(e.x, wire_);
   e.head = state.head_height(index_);
   if (e.wire.on_wire && e.wire.owned) {
     e.gap = e.wire.z - e.head;
@@ -142,6 +150,17 @@ bool PenaltyContact::low_rank_change(const CoupledState& state, std::vector<Rank
   term.reuse_columns = true;
   terms.push_back(std::move(term));
   return true;
+}
+
+// The contact point moves along the wire: at fixed state the penalty energy
+// 1/2 kH dz^2 changes at the rate kH dz (dz_wire/dx) v (work of the moving
+// contact on the system).
+TermPower PenaltyContact::power(const CoupledState& state) const {
+  const Evaluation e = evaluate(state);
+  const double local = e.force > 0 ? kH_ * e.gap * e.wire.slope * slot_.run.speed : 0.0;
+  TermPower p;
+  p.external = sum_over_ranks(state.catenary().comm(), local);
+  return p;
 }
 
 double PenaltyContact::energy(const CoupledState& state) const {

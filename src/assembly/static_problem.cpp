@@ -29,6 +29,11 @@ void set_state_from_node_values(const CatenarySystem& system,
 }
 
 namespace {
+double bar_design_length(const CatenaryMesh& mesh, int b) {
+  return (mesh.nodes[mesh.bars[b].nodes[1]].position - mesh.nodes[mesh.bars[b].nodes[0]].position)
+      .norm();
+}
+
 // Sum over ranks of per-item values computed by the item's owner.
 void allreduce_sum(MPI_Comm comm, std::vector<double>& v) {
   MPI_Allreduce(MPI_IN_PLACE, v.data(), static_cast<int>(v.size()), MPI_DOUBLE, MPI_SUM, comm);
@@ -51,8 +56,12 @@ StaticProblem::StaticProblem(CatenarySystem& system, bool form_finding)
     target_of_bar_[t.bar] = static_cast<int>(k);
     height_scale_.push_back(mesh.bars[t.bar].stiffness);
   }
-  for (const auto& s : mesh.tension_segments)
-    segment_count_.push_back(static_cast<int>(s.elements.size()));
+  segment_of_bar_.assign(mesh.bars.size(), -1);
+  for (std::size_t k = 0; k < mesh.tension_segments.size(); ++k) {
+    const auto& s = mesh.tension_segments[k];
+    segment_count_.push_back(static_cast<int>(s.elements.size() + s.bars.size()));
+    for (int b : s.bars) segment_of_bar_[b] = static_cast<int>(k);
+  }
   for (auto& bar : system.mutable_mesh().bars) {
     slack_criteria_.push_back(bar.slack);
     bar.slack = SlackCriterion::none;
@@ -77,6 +86,10 @@ Mat StaticProblem::create_matrix() const {
         nodes.push_back(mesh.cables[e].nodes[0]);
         nodes.push_back(mesh.cables[e].nodes[1]);
       }
+      for (int b : s.bars) {
+        nodes.push_back(mesh.bars[b].nodes[0]);
+        nodes.push_back(mesh.bars[b].nodes[1]);
+      }
       couplings.push_back(nodes);
     }
   }
@@ -100,9 +113,12 @@ void StaticProblem::apply_unknowns(Vec x) {
   const std::size_t n_targets = mesh.height_targets.size();
   for (std::size_t k = 0; k < n_targets; ++k)
     mesh.bars[mesh.height_targets[k].bar].unstressed_length = extra[k];
-  for (std::size_t s = 0; s < mesh.tension_segments.size(); ++s)
+  for (std::size_t s = 0; s < mesh.tension_segments.size(); ++s) {
     for (int e : mesh.tension_segments[s].elements)
       mesh.cables[e].unstressed_length = extra[n_targets + s] * mesh.cables[e].ref_length;
+    for (int b : mesh.tension_segments[s].bars)
+      mesh.bars[b].unstressed_length = extra[n_targets + s] * bar_design_length(mesh, b);
+  }
 }
 
 void StaticProblem::initial_guess(Vec x) const {
@@ -119,8 +135,9 @@ void StaticProblem::initial_guess(Vec x) const {
     double ratio = 0;
     for (int e : mesh.tension_segments[s].elements)
       ratio += mesh.cables[e].unstressed_length / mesh.cables[e].ref_length;
-    a[L.extra_global(n_targets + s) - L.first_owned()] =
-        ratio / mesh.tension_segments[s].elements.size();
+    for (int b : mesh.tension_segments[s].bars)
+      ratio += mesh.bars[b].unstressed_length / bar_design_length(mesh, b);
+    a[L.extra_global(n_targets + s) - L.first_owned()] = ratio / segment_count_[s];
   }
   PCSIM_PETSC(VecRestoreArray(x, &a));
 }
@@ -161,7 +178,7 @@ void StaticProblem::add_form_finding_terms(Vec R, Mat J) {
     const auto& el = mesh.cables[e];
     if (el.tension_segment < 0) continue;
     const int s = el.tension_segment;
-    const CableSection section = cable_section(mesh.wires[el.wire]);
+    const CableSection section = cable_section(mesh.wires[el.wire], el);
     system_.cable_values(e, q12.data());
     double dT_dL0 = 0;
     const double T = cable_mean_axial_force(section, el.ref_length, el.unstressed_length, q12,
@@ -179,10 +196,45 @@ void StaticProblem::add_form_finding_terms(Vec R, Mat J) {
     }
     PCSIM_PETSC(MatSetValue(J, row, row, weight * dT_dL0 * el.ref_length, ADD_VALUES));
   }
+  add_bar_segment_terms(R, J);
   if (L.rank() == L.size() - 1)
     for (std::size_t s = 0; s < mesh.tension_segments.size(); ++s)
       PCSIM_PETSC(VecSetValue(R, L.extra_global(static_cast<PetscInt>(n_targets + s)),
                               -mesh.tension_segments[s].tension, ADD_VALUES));
+}
+
+// Tension rows and scale columns of the segments made of bars (stitch
+// wires): mean axial force N of the bars, L0 = scale x design length.
+void StaticProblem::add_bar_segment_terms(Vec R, Mat J) {
+  const auto& mesh = system_.mesh();
+  const auto& L = system_.layout();
+  const std::size_t n_targets = mesh.height_targets.size();
+  Vec6 q6, f6, df6;
+  PetscInt idx6[6];
+  for (int b : L.local_bars()) {
+    const int s = segment_of_bar_[b];
+    if (s < 0) continue;
+    const auto params = bar_parameters(mesh.bars[b]);
+    system_.bar_values(b, q6.data());
+    const double N = bar_internal_force(params, q6, f6, nullptr, &df6);
+    const PetscInt row = L.extra_global(static_cast<PetscInt>(n_targets + s));
+    const double weight = 1.0 / segment_count_[s], design = bar_design_length(mesh, b);
+    PCSIM_PETSC(VecSetValue(R, row, weight * N, ADD_VALUES));
+    if (!J) continue;
+    // f = N [-e; e]: dN/dq = dN/dl [-e; e], dN/dL0 = df/dL0 . [-e; e] / 2.
+    const Eigen::Vector3d d = q6.tail<3>() - q6.head<3>(), e = d / d.norm();
+    double dN_dl = 0;
+    bar_axial_force(params, q6, &dN_dl);
+    const double dN_dL0 = 0.5 * (df6.tail<3>() - df6.head<3>()).dot(e);
+    system_.bar_indices(b, idx6);
+    for (int i = 0; i < 6; ++i) {
+      if (idx6[i] < 0) continue;
+      const double dN_dqi = dN_dl * (i < 3 ? -e[i] : e[i - 3]);
+      PCSIM_PETSC(MatSetValue(J, idx6[i], row, df6[i] * design, ADD_VALUES));
+      PCSIM_PETSC(MatSetValue(J, row, idx6[i], weight * dN_dqi, ADD_VALUES));
+    }
+    PCSIM_PETSC(MatSetValue(J, row, row, weight * dN_dL0 * design, ADD_VALUES));
+  }
 }
 
 void StaticProblem::residual(Vec x, Vec R) {
@@ -237,6 +289,10 @@ StaticResult StaticProblem::finish(Vec x) {
     if (s >= 0) result.segment_tensions[s] += system_.cable_mean_tension(e) / segment_count_[s];
   }
   allreduce_sum(L.comm(), result.segment_tensions);
+  for (std::size_t b = 0; b < mesh.bars.size(); ++b)  // bar forces: on every rank
+    if (segment_of_bar_[b] >= 0)
+      result.segment_tensions[segment_of_bar_[b]] +=
+          result.bar_forces[b] / segment_count_[segment_of_bar_[b]];
   for (std::size_t s = 0; s < mesh.tension_segments.size(); ++s)
     result.max_tension_error_rel =
         std::max(result.max_tension_error_rel,

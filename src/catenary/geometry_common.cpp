@@ -121,7 +121,8 @@ std::string bar_mass_and_target_error(const CatenaryMesh& mesh) {
   for (const auto& pm : mesh.point_masses)
     if (bad_node(pm.node) || !(pm.mass > 0)) return "point mass '" + pm.label + "' is invalid";
   for (const auto& s : mesh.springs)
-    if (bad_node(s.node) || s.dof < 0 || s.dof > 2 || !(s.stiffness > 0))
+    if (bad_node(s.node) || s.dof < 0 || s.dof > 2 || !(s.stiffness > 0) ||
+        (!s.direction.isZero() && std::abs(s.direction.norm() - 1) > 1e-9))
       return "a spring is invalid";
   std::set<int> bars_used;
   for (const auto& t : mesh.height_targets) {
@@ -135,17 +136,55 @@ std::string bar_mass_and_target_error(const CatenaryMesh& mesh) {
   return "";
 }
 
+// Contact wires, node forces, tensioning devices, registrations, gap offsets.
+std::string line_error(const CatenaryMesh& mesh) {
+  const int n_nodes = static_cast<int>(mesh.nodes.size());
+  auto bad_node = [&](int i) { return i < 0 || i >= n_nodes; };
+  for (int w : mesh.contact_wires)
+    if (w < 0 || w >= static_cast<int>(mesh.wires.size()) ||
+        mesh.wires[w].kind != WireKind::contact)
+      return "contact_wires lists a wire that is not a contact wire";
+  if (!mesh.contact_wires.empty() && mesh.contact_wire != mesh.contact_wires.front())
+    return "contact_wire is not the first of contact_wires";
+  if (!mesh.contact_gap_offsets.empty() &&
+      mesh.contact_gap_offsets.size() != mesh.contact_wire_list().size())
+    return "contact_gap_offsets must have one table per contact wire";
+  for (const auto& g : mesh.contact_gap_offsets)
+    if (g.x.size() != g.offset.size()) return "a contact-gap offset table is ragged";
+  for (const auto& nf : mesh.node_forces)
+    if (bad_node(nf.node) || !nf.force.allFinite())
+      return "node force '" + nf.label + "' is invalid";
+  for (const auto& d : mesh.tensioning_devices)
+    if (bad_node(d.node) || d.mass < 0 || d.stiffness < 0 ||
+        std::abs(d.direction.norm() - 1) > 1e-9)
+      return "a tensioning device is invalid";
+  for (const auto& r : mesh.registrations)
+    if (bad_node(r.node) || r.support < 0 || r.support >= static_cast<int>(mesh.support_x.size()))
+      return "a registration is invalid";
+  for (const auto& c : mesh.cables)
+    if (!(c.section_factor > 0) || c.section_factor > 1)
+      return "a cable element has a section factor outside (0, 1]";
+  return "";
+}
+
 std::string segment_and_support_error(const CatenaryMesh& mesh) {
   for (std::size_t s = 0; s < mesh.tension_segments.size(); ++s) {
     const auto& seg = mesh.tension_segments[s];
-    if (seg.wire < 0 || seg.wire >= static_cast<int>(mesh.wires.size()) || seg.elements.empty() ||
-        !(seg.tension > 0))
-      return "tension segment " + std::to_string(s) + " is invalid";
+    const std::string id = "tension segment " + std::to_string(s);
+    if (!(seg.tension > 0)) return id + " is invalid";
+    if (!seg.bars.empty()) {
+      if (seg.wire != -1 || !seg.elements.empty()) return id + " mixes bars and a wire";
+      for (int b : seg.bars)
+        if (b < 0 || b >= static_cast<int>(mesh.bars.size()) || mesh.bars[b].form_find_length)
+          return id + " lists bar " + std::to_string(b) + " that cannot be its own";
+      continue;
+    }
+    if (seg.wire < 0 || seg.wire >= static_cast<int>(mesh.wires.size()) || seg.elements.empty())
+      return id + " is invalid";
     for (int e : seg.elements)
       if (e < 0 || e >= static_cast<int>(mesh.cables.size()) || mesh.cables[e].wire != seg.wire ||
           mesh.cables[e].tension_segment != static_cast<int>(s))
-        return "tension segment " + std::to_string(s) + " lists element " + std::to_string(e) +
-               " that is not its own";
+        return id + " lists element " + std::to_string(e) + " that is not its own";
   }
   if (mesh.support_x.size() != mesh.support_nodes.size())
     return "support_x and support_nodes differ";
@@ -153,7 +192,7 @@ std::string segment_and_support_error(const CatenaryMesh& mesh) {
     if (n < 0 || n >= static_cast<int>(mesh.nodes.size())) return "a support node is out of range";
   if (mesh.contact_wire < -1 || mesh.contact_wire >= static_cast<int>(mesh.wires.size()))
     return "contact_wire is out of range";
-  return "";
+  return line_error(mesh);
 }
 
 }  // namespace

@@ -1,10 +1,14 @@
-// ParametricDesign -> CatenaryMesh: simple catenary on straight track (see
-// docs/design-format.md, "What the generator builds").
+// ParametricDesign -> CatenaryMesh: a line of one or several tension
+// sections (see docs/design-format.md, "What the generator builds"). The
+// checks of every parameter are here; the layout, the sections, their
+// supports and the irregularities in geometry_layout.cpp,
+// geometry_section.cpp, geometry_supports.cpp and geometry_irregular.cpp.
 #include <algorithm>
 #include <cmath>
-#include <map>
+#include <memory>
+#include <set>
 
-#include "geometry_internal.hpp"
+#include "geometry_line.hpp"
 
 namespace pcsim::catenary {
 
@@ -13,15 +17,10 @@ namespace {
 using detail::fmt;
 using detail::require_nonnegative;
 using detail::require_positive;
-using detail::unit;
 
-// Key points (supports, dropper points, stitch clamps) closer than this are
-// rejected: they would make a needlessly tiny, very stiff element.
-constexpr double kMinKeyPointGap = 0.05;  // [m]
-// Key points closer than this are the same point.
-constexpr double kSamePoint = 1e-9;  // [m]
-
-// ----------------------------------------------------------------- checks ----
+std::string at(const std::string& list, std::size_t i) {
+  return list + "[" + std::to_string(i) + "]";
+}
 
 void check_spans_and_heights(const ParametricDesign& in) {
   const std::string& f = in.file;
@@ -54,22 +53,62 @@ void check_cable(const std::string& file, const std::string& key, const CableDes
   require_positive(file, key + ".tension", p.tension);
 }
 
+// Dropper positions (and sags) of every span or of given spans.
+void check_positions(const ParametricDesign& in, const std::string& key,
+                     const std::vector<double>& positions, const std::vector<double>& sags) {
+  const std::string& f = in.file;
+  const double L = in.span_length;
+  if (positions.empty()) throw InputError(f, key + ".positions", "must list at least one dropper");
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    const double s = positions[i];
+    if (!(s > 0 && s < L))
+      throw InputError(f, at(key + ".positions", i),
+                       "dropper at " + fmt(s) + " m lies outside the span (0, " + fmt(L) + ") m");
+    if (i > 0 && !(s > positions[i - 1]))
+      throw InputError(f, at(key + ".positions", i),
+                       "dropper at " + fmt(s) + " m does not follow the previous one (" +
+                           fmt(positions[i - 1]) + " m): positions must be strictly increasing");
+  }
+  if (in.presag_profile == PresagProfile::droppers && positions.size() < 2)
+    throw InputError(f, key + ".positions",
+                     "presag profile 'droppers' needs at least two droppers in every span");
+  if (in.presag_profile != PresagProfile::heights) {
+    if (!sags.empty())
+      throw InputError(f, key + ".sags", "sags are given only with the presag profile 'heights'");
+    return;
+  }
+  if (sags.size() != positions.size())
+    throw InputError(f, key + ".sags",
+                     "presag profile 'heights' needs one sag per dropper (" +
+                         std::to_string(positions.size()) + "), got " +
+                         std::to_string(sags.size()));
+  for (std::size_t i = 0; i < sags.size(); ++i)
+    if (!std::isfinite(sags[i]) || std::abs(sags[i]) >= in.system_height)
+      throw InputError(
+          f, at(key + ".sags", i),
+          "must be smaller than system_height in magnitude (got " + fmt(sags[i]) + ")");
+}
+
 void check_droppers(const ParametricDesign& in) {
   const std::string& f = in.file;
   const DropperDesign& d = in.droppers;
-  const double L = in.span_length;
-  if (d.positions.empty())
-    throw InputError(f, "droppers.positions", "must list at least one dropper");
-  for (std::size_t i = 0; i < d.positions.size(); ++i) {
-    const std::string key = "droppers.positions[" + std::to_string(i) + "]";
-    const double s = d.positions[i];
-    if (!(s > 0 && s < L))
-      throw InputError(f, key,
-                       "dropper at " + fmt(s) + " m lies outside the span (0, " + fmt(L) + ") m");
-    if (i > 0 && !(s > d.positions[i - 1]))
-      throw InputError(f, key,
-                       "dropper at " + fmt(s) + " m does not follow the previous one (" +
-                           fmt(d.positions[i - 1]) + " m): positions must be strictly increasing");
+  check_positions(in, "droppers", d.positions, d.sags);
+  std::set<long> seen;
+  for (std::size_t i = 0; i < d.spans.size(); ++i) {
+    const std::string key = at("droppers.spans", i);
+    if (d.spans[i].spans.empty())
+      throw InputError(f, key + ".spans", "must list at least one span");
+    for (std::size_t j = 0; j < d.spans[i].spans.size(); ++j) {
+      const long span = d.spans[i].spans[j];
+      if (span < 1 || span > in.span_count)
+        throw InputError(f, at(key + ".spans", j),
+                         "span " + std::to_string(span) + " is not on the line (1.." +
+                             std::to_string(in.span_count) + ")");
+      if (!seen.insert(span).second)
+        throw InputError(f, at(key + ".spans", j),
+                         "span " + std::to_string(span) + " is listed twice");
+    }
+    check_positions(in, key, d.spans[i].positions, d.spans[i].sags);
   }
   require_positive(f, "droppers.stiffness", d.stiffness);
   require_nonnegative(f, "droppers.mass_per_length", d.mass_per_length);
@@ -90,377 +129,186 @@ void check_stitch_wire(const std::string& file, const StitchWireDesign& st, doub
   require_positive(file, "stitch_wire.EA", st.EA);
 }
 
+void check_sections(const ParametricDesign& in) {
+  const std::string& f = in.file;
+  long total = 0;
+  for (std::size_t i = 0; i < in.sections.size(); ++i) {
+    const SectionDesign& s = in.sections[i];
+    if (s.spans < 1)
+      throw InputError(f, at("sections", i) + ".spans",
+                       "must be at least 1 (got " + std::to_string(s.spans) + ")");
+    total += s.spans;
+    if (!std::isfinite(s.radius) || (s.radius != 0 && std::abs(s.radius) < in.span_length))
+      throw InputError(f, at("sections", i) + ".radius",
+                       "must be 0 (straight) or at least the span length " + fmt(in.span_length) +
+                           " m in magnitude (got " + fmt(s.radius) + ")");
+  }
+  if (!in.sections.empty() && total != in.span_count)
+    throw InputError(f, "sections",
+                     "the sections' spans add up to " + std::to_string(total) +
+                         ", but spans.count is " + std::to_string(in.span_count));
+  const OverlapDesign& o = in.overlap;
+  if (o.spans < 1)
+    throw InputError(f, "overlap.spans",
+                     "must be at least 1 (got " + std::to_string(o.spans) + ")");
+  require_positive(f, "overlap.raise", o.raise);
+  if (!(o.anchor_raise >= o.raise))
+    throw InputError(
+        f, "overlap.anchor_raise",
+        "must be at least overlap.raise (" + fmt(o.raise) + " m), got " + fmt(o.anchor_raise));
+  require_nonnegative(f, "overlap.separation", o.separation);
+}
+
+void check_tensioning(const ParametricDesign& in) {
+  const TensioningDesign& t = in.tensioning;
+  if (t.device == TensioningDeviceKind::spring)
+    require_positive(in.file, "tensioning.stiffness", t.stiffness);
+  if (t.device != TensioningDeviceKind::weight) return;
+  if (!(t.ratio >= 1))
+    throw InputError(in.file, "tensioning.ratio",
+                     "must be at least 1 (wire tension / weight force), got " + fmt(t.ratio));
+  if (t.weight_mass) require_positive(in.file, "tensioning.weight_mass", *t.weight_mass);
+  if (!t.weight_mass && !(in.gravity.norm() > 0))
+    throw InputError(in.file, "tensioning.weight_mass",
+                     "is required without gravity (the weight's mass cannot follow from it)");
+}
+
+void check_messenger_support(const std::string& f, const std::string& key,
+                             const MessengerSupportDesign& s) {
+  if (s.model == MessengerSupportModel::fixed) return;
+  require_positive(f, key + ".stiffness", s.stiffness);
+  if (s.model == MessengerSupportModel::spring_mass) require_positive(f, key + ".mass", s.mass);
+}
+
+void check_steady_arm(const std::string& f, const std::string& key, const SteadyArmDesign& a) {
+  require_nonnegative(f, key + ".mass", a.mass);
+  if (a.model == SteadyArmModel::hinged) {
+    require_positive(f, key + ".length", a.length);
+    require_positive(f, key + ".axial_stiffness", a.axial_stiffness);
+  }
+  if (a.model == SteadyArmModel::spring) require_positive(f, key + ".stiffness", a.stiffness);
+}
+
+void check_supports(const ParametricDesign& in) {
+  check_messenger_support(in.file, "messenger_supports", in.messenger_supports);
+  check_steady_arm(in.file, "steady_arms", in.steady_arms);
+  for (std::size_t i = 0; i < in.support_overrides.size(); ++i) {
+    const auto& o = in.support_overrides[i];
+    const std::string key = at("support_overrides", i);
+    if (o.supports.empty()) throw InputError(in.file, key + ".supports", "must list a support");
+    for (std::size_t j = 0; j < o.supports.size(); ++j)
+      if (o.supports[j] < 0 || o.supports[j] > in.span_count)
+        throw InputError(in.file, at(key + ".supports", j),
+                         "support " + std::to_string(o.supports[j]) + " is not on the line (0.." +
+                             std::to_string(in.span_count) + ")");
+    if (o.messenger) check_messenger_support(in.file, key + ".messenger_supports", *o.messenger);
+    if (o.steady_arm) check_steady_arm(in.file, key + ".steady_arms", *o.steady_arm);
+  }
+}
+
+void check_irregularities(const ParametricDesign& in) {
+  const std::string& f = in.file;
+  const IrregularityDesign& ir = in.irregularities;
+  const auto& x = ir.profile_x;
+  if (x.size() != ir.profile_dz.size() || x.size() == 1)
+    throw InputError(f, ir.profile_key, "needs at least two (x, dz) points");
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (i > 0 && !(x[i] > x[i - 1]))
+      throw InputError(f, ir.profile_key,
+                       "x must increase strictly (point " + std::to_string(i + 1) + ": " +
+                           fmt(x[i]) + " m after " + fmt(x[i - 1]) + " m)");
+    if (!std::isfinite(ir.profile_dz[i]) || std::abs(ir.profile_dz[i]) >= 0.5 * in.system_height)
+      throw InputError(f, ir.profile_key,
+                       "dz must be smaller than half the system height (point " +
+                           std::to_string(i + 1) + ": " + fmt(ir.profile_dz[i]) + " m)");
+  }
+  if (ir.random) {
+    const RandomIrregularity& r = *ir.random;
+    require_nonnegative(f, "irregularities.random.rms", r.rms);
+    if (!(r.rms < 0.1 * in.system_height))
+      throw InputError(f, "irregularities.random.rms",
+                       "must be below a tenth of the system height (got " + fmt(r.rms) + " m)");
+    require_positive(f, "irregularities.random.wavelength_min", r.wavelength_min);
+    if (!(r.wavelength_max > r.wavelength_min))
+      throw InputError(f, "irregularities.random.wavelength_max",
+                       "must exceed wavelength_min (" + fmt(r.wavelength_min) + " m), got " +
+                           fmt(r.wavelength_max));
+    if (in.span_count * in.span_length / r.wavelength_min > 1e6)
+      throw InputError(f, "irregularities.random.wavelength_min",
+                       "too short for the line: more than a million components");
+    if (!std::isfinite(r.exponent))
+      throw InputError(f, "irregularities.random.exponent", "must be a finite number");
+    if (r.seed < 0) throw InputError(f, "irregularities.random.seed", "must not be negative");
+  }
+  for (std::size_t i = 0; i < ir.wear.size(); ++i) {
+    const std::string key = at("irregularities.wear", i);
+    if (!(ir.wear[i].to > ir.wear[i].from))
+      throw InputError(
+          f, key + ".to",
+          "must exceed 'from' (" + fmt(ir.wear[i].from) + " m), got " + fmt(ir.wear[i].to));
+    if (!(ir.wear[i].section_loss >= 0 && ir.wear[i].section_loss < 1))
+      throw InputError(f, key + ".section_loss",
+                       "must lie in [0, 1) (got " + fmt(ir.wear[i].section_loss) + ")");
+  }
+}
+
 void check_parametric(const ParametricDesign& in) {
   check_spans_and_heights(in);
   check_cable(in.file, "wires.contact", in.contact);
   check_cable(in.file, "wires.messenger", in.messenger);
   check_droppers(in);
-  require_nonnegative(in.file, "steady_arms.mass", in.steady_arm_mass);
   if (in.stitch_wire) check_stitch_wire(in.file, *in.stitch_wire, in.span_length);
+  check_sections(in);
+  check_tensioning(in);
+  check_supports(in);
+  check_irregularities(in);
 }
 
-// ------------------------------------------------------------- geometry ----
-
-// What a key point of a span is (for messages and for building the mesh).
-enum class KeyKind { support, dropper, stitch_clamp };
-struct KeyPoint {
-  double s = 0;  // distance from the span's first support [m]
-  KeyKind kind = KeyKind::support;
-  int index = -1;  // dropper index for droppers
-};
-
-std::string describe(const KeyPoint& k) {
-  if (k.kind == KeyKind::dropper) return "the dropper at " + fmt(k.s) + " m";
-  if (k.kind == KeyKind::stitch_clamp) return "the stitch-wire clamp at " + fmt(k.s) + " m";
-  return "the support at " + fmt(k.s) + " m";
+// Supports, sections' and overlaps' zones, from the layout.
+void add_track_description(CatenaryMesh& mesh, const detail::LineLayout& line,
+                           const std::vector<std::unique_ptr<detail::SectionBuilder>>& sections) {
+  const int N = line.spans, m = line.overlap_spans;
+  for (int k = 0; k <= N; ++k) {
+    std::size_t owner = 0;
+    while (owner + 1 < sections.size() && k > line.sections[owner].own_last) ++owner;
+    mesh.support_x.push_back(k * line.L);
+    mesh.support_nodes.push_back(sections[owner]->contact_node_at(k));
+  }
+  const auto& q = line.overlap_first;
+  for (std::size_t i = 0; i < sections.size(); ++i) {
+    // The line's end spans (fixed wire ends, the pantograph's start) are left out.
+    const int from = i > 0 ? q[i - 1] + m : std::min(1, N - 1);
+    const int to = i + 1 < sections.size() ? q[i] : std::max(N - 1, from + 1);
+    mesh.zones.push_back({"section " + std::to_string(i + 1), false, from * line.L, to * line.L});
+    if (i + 1 < sections.size())
+      mesh.zones.push_back({"overlap " + std::to_string(i + 1) + "-" + std::to_string(i + 2), true,
+                            q[i] * line.L, (q[i] + m) * line.L});
+  }
 }
-
-// Key points of span j (0-based), sorted; coincident points merged (a
-// stitch clamp on a dropper point stays a dropper point). Throws if two key
-// points are closer than kMinKeyPointGap.
-std::vector<KeyPoint> span_key_points(const ParametricDesign& in, int j) {
-  const double L = in.span_length;
-  const int N = static_cast<int>(in.span_count);
-  const bool stitch = in.stitch_wire.has_value();
-  std::vector<KeyPoint> pts;
-  pts.push_back({0.0, KeyKind::support, -1});
-  for (std::size_t d = 0; d < in.droppers.positions.size(); ++d)
-    pts.push_back({in.droppers.positions[d], KeyKind::dropper, static_cast<int>(d)});
-  // Stitch wires sit at the intermediate supports only.
-  if (stitch && j >= 1) pts.push_back({0.5 * in.stitch_wire->length, KeyKind::stitch_clamp, -1});
-  if (stitch && j + 1 <= N - 1)
-    pts.push_back({L - 0.5 * in.stitch_wire->length, KeyKind::stitch_clamp, -1});
-  pts.push_back({L, KeyKind::support, -1});
-  std::stable_sort(pts.begin(), pts.end(),
-                   [](const KeyPoint& a, const KeyPoint& b) { return a.s < b.s; });
-  std::vector<KeyPoint> merged;
-  for (const auto& p : pts) {
-    if (!merged.empty() && std::abs(p.s - merged.back().s) <= kSamePoint) {
-      if (merged.back().kind == KeyKind::stitch_clamp) merged.back() = p;
-      continue;
-    }
-    if (!merged.empty() && p.s - merged.back().s < kMinKeyPointGap) {
-      const KeyPoint& a = merged.back();
-      const std::string reason = describe(p) + " lies only " + fmt(p.s - a.s) + " m from " +
-                                 describe(a) + " (minimum spacing " + fmt(kMinKeyPointGap) + " m)";
-      if (p.kind == KeyKind::stitch_clamp || a.kind == KeyKind::stitch_clamp)
-        throw InputError(in.file, "stitch_wire.length", reason);
-      const int d = p.kind == KeyKind::dropper ? p.index : a.index;
-      throw InputError(in.file, "droppers.positions[" + std::to_string(d) + "]", reason);
-    }
-    merged.push_back(p);
-  }
-  return merged;
-}
-
-// Design geometry of the parametric catenary: s is the distance from the
-// first support of span j.
-struct ParametricGeometry {
-  const ParametricDesign* in = nullptr;
-  double messenger_sag = 0;  // mid-span sag f = w L^2 / (8 T) [m]
-
-  double side(int support) const { return support % 2 == 0 ? 1.0 : -1.0; }
-  // Contact wire: stagger alternating +-a, linear in between; parabolic presag.
-  Eigen::Vector3d contact(int j, double s) const {
-    const double L = in->span_length;
-    return {j * L + s, side(j) * in->stagger * (1.0 - 2.0 * s / L),
-            in->contact_wire_height - 4.0 * in->presag * s * (L - s) / (L * L)};
-  }
-  Eigen::Vector3d contact_tangent(int j, double s) const {
-    const double L = in->span_length;
-    return unit(Eigen::Vector3d(1.0, -2.0 * side(j) * in->stagger / L,
-                                -4.0 * in->presag * (L - 2.0 * s) / (L * L)));
-  }
-  // Messenger: parabola of sag f between supports at system height.
-  Eigen::Vector3d messenger(int j, double s) const {
-    const double L = in->span_length;
-    return {
-        j * L + s, side(j) * in->messenger_stagger * (1.0 - 2.0 * s / L),
-        in->contact_wire_height + in->system_height - 4.0 * messenger_sag * s * (L - s) / (L * L)};
-  }
-  Eigen::Vector3d messenger_tangent(int j, double s) const {
-    const double L = in->span_length;
-    return unit(Eigen::Vector3d(1.0, -2.0 * side(j) * in->messenger_stagger / L,
-                                -4.0 * messenger_sag * (L - 2.0 * s) / (L * L)));
-  }
-};
-
-// ------------------------------------------------------------- builder ----
-
-class ParametricBuilder {
- public:
-  explicit ParametricBuilder(const ParametricDesign& in)
-      : in_(in), N_(static_cast<int>(in.span_count)), L_(in.span_length), geo_{&in, 0.0} {}
-
-  CatenaryMesh build() {
-    detail::set_common(mesh_, in_.file, in_.name, in_.gravity, in_.damping);
-    mesh_.form_finding_default = true;
-    make_stations();
-    find_messenger_sag();
-    place_nodes();
-    // One tension segment per span for both wires: the messenger is pinned at
-    // every support; the contact wire runs through them with a uniform
-    // tension, so imposing it span by span is the same condition, and keeps
-    // each form-finding row local (a single segment couples every
-    // contact-wire DOF: a dense row that made the sparse factorisation of
-    // long lines slow).
-    add_wire("contact", WireKind::contact, in_.contact, 0);
-    add_wire("messenger", WireKind::messenger, in_.messenger, S_);
-    mesh_.contact_wire = 0;
-    add_supports();
-    if (in_.stitch_wire) add_stitch_wires();
-    add_droppers();
-    return std::move(mesh_);
-  }
-
- private:
-  // Stations along the track shared by both wires: (span, s) of every node.
-  struct Station {
-    int span;
-    double s;
-    KeyKind kind;
-    int dropper;  // dropper index at dropper stations, -2 at plain nodes
-  };
-  static bool is_plain(const Station& st) { return st.dropper == -2; }
-  static bool is_support(const Station& st) { return !is_plain(st) && st.kind == KeyKind::support; }
-  static bool is_dropper(const Station& st) { return !is_plain(st) && st.kind == KeyKind::dropper; }
-
-  void make_stations() {
-    for (int j = 0; j < N_; ++j) {
-      auto keys = span_key_points(in_, j);
-      for (std::size_t k = 0; k + 1 < keys.size(); ++k) {
-        const double a = keys[k].s, b = keys[k + 1].s;
-        int n = std::max(1, static_cast<int>(std::ceil((b - a) / in_.element_length - 1e-9)));
-        stations_.push_back({j, a, keys[k].kind, keys[k].index});
-        for (int i = 1; i < n; ++i)
-          stations_.push_back({j, a + (b - a) * i / n, KeyKind::support, -2});
-      }
-    }
-    stations_.push_back({N_ - 1, L_, KeyKind::support, -1});
-    S_ = static_cast<int>(stations_.size());
-  }
-
-  // Dropper attachment: the messenger node, or a stitch-wire node when the
-  // dropper lies strictly inside a stitch wire's length (returns its support).
-  int stitch_support_of(int j, double s) const {
-    if (!in_.stitch_wire) return -1;
-    const double half = 0.5 * in_.stitch_wire->length;
-    if (j >= 1 && s < half - kSamePoint) return j;
-    if (j + 1 <= N_ - 1 && s > L_ - half + kSamePoint) return j + 1;
-    return -1;
-  }
-
-  // Upper end of a dropper for a messenger sag 'sag'.
-  Eigen::Vector3d upper_point(int j, double s, double sag) const {
-    ParametricGeometry gg{&in_, sag};
-    int k = stitch_support_of(j, s);
-    if (k < 0) return gg.messenger(j, s);
-    // Stitch wire: straight chord between its two messenger clamps.
-    const double half = 0.5 * in_.stitch_wire->length;
-    Eigen::Vector3d left = gg.messenger(k - 1, L_ - half), right = gg.messenger(k, half);
-    const double x = j * L_ + s;
-    const double t = (x - left.x()) / (right.x() - left.x());
-    return Eigen::Vector3d(left + t * (right - left));
-  }
-
-  // Messenger sag from the weight per metre it carries (fixed point: the
-  // dropper lengths depend on the sag; converges in a few steps).
-  void find_messenger_sag() {
-    const DropperDesign& dr = in_.droppers;
-    const int D = static_cast<int>(dr.positions.size());
-    const double g = -mesh_.gravity.z();
-    for (int it = 0; it < 20; ++it) {
-      double hung = D * (dr.clamp_mass_messenger + dr.clamp_mass_contact);
-      for (int d = 0; d < D; ++d) {
-        // Average over the spans (the stitch wire changes the end spans only).
-        double len = 0;
-        for (int j = 0; j < N_; ++j)
-          len += (upper_point(j, dr.positions[d], geo_.messenger_sag) -
-                  geo_.contact(j, dr.positions[d]))
-                     .norm();
-        hung += dr.mass_per_length * len / N_;
-      }
-      hung += in_.steady_arm_mass * (N_ + 1.0) / N_;
-      if (in_.stitch_wire)
-        hung += in_.stitch_wire->mass_per_length * in_.stitch_wire->length * (N_ - 1.0) / N_;
-      const double w =
-          g * (in_.messenger.mass_per_length + in_.contact.mass_per_length + hung / L_);
-      const double sag = w * L_ * L_ / (8.0 * in_.messenger.tension);
-      const bool done = std::abs(sag - geo_.messenger_sag) < 1e-13;
-      geo_.messenger_sag = sag;
-      if (done) break;
-    }
-  }
-
-  // Nodes: contact wire 0..S-1, messenger S..2S-1 (stitch-wire nodes later).
-  void place_nodes() {
-    mesh_.nodes.resize(2 * S_);
-    for (int i = 0; i < S_; ++i) {
-      const Station& st = stations_[i];
-      Node& c = mesh_.nodes[i];
-      Node& m = mesh_.nodes[S_ + i];
-      c.position = geo_.contact(st.span, st.s);
-      m.position = geo_.messenger(st.span, st.s);
-      c.slope = geo_.contact_tangent(st.span, st.s);
-      m.slope = geo_.messenger_tangent(st.span, st.s);
-      if (is_support(st) && i > 0 && i + 1 < S_) {
-        // Support between two spans: the tangent is discontinuous (stagger,
-        // messenger sag); use the mean of both sides as the design slope.
-        c.slope = unit(c.slope + geo_.contact_tangent(st.span - 1, L_));
-        m.slope = unit(m.slope + geo_.messenger_tangent(st.span - 1, L_));
-      }
-    }
-    // The station list stores a support at s = 0 of span j; map x to support.
-    for (int i = 0; i < S_; ++i)
-      if (is_support(stations_[i])) support_station_.push_back(i);
-    if (static_cast<int>(support_station_.size()) != N_ + 1)
-      throw InputError(in_.file, "", "internal error: support stations do not match spans");
-  }
-
-  // A wire over all stations from node first_node, one tension segment per span.
-  void add_wire(const std::string& name, WireKind kind, const CableDesign& p, int first_node) {
-    Wire w;
-    w.name = name;
-    w.kind = kind;
-    w.mass_per_length = p.mass_per_length;
-    w.EA = p.EA;
-    w.EI = p.EI;
-    w.tension = p.tension;
-    const int wire_index = static_cast<int>(mesh_.wires.size());
-    for (int i = 0; i < S_; ++i) w.nodes.push_back(first_node + i);
-    const int first_segment = static_cast<int>(mesh_.tension_segments.size());
-    for (int k = 0; k < N_; ++k) mesh_.tension_segments.push_back({wire_index, {}, p.tension});
-    for (int i = 0; i + 1 < S_; ++i) {
-      CableElement e;
-      e.nodes = {first_node + i, first_node + i + 1};
-      e.wire = wire_index;
-      e.ref_length = (mesh_.nodes[e.nodes[1]].position - mesh_.nodes[e.nodes[0]].position).norm();
-      e.unstressed_length = e.ref_length / (1.0 + p.tension / p.EA);  // first guess
-      e.tension_segment = first_segment + stations_[i].span;
-      const int index = static_cast<int>(mesh_.cables.size());
-      mesh_.tension_segments[e.tension_segment].elements.push_back(index);
-      w.elements.push_back(index);
-      mesh_.cables.push_back(e);
-    }
-    mesh_.wires.push_back(w);
-  }
-
-  // Supports: messenger pinned everywhere; contact wire anchored at the ends,
-  // held laterally by the steady arms elsewhere (vertical motion free).
-  void add_supports() {
-    for (int k = 0; k <= N_; ++k) {
-      const int i = support_station_[k];
-      mesh_.support_x.push_back(k * L_);
-      mesh_.support_nodes.push_back(i);
-      for (int dof = 0; dof < 3; ++dof) mesh_.nodes[S_ + i].fixed[dof] = true;
-      if (k == 0 || k == N_) {
-        for (int dof = 0; dof < 3; ++dof) mesh_.nodes[i].fixed[dof] = true;
-      } else {
-        mesh_.nodes[i].fixed[1] = true;  // steady arm holds y at the stagger
-      }
-      if (in_.steady_arm_mass > 0)
-        mesh_.point_masses.push_back({i, in_.steady_arm_mass, "steady_arm"});
-    }
-  }
-
-  // Stitch wires at the intermediate supports: a chain of bars from the
-  // messenger clamp before the support, through the attachment nodes of the
-  // droppers inside its length, to the messenger clamp after it.
-  void add_stitch_wires() {
-    const StitchWireDesign& sw = *in_.stitch_wire;
-    const double half = 0.5 * sw.length;
-    for (int k = 1; k <= N_ - 1; ++k) {
-      std::vector<int> chain;
-      for (int i = 0; i < S_; ++i) {
-        const Station& st = stations_[i];
-        const double x = st.span * L_ + st.s;
-        if (std::abs(x - (k * L_ - half)) <= kSamePoint ||
-            std::abs(x - (k * L_ + half)) <= kSamePoint) {
-          chain.push_back(S_ + i);  // messenger clamp
-        } else if (x > k * L_ - half && x < k * L_ + half && is_dropper(st)) {
-          Node n;
-          n.position = upper_point(st.span, st.s, geo_.messenger_sag);
-          stitch_node_of_station_[i] = static_cast<int>(mesh_.nodes.size());
-          chain.push_back(static_cast<int>(mesh_.nodes.size()));
-          mesh_.nodes.push_back(n);
-        }
-      }
-      for (std::size_t c = 0; c + 1 < chain.size(); ++c) {
-        BarElement b;
-        b.nodes = {chain[c], chain[c + 1]};
-        b.kind = BarKind::stitch;
-        const double l =
-            (mesh_.nodes[b.nodes[1]].position - mesh_.nodes[b.nodes[0]].position).norm();
-        b.unstressed_length = l / (1.0 + sw.tension / sw.EA);  // N = T in design
-        b.stiffness = sw.EA / b.unstressed_length;
-        b.mass = sw.mass_per_length * l;
-        b.slack = SlackCriterion::none;
-        mesh_.bars.push_back(b);
-      }
-    }
-  }
-
-  [[noreturn]] void fail_dropper_below_upper_wire(const Station& st, int i, bool on_stitch) const {
-    const std::string where = "dropper " + std::to_string(st.dropper) + " of span " +
-                              std::to_string(st.span) +
-                              " (x = " + fmt(mesh_.nodes[i].position.x()) + " m)";
-    if (on_stitch)
-      throw InputError(in_.file, "stitch_wire.length",
-                       "the stitch wire passes below the contact wire at " + where +
-                           "; increase system_height or shorten it");
-    throw InputError(in_.file, "system_height",
-                     "the messenger (sag " + fmt(geo_.messenger_sag) +
-                         " m) reaches the contact wire at " + where + "; increase system_height");
-  }
-
-  // Droppers, their clamps, and the form-finding height targets.
-  void add_droppers() {
-    const DropperDesign& dr = in_.droppers;
-    for (int i = 0; i < S_; ++i) {
-      const Station& st = stations_[i];
-      if (!is_dropper(st)) continue;
-      auto found = stitch_node_of_station_.find(i);
-      const bool on_stitch = found != stitch_node_of_station_.end();
-      const int upper = on_stitch ? found->second : S_ + i;
-      if (!(mesh_.nodes[upper].position.z() > mesh_.nodes[i].position.z()))
-        fail_dropper_below_upper_wire(st, i, on_stitch);
-      BarElement b;
-      b.nodes = {upper, i};
-      b.kind = BarKind::dropper;
-      b.stiffness = dr.stiffness;
-      const double l = (mesh_.nodes[upper].position - mesh_.nodes[i].position).norm();
-      b.mass = dr.mass_per_length * l;
-      b.unstressed_length = l;
-      b.slack = dr.slack;
-      b.form_find_length = true;
-      b.span = st.span;
-      b.index_in_span = st.dropper;
-      const int bar = static_cast<int>(mesh_.bars.size());
-      mesh_.bars.push_back(b);
-      mesh_.height_targets.push_back({i, mesh_.nodes[i].position.z(), bar});
-      if (dr.clamp_mass_messenger > 0)
-        mesh_.point_masses.push_back({upper, dr.clamp_mass_messenger, "dropper_clamp_messenger"});
-      if (dr.clamp_mass_contact > 0)
-        mesh_.point_masses.push_back({i, dr.clamp_mass_contact, "dropper_clamp_contact"});
-    }
-  }
-
-  const ParametricDesign& in_;
-  const int N_;     // spans
-  const double L_;  // span length [m]
-  ParametricGeometry geo_;
-  CatenaryMesh mesh_;
-  std::vector<Station> stations_;
-  int S_ = 0;  // stations = nodes per wire
-  std::vector<int> support_station_;
-  std::map<int, int> stitch_node_of_station_;  // contact station -> stitch node
-};
 
 }  // namespace
 
 CatenaryMesh build_parametric(const ParametricDesign& design) {
   check_parametric(design);
-  CatenaryMesh mesh = ParametricBuilder(design).build();
+  const detail::LineLayout line = detail::make_line_layout(design);
+  CatenaryMesh mesh;
+  detail::set_common(mesh, design.file, design.name, design.gravity, design.damping);
+  mesh.form_finding_default = true;
+  mesh.track = line.track;
+  const detail::IrregularProfile profile(design.irregularities, line.spans * line.L);
+  std::vector<std::unique_ptr<detail::SectionBuilder>> sections;
+  std::vector<std::vector<double>> held;
+  for (std::size_t i = 0; i < line.sections.size(); ++i) {
+    sections.push_back(
+        std::make_unique<detail::SectionBuilder>(design, line, static_cast<int>(i), profile, mesh));
+    sections.back()->build();
+    mesh.contact_wires.push_back(sections.back()->contact_wire());
+    held.push_back(sections.back()->held_stations());
+  }
+  mesh.contact_wire = mesh.contact_wires.front();
+  add_track_description(mesh, line, sections);
+  detail::add_contact_gap_offsets(mesh, profile, held);
+  detail::apply_wear(mesh, design.irregularities);
   detail::require_consistent(mesh, design.file);
   return mesh;
 }

@@ -6,6 +6,7 @@
 
 #include "pcsim/output/h5_file.hpp"
 #include "pcsim/output/mesh_xdmf.hpp"
+#include "pcsim/output/provenance.hpp"
 
 namespace pcsim::output {
 
@@ -14,7 +15,7 @@ using catenary::BarKind;
 namespace {
 
 nlohmann::json static_json(const catenary::CatenaryMesh& mesh, const catenary::StaticResult& r,
-                           const CatenaryRunInfo& info) {
+                           const CatenaryRunInfo& info, const nlohmann::json& provenance) {
   nlohmann::json j;
   j["scene"] = info.scene_name;
   j["design"] = mesh.source_file;
@@ -26,7 +27,16 @@ nlohmann::json static_json(const catenary::CatenaryMesh& mesh, const catenary::S
   j["max_height_error_m"] = r.max_height_error_m;
   j["max_tension_error_rel"] = r.max_tension_error_rel;
   j["segment_tensions_N"] = r.segment_tensions;
+  if (!r.registration_forces.empty()) j["steady_arm_pull_off_N"] = r.registration_forces;
+  for (const auto& d : mesh.tensioning_devices)
+    j["tensioning_devices"].push_back(
+        {{"wire", mesh.wires[d.wire].name},
+         {"device", d.kind == catenary::TensioningKind::weight ? "weight" : "spring"},
+         {"pull_N", d.pull},
+         {"mass_kg", d.mass},
+         {"stiffness_N_m", d.stiffness}});
   j["wall_time_s"] = r.wall_time_s;
+  j["provenance"] = provenance;
   return j;
 }
 
@@ -36,10 +46,15 @@ void write_json(const std::string& path, const nlohmann::json& j) {
 }
 
 void write_static_h5(const std::string& path, const catenary::CatenaryMesh& mesh,
-                     const catenary::StaticResult& r) {
+                     const catenary::StaticResult& r, const nlohmann::json& provenance) {
   H5File h5(path);
-  h5.write("/nodes/values", r.node_values, mesh.nodes.size(), 6);
-  h5.write("/newton/residual_norm", r.residual_history);
+  stamp_provenance(h5, provenance);
+  h5.write("/nodes/values", r.node_values, mesh.nodes.size(), 6,
+           {"m, 1",
+            "static configuration: position (x, y, z) [m] and slope (dx, dy, dz) [1]",
+            {"x", "y", "z", "dx", "dy", "dz"}});
+  h5.write("/newton/residual_norm", r.residual_history,
+           {"N", "residual 2-norm at each Newton iteration of the static solve"});
   std::vector<double> x, unstressed, force, length;
   std::vector<long> span, index;
   for (std::size_t b = 0; b < mesh.bars.size(); ++b) {
@@ -52,20 +67,33 @@ void write_static_h5(const std::string& path, const catenary::CatenaryMesh& mesh
     force.push_back(r.bar_forces[b]);
     length.push_back(r.bar_lengths[b]);
   }
-  h5.write("/droppers/x", x);
-  h5.write_int("/droppers/span", span);
-  h5.write_int("/droppers/index_in_span", index);
-  h5.write("/droppers/unstressed_length", unstressed);
-  h5.write("/droppers/length", length);
-  h5.write("/droppers/force", force);
-  h5.write("/wires/segment_tension", r.segment_tensions);
+  h5.write("/droppers/x", x, {"m", "x of the dropper's upper node"});
+  h5.write_int("/droppers/span", span, {"1", "span of the dropper (0-based)"});
+  h5.write_int("/droppers/index_in_span", index, {"1", "index of the dropper in its span"});
+  h5.write("/droppers/unstressed_length", unstressed, {"m", "unstressed length (form-finding)"});
+  h5.write("/droppers/length", length, {"m", "length in the static configuration"});
+  h5.write("/droppers/force", force, {"N", "static axial force, tension positive"});
+  h5.write("/wires/segment_tension", r.segment_tensions,
+           {"N", "tension of each tension segment of the wires"});
   std::vector<double> target_z, target_design;
   for (std::size_t k = 0; k < mesh.height_targets.size(); ++k) {
     target_design.push_back(mesh.height_targets[k].z);
     target_z.push_back(r.target_heights[k]);
   }
-  h5.write("/targets/design_z", target_design);
-  h5.write("/targets/static_z", target_z);
+  h5.write("/targets/design_z", target_design, {"m", "height targets of form-finding (design)"});
+  h5.write("/targets/static_z", target_z, {"m", "heights reached at the targets"});
+  if (!r.registration_forces.empty()) {
+    std::vector<long> support;
+    std::vector<double> station;
+    for (const auto& reg : mesh.registrations) {
+      support.push_back(reg.support);
+      station.push_back(mesh.support_x[reg.support]);
+    }
+    h5.write_int("/steady_arms/support", support, {"1", "support index of each steady arm"});
+    h5.write("/steady_arms/x", station, {"m", "station of each steady arm's support"});
+    h5.write("/steady_arms/pull_off_force", r.registration_forces,
+             {"N", "steady-arm pull-off force at the static configuration"});
+  }
   h5.attribute("/", "max_height_error_m", r.max_height_error_m);
   h5.attribute("/", "max_tension_error_rel", r.max_tension_error_rel);
 }
@@ -74,28 +102,44 @@ void write_static_h5(const std::string& path, const catenary::CatenaryMesh& mesh
 
 void write_static_results(const OutputDir& out, const catenary::CatenaryMesh& mesh,
                           const catenary::StaticResult& r, const CatenaryRunInfo& info) {
-  write_static_h5(out.file("static.h5"), mesh, r);
+  write_static_h5(out.file("static.h5"), mesh, r, out.provenance());
   write_mesh_h5_xdmf(mesh, catenary::positions_from_node_values(r.node_values),
-                     out.file("static_mesh.h5"), out.file("static.xdmf"));
-  write_json(out.file("summary.json"), static_json(mesh, r, info));
+                     out.file("static_mesh.h5"), out.file("static.xdmf"), {}, out.provenance());
+  write_json(out.file("summary.json"), static_json(mesh, r, info, out.provenance()));
+}
+
+void write_elasticity(const OutputDir& out, const catenary::ElasticityResult& r) {
+  std::ofstream f(out.file("elasticity.csv"));
+  f << "# static uplift of the lowest contact wire under an upward force of " << r.force
+    << " N\n# x_m,uplift_mm_per_100N,uplift_m,contact_wire\n";
+  f.precision(10);
+  for (std::size_t i = 0; i < r.x.size(); ++i)
+    f << r.x[i] << "," << 1e3 * r.uplift[i] * 100.0 / r.force << "," << r.uplift[i] << ","
+      << r.wire[i] << "\n";
 }
 
 void write_modes_results(const OutputDir& out, const catenary::CatenaryMesh& mesh,
                          const catenary::StaticResult& statics, const catenary::ModesResult& modes,
                          const CatenaryRunInfo& info) {
-  write_static_h5(out.file("static.h5"), mesh, statics);
+  write_static_h5(out.file("static.h5"), mesh, statics, out.provenance());
   const auto positions = catenary::positions_from_node_values(statics.node_values);
-  write_mesh_h5_xdmf(mesh, positions, out.file("static_mesh.h5"), out.file("static.xdmf"));
+  write_mesh_h5_xdmf(mesh, positions, out.file("static_mesh.h5"), out.file("static.xdmf"), {},
+                     out.provenance());
   {
     H5File h5(out.file("modes.h5"));
-    h5.write("/frequencies_hz", modes.frequencies_hz);
-    h5.write("/geometry", positions, mesh.nodes.size(), 3);
+    stamp_provenance(h5, out.provenance());
+    h5.write("/frequencies_hz", modes.frequencies_hz,
+             {"Hz", "natural frequencies of the catenary about the static configuration"});
+    h5.write("/geometry", positions, mesh.nodes.size(), 3,
+             {"m", "node positions of the static configuration"});
     for (std::size_t m = 0; m < modes.shapes.size(); ++m)
-      h5.write("/shapes/mode_" + std::to_string(m), modes.shapes[m], mesh.nodes.size(), 3);
+      h5.write("/shapes/mode_" + std::to_string(m), modes.shapes[m], mesh.nodes.size(), 3,
+               {"kg^-1/2", "mode shape " + std::to_string(m) +
+                               ": x, y, z of each node, mass-normalised (phi^T M phi = 1)"});
   }
   write_modes_xdmf(mesh, "modes.h5", "static_mesh.h5", modes.frequencies_hz,
                    out.file("modes.xdmf"));
-  nlohmann::json j = static_json(mesh, statics, info);
+  nlohmann::json j = static_json(mesh, statics, info, out.provenance());
   j["catenary_frequencies_hz"] = modes.frequencies_hz;
   j["modes_converged"] = modes.converged;
   j["modes_max_relative_residual"] = modes.max_relative_residual;

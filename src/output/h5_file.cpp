@@ -4,7 +4,12 @@
 
 namespace pcsim {
 
-H5File::H5File(const std::string& path) {
+H5File::H5File(const std::string& path, Mode mode) {
+  if (mode == Mode::append) {
+    file_ = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    if (file_ < 0) throw SolverError("cannot open HDF5 file " + path);
+    return;
+  }
   file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
   if (file_ < 0) throw SolverError("cannot create HDF5 file " + path);
 }
@@ -24,6 +29,12 @@ void H5File::ensure_parent_groups(const std::string& path) {
     }
     ++pos;
   }
+}
+
+// An attribute is written anew: an earlier one of the same name is removed.
+static void drop_attribute(hid_t file, const std::string& object_path, const std::string& name) {
+  if (H5Aexists_by_name(file, object_path.c_str(), name.c_str(), H5P_DEFAULT) > 0)
+    H5Adelete_by_name(file, object_path.c_str(), name.c_str(), H5P_DEFAULT);
 }
 
 static void write_any(hid_t file, const std::string& path, const void* data, hid_t type,
@@ -63,7 +74,32 @@ void H5File::write_strings(const std::string& path, const std::vector<std::strin
   H5Tclose(type);
 }
 
+void H5File::write(const std::string& path, const std::vector<double>& data, std::size_t rows,
+                   std::size_t cols, const DatasetInfo& info) {
+  write(path, data, rows, cols);
+  describe(path, info);
+}
+
+void H5File::write_int(const std::string& path, const std::vector<long>& data, std::size_t rows,
+                       std::size_t cols, const DatasetInfo& info) {
+  write_int(path, data, rows, cols);
+  describe(path, info);
+}
+
+void H5File::write_strings(const std::string& path, const std::vector<std::string>& data,
+                           const DatasetInfo& info) {
+  write_strings(path, data);
+  describe(path, info);
+}
+
+void H5File::describe(const std::string& path, const DatasetInfo& info) {
+  attribute(path, "unit", info.unit);
+  attribute(path, "description", info.description);
+  if (!info.labels.empty()) attribute(path, "labels", info.labels);
+}
+
 void H5File::attribute(const std::string& object_path, const std::string& name, double value) {
+  drop_attribute(file_, object_path, name);
   hid_t space = H5Screate(H5S_SCALAR);
   hid_t attr = H5Acreate_by_name(file_, object_path.c_str(), name.c_str(), H5T_NATIVE_DOUBLE, space,
                                  H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
@@ -73,13 +109,37 @@ void H5File::attribute(const std::string& object_path, const std::string& name, 
 }
 
 void H5File::attribute(const std::string& object_path, const std::string& name,
-                       const std::string& value) {
+                       const std::vector<std::string>& values) {
+  std::vector<const char*> ptrs;
+  for (const auto& v : values) ptrs.push_back(v.c_str());
   hid_t type = H5Tcopy(H5T_C_S1);
-  H5Tset_size(type, value.size() + 1);
+  H5Tset_size(type, H5T_VARIABLE);
+  H5Tset_cset(type, H5T_CSET_UTF8);
+  drop_attribute(file_, object_path, name);
+  hsize_t dims[1] = {values.size()};
+  hid_t space = H5Screate_simple(1, dims, nullptr);
+  hid_t attr = H5Acreate_by_name(file_, object_path.c_str(), name.c_str(), type, space, H5P_DEFAULT,
+                                 H5P_DEFAULT, H5P_DEFAULT);
+  if (attr < 0) throw SolverError("cannot create HDF5 attribute " + object_path + ":" + name);
+  H5Awrite(attr, type, ptrs.data());
+  H5Aclose(attr);
+  H5Sclose(space);
+  H5Tclose(type);
+}
+
+void H5File::attribute(const std::string& object_path, const std::string& name,
+                       const std::string& value) {
+  // Variable-length UTF-8, as h5py writes strings (read back as str, not bytes).
+  hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, H5T_VARIABLE);
+  H5Tset_cset(type, H5T_CSET_UTF8);
+  drop_attribute(file_, object_path, name);
   hid_t space = H5Screate(H5S_SCALAR);
   hid_t attr = H5Acreate_by_name(file_, object_path.c_str(), name.c_str(), type, space, H5P_DEFAULT,
                                  H5P_DEFAULT, H5P_DEFAULT);
-  H5Awrite(attr, type, value.c_str());
+  if (attr < 0) throw SolverError("cannot create HDF5 attribute " + object_path + ":" + name);
+  const char* text = value.c_str();
+  H5Awrite(attr, type, &text);
   H5Aclose(attr);
   H5Sclose(space);
   H5Tclose(type);

@@ -8,6 +8,7 @@
 
 #include "pcsim/core/error.hpp"
 #include "pcsim/output/h5_file.hpp"
+#include "pcsim/output/provenance.hpp"
 
 namespace pcsim::output {
 
@@ -148,13 +149,13 @@ void write_nodes_h5(H5File& h5, const CatenaryMesh& mesh,
       if (d < 3 && mesh.nodes[i].fixed[d]) fixed_mask[i] |= 1L << d;
     }
   for (const auto& pm : mesh.point_masses) point_mass[pm.node] += pm.mass;
-  h5.write("/nodes/position", node_positions, n, 3);
-  h5.write("/nodes/design_position", design, n, 3);
-  h5.write("/nodes/displacement", displacement, n, 3);
-  h5.write_int("/nodes/wire", node_wire);
-  h5.write_int("/nodes/fixed", fixed, n, 6);
-  h5.write_int("/nodes/fixed_mask", fixed_mask);
-  h5.write("/nodes/point_mass", point_mass);
+  h5.write("/nodes/position", node_positions, n, 3, {"m", "node positions (x, y, z)"});
+  h5.write("/nodes/design_position", design, n, 3, {"m", "node positions of the design"});
+  h5.write("/nodes/displacement", displacement, n, 3, {"m", "position minus design position"});
+  h5.write_int("/nodes/wire", node_wire, {"1", "wire of the node (index into /wires), -1: none"});
+  h5.write_int("/nodes/fixed", fixed, n, 6, {"1", "1 where a DOF is held (x, y, z, dx, dy, dz)"});
+  h5.write_int("/nodes/fixed_mask", fixed_mask, {"1", "positions held: x 1 + y 2 + z 4"});
+  h5.write("/nodes/point_mass", point_mass, {"kg", "sum of the point masses at the node"});
 }
 
 // /cables/*, /bars/*, /point_masses/*, /wires/*.
@@ -180,19 +181,23 @@ void write_elements_h5(H5File& h5, const CatenaryMesh& mesh) {
     bar_mass.push_back(b.mass);
     bar_l0.push_back(b.unstressed_length);
   }
-  h5.write_int("/cables/connectivity", cable_conn, mesh.cables.size(), 2);
-  h5.write_int("/cables/wire", cable_wire);
-  h5.write_int("/cables/wire_kind", cable_kind);
-  h5.write_int("/cables/tension_segment", cable_segment);
-  h5.write("/cables/ref_length", cable_ref);
-  h5.write("/cables/unstressed_length", cable_l0);
-  h5.write_int("/bars/connectivity", bar_conn, mesh.bars.size(), 2);
-  h5.write_int("/bars/kind", bar_kind);
-  h5.write_int("/bars/span", bar_span);
-  h5.write_int("/bars/index_in_span", bar_index);
-  h5.write("/bars/stiffness", bar_k);
-  h5.write("/bars/mass", bar_mass);
-  h5.write("/bars/unstressed_length", bar_l0);
+  h5.write_int("/cables/connectivity", cable_conn, mesh.cables.size(), 2,
+               {"1", "node indices of each cable element"});
+  h5.write_int("/cables/wire", cable_wire, {"1", "wire of the element (index into /wires)"});
+  h5.write_int("/cables/wire_kind", cable_kind,
+               {"1", "kind of its wire: messenger 0, contact 1, stitch 2, other 3"});
+  h5.write_int("/cables/tension_segment", cable_segment,
+               {"1", "tension segment of the element (form-finding)"});
+  h5.write("/cables/ref_length", cable_ref, {"m", "reference (design) length of the element"});
+  h5.write("/cables/unstressed_length", cable_l0, {"m", "unstressed length of the element"});
+  h5.write_int("/bars/connectivity", bar_conn, mesh.bars.size(), 2,
+               {"1", "node indices of each bar"});
+  h5.write_int("/bars/kind", bar_kind, {"1", "dropper 0, steady arm 1, stitch 2, other 3"});
+  h5.write_int("/bars/span", bar_span, {"1", "span of the bar (0-based), -1: none"});
+  h5.write_int("/bars/index_in_span", bar_index, {"1", "index of the bar in its span"});
+  h5.write("/bars/stiffness", bar_k, {"N/m", "axial stiffness"});
+  h5.write("/bars/mass", bar_mass, {"kg", "mass of the bar"});
+  h5.write("/bars/unstressed_length", bar_l0, {"m", "unstressed length"});
   std::vector<long> pm_node, wire_kind;
   std::vector<double> pm_mass;
   std::vector<std::string> pm_label, wire_name;
@@ -205,11 +210,11 @@ void write_elements_h5(H5File& h5, const CatenaryMesh& mesh) {
     wire_name.push_back(w.name);
     wire_kind.push_back(static_cast<long>(w.kind));
   }
-  h5.write_int("/point_masses/node", pm_node);
-  h5.write("/point_masses/mass", pm_mass);
-  h5.write_strings("/point_masses/label", pm_label);
-  h5.write_strings("/wires/name", wire_name);
-  h5.write_int("/wires/kind", wire_kind);
+  h5.write_int("/point_masses/node", pm_node, {"1", "node of the point mass"});
+  h5.write("/point_masses/mass", pm_mass, {"kg", "point mass"});
+  h5.write_strings("/point_masses/label", pm_label, {"none", "what the point mass is"});
+  h5.write_strings("/wires/name", wire_name, {"none", "wire names"});
+  h5.write_int("/wires/kind", wire_kind, {"1", "messenger 0, contact 1, stitch 2, other 3"});
 }
 
 // XDMF: one grid per kind of cell; empty grids are left out (ParaView
@@ -260,7 +265,8 @@ std::string mesh_xdmf(const CatenaryMesh& mesh, const std::string& h5_name,
 
 void write_mesh_h5_xdmf(const CatenaryMesh& mesh, const std::vector<double>& node_positions,
                         const std::string& h5_path, const std::string& xdmf_path,
-                        const std::vector<NodeField>& node_fields) {
+                        const std::vector<NodeField>& node_fields,
+                        const nlohmann::json& provenance) {
   check_mesh_output(mesh, node_positions, node_fields);
   {
     H5File h5(h5_path);
@@ -268,8 +274,9 @@ void write_mesh_h5_xdmf(const CatenaryMesh& mesh, const std::vector<double>& nod
     write_elements_h5(h5, mesh);
     for (const auto& f : node_fields)
       h5.write("/fields/" + f.name, f.values, mesh.nodes.size(),
-               static_cast<std::size_t>(f.components));
+               static_cast<std::size_t>(f.components), {f.unit, "node field " + f.name});
     h5.attribute("/", "name", mesh.name);
+    stamp_provenance(h5, provenance);
     h5.attribute("/", "source_file", mesh.source_file);
   }
   write_xdmf_file(xdmf_path, mesh_xdmf(mesh, base_name(h5_path), node_fields));

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "pcsim/output/h5_file.hpp"
+#include "pcsim/output/provenance.hpp"
 #include "pcsim/pantograph/dsa380.hpp"
 
 namespace pcsim::output {
@@ -64,17 +65,24 @@ void write_history(H5File& h5, const std::string& group, const TimeHistory& h,
     for (size_t i = 0; i < d; ++i) q[k * d + i] = h.q[k][i], qd[k * d + i] = h.qd[k][i];
     height[k] = h.q[k][m.contact_dof()] + m.contact_offset();
   }
-  h5.write(group + "/t", h.t);
-  h5.write(group + "/q", q, n, d);
-  h5.write(group + "/qd", qd, n, d);
-  h5.write(group + "/contact_height", height);
-  h5.write(group + "/contact_force", h.contact_force);
-  h5.write(group + "/energy/kinetic", h.kinetic);
-  h5.write(group + "/energy/potential", h.potential);
-  h5.write(group + "/energy/work_dissipative", h.work_dissipative);
-  h5.write(group + "/energy/work_external", h.work_external);
-  h5.write(group + "/energy/balance", h.energy_balance());
-  h5.write_strings(group + "/dof_names", m.dof_names());
+  const auto names = m.dof_names();
+  h5.write(group + "/t", h.t, {"s", "time"});
+  h5.write(group + "/q", q, n, d,
+           {"m, rad", "generalised coordinates (lengths in m, angles in rad; see labels)", names});
+  h5.write(group + "/qd", qd, n, d, {"m/s, rad/s", "their rates (see labels)", names});
+  h5.write(group + "/contact_height", height, {"m", "height of the contact point"});
+  h5.write(group + "/contact_force", h.contact_force,
+           {"N", "contact force (downward on the head)"});
+  h5.write(group + "/energy/kinetic", h.kinetic, {"J", "kinetic energy T"});
+  h5.write(group + "/energy/potential", h.potential,
+           {"J", "potential energy V (springs, gravity)"});
+  h5.write(group + "/energy/work_dissipative", h.work_dissipative,
+           {"J", "work of the dissipative forces since t = 0"});
+  h5.write(group + "/energy/work_external", h.work_external,
+           {"J", "work of the external forces since t = 0"});
+  h5.write(group + "/energy/balance", h.energy_balance(),
+           {"J", "energy balance (T + V) - (T + V)(0) - W_dissipative - W_external (thesis 2.34)"});
+  h5.write_strings(group + "/dof_names", names, {"none", "names of the generalised coordinates"});
 }
 
 json balance_json(const TimeHistory& h) {
@@ -94,6 +102,7 @@ json balance_json(const TimeHistory& h) {
 std::string write_time(OutputDir& out, const StudyScene& s, const TimeStudyResult& r, json& j) {
   const auto& study = std::get<TimeStudy>(s.study);
   H5File h5(out.file("time.h5"));
+  stamp_provenance(h5, out.provenance());
   std::string log;
   for (const auto& run : r.runs) {
     write_history(h5, "/" + run.scheme, run.history, *s.model);
@@ -174,14 +183,16 @@ void write_complex(H5File& h5, const std::string& group,
   std::vector<double> re, im, mag;
   for (const auto& v : h)
     re.push_back(v.real()), im.push_back(v.imag()), mag.push_back(std::abs(v));
-  h5.write(group + "/real", re);
-  h5.write(group + "/imag", im);
-  h5.write(group + "/abs", mag);
+  const std::string what = "receptance H_cc of the contact coordinate (" + group.substr(1) + ")";
+  h5.write(group + "/real", re, {"m/N", what + ", real part"});
+  h5.write(group + "/imag", im, {"m/N", what + ", imaginary part"});
+  h5.write(group + "/abs", mag, {"m/N", what + ", magnitude"});
 }
 
 std::string write_frf(OutputDir& out, const StudyScene& s, const FrfStudyResult& r, json& j) {
   H5File h5(out.file("frf.h5"));
-  h5.write("/frequency_hz", r.frequencies_hz);
+  stamp_provenance(h5, out.provenance());
+  h5.write("/frequency_hz", r.frequencies_hz, {"Hz", "frequencies of the FRF"});
   write_complex(h5, "/direct", r.direct);
   if (r.symmetric) write_complex(h5, "/modal", r.modal);
   j["frf"] = {{"dof", s.model->dof_names()[r.dof]}, {"points", r.frequencies_hz.size()}};
@@ -198,11 +209,14 @@ std::string write_frf(OutputDir& out, const StudyScene& s, const FrfStudyResult&
 
 std::string write_sweep(OutputDir& out, const SweepStudyResult& r, json& j) {
   H5File h5(out.file("sweep.h5"));
-  h5.write("/frequency_hz", r.frequencies_hz);
+  stamp_provenance(h5, out.provenance());
+  h5.write("/frequency_hz", r.frequencies_hz, {"Hz", "excitation frequencies"});
   j["amplitudes_N"] = r.amplitudes;
   std::string log;
   for (const auto& c : r.curves) {
-    h5.write(format("/%s/A_%g", c.group.c_str(), c.amplitude), c.response);
+    h5.write(format("/%s/A_%g", c.group.c_str(), c.amplitude), c.response,
+             {"m/N", format("steady-state peak-to-peak contact displacement / (2 x %g N), %s model",
+                            c.amplitude, c.group.c_str())});
     log += format("  %s amplitude %g N: %zu frequencies\n", c.group.c_str(), c.amplitude,
                   r.frequencies_hz.size());
   }
@@ -245,6 +259,7 @@ std::string write_pantograph_study(OutputDir& out, const std::string& scene_name
   if (const auto* r = std::get_if<SweepStudyResult>(&result.values)) log = write_sweep(out, *r, j);
   if (const auto* r = std::get_if<CalibrationResult>(&result.values))
     log = write_calibration(*r, j);
+  j["provenance"] = out.provenance();
   write_json(out.file("summary.json"), j);
   return log;
 }

@@ -43,6 +43,32 @@ std::vector<double> filter_uniformly_sampled(const std::vector<double>& time,
 
 namespace {
 
+// Runs f on results.h5 opened for reading.
+template <class F>
+void with_results(const OutputDir& out, F f) {
+  const std::string path = out.file("results.h5");
+  hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (file < 0) throw SolverError("cannot open " + path);
+  try {
+    f(file);
+  } catch (...) {
+    H5Fclose(file);
+    throw;
+  }
+  H5Fclose(file);
+}
+
+// Rows of a rows x cols dataset.
+std::vector<std::vector<double>> read_rows(hid_t file, const std::string& path) {
+  std::vector<hsize_t> dims;
+  const auto values = h5::read(file, path, &dims);
+  const std::size_t cols = dims.size() > 1 ? dims[1] : 1;
+  std::vector<std::vector<double>> rows(dims.empty() ? 0 : dims[0]);
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    rows[i].assign(values.begin() + i * cols, values.begin() + (i + 1) * cols);
+  return rows;
+}
+
 // Largest uplift of the contact wire at the supports of the analysis section.
 double max_uplift(hid_t file, const catenary::CatenaryMesh& mesh, const RunSettings& s) {
   std::vector<hsize_t> dims;
@@ -80,21 +106,15 @@ PantographStatistics pantograph_results(hid_t file, const RunSettings& s,
 void write_static_mesh(const OutputDir& out, const catenary::CatenaryMesh& mesh,
                        const std::vector<double>& static_values) {
   const auto static_positions = catenary::positions_from_node_values(static_values);
-  write_mesh_h5_xdmf(mesh, static_positions, out.file("static_mesh.h5"), out.file("static.xdmf"));
+  write_mesh_h5_xdmf(mesh, static_positions, out.file("static_mesh.h5"), out.file("static.xdmf"),
+                     {}, out.provenance());
 }
 
 void write_snapshots_view(const OutputDir& out, const catenary::CatenaryMesh& mesh) {
-  const std::string path = out.file("results.h5");
-  hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (file < 0) throw SolverError("cannot open " + path);
   std::vector<double> times;
-  try {
+  with_results(out, [&](hid_t file) {
     if (h5::exists(file, "/snapshots/time")) times = h5::read(file, "/snapshots/time");
-  } catch (...) {
-    H5Fclose(file);
-    throw;
-  }
-  H5Fclose(file);
+  });
   if (!times.empty())
     write_snapshots_xdmf(mesh, "static_mesh.h5", "results.h5", times, out.file("snapshots.xdmf"));
 }
@@ -118,6 +138,33 @@ RunStatistics finish_run_results(const OutputDir& out, const catenary::CatenaryM
   if (H5Fclose(file) < 0) throw SolverError("cannot close " + path);
   write_snapshots_view(out, mesh);
   return stats;
+}
+
+std::vector<ContactHistory> read_contact_histories(const OutputDir& out, const RunSettings& s) {
+  std::vector<ContactHistory> histories(s.pantograph_names.size());
+  with_results(out, [&](hid_t file) {
+    const auto time = h5::read(file, "/time");
+    for (std::size_t p = 0; p < histories.size(); ++p) {
+      const std::string g = "/pantographs/" + s.pantograph_names[p];
+      histories[p].name = s.pantograph_names[p];
+      histories[p].time = time;
+      histories[p].x = h5::read(file, g + "/position");
+      histories[p].force = h5::read(file, g + "/contact_force");
+      histories[p].wire_force = read_rows(file, g + "/wire_force");
+    }
+  });
+  return histories;
+}
+
+EnergyHistory read_energy_history(const OutputDir& out) {
+  EnergyHistory h;
+  with_results(out, [&](hid_t file) {
+    h.time = h5::read(file, "/time");
+    h.energy = h5::read(file, "/energy/energy");
+    h.power_external = h5::read(file, "/energy/power_external");
+    h.power_dissipative = h5::read(file, "/energy/power_dissipative");
+  });
+  return h;
 }
 
 void write_run_summary(const OutputDir& out, const RunSettings& s, const RunStatistics* stats,

@@ -1,10 +1,11 @@
 #include "pcsim/output/run_stream.hpp"
 
 #include <chrono>
-#include <functional>
 
 #include "h5_series.hpp"
 #include "pcsim/core/error.hpp"
+#include "pcsim/output/h5_file.hpp"
+#include "pcsim/output/provenance.hpp"
 
 namespace pcsim::output {
 
@@ -25,15 +26,20 @@ double wall_seconds() {
 struct RunStream::Column {
   std::string path, unit, description;
   std::vector<hsize_t> row_shape;
-  std::function<void(const contact::StepRecord&, std::vector<double>&)> take;  // appends a row
+  ColumnTake take;
   std::unique_ptr<h5::Series> series;
   std::vector<double> pending;
 };
 
-RunStream::RunStream(const std::string& path, const RunSettings& settings, RunLayout layout)
+RunStream::RunStream(const std::string& path, const RunSettings& settings, RunLayout layout,
+                     const nlohmann::json& provenance)
     : layout_(std::move(layout)) {
-  file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  if (file_ < 0) throw SolverError("cannot create HDF5 file " + path);
+  {
+    H5File h5(path);
+    stamp_provenance(h5, provenance);
+  }
+  file_ = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  if (file_ < 0) throw SolverError("cannot open HDF5 file " + path);
   open_series(true, settings);
   h5::write(file_, "/supports/x", layout_.support_x, {layout_.support_x.size()}, "m",
             "position of every support along the track");
@@ -43,8 +49,12 @@ RunStream::RunStream(const std::string& path, const RunSettings& settings, RunLa
 }
 
 RunStream::RunStream(const std::string& path, const RunSettings& settings, RunLayout layout,
-                     std::size_t records, std::size_t snapshots)
+                     std::size_t records, std::size_t snapshots, const nlohmann::json& provenance)
     : layout_(std::move(layout)) {
+  {
+    H5File h5(path, H5File::Mode::append);
+    stamp_provenance(h5, provenance);
+  }
   H5E_BEGIN_TRY {
     file_ = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
   }
@@ -70,54 +80,89 @@ RunStream::~RunStream() {
   }
 }
 
+// One per-step dataset: created (or opened, for a restart) and checked to
+// hold rows of the given shape.
+void RunStream::add_column(bool create, const std::string& path, std::vector<hsize_t> shape,
+                           const std::string& unit, const std::string& description,
+                           ColumnTake take) {
+  auto c = std::make_unique<Column>();
+  c->path = path;
+  c->series = create ? std::make_unique<h5::Series>(file_, path, shape, unit, description)
+                     : std::make_unique<h5::Series>(file_, path);
+  std::size_t row = 1;
+  for (hsize_t d : shape) row *= d;
+  if (c->series->row_size() != row)
+    throw SolverError("results.h5: " + path + " has " + std::to_string(c->series->row_size()) +
+                      " values per step, this run " + std::to_string(row));
+  c->take = std::move(take);
+  columns_.push_back(std::move(c));
+}
+
 // The per-step datasets in the order of a record's fields, and the
 // snapshots' (docs/results-format.md).
 void RunStream::open_series(bool create, const RunSettings& s) {
-  const std::size_t np = s.pantograph_names.size(), ns = layout_.support_x.size();
-  auto add = [&](std::string path, std::vector<hsize_t> shape, std::string unit,
-                 std::string description, decltype(Column::take) take) {
-    auto c = std::make_unique<Column>();
-    c->path = path;
-    c->series = create ? std::make_unique<h5::Series>(file_, path, shape, unit, description)
-                       : std::make_unique<h5::Series>(file_, path);
-    std::size_t row = 1;
-    for (hsize_t d : shape) row *= d;
-    if (c->series->row_size() != row)
-      throw SolverError("results.h5: " + path + " has " + std::to_string(c->series->row_size()) +
-                        " values per step, this run " + std::to_string(row));
-    c->take = std::move(take);
-    columns_.push_back(std::move(c));
-  };
-  add("/time", {}, "s", "time of every accepted step",
-      [](const auto& r, auto& out) { out.push_back(r.t); });
-  for (std::size_t p = 0; p < np; ++p) {
-    const std::string g = "/pantographs/" + s.pantograph_names[p];
-    add(g + "/position", {}, "m", "contact point along the track",
-        [p](const auto& r, auto& out) { out.push_back(r.contact_x[p]); });
-    add(g + "/contact_force", {}, "N", "penalty contact force",
-        [p](const auto& r, auto& out) { out.push_back(r.contact_force[p]); });
-    add(g + "/wire_height", {}, "m", "contact-wire height at the contact point",
-        [p](const auto& r, auto& out) { out.push_back(r.wire_z[p]); });
-    add(g + "/q", {layout_.q_sizes[p]}, "m or rad",
-        "generalised coordinates of the pantograph model (attribute labels)",
-        [p](const auto& r, auto& out) { out.insert(out.end(), r.q[p].begin(), r.q[p].end()); });
-    if (create && p < layout_.q_labels.size()) {
-      std::string labels;
-      for (const auto& name : layout_.q_labels[p]) labels += (labels.empty() ? "" : ",") + name;
-      h5::set_attribute(file_, g + "/q", "labels", labels);
-    }
-  }
-  add("/supports/uplift", {ns}, "m", "contact-wire height at every support minus the static one",
-      [this](const auto& r, auto& out) {
-        for (std::size_t k = 0; k < r.support_z.size(); ++k)
-          out.push_back(r.support_z[k] - layout_.support_static_z[k]);
-      });
+  const std::size_t ns = layout_.support_x.size();
+  add_column(create, "/time", {}, "s", "time of every accepted step",
+             [](const auto& r, const auto&, auto& out) { out.push_back(r.t); });
+  for (std::size_t p = 0; p < s.pantograph_names.size(); ++p)
+    open_pantograph_series(create, s.pantograph_names[p], p);
+  add_column(create, "/supports/uplift", {ns}, "m",
+             "contact-wire height at every support minus the static one",
+             [this](const auto& r, const auto&, auto& out) {
+               for (std::size_t k = 0; k < r.support_z.size(); ++k)
+                 out.push_back(r.support_z[k] - layout_.support_static_z[k]);
+             });
   if (layout_.droppers > 0)
-    add("/droppers/force", {layout_.droppers}, "N", "axial force of every dropper (mesh order)",
-        [](const auto& r, auto& out) {
-          out.insert(out.end(), r.dropper_force.begin(), r.dropper_force.end());
-        });
-  if (!layout_.snapshots) return;
+    add_column(create, "/droppers/force", {layout_.droppers}, "N",
+               "axial force of every dropper (mesh order)",
+               [](const auto& r, const auto&, auto& out) {
+                 out.insert(out.end(), r.dropper_force.begin(), r.dropper_force.end());
+               });
+  if (layout_.energy) {
+    const std::tuple<const char*, const char*, const char*, double EnergySample::*> sets[] = {
+        {"/energy/energy", "J", "energy of the system E(t)", &EnergySample::energy},
+        {"/energy/power_external", "W", "power of the prescribed forces",
+         &EnergySample::power_external},
+        {"/energy/power_dissipative", "W", "power of the dissipative forces, <= 0",
+         &EnergySample::power_dissipative}};
+    for (const auto& [path, unit, description, member] : sets)
+      add_column(
+          create, path, {}, unit, description,
+          [member = member](const auto&, const auto& e, auto& out) { out.push_back(e.*member); });
+  }
+  if (layout_.snapshots) open_snapshot_series(create, s.pantograph_names.size());
+}
+
+void RunStream::open_pantograph_series(bool create, const std::string& name, std::size_t p) {
+  const std::string g = "/pantographs/" + name;
+  add_column(create, g + "/position", {}, "m", "contact point along the track",
+             [p](const auto& r, const auto&, auto& out) { out.push_back(r.contact_x[p]); });
+  add_column(create, g + "/contact_force", {}, "N", "penalty contact force",
+             [p](const auto& r, const auto&, auto& out) { out.push_back(r.contact_force[p]); });
+  add_column(create, g + "/wire_height", {}, "m", "contact-wire height at the contact point",
+             [p](const auto& r, const auto&, auto& out) { out.push_back(r.wire_z[p]); });
+  add_column(create, g + "/q", {layout_.q_sizes[p]}, "m or rad",
+             "generalised coordinates of the pantograph model (attribute labels)",
+             [p](const auto& r, const auto&, auto& out) {
+               out.insert(out.end(), r.q[p].begin(), r.q[p].end());
+             });
+  if (create && p < layout_.q_labels.size()) {
+    std::string labels;
+    for (const auto& label : layout_.q_labels[p]) labels += (labels.empty() ? "" : ",") + label;
+    h5::set_attribute(file_, g + "/q", "labels", labels);
+  }
+  const std::size_t nw = layout_.contact_wires;
+  if (nw > 0)
+    add_column(create, g + "/wire_force", {nw}, "N", "contact force on each contact wire",
+               [p, nw](const auto& r, const auto&, auto& out) {
+                 for (std::size_t w = 0; w < nw; ++w)
+                   out.push_back(p < r.wire_force.size() && w < r.wire_force[p].size()
+                                     ? r.wire_force[p][w]
+                                     : 0.0);
+               });
+}
+
+void RunStream::open_snapshot_series(bool create, std::size_t np) {
   const hsize_t n = layout_.static_positions.size() / 3;
   const std::tuple<const char*, std::vector<hsize_t>, const char*, const char*> snapshot_sets[] = {
       {"/snapshots/time", {}, "s", "time of every snapshot"},
@@ -163,8 +208,8 @@ void RunStream::stamp(const RunSettings& s) {
   h5::set_attribute(file_, "/", "speed_m_s", s.speed);
 }
 
-void RunStream::append(const contact::StepRecord& record) {
-  for (auto& c : columns_) c->take(record, c->pending);
+void RunStream::append(const contact::StepRecord& record, const EnergySample& energy) {
+  for (auto& c : columns_) c->take(record, energy, c->pending);
   ++buffered_;
 }
 

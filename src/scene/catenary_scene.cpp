@@ -1,27 +1,83 @@
 #include "pcsim/scene/catenary_scene.hpp"
 
+#include <cmath>
 #include <fstream>
+#include <sstream>
 
 #include "pcsim/scene/design_reader.hpp"
 
 namespace pcsim::catenary {
 
 void check_scene_sections(const InputNode& scene) {
-  scene.allow_only({"name", "description", "catenary", "modes", "pantographs", "pantograph",
-                    "simulation", "effects", "contact", "analysis", "output", "study"});
+  scene.allow_only({"name", "description", "catenary", "modes", "pantographs", "simulation",
+                    "effects", "contact", "analysis", "output", "elasticity"});
 }
+
+namespace {
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+ElasticityRequest read_elasticity(const InputNode& e, const CatenaryMesh& mesh) {
+  e.allow_only({"force", "from_x", "to_x", "step"});
+  if (mesh.contact_wire_list().empty() || mesh.support_x.size() < 2)
+    e.fail("needs a parametric design (contact wire and supports)");
+  ElasticityRequest r;
+  r.force = e.get_positive("force", 100.0);
+  r.from_x = e.get_double("from_x");
+  r.to_x = e.get_double("to_x");
+  r.step = e.get_positive("step", 1.0);
+  const double lo = mesh.support_x.front(), hi = mesh.support_x.back();
+  if (!(r.from_x > lo && r.from_x < hi))
+    e.fail_key("from_x", "must lie inside the line (" + fmt(lo) + ", " + fmt(hi) + ") m");
+  if (!(r.to_x >= r.from_x && r.to_x < hi))
+    e.fail_key("to_x", "must lie between from_x and the line's end (" + fmt(hi) + " m)");
+  if ((r.to_x - r.from_x) / r.step > 10000)
+    e.fail_key("step", "gives more than 10000 points: one static solution each");
+  return r;
+}
+
+}  // namespace
 
 CatenaryScene load_catenary_scene(const InputNode& scene) {
   check_scene_sections(scene);
   const InputNode section = scene["catenary"];
   section.allow_only({"design", "form_finding"});
   CatenaryScene out;
-  out.design_path = section.resolve_path(section.get_string("design"));
+  out.design_path = section.path_value("design");
   if (!std::ifstream(out.design_path))
     section.fail_key("design", "cannot open catenary design file '" + out.design_path + "'");
-  out.mesh = load_catenary_design(out.design_path);
+  const InputNode design = section.load_referenced("design");
+  try {
+    out.mesh = build_catenary_design(design);
+  } catch (const InputError& e) {
+    design.rethrow_with_origin(e);
+  }
+  out.mesh.source_file = out.design_path;
   out.form_finding = section.get_bool("form_finding", out.mesh.form_finding_default);
+  if (scene.has("elasticity")) out.elasticity = read_elasticity(scene["elasticity"], out.mesh);
   return out;
+}
+
+ModesSection load_modes_section(const InputNode& scene) {
+  ModesSection r;
+  if (!scene.has("modes")) return r;
+  const InputNode m = scene["modes"];
+  m.allow_only({"count", "max_frequency_hz"});
+  r.count = static_cast<int>(m.get_int("count", 20));
+  if (r.count < 1) m.fail_key("count", "must be at least 1");
+  r.max_frequency_hz = m.get_positive("max_frequency_hz", 0.0);
+  return r;
+}
+
+std::vector<double> ElasticityRequest::stations() const {
+  std::vector<double> x;
+  const long n = static_cast<long>(std::floor((to_x - from_x) / step + 1e-9));
+  for (long i = 0; i <= n; ++i) x.push_back(from_x + i * step);
+  return x;
 }
 
 }  // namespace pcsim::catenary

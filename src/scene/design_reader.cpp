@@ -4,6 +4,7 @@
 #include "pcsim/scene/design_reader.hpp"
 
 #include "design_reader_internal.hpp"
+#include "pcsim/scene/composition.hpp"
 
 namespace pcsim::catenary {
 
@@ -58,12 +59,18 @@ CableDesign read_cable(const InputNode& n) {
 }
 
 DropperDesign read_droppers(const InputNode& drop) {
-  drop.allow_only({"positions", "stiffness", "mass_per_length", "slack", "clamp_mass_messenger",
-                   "clamp_mass_contact"});
+  drop.allow_only({"positions", "sags", "spans", "stiffness", "mass_per_length", "slack",
+                   "clamp_mass_messenger", "clamp_mass_contact"});
   DropperDesign d;
   InputNode pos = drop["positions"];
   if (!pos.is_sequence()) pos.fail("must be a list of distances from the span's first support [m]");
   for (std::size_t i = 0; i < pos.size(); ++i) d.positions.push_back(pos.at(i).as_double());
+  if (drop.has("sags")) {
+    InputNode sags = drop["sags"];
+    if (!sags.is_sequence()) sags.fail("must be a list of contact-wire sags at the droppers [m]");
+    for (std::size_t i = 0; i < sags.size(); ++i) d.sags.push_back(sags.at(i).as_double());
+  }
+  if (drop.has("spans")) d.spans = reader::read_span_droppers(drop["spans"]);
   d.stiffness = drop.get_double("stiffness");
   d.mass_per_length = drop.get_double("mass_per_length", 0.0);
   d.slack = reader::read_slack(drop, "length");
@@ -85,9 +92,27 @@ StitchWireDesign read_stitch_wire(const InputNode& st) {
 }  // namespace
 
 ParametricDesign read_parametric_design(const InputNode& root) {
-  root.allow_only({"type", "name", "spans", "system_height", "contact_wire_height", "presag",
-                   "stagger", "messenger_stagger", "element_length", "wires", "droppers",
-                   "steady_arms", "stitch_wire", "damping", "gravity"});
+  root.allow_only({"type",
+                   "name",
+                   "spans",
+                   "system_height",
+                   "contact_wire_height",
+                   "presag",
+                   "stagger",
+                   "messenger_stagger",
+                   "element_length",
+                   "wires",
+                   "droppers",
+                   "steady_arms",
+                   "messenger_supports",
+                   "support_overrides",
+                   "stitch_wire",
+                   "sections",
+                   "overlap",
+                   "tensioning",
+                   "irregularities",
+                   "damping",
+                   "gravity"});
   ParametricDesign d;
   d.file = root.file();
   d.name = root.get_string("name", reader::file_stem(root.file()));
@@ -97,7 +122,7 @@ ParametricDesign read_parametric_design(const InputNode& root) {
   d.span_length = spans.get_double("length");
   d.system_height = root.get_double("system_height");
   d.contact_wire_height = root.get_double("contact_wire_height");
-  d.presag = root.get_double("presag", 0.0);
+  reader::read_presag(root, d);
   d.stagger = root.get_double("stagger", 0.0);
   d.messenger_stagger = root.get_double("messenger_stagger", 0.0);
   d.element_length = root.get_double("element_length", 0.5);
@@ -106,13 +131,10 @@ ParametricDesign read_parametric_design(const InputNode& root) {
   d.contact = read_cable(wires["contact"]);
   d.messenger = read_cable(wires["messenger"]);
   d.droppers = read_droppers(root["droppers"]);
-  if (root.has("steady_arms")) {
-    InputNode arms = root["steady_arms"];
-    arms.allow_only({"mass", "model"});
-    d.steady_arm_mass = arms.get_double("mass", 0.0);
-    arms.get_choice("model", {"constraint"}, "constraint");  // the only model
-  }
+  reader::read_supports(root, d);
   if (root.has("stitch_wire")) d.stitch_wire = read_stitch_wire(root["stitch_wire"]);
+  reader::read_line(root, d);
+  reader::read_irregularities(root, d);
   d.gravity = reader::read_gravity(root);
   d.damping = reader::read_damping(root);
   return d;
@@ -127,7 +149,7 @@ CatenaryMesh build_catenary_design(const InputNode& root) {
 }
 
 CatenaryMesh load_catenary_design(const std::string& path) {
-  CatenaryMesh mesh = build_catenary_design(InputNode::load_file(path));
+  CatenaryMesh mesh = build_catenary_design(load_composed(path));
   mesh.source_file = path;
   return mesh;
 }

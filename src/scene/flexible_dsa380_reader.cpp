@@ -1,8 +1,9 @@
 #include "pcsim/scene/flexible_dsa380_reader.hpp"
 
-#include "pcsim/scene/pantograph_reader.hpp"
-
 #include <cmath>
+
+#include "pcsim/scene/composition.hpp"
+#include "pcsim/scene/pantograph_reader.hpp"
 
 namespace pcsim::scene {
 
@@ -12,8 +13,7 @@ pantograph::FlexibleDsa380Parameters read_flexible_dsa380(const InputNode& model
   if (model.get_string("kind") != "dsa380_flexible")
     model.fail_key("kind", "must be 'dsa380_flexible' for this reader");
   pantograph::FlexibleDsa380Parameters p;
-  const std::string rigid_path = model.resolve_path(model.get_string("rigid_model"));
-  p.rigid = load_dsa380_parameters(InputNode::load_file(rigid_path));
+  p.rigid = load_dsa380_parameters(model.load_referenced("rigid_model"));
   if (model.has("material")) {
     const auto m = model["material"];
     m.allow_only({"density", "youngs_modulus"});
@@ -56,7 +56,7 @@ pantograph::FlexibleDsa380Parameters read_flexible_dsa380(const InputNode& model
 }
 
 pantograph::FlexibleDsa380Parameters read_flexible_dsa380_file(const std::string& path) {
-  return read_flexible_dsa380(InputNode::load_file(path));
+  return read_flexible_dsa380(load_composed(path));
 }
 
 }  // namespace pcsim::scene

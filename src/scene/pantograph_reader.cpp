@@ -1,6 +1,7 @@
 // The registry of pantograph model kinds and the lumped-mass reader.
 #include "pcsim/scene/pantograph_reader.hpp"
 
+#include "pcsim/scene/composition.hpp"
 #include "pcsim/scene/flexible_dsa380_reader.hpp"
 
 namespace pcsim::scene {
@@ -40,9 +41,7 @@ std::unique_ptr<pantograph::PantographModel> read_dsa380_flexible(const InputNod
 
 std::map<std::string, PantographKindReader>& registry() {
   static std::map<std::string, PantographKindReader> kinds = {
-      {"lumped", read_lumped},
-      {"dsa380", read_dsa380},
-      {"dsa380_flexible", read_dsa380_flexible}};
+      {"lumped", read_lumped}, {"dsa380", read_dsa380}, {"dsa380_flexible", read_dsa380_flexible}};
   return kinds;
 }
 
@@ -59,7 +58,12 @@ void register_pantograph_kind(const std::string& kind, PantographKindReader read
 std::unique_ptr<pantograph::PantographModel> load_pantograph_model(const std::string& model_path,
                                                                    const InputNode* effects,
                                                                    double speed_m_s) {
-  const auto model = InputNode::load_file(model_path);
+  return load_pantograph_model(load_composed(model_path), effects, speed_m_s);
+}
+
+std::unique_ptr<pantograph::PantographModel> load_pantograph_model(const InputNode& model,
+                                                                   const InputNode* effects,
+                                                                   double speed_m_s) {
   const std::string kind = model.get_string("kind");
   const auto& kinds = pantograph_kinds();
   const auto reader = kinds.find(kind);
@@ -68,18 +72,22 @@ std::unique_ptr<pantograph::PantographModel> load_pantograph_model(const std::st
     for (const auto& k : kinds) list += (list.empty() ? "" : ", ") + k.first;
     model.fail_key("kind", "must be one of " + list + " (got '" + kind + "')");
   }
-  return reader->second(model, effects, speed_m_s);
+  try {
+    return reader->second(model, effects, speed_m_s);
+  } catch (const InputError& e) {
+    model.rethrow_with_origin(e);
+  }
 }
 
 std::unique_ptr<pantograph::PantographModel> load_pantograph(const InputNode& entry,
                                                              double speed_m_s) {
   entry.allow_only({"model", "effects"});
-  const std::string path = entry.resolve_path(entry.get_string("model"));
+  const auto model = entry.load_referenced("model");
   if (entry.has("effects")) {
     const auto effects = entry["effects"];
-    return load_pantograph_model(path, &effects, speed_m_s);
+    return load_pantograph_model(model, &effects, speed_m_s);
   }
-  return load_pantograph_model(path, nullptr, speed_m_s);
+  return load_pantograph_model(model, nullptr, speed_m_s);
 }
 
 pantograph::LumpedParameters load_lumped_parameters(const InputNode& model) {

@@ -15,7 +15,7 @@ using namespace pcsim::pantograph;
 
 // Force from a file of "t, F" rows (commas or blanks; '#' comments).
 ForceHistory load_force_file(const InputNode& f) {
-  const std::string path = f.resolve_path(f.get_string("file"));
+  const std::string path = f.path_value("file");
   std::ifstream in(path);
   if (!in) f.fail_key("file", "cannot open " + path);
   std::vector<double> ts, fs;
@@ -138,7 +138,7 @@ ForceHistory load_force_history(const InputNode& f) {
 }
 
 StudyScene load_pantograph_study_scene(const InputNode& scene) {
-  scene.allow_only({"name", "pantograph", "speed_kmh", "equilibrium", "study"});
+  scene.allow_only({"name", "description", "pantograph", "speed_kmh", "equilibrium", "study"});
   const auto st = scene["study"];
   StudyScene s;
   s.study_type = st.get_choice("type", {"time", "modes", "frf", "sweep", "calibrate"}, "");

@@ -20,7 +20,7 @@ namespace {
 void read_simulation(const InputNode& scene, RunScene& run) {
   const auto& mesh = run.catenary.mesh;
   const InputNode sim = scene["simulation"];
-  sim.allow_only({"speed_kmh", "end_x", "dt"});
+  sim.allow_only({"speed_kmh", "end_x", "dt", "hht_alpha"});
   run.speed = sim.get_positive("speed_kmh") / 3.6;
   const double c = catenary::wave_speed(mesh.wires[mesh.contact_wire]);
   if (run.speed >= c)
@@ -29,6 +29,10 @@ void read_simulation(const InputNode& scene, RunScene& run) {
                      " km/h is not below the contact wire's wave speed sqrt(T/rho) = " +
                      fmt(c * 3.6) + " km/h");
   run.dt = sim.get_positive("dt", 1e-3);
+  run.hht_alpha = sim.get_nonnegative("hht_alpha", 0.1);
+  if (run.hht_alpha > 1.0 / 3.0)
+    sim.fail_key("hht_alpha",
+                 "must lie in [0, 1/3] (HHT-alpha stability), got " + fmt(run.hht_alpha));
   const double x_first = mesh.support_x.front(), x_last = mesh.support_x.back();
   run.end_x = sim.get_double("end_x", x_last - 5.0);
   if (run.end_x <= x_first || run.end_x > x_last)
@@ -43,20 +47,31 @@ void read_pantograph(const InputNode& p, std::size_t i, RunScene& run) {
   contact::PantographRun pr;
   pr.name = p.get_string("name", "pantograph" + std::to_string(i + 1));
   const InputNode effects = p.has("effects") ? p["effects"] : InputNode(YAML::Node(), p.file(), "");
-  const std::string model_path = p.resolve_path(p.get_string("model"));
+  const std::string model_path = p.path_value("model");
   if (!std::ifstream(model_path))
     p.fail_key("model", "cannot open pantograph model file '" + model_path + "'");
-  auto model = load_pantograph_model(model_path, p.has("effects") ? &effects : nullptr, run.speed);
+  auto model = load_pantograph_model(p.load_referenced("model"),
+                                     p.has("effects") ? &effects : nullptr, run.speed);
   pr.start_x = p.get_double("start_x", x_first + 5.0);
   if (pr.start_x < x_first || pr.start_x >= run.end_x)
     p.fail_key("start_x", "must lie on the line before simulation.end_x (" + fmt(run.end_x) +
                               " m), got " + fmt(pr.start_x));
   pr.static_force = p.get_positive("static_force", 120.0);
   pr.speed = run.speed;
-  const std::string start = p.get_choice("start", {"static", "ramp"}, i == 0 ? "static" : "ramp");
-  if (start == "static" && i > 0)
-    p.fail_key("start", "only the first pantograph can start in static equilibrium");
-  pr.static_start = start == "static";
+  if (p.has("start") && p["start"].is_map()) {
+    // start: {gap: g}: at rest g below the wire, full uplift, no contact force.
+    const InputNode start = p["start"];
+    start.allow_only({"gap"});
+    pr.start_gap = start.get_positive("gap");
+    if (pr.start_gap > 0.5)
+      start.fail_key("gap", "must be at most 0.5 m (a pantograph that starts " + fmt(pr.start_gap) +
+                                " m below the wire)");
+  } else {
+    const std::string start = p.get_choice("start", {"static", "ramp"}, i == 0 ? "static" : "ramp");
+    if (start == "static" && i > 0)
+      p.fail_key("start", "only the first pantograph can start in static equilibrium");
+    pr.static_start = start == "static";
+  }
   pr.ramp_distance = p.get_positive("ramp_distance", 20.0);
   // The model states its default: a height above its base, or 0 (absolute heights).
   pr.working_height = p.get_positive("working_height", model->default_working_height());
@@ -109,9 +124,10 @@ void read_effects_and_output(const InputNode& scene, RunScene& run) {
   }
   if (scene.has("output")) {
     const InputNode o = scene["output"];
-    o.allow_only({"dropper_forces", "snapshot_every", "checkpoint_every"});
+    o.allow_only({"dropper_forces", "snapshot_every", "energy", "checkpoint_every"});
     run.dropper_forces = o.get_bool("dropper_forces", true);
     run.snapshot_every = o.get_int("snapshot_every", 0);
+    run.energy = o.get_bool("energy", false);
     if (run.snapshot_every < 0)
       o.fail_key("snapshot_every", "must be 0 (none) or a number of steps");
     run.checkpoint_every = o.get_int("checkpoint_every", 0);

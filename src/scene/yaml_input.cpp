@@ -2,7 +2,10 @@
 
 #include <cmath>
 #include <fstream>
+#include <regex>
 #include <sstream>
+
+#include "pcsim/scene/composition.hpp"
 
 namespace pcsim {
 
@@ -14,6 +17,27 @@ std::string short_repr(const YAML::Node& n) {
   return "nothing";
 }
 }  // namespace
+
+const InputOrigin& InputSources::origin_of(const std::string& key_path) const {
+  std::string p = key_path;
+  for (;;) {
+    const auto it = origins.find(p);
+    if (it != origins.end()) return it->second;
+    if (p.empty()) break;
+    const auto cut = p.find_last_of(".[");
+    p = cut == std::string::npos ? std::string() : p.substr(0, cut);
+  }
+  static const InputOrigin unknown{"", "input"};
+  return unknown;
+}
+
+InputNode::InputNode(YAML::Node node, std::string file, std::string path)
+    : node_(std::move(node)), path_(std::move(path)) {
+  auto sources = std::make_shared<InputSources>();
+  sources->root_file = file;
+  sources->origins[""] = {file, file};
+  sources_ = std::move(sources);
+}
 
 InputNode InputNode::load_file(const std::string& path) {
   std::ifstream probe(path);
@@ -36,13 +60,26 @@ InputNode InputNode::load_string(const std::string& text, const std::string& fil
 }
 
 std::string InputNode::directory() const {
-  auto slash = file_.find_last_of('/');
-  return slash == std::string::npos ? std::string("./") : file_.substr(0, slash + 1);
+  const std::string& file = origin().file;
+  auto slash = file.find_last_of('/');
+  return slash == std::string::npos ? std::string("./") : file.substr(0, slash + 1);
 }
 
 std::string InputNode::resolve_path(const std::string& relative) const {
   if (!relative.empty() && relative[0] == '/') return relative;
   return directory() + relative;
+}
+
+std::string InputNode::path_value(const std::string& key) const {
+  return (*this)[key].resolve_path(get_string(key));
+}
+
+InputNode InputNode::load_referenced(const std::string& key) const {
+  const std::string file = path_value(key);
+  if (!std::ifstream(file)) fail_key(key, "cannot open file '" + file + "'");
+  const auto it = sources_->deferred.find(child_path(key));
+  return load_composed(file,
+                       it == sources_->deferred.end() ? std::vector<InputOverride>{} : it->second);
 }
 
 std::string InputNode::child_path(const std::string& key) const {
@@ -55,14 +92,14 @@ bool InputNode::has(const std::string& key) const {
 
 InputNode InputNode::operator[](const std::string& key) const {
   if (!node_.IsMap()) fail("must be a map with key '" + key + "'");
-  if (!has(key)) throw InputError(file_, child_path(key), "required key is missing");
-  return InputNode(node_[key], file_, child_path(key));
+  if (!has(key)) fail_key(key, "required key is missing");
+  return InputNode(node_[key], child_path(key), sources_);
 }
 
 InputNode InputNode::at(std::size_t index) const {
   if (!node_.IsSequence()) fail("must be a list");
   if (index >= node_.size()) fail("list has no entry " + std::to_string(index));
-  return InputNode(node_[index], file_, path_ + "[" + std::to_string(index) + "]");
+  return InputNode(node_[index], path_ + "[" + std::to_string(index) + "]", sources_);
 }
 
 std::vector<std::string> InputNode::keys() const {
@@ -72,7 +109,21 @@ std::vector<std::string> InputNode::keys() const {
   return out;
 }
 
+namespace {
+AllowedKeys& allowed_key_registry() {
+  static AllowedKeys registry;
+  return registry;
+}
+}  // namespace
+
+const AllowedKeys& allowed_keys_seen() {
+  return allowed_key_registry();
+}
+
 void InputNode::allow_only(std::initializer_list<const char*> allowed) const {
+  static const std::regex index("\\[[0-9]+\\]");
+  auto& seen = allowed_key_registry()[sources_->root_file][std::regex_replace(path_, index, "[]")];
+  for (const char* a : allowed) seen.insert(a);
   if (!node_.IsMap()) fail("must be a map of keys");
   for (const auto& kv : node_) {
     const std::string key = kv.first.as<std::string>();
@@ -81,7 +132,7 @@ void InputNode::allow_only(std::initializer_list<const char*> allowed) const {
     if (!known) {
       std::string list;
       for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-      throw InputError(file_, child_path(key), "unknown key (allowed here: " + list + ")");
+      fail_key(key, "unknown key (allowed here: " + list + ")");
     }
   }
 }
@@ -183,10 +234,17 @@ std::string InputNode::get_choice(const std::string& key,
 }
 
 void InputNode::fail(const std::string& reason) const {
-  throw InputError(file_, path_, reason);
+  throw InputError(origin().label, path_, reason);
 }
 void InputNode::fail_key(const std::string& key, const std::string& reason) const {
-  throw InputError(file_, child_path(key), reason);
+  const std::string path = child_path(key);
+  throw InputError(sources_->origin_of(path).label, path, reason);
+}
+void InputNode::rethrow_with_origin(const InputError& error) const {
+  const InputOrigin& origin = sources_->origin_of(error.key());
+  if (error.file() == sources_->root_file && origin.label != error.file())
+    throw InputError(origin.label, error.key(), error.reason());
+  throw error;
 }
 
 }  // namespace pcsim

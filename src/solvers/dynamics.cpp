@@ -37,7 +37,8 @@ bool choose_cheap_path(MPI_Comm comm, bool possible) {
   return path == "auto" ? possible : path == "cheap";
 }
 
-DynamicSolver::DynamicSolver(assembly::CoupledSystem& system, double dt, double duration)
+DynamicSolver::DynamicSolver(assembly::CoupledSystem& system, double dt, double duration,
+                             double hht_alpha)
     : system_(system) {
   const bool cheap = choose_cheap_path(system.comm(), system.cheap_path_possible());
   register_hht_ts();
@@ -77,6 +78,7 @@ DynamicSolver::DynamicSolver(assembly::CoupledSystem& system, double dt, double 
   } else {
     use_step_lu(ksp);
   }
+  hht_set_alpha(ts_, hht_alpha);  // before the options: -ts_hht_alpha wins
   PCSIM_PETSC(TSSetFromOptions(ts_));
   configure_direct_solvers();
 }

@@ -3,6 +3,9 @@
 #include <mpi.h>
 #include <petscsnes.h>
 
+#include <Eigen/Dense>
+#include <utility>
+
 #include "pcsim/assembly/fe_catenary.hpp"
 #include "pcsim/assembly/static_problem.hpp"
 #include "pcsim/core/error.hpp"
@@ -17,18 +20,48 @@ std::string start_key(std::size_t p) {
   return "pantographs[" + std::to_string(p) + "].start_x";
 }
 
+// The lowest contact wire at station x for the catenary state in U (its
+// number and height, on every rank; -1 if x lies on no contact wire).
+std::pair<int, double> lowest_wire(assembly::CatenaryModel& catenary, Vec U, double x) {
+  catenary.load_state(U);
+  const int n = catenary.contact_wire_count();
+  std::vector<char> on(n, 0);  // the same on every rank
+  std::vector<double> z(n, 0.0);
+  for (int w = 0; w < n; ++w) {
+    const auto point = catenary.wire_point(x, w);
+    on[w] = point.on_wire;
+    if (point.owned) z[w] = point.z;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, z.data(), n, MPI_DOUBLE, MPI_SUM, catenary.comm());
+  std::pair<int, double> lowest{-1, 0.0};
+  for (int w = 0; w < n; ++w)
+    if (on[w] && (lowest.first < 0 || z[w] < lowest.second)) lowest = {w, z[w]};
+  return lowest;
+}
+
+// Contact-wire height at x for the catenary state in U0 (the lowest wire
+// there), on every rank.
+double wire_height(assembly::CatenaryModel& catenary, Vec U0, double x, std::size_t p) {
+  const auto lowest = lowest_wire(catenary, U0, x);
+  if (lowest.first < 0)
+    throw InputError("", start_key(p), "the pantograph starts outside the contact wire");
+  return lowest.second;
+}
+
 // The catenary part of U0: the static configuration, or for a static start
 // of the first pantograph the FE catenary under its static force F0 at its
-// start point (a guess for the coupled equilibrium).
+// start point on the lowest contact wire (a guess for the coupled
+// equilibrium).
 PetscInt catenary_start(assembly::CoupledSystem& system, Vec U0) {
   auto& catenary = system.catenary();
   catenary.reference_state(U0);
   const auto& first = system.pantographs().front();
   auto* fe = dynamic_cast<assembly::FECatenary*>(&catenary);
   if (!first.run.static_start || !fe) return 0;
+  const int wire = lowest_wire(catenary, U0, first.run.start_x).first;
   int element;
   double chi;
-  if (!fe->locator().locate(first.run.start_x, element, chi))
+  if (wire < 0 || !fe->locator(wire).locate(first.run.start_x, element, chi))
     throw InputError("", start_key(0), "the pantograph starts outside the contact wire");
   assembly::CatenarySystem loaded(system.comm(), fe->mesh(), 0,
                                   &fe->system().layout().node_owner());
@@ -39,17 +72,6 @@ PetscInt catenary_start(assembly::CoupledSystem& system, Vec U0) {
   PCSIM_PETSC(VecDestroy(&x));
   assembly::set_state_from_node_values(fe->system(), result.node_values, U0);
   return result.snes_iterations;
-}
-
-// Contact-wire height at x for the catenary state in U0, on every rank.
-double wire_height(assembly::CatenaryModel& catenary, Vec U0, double x, std::size_t p) {
-  catenary.load_state(U0);
-  const auto point = catenary.wire_point(x);
-  if (!point.on_wire)
-    throw InputError("", start_key(p), "the pantograph starts outside the contact wire");
-  double z = point.owned ? point.z : 0.0, sum = 0;
-  MPI_Allreduce(&z, &sum, 1, MPI_DOUBLE, MPI_SUM, catenary.comm());
-  return sum;
 }
 
 struct CoupledStatic {
@@ -124,8 +146,10 @@ StartInfo initial_state(assembly::CoupledSystem& system, Vec U0, Vec V0) {
   for (std::size_t p = 0; p < pantographs.size(); ++p) {
     auto& slot = pantographs[p];
     const double wire_z = wire_height(system.catenary(), U0, slot.run.start_x, p);
-    const double penetration =
-        slot.run.static_start ? slot.run.static_force / system.contact_stiffness() : 0.0;
+    // Gap start: below the wire (an initial state out of equilibrium).
+    const double penetration = slot.run.static_start
+                                   ? slot.run.static_force / system.contact_stiffness()
+                                   : -slot.run.start_gap;
     const double contact_height = wire_z + penetration;
     const Eigen::VectorXd q0 = slot.model->static_equilibrium(
         slot.run.static_force,
@@ -144,6 +168,39 @@ StartInfo initial_state(assembly::CoupledSystem& system, Vec U0, Vec V0) {
   if (pantographs.front().run.static_start)
     info.coupled_iterations = solve_coupled_static(system, U0);
   return info;
+}
+
+void initial_acceleration(assembly::CoupledSystem& system, Vec U0, Vec V0, Vec A0) {
+  Vec F = system.create_vector();
+  PCSIM_PETSC(VecSet(A0, 0.0));
+  system.residual(0.0, U0, V0, A0, F);
+  PetscInt lo, hi;
+  PCSIM_PETSC(VecGetOwnershipRange(F, &lo, &hi));
+  for (auto& slot : system.pantographs()) {
+    if (slot.run.start_gap <= 0) continue;  // started in equilibrium: A0 = 0
+    // The pantograph's rows of F, q and q' on every rank.
+    const int n = slot.dof_count();
+    Eigen::VectorXd rows[3] = {Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n),
+                               Eigen::VectorXd::Zero(n)};
+    Vec sources[3] = {F, U0, V0};
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < n; ++i)
+        if (slot.first_dof + i >= lo && slot.first_dof + i < hi) {
+          const PetscInt row = slot.first_dof + i;
+          PCSIM_PETSC(VecGetValues(sources[k], 1, &row, &rows[k][i]));
+        }
+    for (auto& r : rows)
+      MPI_Allreduce(MPI_IN_PLACE, r.data(), n, MPI_DOUBLE, MPI_SUM, system.comm());
+    Eigen::MatrixXd dq(n, n), dqd(n, n), mass(n, n);
+    slot.model->tangents(0.0, rows[1], rows[2], Eigen::VectorXd::Zero(n), dq, dqd, mass);
+    const Eigen::VectorXd a0 = mass.lu().solve(-rows[0]);
+    for (int i = 0; i < n; ++i)
+      if (slot.first_dof + i >= lo && slot.first_dof + i < hi)
+        PCSIM_PETSC(VecSetValue(A0, slot.first_dof + i, a0[i], INSERT_VALUES));
+  }
+  PCSIM_PETSC(VecAssemblyBegin(A0));
+  PCSIM_PETSC(VecAssemblyEnd(A0));
+  PCSIM_PETSC(VecDestroy(&F));
 }
 
 }  // namespace pcsim::solvers

@@ -4,6 +4,7 @@
 #include <petsctime.h>
 
 #include "pcsim/assembly/static_problem.hpp"
+#include "pcsim/catenary/reactions.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/solvers/direct.hpp"
 
@@ -30,7 +31,7 @@ PetscErrorCode static_jacobian(SNES, Vec x, Mat J, Mat P, void* ctx) {
 }  // namespace
 
 catenary::StaticResult solve_static(assembly::CatenarySystem& system, Vec x, bool form_finding,
-                                    const char* options_prefix) {
+                                    const char* options_prefix, double abs_tolerance) {
   PetscLogDouble t0;
   PetscTime(&t0);
   assembly::StaticProblem problem(system, form_finding);
@@ -44,7 +45,7 @@ catenary::StaticResult solve_static(assembly::CatenarySystem& system, Vec x, boo
   PCSIM_PETSC(SNESSetFunction(snes, R, static_residual, &problem));
   PCSIM_PETSC(SNESSetJacobian(snes, J, J, static_jacobian, &problem));
   PCSIM_PETSC(SNESSetType(snes, SNESNEWTONLS));
-  PCSIM_PETSC(SNESSetTolerances(snes, 1e-8, 1e-12, 1e-14, 50, 10000));
+  PCSIM_PETSC(SNESSetTolerances(snes, abs_tolerance, 1e-12, 1e-14, 50, 10000));
   KSP ksp;
   PCSIM_PETSC(SNESGetKSP(snes, &ksp));
   use_direct_lu(ksp, MATSOLVERMUMPS);
@@ -96,6 +97,11 @@ StaticConfiguration static_configuration(MPI_Comm comm, const catenary::Catenary
   }
   PCSIM_PETSC(VecDestroy(&x));
   config.mesh = system.mesh();
+  // Pull-off forces, and the tensioning devices released with the anchors'
+  // forces: later systems (modes, dynamics) see the devices.
+  config.result.registration_forces =
+      catenary::registration_forces(config.mesh, config.result.node_values);
+  catenary::release_tensioning_devices(config.mesh, config.result.node_values);
   config.node_owner = system.layout().node_owner();
   config.catenary_dofs = system.layout().catenary_dofs();
   return config;

@@ -28,7 +28,7 @@ inline catenary::ParametricDesign reference_design(long spans) {
   d.droppers.mass_per_length = 0.117;
   d.droppers.clamp_mass_messenger = 0.195;
   d.droppers.clamp_mass_contact = 0.165;
-  d.steady_arm_mass = 1.0;
+  d.steady_arms.mass = 1.0;
   return d;
 }
 

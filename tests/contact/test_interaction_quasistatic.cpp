@@ -63,7 +63,8 @@ analysis: {from_span: 1, to_span: 1}
   // tension rise, 0.3 % (measured 1.2 %).
   std::vector<double> x_static = {12.0, 15.0, 20.0}, w_static;
   {
-    pcsim::contact::ContactWireLocator locator(statics.mesh, statics.node_values);
+    pcsim::contact::ContactWireLocator locator(statics.mesh, statics.node_values,
+                                               statics.mesh.contact_wire);
     for (const double x : x_static) {
       int element;
       double chi;

@@ -10,8 +10,9 @@
 #    step (complete = 0), a checkpoint and a summary saying "complete": false,
 #    no final folder, no lock; restarting it gives the uninterrupted run;
 #  - refused restarts (exit 2, one message naming --restart, nothing written):
-#    a changed scene file, another rank count, the restart folder as the new
-#    result's folder, a folder without checkpoint.
+#    a changed scene file, a --set the first run did not have, another rank
+#    count, the restart folder as the new result's folder, a folder without
+#    checkpoint.
 set -euo pipefail
 : "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:?}"
 tmp=$(mktemp -d)
@@ -116,8 +117,10 @@ refused() {  # refused NAME NEEDLE -- COMMAND...
   fi
 }
 sed -e 's/static_force: 120/static_force: 121/' short.yaml > changed.yaml
-refused changed-scene "scene file 'changed.yaml' differs" -- \
+refused changed-scene "scene file 'changed.yaml' (with its base files and overrides) differs" -- \
   timeout 300 "$PCSIM_BIN" run changed.yaml --restart stop60
+refused changed-override "scene file 'short.yaml' (with its base files and overrides) differs" -- \
+  timeout 300 "$PCSIM_BIN" run short.yaml --set 'pantographs[0].static_force=121' --restart stop60
 refused two-ranks "written on 1 rank(s) and this run has 2" -- \
   timeout 300 mpirun -n 2 "$PCSIM_BIN" run short.yaml --restart stop60
 status=0

@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "pcsim/output/run_stream.hpp"
@@ -37,6 +38,10 @@ RunSettings settings() {
   s.analysis_to_x = 20;
   s.pantograph_names = {"front", "rear"};
   return s;
+}
+
+nlohmann::json provenance() {
+  return {{"command", "run"}, {"ranks", 2}, {"overrides", {"simulation.dt=0.001"}}};
 }
 
 // Two pantographs (2 and 3 coordinates), 4 supports, 6 droppers, 5 nodes.
@@ -123,7 +128,7 @@ double resident_mb() {
 TEST(RunStream, RowsAreWrittenAsTheyComeAndReadBack) {
   TempDir dir;
   const std::string file = (dir.path / "results.h5").string();
-  RunStream stream(file, settings(), layout(false));
+  RunStream stream(file, settings(), layout(false), provenance());
   for (std::size_t i = 0; i < 10; ++i) stream.append(record(i));
   EXPECT_EQ(stream.records(), 10u);
   stream.flush();
@@ -151,6 +156,47 @@ TEST(RunStream, RowsAreWrittenAsTheyComeAndReadBack) {
   EXPECT_EQ(read(file, "/supports/x"), layout(false).support_x);
 }
 
+// A line with two contact wires and output.energy: the force on each wire and
+// E(t) with the powers are series of their own, and the provenance is stamped
+// on the root.
+TEST(RunStream, WireForcesEnergyAndProvenance) {
+  TempDir dir;
+  const std::string file = (dir.path / "results.h5").string();
+  RunLayout l = layout(false);
+  l.contact_wires = 2;
+  l.energy = true;
+  {
+    RunStream stream(file, settings(), l, provenance());
+    for (std::size_t i = 0; i < 4; ++i) {
+      StepRecord r = record(i);
+      r.wire_force = {{1.0 * i, 2.0 * i}, {3.0 * i}};  // the rear one touches one wire
+      pcsim::output::EnergySample e;
+      e.energy = 10.0 + i;
+      e.power_external = 0.5 * i;
+      e.power_dissipative = -0.25 * i;
+      stream.append(r, e);
+    }
+  }
+  std::vector<hsize_t> dims;
+  EXPECT_EQ(read(file, "/pantographs/front/wire_force", &dims),
+            (std::vector<double>{0, 0, 1, 2, 2, 4, 3, 6}));
+  EXPECT_EQ(dims, (std::vector<hsize_t>{4, 2}));
+  // A wire the record does not name carries no force.
+  EXPECT_EQ(read(file, "/pantographs/rear/wire_force"),
+            (std::vector<double>{0, 0, 3, 0, 6, 0, 9, 0}));
+  EXPECT_EQ(read(file, "/energy/energy"), (std::vector<double>{10, 11, 12, 13}));
+  EXPECT_EQ(read(file, "/energy/power_dissipative"), (std::vector<double>{0, -0.25, -0.5, -0.75}));
+  hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  EXPECT_GT(H5Aexists(f, "command"), 0);
+  EXPECT_GT(H5Aexists(f, "overrides"), 0);
+  double ranks = 0;
+  hid_t a = H5Aopen(f, "ranks", H5P_DEFAULT);
+  H5Aread(a, H5T_NATIVE_DOUBLE, &ranks);
+  H5Aclose(a);
+  H5Fclose(f);
+  EXPECT_EQ(ranks, 2.0);
+}
+
 // 200 000 steps of 96 values would be 150 MB in memory; the stream keeps at
 // most kMaxBufferedRows of them (1.5 MB). Measured growth of the resident
 // memory: 2.9 MB, HDF5's chunk caches (256 KiB for each of the 11 datasets)
@@ -159,7 +205,7 @@ TEST(RunStream, RowsAreWrittenAsTheyComeAndReadBack) {
 TEST(RunStream, MemoryDoesNotGrowWithTheRun) {
   TempDir dir;
   const std::string file = (dir.path / "results.h5").string();
-  RunStream stream(file, settings(), layout(false));
+  RunStream stream(file, settings(), layout(false), provenance());
   const double before = resident_mb();
   const StepRecord r = record(7);
   const std::size_t steps = 200000;
@@ -179,7 +225,7 @@ TEST(RunStream, SnapshotsAreOneDatasetWithViewsForXdmf) {
   const std::string file = (dir.path / "results.h5").string();
   const RunLayout l = layout(true);
   {
-    RunStream stream(file, settings(), l);
+    RunStream stream(file, settings(), l, provenance());
     for (std::size_t i = 0; i < 3; ++i) {
       const StepRecord r = record(i);
       stream.append(r);
@@ -212,7 +258,7 @@ TEST(RunStream, RestartKeepsTheCheckpointsRows) {
   const std::string file = (dir.path / "results.h5").string();
   const RunLayout l = layout(true);
   {
-    RunStream stream(file, settings(), l);
+    RunStream stream(file, settings(), l, provenance());
     for (std::size_t i = 0; i < 12; ++i) {
       stream.append(record(i));
       if (i % 4 == 0) stream.append_snapshot(l.static_positions, record(i));
@@ -229,7 +275,8 @@ TEST(RunStream, RestartKeepsTheCheckpointsRows) {
     H5Fclose(f);
   }
   {
-    RunStream stream(file, settings(), l, 6, 2);  // checkpoint at step 5: 6 rows, 2 snapshots
+    RunStream stream(file, settings(), l, 6, 2,
+                     provenance());  // checkpoint at step 5: 6 rows, 2 snapshots
     EXPECT_EQ(stream.records(), 6u);
     EXPECT_EQ(stream.snapshots(), 2u);
     EXPECT_EQ(stream.snapshot_times(), (std::vector<double>{0.0, 0.004}));
@@ -244,7 +291,7 @@ TEST(RunStream, RestartKeepsTheCheckpointsRows) {
   EXPECT_FALSE(exists(file, "/snapshots/xdmf/displacement_2"));
   EXPECT_FALSE(exists(file, "/pantographs/front/contact_force_filtered"));
   // Fewer rows than the checkpoint needs: refused.
-  EXPECT_THROW(RunStream(file, settings(), l, 20, 2), std::exception);
+  EXPECT_THROW(RunStream(file, settings(), l, 20, 2, provenance()), std::exception);
 }
 
 }  // namespace

@@ -324,7 +324,7 @@ TEST(ParametricDesignFile, ReaderFillsTheParameters) {
   EXPECT_EQ(d.droppers.positions, kDropperPositions);
   EXPECT_EQ(d.droppers.slack, SlackCriterion::force);
   EXPECT_EQ(d.droppers.clamp_mass_contact, 0.165);
-  EXPECT_EQ(d.steady_arm_mass, 1.0);
+  EXPECT_EQ(d.steady_arms.mass, 1.0);
   EXPECT_FALSE(d.stitch_wire.has_value());
   EXPECT_EQ(d.damping.alpha, 0.0125);
   EXPECT_EQ(d.gravity, Eigen::Vector3d(0.0, 0.0, -9.81));
@@ -367,7 +367,8 @@ TEST(DesignFileErrors, ParametricValidation) {
       {"10.5, 17.0,", "10.5, 10.52,", "'droppers.positions[2]'", "minimum spacing"},
       {"slack: force", "slack: sometimes", "'droppers.slack'",
        "must be one of none, length, force"},
-      {"model: constraint", "model: spring", "'steady_arms.model'", "must be one of constraint"},
+      {"model: constraint", "model: pendulum", "'steady_arms.model'",
+       "must be one of constraint, hinged, spring"},
       {"EI: 195.0,", "EI: 195.0, tensoin: 3,", "'wires.contact.tensoin'", "unknown key"},
       {"stagger: 0.2 ", "stagger: -0.2 ", "'stagger'", "must not be negative"},
       {"element_length: 0.5 ", "element_length: 100 ", "'element_length'", "must not exceed"},

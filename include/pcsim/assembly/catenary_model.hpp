@@ -3,8 +3,10 @@
 // model (FECatenary: nonlinear ANCF or cables linearised about the static
 // configuration) is one; a reduced-order (modal) model is another behind the
 // same interface. The contact terms see the catenary only through
-// wire_point(): the contact wire's height at x as a linear function of the
-// catenary's unknowns.
+// wire_point(x, wire): the height of contact wire 'wire' at station x as a
+// linear function of the catenary's unknowns. A line with overlaps between
+// tension sections has several contact wires (contact_wire_count(), each
+// over its station range); a pantograph has one contact term per wire.
 //
 // The global vector holds the catenary's unknowns followed by 'extra'
 // unknowns (the pantographs' coordinates), which the last rank owns.
@@ -22,12 +24,14 @@
 
 namespace pcsim::assembly {
 
-// The contact wire at a point x: z(U) = z0 + sum_i weight_i (U[index_i] - U_ref[index_i])
+// A contact wire at station x: z(U) = z0 + sum_i weight_i (U[index_i] - U_ref[index_i])
 // near the current state, i.e. weight = dz/dU (chi fixed, thesis 3.9-3.13).
 struct WirePoint {
   bool on_wire = false;         // x lies on the contact wire
   bool owned = false;           // this rank holds the state of the point: z is set
-  double z = 0;                 // wire height at x at the loaded state [m]
+  double z = 0;                 // height the contact sees at x at the loaded state [m]
+                                // (the wire + its contact-gap offset, mesh.hpp)
+  double slope = 0;             // dz/dx of the wire at x at the loaded state
   std::vector<PetscInt> index;  // global unknowns z depends on (every rank)
   std::vector<double> weight;   // dz/dU for those unknowns (every rank)
 };
@@ -52,9 +56,12 @@ class CatenaryModel {
   virtual void reference_state(Vec U) const = 0;
   // Makes the state U current for the queries below (collective).
   virtual void load_state(Vec U) = 0;
-  virtual WirePoint wire_point(double x) const = 0;
-  virtual double wire_x_min() const = 0;
-  virtual double wire_x_max() const = 0;
+  // Contact wires 0..contact_wire_count()-1 (mesh().contact_wire_list()
+  // order): the point at station x and each wire's station range.
+  virtual int contact_wire_count() const = 0;
+  virtual WirePoint wire_point(double x, int wire) const = 0;
+  virtual double wire_x_min(int wire) const = 0;
+  virtual double wire_x_max(int wire) const = 0;
   // Contact-wire height at every support and axial force of every dropper at
   // the loaded state: set by the ranks that own them, zero elsewhere (the
   // caller sums over ranks).

@@ -57,7 +57,7 @@ class CatenarySystem {
   enum Terms : unsigned {
     kCables = 1u,  // ANCF cable elastic forces
     kBars = 2u,    // bars (droppers, steady arms, stitch wires)
-    kLoads = 4u,   // gravity of everything, support springs
+    kLoads = 4u,   // gravity of everything, constant node forces, support springs
     kAllTerms = 7u,
   };
   // R = f_elastic - f_gravity + springs at the loaded state (R is overwritten:
@@ -109,6 +109,7 @@ class CatenarySystem {
   void add_cable_forces(double* r, Mat J, bool cables, bool loads) const;
   void add_bar_forces(double* r, Mat J, bool bars, bool loads) const;
   void add_point_forces(double* r, Mat J) const;
+  void add_spring(double* r, Mat J, const catenary::SupportSpring& spring) const;
   std::vector<PointLoad> point_loads_;
   std::vector<double> node_state_;  // needed nodes x 6
   std::vector<double> design_values_;

@@ -76,7 +76,7 @@ class CoupledSystem {
   std::vector<PantographSlot> pantographs_;
   CoupledState state_;
   std::vector<std::unique_ptr<Term>> terms_;
-  std::vector<PenaltyContact*> contacts_;  // per pantograph (records)
+  std::vector<std::vector<PenaltyContact*>> contacts_;  // per pantograph, per wire (records)
   std::vector<MergedPart> parts_;
   double contact_stiffness_;
   Mat pattern_ = nullptr;

@@ -35,7 +35,8 @@ class FECatenary : public CatenaryModel {
   CatenarySystem& system() { return *system_; }
   const CatenarySystem& system() const { return *system_; }
   const std::vector<double>& static_node_values() const { return static_values_; }
-  const contact::ContactWireLocator& locator() const { return *locator_; }
+  // Locator of contact wire k (0-based among the contact wires).
+  const contact::ContactWireLocator& locator(int wire = 0) const { return *locators_[wire]; }
 
   // Constant matrices at the static configuration, with the pattern given to
   // make_terms (owned by the model, built on first use).
@@ -52,9 +53,10 @@ class FECatenary : public CatenaryModel {
   Mat create_matrix(const std::vector<bool>& wire_coupled) const override;
   void reference_state(Vec U) const override;
   void load_state(Vec U) override { system_->load_state(U); }
-  WirePoint wire_point(double x) const override;
-  double wire_x_min() const override { return locator_->x_min(); }
-  double wire_x_max() const override { return locator_->x_max(); }
+  int contact_wire_count() const override { return static_cast<int>(locators_.size()); }
+  WirePoint wire_point(double x, int wire) const override;
+  double wire_x_min(int wire) const override { return locators_[wire]->x_min(); }
+  double wire_x_max(int wire) const override { return locators_[wire]->x_max(); }
   std::vector<double> support_heights() const override;
   std::vector<double> dropper_forces() const override;
   std::vector<double> node_positions_to_root(Vec U) const override {
@@ -66,7 +68,7 @@ class FECatenary : public CatenaryModel {
  private:
   std::unique_ptr<CatenarySystem> system_;
   std::vector<double> static_values_;
-  std::unique_ptr<contact::ContactWireLocator> locator_;
+  std::vector<std::unique_ptr<contact::ContactWireLocator>> locators_;
   std::vector<int> droppers_;  // dropper bars in mesh order (records)
   Mat pattern_ = nullptr, mass_ = nullptr;
   std::map<unsigned, Mat> tangents_;

@@ -32,24 +32,32 @@ class PantographTerm : public Term {
   const PantographSlot& slot_;
 };
 
-// Penalty contact of one pantograph with the contact wire at the moving point
+// Penalty contact of one pantograph with one contact wire at the moving point
 // x_c = x_0 + v t (chi fixed within a step, as the thesis does): gap
 // dz = z_wire - z_head (3.9), force Fc = kH max(-dz, 0) (3.10), residual
 // -Fc dz/dU on the wire and +Fc on the head, tangent kH u u^T with
 // u = [dz/dU; -1] in contact. On the cheap path J0 holds no contact: the
-// whole tangent is the rank-one term (coefficient 0 out of contact).
+// whole tangent is the rank-one term (coefficient 0 out of contact). A line
+// with several contact wires (overlaps) has one such term per pantograph and
+// wire; the force on the head is their sum.
 class PenaltyContact : public Term {
  public:
-  PenaltyContact(std::size_t index, const PantographSlot& slot, double stiffness)
-      : index_(index), slot_(slot), kH_(stiffness) {}
-  std::string name() const override { return "penalty contact " + slot_.run.name; }
+  // wire: contact wire number (0..CatenaryModel::contact_wire_count()-1).
+  PenaltyContact(std::size_t index, const PantographSlot& slot, double stiffness, int wire = 0)
+      : index_(index), slot_(slot), kH_(stiffness), wire_(wire) {}
+  std::string name() const override {
+    return "penalty contact " + slot_.run.name +
+           (wire_ > 0 ? " wire " + std::to_string(wire_) : "");
+  }
+  int wire() const { return wire_; }
   TangentKind tangent_kind() const override { return TangentKind::low_rank; }
   bool adds_by_set_values() const override { return true; }
   void add_residual(const CoupledState& state, Vec F) override;
   void add_tangent(const CoupledState& state, Shifts shifts, Mat J) override;
   void add_reference_tangent(const CoupledState&, Shifts, Mat) override {}
   bool low_rank_change(const CoupledState& state, std::vector<RankOne>& terms) override;
-  double energy(const CoupledState& state) const override;  // 1/2 kH dz^2 in contact
+  double energy(const CoupledState& state) const override;    // 1/2 kH dz^2 in contact
+  TermPower power(const CoupledState& state) const override;  // the moving contact's work
 
   struct Evaluation {
     WirePoint wire;    // at x_c
@@ -65,6 +73,7 @@ class PenaltyContact : public Term {
   std::size_t index_;
   const PantographSlot& slot_;
   double kH_;
+  int wire_;
 };
 
 }  // namespace pcsim::assembly

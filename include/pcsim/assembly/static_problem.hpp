@@ -5,9 +5,10 @@
 // tangent (eqs. 3.6-3.8).
 // Form-finding (the "constrained equations" method of the thesis): the
 // unstressed lengths of the droppers and one length scale per tension segment
-// become unknowns (the system's extras), and the equations gain one row per
-// height target (z_node = z_design) and one per tension segment (mean axial
-// force = design tension), solved monolithically.
+// (of cable elements, or of the bars of a stitch wire) become unknowns (the
+// system's extras), and the equations gain one row per height target
+// (z_node = z_design) and one per tension segment (mean axial force = design
+// tension), solved monolithically.
 // Slack criteria are defined relative to the static equilibrium (3.1.2):
 // while the problem exists every bar is a plain linear bar; finish() stores
 // the equilibrium lengths and forces of the bars and restores the criteria.
@@ -49,10 +50,12 @@ class StaticProblem {
  private:
   void apply_unknowns(Vec x);
   void add_form_finding_terms(Vec R, Mat J);
+  void add_bar_segment_terms(Vec R, Mat J);
   CatenarySystem& system_;
   bool form_finding_;
   std::vector<int> target_of_bar_;    // bar -> target index or -1
-  std::vector<int> segment_count_;    // elements per segment
+  std::vector<int> segment_count_;    // elements (or bars) per segment
+  std::vector<int> segment_of_bar_;   // bar -> its tension segment or -1
   std::vector<double> height_scale_;  // residual scale of each height row [N/m]
   std::vector<catenary::SlackCriterion> slack_criteria_;
   bool finished_ = false;

@@ -41,6 +41,13 @@ inline CableSection cable_section(const Wire& wire) {
   return {wire.EA, wire.EI, wire.mass_per_length};
 }
 
+// Section of one element of the wire: scaled by the element's section
+// factor f (a worn wire: EA and the mass with the area, EI with its square).
+inline CableSection cable_section(const Wire& wire, const CableElement& element) {
+  const double f = element.section_factor;
+  return {wire.EA * f, wire.EI * f * f, wire.mass_per_length * f};
+}
+
 // Hermite shape functions (eq. 3.3) and their first and second derivatives
 // with respect to chi, at chi in [0, Lref].
 struct HermiteValues {

@@ -2,8 +2,10 @@
 //
 // Two kinds of design (docs/design-format.md lists every key of the design
 // files that fill these structs):
-//  - ParametricDesign: a straight-track simple catenary (spans, wires,
-//    droppers, stagger, pre-sag, steady arms, optional stitch wires);
+//  - ParametricDesign: a line of simple (or stitched) catenary: one or
+//    several tension sections joined by overlaps, tensioning devices, presag
+//    profiles, dropper positions per span, support and steady-arm models,
+//    contact-wire irregularities and wear, curved track;
 //  - ExplicitDesign: arbitrary nodes, cable wires, bars, supports, masses,
 //    springs and form-finding targets, for small verification structures.
 //
@@ -41,21 +43,109 @@ struct CableDesign {
   double tension = 0;          // design tension [N] > 0
 };
 
+// Contact-wire presag in a span whose two supports hold the wire in service.
+enum class PresagProfile {
+  parabola,  // between the supports, sag 'presag' at mid-span
+  droppers,  // through the first and last droppers (at support height), sag 'presag' midway
+  heights,   // explicit: the sag at each dropper ('droppers.sags'), linear in between
+};
+
+// Dropper positions (and sags, presag profile 'heights') of given spans.
+struct SpanDroppers {
+  std::vector<long> spans;        // 1-based span numbers
+  std::vector<double> positions;  // [m] from the span's first support
+  std::vector<double> sags;       // [m] contact-wire sag at each dropper (profile 'heights')
+};
+
 struct DropperDesign {
-  std::vector<double> positions;  // [m] from each span's first support, strictly in (0, L)
-  double stiffness = 0;           // [N/m] > 0
-  double mass_per_length = 0;     // [kg/m] >= 0
+  std::vector<double> positions;    // [m] from each span's first support, strictly in (0, L)
+  std::vector<double> sags;         // [m] presag profile 'heights': sag at each dropper
+  std::vector<SpanDroppers> spans;  // spans with their own positions
+  double stiffness = 0;             // [N/m] > 0
+  double mass_per_length = 0;       // [kg/m] >= 0
   SlackCriterion slack = SlackCriterion::length;
   double clamp_mass_messenger = 0;  // [kg] >= 0
   double clamp_mass_contact = 0;    // [kg] >= 0
 };
 
-// Stitch wire at every intermediate support ('stitch_wire').
+// Stitch wire at every support inside a tension section ('stitch_wire').
 struct StitchWireDesign {
-  double length = 0;  // total length [m], 0 < length < span length
-  double tension = 0;
+  double length = 0;   // total length [m], 0 < length < span length
+  double tension = 0;  // form-found like the main wires [N]
   double mass_per_length = 0;
   double EA = 0;
+};
+
+// One tension section: the spans of the line it owns, and its track.
+struct SectionDesign {
+  long spans = 0;     // >= 1; the sections' spans add up to spans.count
+  double radius = 0;  // horizontal radius of the track [m]; 0 straight, > 0 left, < 0 right
+};
+
+// Overlap between two consecutive tension sections (docs/design-format.md).
+struct OverlapDesign {
+  long spans = 2;             // m >= 1 spans between the supports where one wire is raised
+  double raise = 0.3;         // out-of-service wire above the in-service one there [m]
+  double anchor_raise = 0.6;  // wire ends at the anchors above the contact height [m]
+  double separation = 0.2;    // lateral distance between the two wires [m]
+};
+
+enum class TensioningDeviceKind { fixed, weight, spring };
+// Tensioning device at every end of every section (both wires).
+struct TensioningDesign {
+  TensioningDeviceKind device = TensioningDeviceKind::fixed;
+  double ratio = 1;                   // weight: wire tension / weight force, >= 1
+  std::optional<double> weight_mass;  // weight [kg]; default: tension / (g ratio)
+  double stiffness = 0;               // spring [N/m] > 0
+};
+
+enum class MessengerSupportModel { fixed, spring, spring_mass };
+struct MessengerSupportDesign {
+  MessengerSupportModel model = MessengerSupportModel::fixed;
+  double stiffness = 0;  // vertical [N/m] (spring, spring_mass)
+  double mass = 0;       // [kg] (spring_mass)
+};
+
+enum class SteadyArmModel { constraint, hinged, spring };
+struct SteadyArmDesign {
+  SteadyArmModel model = SteadyArmModel::constraint;
+  double mass = 0;                 // [kg] >= 0
+  double length = 1.0;             // hinged: pivot to wire [m]
+  double axial_stiffness = 1.0e7;  // hinged: the arm as a bar [N/m]
+  double stiffness = 0;            // spring: vertical [N/m]
+};
+
+// Support models of given supports (0-based support numbers).
+struct SupportOverride {
+  std::vector<long> supports;
+  std::optional<MessengerSupportDesign> messenger;
+  std::optional<SteadyArmDesign> steady_arm;
+};
+
+enum class IrregularitySpectrum { uniform, power_law };
+// Random contact-wire height profile: a sum of cosines over the wavelength
+// band with random phases (seeded), scaled to the RMS amplitude.
+struct RandomIrregularity {
+  double rms = 0;               // [m] >= 0
+  double wavelength_min = 1.0;  // [m] > 0
+  double wavelength_max = 50.0;
+  IrregularitySpectrum spectrum = IrregularitySpectrum::uniform;
+  double exponent = 2.0;  // power_law: PSD ~ wavenumber^-exponent
+  long seed = 1;
+};
+
+// Reduced section (wear) over a stretch of the contact wires.
+struct WearStretch {
+  double from = 0, to = 0;  // stations [m]
+  double section_loss = 0;  // fraction of the section worn away, in [0, 1)
+};
+
+struct IrregularityDesign {
+  std::string profile_key = "irregularities.profile";  // where the table came from (messages)
+  std::vector<double> profile_x, profile_dz;           // prescribed (x, dz) [m], x increasing
+  std::optional<RandomIrregularity> random;
+  std::vector<WearStretch> wear;
+  bool empty() const { return profile_x.empty() && !random && wear.empty(); }
 };
 
 struct ParametricDesign {
@@ -68,13 +158,20 @@ struct ParametricDesign {
   double system_height = 0;
   double contact_wire_height = 0;
   double presag = 0;
+  PresagProfile presag_profile = PresagProfile::parabola;
   double stagger = 0;
   double messenger_stagger = 0;
   double element_length = 0.5;  // target element length along x [m]
   CableDesign contact, messenger;
   DropperDesign droppers;
-  double steady_arm_mass = 0;  // 'steady_arms.mass' [kg] (model: constraint)
+  SteadyArmDesign steady_arms;
+  MessengerSupportDesign messenger_supports;
+  std::vector<SupportOverride> support_overrides;
   std::optional<StitchWireDesign> stitch_wire;
+  std::vector<SectionDesign> sections;  // empty: one straight section over every span
+  OverlapDesign overlap;
+  TensioningDesign tensioning;
+  IrregularityDesign irregularities;
 };
 
 // -------------------------------------------------------------- explicit ----

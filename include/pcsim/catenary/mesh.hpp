@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "pcsim/catenary/track.hpp"
 #include "pcsim/core/node_values.hpp"
 
 namespace pcsim::catenary {
@@ -53,6 +54,9 @@ struct CableElement {
   double ref_length = 0;         // length of the chi parameter (design length) [m]
   double unstressed_length = 0;  // L0 [m]; strain is measured against it
   int tension_segment = -1;      // index into CatenaryMesh::tension_segments, or -1
+  // Cross-section left (worn wire): EA and the mass scale with it, EI with its
+  // square (a round section); 1 for a new wire.
+  double section_factor = 1.0;
 };
 
 enum class BarKind { dropper, steady_arm, stitch, other };
@@ -84,11 +88,65 @@ struct PointMass {
   std::string label;
 };
 
-// Linear spring from a node DOF (0..2 = x, y, z) to its design position.
+// Linear spring from a node to its design position: along the coordinate
+// 'dof' (0..2 = x, y, z), or, when 'direction' is not zero, along that unit
+// vector (force k ((r - r_design) . d) d; a horizontal registration on curved
+// track).
 struct SupportSpring {
   int node = -1;
   int dof = 0;
   double stiffness = 0;  // [N/m]
+  Eigen::Vector3d direction = Eigen::Vector3d::Zero();
+};
+
+// A constant force on a node (part of the loads, like gravity): the pull of
+// a tensioning device, the part of a steady arm's weight not in a point mass.
+struct NodeForce {
+  int node = -1;
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // [N]
+  std::string label;
+};
+
+// A tensioning device at a wire's end (parametric lines). Form-finding holds
+// the end (x, y, z fixed); catenary::release_tensioning_devices() then frees
+// it horizontally along 'direction' and applies the anchor's reaction as a
+// NodeForce, so the static configuration stays an equilibrium:
+//  weight: constant pull; effective mass 'mass' on the end (a point mass);
+//  spring: pull = reaction + stiffness x (displacement along the pull).
+enum class TensioningKind { weight, spring };
+struct TensioningDevice {
+  int node = -1;
+  int wire = -1;
+  TensioningKind kind = TensioningKind::weight;
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitX();  // horizontal, away from the wire
+  double mass = 0;                                       // [kg] weight: referred to the wire end
+  double stiffness = 0;                                  // [N/m] spring
+  bool released = false;
+  double pull = 0;  // [N] along 'direction' in the static configuration (set on release)
+};
+
+// A registration (steady arm) of a contact wire at a support: the node it
+// holds and the horizontal unit normal of the track there (pull-off forces
+// are reported along it).
+struct Registration {
+  int node = -1;
+  int support = -1;  // index into support_x
+  Eigen::Vector3d lateral = Eigen::Vector3d::UnitY();
+};
+
+// A stretch of the line for the statistics of a run (stations along the
+// track): a tension section's own part, or an overlap.
+struct LineZone {
+  std::string name;  // "section 1", "overlap 1-2"
+  bool overlap = false;
+  double from_x = 0, to_x = 0;
+};
+
+// Contact-gap offset of a contact wire (irregularities between the droppers):
+// the contact sees the wire at z + offset(x), offset interpolated linearly in
+// the station table (x ascending), zero outside.
+struct ContactGapOffset {
+  std::vector<double> x, offset;
 };
 
 // Form-finding: node 'node' must sit at height z in the static configuration.
@@ -98,11 +156,14 @@ struct HeightTarget {
   int bar = -1;  // the dropper whose unstressed length is the matching unknown
 };
 
-// Form-finding: the mean axial force of these cable elements must equal
-// 'tension'; their unstressed lengths share one scale factor (the unknown).
+// Form-finding: the mean axial force of these cable elements (or, for a
+// stitch wire built of bars, of these bars) must equal 'tension'; their
+// unstressed lengths share one scale factor on their design lengths (the
+// unknown).
 struct TensionSegment {
-  int wire = -1;
-  std::vector<int> elements;
+  int wire = -1;              // -1 for a segment of bars
+  std::vector<int> elements;  // cable elements
+  std::vector<int> bars;      // or bars (then 'elements' is empty)
   double tension = 0;
 };
 
@@ -116,15 +177,33 @@ struct CatenaryMesh {
   std::vector<BarElement> bars;
   std::vector<PointMass> point_masses;
   std::vector<SupportSpring> springs;
+  std::vector<NodeForce> node_forces;
+  std::vector<TensioningDevice> tensioning_devices;
   std::vector<HeightTarget> height_targets;
   std::vector<TensionSegment> tension_segments;
   bool form_finding_default = false;  // true for parametric designs
-  // Track description (parametric designs; empty otherwise).
-  std::vector<double> support_x;   // x of every support [m]
-  std::vector<int> support_nodes;  // contact-wire node at every support (uplift)
-  int contact_wire = -1;           // index into wires, or -1
-  double rayleigh_alpha = 0;       // C = alpha M + beta K (thesis 3.1)
+  // Track description (parametric designs; empty otherwise). 'x' of the
+  // track is the station along the track centre (= x on straight track).
+  TrackAlignment track;            // straight along x unless curved
+  std::vector<double> support_x;   // station of every support [m]
+  std::vector<int> support_nodes;  // contact-wire node in service at every support (uplift)
+  std::vector<Registration> registrations;
+  std::vector<LineZone> zones;
+  // Contact wires: every wire of kind contact, in the order of their first
+  // station (several along a line with overlaps); contact_wire is the first
+  // (-1: none). contact_gap_offsets: empty, or one per contact wire.
+  std::vector<int> contact_wires;
+  int contact_wire = -1;
+  std::vector<ContactGapOffset> contact_gap_offsets;
+  double rayleigh_alpha = 0;  // C = alpha M + beta K (thesis 3.1)
   double rayleigh_beta = 0;
+
+  // The contact wires (contact_wires, or contact_wire alone for a mesh that
+  // only sets that).
+  std::vector<int> contact_wire_list() const {
+    if (!contact_wires.empty() || contact_wire < 0) return contact_wires;
+    return {contact_wire};
+  }
 
   int find_wire(const std::string& wire_name) const {
     for (std::size_t i = 0; i < wires.size(); ++i)

@@ -21,7 +21,19 @@ struct StaticResult {
   std::vector<double> bar_forces;        // axial force of every bar
   std::vector<double> bar_lengths;       // deformed length of every bar
   std::vector<double> node_values;       // 6 per node (r, r'), every rank
+  // Lateral force of every steady arm on its wire (mesh.registrations) [N].
+  std::vector<double> registration_forces;
   double wall_time_s = 0;
+};
+
+// Static elasticity of the contact wire (EN 50119): the uplift of the
+// lowest contact wire under a vertical force at each point, from the static
+// configuration.
+struct ElasticityResult {
+  double force = 0;            // [N], upward
+  std::vector<double> x;       // stations [m]
+  std::vector<double> uplift;  // [m]
+  std::vector<int> wire;       // contact wire loaded (index into mesh.contact_wire_list())
 };
 
 struct ModesResult {

@@ -21,6 +21,9 @@ struct PantographRun {
   double static_force = 0;    // F0: static contact force [N]
   bool static_start = false;  // start in static equilibrium in contact
   double ramp_distance = 0;   // ramp-up: head force weighted 0 -> 1 over this distance [m]
+  // > 0: start at rest this far below the wire with the full uplift, no contact
+  // force (not an equilibrium: the head rises and lands on the wire) [m].
+  double start_gap = 0;
   // Height of the contact point above the pantograph's base at the start [m];
   // <= 0: the model takes absolute heights (lumped models).
   double working_height = 0;
@@ -28,7 +31,7 @@ struct PantographRun {
   double contact_x(double t) const { return start_x + speed * t; }
   // Weight of the pantograph's own uplift during the ramp (thesis 3.3.1); 1 after it.
   double ramp_factor(double t) const {
-    if (static_start || ramp_distance <= 0) return 1.0;
+    if (static_start || start_gap > 0 || ramp_distance <= 0) return 1.0;
     return std::clamp(speed * t / ramp_distance, 0.0, 1.0);
   }
 };

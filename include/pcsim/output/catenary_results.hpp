@@ -22,6 +22,10 @@ struct CatenaryRunInfo {
 void write_static_results(const OutputDir& out, const catenary::CatenaryMesh& mesh,
                           const catenary::StaticResult& result, const CatenaryRunInfo& info);
 
+// elasticity.csv: station, uplift per force [mm per 100 N], uplift [m],
+// the contact wire loaded.
+void write_elasticity(const OutputDir& out, const catenary::ElasticityResult& result);
+
 void write_modes_results(const OutputDir& out, const catenary::CatenaryMesh& mesh,
                          const catenary::StaticResult& statics, const catenary::ModesResult& modes,
                          const CatenaryRunInfo& info);

@@ -24,6 +24,7 @@
 // The root group carries string attributes 'name' and 'source_file'.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -36,15 +37,19 @@ struct NodeField {
   std::string name;            // dataset /fields/<name>; letters, digits, '_' only
   int components = 1;          // 1 (scalar) or 3 (vector)
   std::vector<double> values;  // components per node, node-major
+  std::string unit = "1";      // its unit (dataset attribute 'unit')
 };
 
 // node_positions: 3 per node (x, y, z), e.g. the static solution, or the
-// design positions. Throws std::invalid_argument on size mismatches and
-// pcsim::SolverError if a file cannot be written.
+// design positions. Every dataset carries its 'unit' and 'description'; the
+// root group the provenance (output/provenance.hpp), if given. Throws
+// std::invalid_argument on size mismatches and pcsim::SolverError if a file
+// cannot be written.
 void write_mesh_h5_xdmf(const catenary::CatenaryMesh& mesh,
                         const std::vector<double>& node_positions, const std::string& h5_path,
                         const std::string& xdmf_path,
-                        const std::vector<NodeField>& node_fields = {});
+                        const std::vector<NodeField>& node_fields = {},
+                        const nlohmann::json& provenance = nlohmann::json());
 
 // XDMF for mode shapes: a Temporal collection (time = mode number 0, 1, ...)
 // whose every step holds the wires and bars grids of the mesh file written by

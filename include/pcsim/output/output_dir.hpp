@@ -17,6 +17,7 @@
 
 #include <mpi.h>
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,7 @@ struct OutputRequest {
   std::string command;     // pcsim command ("run", "static", ...)
   std::string scene_file;  // the scene, as given
   std::string scene_name;
+  nlohmann::json provenance;  // output/provenance.hpp; written into every result file
 };
 
 class OutputDir {
@@ -44,6 +46,8 @@ class OutputDir {
   // Path of a file inside the (partial) folder.
   std::string file(const std::string& name) const;
   const std::string& final_dir() const { return final_; }
+  // What produced the results (output/provenance.hpp), for the writers.
+  const nlohmann::json& provenance() const { return request_.provenance; }
   const std::string& partial_dir() const { return partial_; }
   // Puts the finished results in place of any earlier result (collective).
   void commit();

@@ -11,6 +11,8 @@
 
 #include "pcsim/catenary/mesh.hpp"
 #include "pcsim/contact/records.hpp"
+#include "pcsim/output/energy_results.hpp"
+#include "pcsim/output/line_results.hpp"
 #include "pcsim/output/output_dir.hpp"
 #include "pcsim/output/statistics.hpp"
 
@@ -56,6 +58,13 @@ void write_snapshots_view(const OutputDir& out, const catenary::CatenaryMesh& me
 // complete = 1, writes the snapshots' XDMF; returns the statistics.
 RunStatistics finish_run_results(const OutputDir& out, const catenary::CatenaryMesh& mesh,
                                  const RunSettings& settings);
+
+// The histories streamed into results.h5 that the line and energy results
+// take (line_results.hpp, energy_results.hpp): every pantograph's time,
+// station, head force and force on each contact wire (RunLayout::
+// contact_wires), and E(t) with the powers (RunLayout::energy).
+std::vector<ContactHistory> read_contact_histories(const OutputDir& out, const RunSettings& s);
+EnergyHistory read_energy_history(const OutputDir& out);
 
 // summary.json: the statistics (complete runs) plus the given performance and
 // solver facts; an interrupted run writes "complete": false and no statistics.

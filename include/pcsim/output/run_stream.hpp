@@ -10,7 +10,9 @@
 
 #include <hdf5.h>
 
+#include <functional>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -30,25 +32,35 @@ struct RunLayout {
   std::vector<double> support_x;                   // [m]
   std::vector<double> support_static_z;  // contact-wire height at the supports, static [m]
   std::size_t droppers = 0;              // dropper forces per step (0: not kept)
+  std::size_t contact_wires = 0;         // force on each contact wire per pantograph (0: not kept)
+  bool energy = false;                   // E(t) and the powers (output.energy)
   bool snapshots = false;                // field snapshots kept
   std::vector<double> static_positions;  // 3 per node: snapshots store the displacement from it
 };
 
+// The energy balance's values at a step (layout.energy; energy_results.hpp).
+struct EnergySample {
+  double energy = 0, power_external = 0, power_dissipative = 0;  // [J], [W], [W]
+};
+
 class RunStream {
  public:
-  // Creates 'path' (replacing a file there) with every dataset empty.
-  RunStream(const std::string& path, const RunSettings& settings, RunLayout layout);
+  // Creates 'path' (replacing a file there) with every dataset empty and the
+  // provenance (provenance.hpp) as root attributes.
+  RunStream(const std::string& path, const RunSettings& settings, RunLayout layout,
+            const nlohmann::json& provenance);
   // Continues 'path', a copy of an earlier run's results.h5: keeps its first
   // 'records' steps and 'snapshots' snapshots (what its checkpoint had),
-  // drops what the end of that run added (filtered forces), sets complete = 0.
+  // drops what the end of that run added (filtered forces), sets complete = 0
+  // and stamps this run's provenance.
   RunStream(const std::string& path, const RunSettings& settings, RunLayout layout,
-            std::size_t records, std::size_t snapshots);
+            std::size_t records, std::size_t snapshots, const nlohmann::json& provenance);
   ~RunStream();
   RunStream(const RunStream&) = delete;
   RunStream& operator=(const RunStream&) = delete;
 
-  // One accepted step (buffered).
-  void append(const contact::StepRecord& record);
+  // One accepted step (buffered); energy: only read with layout.energy.
+  void append(const contact::StepRecord& record, const EnergySample& energy = {});
   // A field snapshot at the step appended last: node positions (3 per node)
   // and that step's pantograph positions and contact forces (written now).
   void append_snapshot(const std::vector<double>& positions, const contact::StepRecord& record);
@@ -68,7 +80,13 @@ class RunStream {
 
  private:
   struct Column;  // one dataset and its buffered rows
+  using ColumnTake = std::function<void(const contact::StepRecord&, const EnergySample&,
+                                        std::vector<double>&)>;  // appends a step's row
+  void add_column(bool create, const std::string& path, std::vector<hsize_t> shape,
+                  const std::string& unit, const std::string& description, ColumnTake take);
   void open_series(bool create, const RunSettings& settings);
+  void open_pantograph_series(bool create, const std::string& name, std::size_t p);
+  void open_snapshot_series(bool create, std::size_t pantographs);
   void reopen(const std::string& path, std::size_t records, std::size_t snapshots);
   void stamp(const RunSettings& settings);
 

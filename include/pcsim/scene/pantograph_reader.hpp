@@ -33,6 +33,10 @@ void register_pantograph_kind(const std::string& kind, PantographKindReader read
 std::unique_ptr<pantograph::PantographModel> load_pantograph_model(const std::string& model_path,
                                                                    const InputNode* effects,
                                                                    double speed_m_s);
+// Builds the model of a loaded model file (InputNode::load_referenced).
+std::unique_ptr<pantograph::PantographModel> load_pantograph_model(const InputNode& model_file,
+                                                                   const InputNode* effects,
+                                                                   double speed_m_s);
 // Builds the model of a scene's pantograph entry {model, effects}.
 std::unique_ptr<pantograph::PantographModel> load_pantograph(const InputNode& entry,
                                                              double speed_m_s);

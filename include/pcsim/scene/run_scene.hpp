@@ -7,7 +7,8 @@
 //       model: ../meshes/pantographs/en50318_two_mass.yaml
 //       start_x: 5.0            # contact point x at t = 0 [m] (default: 2nd dropper of span 1)
 //       static_force: 120       # static contact force F0 [N] (default 120)
-//       start: static|ramp      # default: static for the first, ramp for the others
+//       start: static|ramp      # default: static for the first, ramp for the others;
+//                               # or {gap: 0.02}: at rest 2 cm below the wire
 //       ramp_distance: 20       # [m] (default 20)
 //       effects: {...}          # pantograph effects (see docs/pantograph.md)
 //   simulation:
@@ -17,8 +18,9 @@
 //   effects: {catenary_nonlinear: false, dropper_slack: true, rayleigh_damping: true}
 //   contact: {stiffness: 50000}
 //   analysis: {from_span: 5, to_span: 6, cutoff_hz: 20}   # 1-based spans
-//   output: {dropper_forces: true, snapshot_every: 0, checkpoint_every: 0}
+//   output: {dropper_forces: true, snapshot_every: 0, energy: false, checkpoint_every: 0}
 //     snapshot_every: field snapshots every N steps (0: none)
+//     energy: energy balance in energy.h5
 //     checkpoint_every: checkpoint.h5 every N steps, for --restart (0: only when
 //     the run stops early: SIGINT/SIGTERM, -ts_max_steps)
 #pragma once
@@ -46,7 +48,9 @@ struct RunScene {
   int analysis_from_span = 0, analysis_to_span = 0;  // 1-based
   double cutoff_hz = 20;
   bool dropper_forces = true;
-  long snapshot_every = 0;    // steps between field snapshots (XDMF animation); 0: none
+  double hht_alpha = 0.1;   // HHT numerical dissipation (simulation.hht_alpha; -ts_hht_alpha wins)
+  bool energy = false;      // energy balance every step (energy.h5)
+  long snapshot_every = 0;  // steps between field snapshots (XDMF animation); 0: none
   long checkpoint_every = 0;  // steps between checkpoints (restart); 0: none
   // Duration of the run: from t = 0 until the first pantograph reaches end_x.
   double duration() const { return (end_x - pantographs.front().start_x) / speed; }

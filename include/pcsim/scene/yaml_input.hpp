@@ -1,15 +1,23 @@
 // Strict, self-describing access to YAML input files.
 //
-// Every value read through an InputNode knows the file and the key path it
-// came from, so that errors read "meshes/x.yaml: key 'wires.contact.tension':
-// must be positive (got -5)". Unknown keys are rejected with
+// Every value read through an InputNode knows where it came from and its key
+// path, so that errors read "meshes/x.yaml: key 'wires.contact.tension': must
+// be positive (got -5)". Unknown keys are rejected with
 // InputNode::allow_only(), so that a typo never goes unnoticed.
+//
+// A tree may be composed (pcsim/scene/composition.hpp): a base file, 'set'
+// entries and command-line overrides. Each value then keeps its own origin:
+// the file it was written in (for relative paths and messages) or the
+// override that set it ("command line --set simulation.speed_kmh=320").
 #pragma once
 
 #include <yaml-cpp/yaml.h>
 
 #include <array>
 #include <initializer_list>
+#include <map>
+#include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -17,22 +25,59 @@
 
 namespace pcsim {
 
+// Where a value came from.
+struct InputOrigin {
+  std::string file;   // relative paths are resolved from its folder ("": working directory)
+  std::string label;  // what messages name: the file, or the override
+};
+
+// A value set by key path (`--set KEY=VALUE`, or an entry of a file's 'set' map).
+struct InputOverride {
+  std::string key;                // the key path as written ("pantographs[0].start_x")
+  std::vector<std::string> path;  // its components ("pantographs", "0", "start_x")
+  YAML::Node value;
+  InputOrigin origin;
+};
+
+// What the nodes of one tree share: the origins of its values and the
+// overrides that address files named by its values.
+struct InputSources {
+  std::string root_file;
+  std::map<std::string, InputOrigin> origins;  // key path -> origin (the longest prefix applies)
+  std::map<std::string, std::vector<InputOverride>> deferred;  // reference key -> overrides
+  const InputOrigin& origin_of(const std::string& key_path) const;
+};
+
 class InputNode {
  public:
-  // Loads a YAML file; throws InputError if it is missing or malformed.
+  // Loads a YAML file as it is (no composition); throws InputError if it is
+  // missing or malformed.
   static InputNode load_file(const std::string& path);
   // Parses YAML text (for tests); 'file' names it in messages.
   static InputNode load_string(const std::string& text, const std::string& file);
 
-  InputNode(YAML::Node node, std::string file, std::string path)
-      : node_(std::move(node)), file_(std::move(file)), path_(std::move(path)) {}
+  InputNode(YAML::Node node, std::string file, std::string path);
+  InputNode(YAML::Node node, std::string path, std::shared_ptr<const InputSources> sources)
+      : node_(std::move(node)), path_(std::move(path)), sources_(std::move(sources)) {}
 
-  const std::string& file() const { return file_; }
+  // What messages name for this node: its file, or the override that set it.
+  const std::string& file() const { return origin().label; }
   const std::string& path() const { return path_; }
-  // Directory of the file (for resolving relative paths), with a trailing '/'.
+  // The file the whole tree was loaded from.
+  const std::string& root_file() const { return sources_->root_file; }
+  const InputSources& sources() const { return *sources_; }
+  // Directory of the node's file (for resolving relative paths), with a trailing '/'.
   std::string directory() const;
-  // Resolves a path given in this file: absolute, or relative to the file's folder.
+  // Resolves a path given in this node's file: absolute, or relative to the file's folder.
   std::string resolve_path(const std::string& relative) const;
+  // The path given by the string value of 'key', resolved relative to the
+  // file that value was written in.
+  std::string path_value(const std::string& key) const;
+  // Loads the YAML file named by the string value of 'key' (path_value),
+  // composed (base, set) and with the overrides that address it through this
+  // key (e.g. --set catenary.design.spans.count=20). InputError naming 'key'
+  // if the file cannot be opened.
+  InputNode load_referenced(const std::string& key) const;
 
   bool has(const std::string& key) const;
   bool is_map() const { return node_.IsMap(); }
@@ -47,7 +92,8 @@ class InputNode {
   // Keys of a map, in file order.
   std::vector<std::string> keys() const;
 
-  // Rejects any key not in 'allowed'.
+  // Rejects any key not in 'allowed'. Records the allowed keys of this key
+  // path (allowed_keys_seen) for the test that compares them with the docs.
   void allow_only(std::initializer_list<const char*> allowed) const;
 
   // Typed scalar access (this node).
@@ -75,17 +121,26 @@ class InputNode {
   std::string get_choice(const std::string& key, std::initializer_list<const char*> choices,
                          const std::string& fallback) const;
 
-  // Error about this node (or one of its keys).
+  // Error about this node (or one of its keys), naming where its value came from.
   [[noreturn]] void fail(const std::string& reason) const;
   [[noreturn]] void fail_key(const std::string& key, const std::string& reason) const;
+  // Rethrows an InputError raised about this tree (e.g. by a geometry builder
+  // given the tree's file) naming the override that set the key, if one did.
+  [[noreturn]] void rethrow_with_origin(const InputError& error) const;
 
   const YAML::Node& raw() const { return node_; }
 
  private:
   std::string child_path(const std::string& key) const;
+  const InputOrigin& origin() const { return sources_->origin_of(path_); }
   YAML::Node node_;
-  std::string file_;
   std::string path_;
+  std::shared_ptr<const InputSources> sources_;
 };
+
+// The allowed keys of every map that allow_only() checked so far:
+// root file -> key path (list indices written "[]") -> keys.
+using AllowedKeys = std::map<std::string, std::map<std::string, std::set<std::string>>>;
+const AllowedKeys& allowed_keys_seen();
 
 }  // namespace pcsim

@@ -47,7 +47,9 @@ struct DynamicState {
 class DynamicSolver {
  public:
   // dt: default time step (-ts_dt overrides); duration: final time.
-  DynamicSolver(assembly::CoupledSystem& system, double dt, double duration);
+  // hht_alpha: the scene's HHT alpha; -ts_hht_alpha overrides it.
+  DynamicSolver(assembly::CoupledSystem& system, double dt, double duration,
+                double hht_alpha = 0.1);
   ~DynamicSolver();
   DynamicSolver(const DynamicSolver&) = delete;
   DynamicSolver& operator=(const DynamicSolver&) = delete;

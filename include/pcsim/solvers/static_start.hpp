@@ -23,4 +23,11 @@ struct StartInfo {
 // height that puts its contact point at the wire).
 StartInfo initial_state(assembly::CoupledSystem& system, Vec U0, Vec V0);
 
+// The acceleration at (0, U0, V0): zero for the catenary (in static
+// equilibrium, untouched at t = 0) and for pantographs that start in
+// equilibrium (static and ramp starts); M_p^-1 (-R_p) for a pantograph with a
+// gap start (below the wire with its full uplift), R_p its rows of
+// F(0, U0, V0, 0) (collective).
+void initial_acceleration(assembly::CoupledSystem& system, Vec U0, Vec V0, Vec A0);
+
 }  // namespace pcsim::solvers

@@ -15,12 +15,16 @@ namespace pcsim::solvers {
 // (true; 'system' built with assembly::form_finding_unknowns(mesh) extras).
 // On return the mesh of 'system' holds the found unstressed lengths and every
 // bar's equilibrium length and force, and 'x' the static configuration.
-// Throws SolverError if Newton does not converge.
+// Throws SolverError if Newton does not converge. abs_tolerance: the
+// residual norm [N] at which Newton stops (default 1e-8 N; a loaded problem
+// whose round-off floor lies above it can pass a larger one).
 catenary::StaticResult solve_static(assembly::CatenarySystem& system, Vec x, bool form_finding,
-                                    const char* options_prefix = nullptr);
+                                    const char* options_prefix = nullptr,
+                                    double abs_tolerance = 1e-8);
 
 // The step every command starts with: the design -> static configuration
-// (with form-finding when asked).
+// (with form-finding when asked). The returned mesh has its tensioning
+// devices released (catenary/reactions.hpp), the result the pull-off forces.
 struct StaticConfiguration {
   catenary::CatenaryMesh mesh;    // with the found unstressed lengths, bar equilibria
   catenary::StaticResult result;  // node values etc.

@@ -1,0 +1,34 @@
+// Results of `pcsim sweep`: one table of the EN 50318 figures of every case
+// (and every pantograph of a case) against the swept values.
+//   sweep.csv    case, the swept keys, pantograph, status, speed_kmh, then per
+//                figure its value (display unit) and verdict (pass/fail, empty
+//                where the standard gives no range)
+//   sweep.md     the same as a Markdown table, values with their verdicts
+//   summary.json {"swept": {key: [values]}, "cases": [{name, values, status,
+//                 summary}], "en50318": edition and figures, "provenance"}
+// The cases' own folders are cases/<case>/ (a pcsim run result each).
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "pcsim/output/output_dir.hpp"
+
+namespace pcsim::output {
+
+struct SweepCase {
+  std::string name;                                         // folder under cases/
+  std::vector<std::pair<std::string, std::string>> values;  // swept key -> value
+  int status = -1;                                          // exit status of its run
+  nlohmann::json summary;                                   // its summary.json (null if none)
+};
+
+// Writes sweep.csv, sweep.md and summary.json; returns the Markdown table.
+std::string write_sweep_results(
+    const OutputDir& out,
+    const std::vector<std::pair<std::string, std::vector<std::string>>>& swept,
+    const std::vector<SweepCase>& cases);
+
+}  // namespace pcsim::output

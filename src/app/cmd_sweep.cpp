@@ -1,0 +1,277 @@
+// `pcsim sweep SCENE --set KEY=A:B:STEP [--set KEY=V1,V2,...] [--set KEY=VALUE] [-j N]`:
+// a run scene for every combination of the swept values, each case its own
+// `pcsim run` process (up to N at a time), one table of the EN 50318 figures
+// (output/sweep_results.hpp), plots against the swept values and a report.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "command.hpp"
+#include "exit_status.hpp"
+#include "pcsim/output/sweep_results.hpp"
+#include "pcsim/scene/composition.hpp"
+#include "pcsim/scene/run_scene.hpp"
+#include "processes.hpp"
+
+namespace {
+
+using namespace pcsim;
+using app::CommandContext;
+
+struct Swept {
+  std::string key, given;  // the key path; the --set as given
+  std::vector<std::string> values;
+};
+
+struct Plan {
+  std::vector<std::string> fixed;  // plain overrides, for every case
+  std::vector<Swept> swept;
+  std::vector<output::SweepCase> cases;
+  std::vector<std::vector<std::string>> assignments;  // KEY=VALUE of each case
+};
+
+std::string number_text(double v) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%.10g", v);
+  return s;
+}
+
+// "A:B:STEP" (B included) or "V1,V2,..." -> the values; none for a plain value.
+std::vector<std::string> expand(const std::string& assignment) {
+  const std::string key = assignment.substr(0, assignment.find('='));
+  const std::string text = assignment.substr(assignment.find('=') + 1);
+  const std::string label = "command line --set " + assignment;
+  const std::string flow_openers = "[{}]";  // a YAML list or map: one value (balanced braces)
+  if (text.empty() || flow_openers.find(text[0]) < 2) return {};
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  const char sep = text.find(':') != std::string::npos ? ':' : ',';
+  for (std::size_t end; (end = text.find(sep, start)) != std::string::npos; start = end + 1)
+    parts.push_back(text.substr(start, end - start));
+  parts.push_back(text.substr(start));
+  if (parts.size() < 2) return {};
+  if (sep == ',') return parts;
+  double v[3];
+  for (std::size_t i = 0; i < 3; ++i) {
+    char* end = nullptr;
+    v[i] = i < parts.size() ? std::strtod(parts[i].c_str(), &end) : 0;
+    if (parts.size() != 3 || end == parts[i].c_str() || *end != '\0')
+      throw InputError(label, key, "a range is FROM:TO:STEP with three numbers");
+  }
+  if (!(v[2] > 0) || v[1] < v[0] || (v[1] - v[0]) / v[2] > 1000)
+    throw InputError(label, key, "a range needs FROM <= TO, STEP > 0 and at most 1000 values");
+  std::vector<std::string> values;
+  for (long k = 0; v[0] + k * v[2] <= v[1] + 1e-9 * v[2]; ++k)
+    values.push_back(number_text(v[0] + k * v[2]));
+  return values;
+}
+
+std::string folder_safe(std::string s) {
+  for (char& c : s)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '-' && c != '+') c = '_';
+  return s;
+}
+
+Plan make_plan(const CommandContext& ctx) {
+  Plan plan;
+  for (const auto& o : ctx.overrides) {
+    if (o.find('=') == std::string::npos) pcsim::parse_override(o, {"", "command line --set " + o});
+    auto values = expand(o);
+    if (values.empty())
+      plan.fixed.push_back(o);
+    else
+      plan.swept.push_back({o.substr(0, o.find('=')), o, std::move(values)});
+  }
+  if (plan.swept.empty())
+    throw InputError("command line", "--set",
+                     "a sweep needs a range KEY=FROM:TO:STEP or a list KEY=V1,V2,... "
+                     "(e.g. --set simulation.speed_kmh=200:400:20)");
+  std::size_t count = 1;
+  for (const auto& s : plan.swept) count *= s.values.size();
+  if (count > 10000)
+    throw InputError("command line", "--set", std::to_string(count) + " cases: at most 10000");
+  const int width = count >= 100 ? 3 : 2;
+  for (std::size_t k = 0; k < count; ++k) {
+    output::SweepCase c;
+    std::vector<std::string> assignments;
+    char index[24];
+    std::snprintf(index, sizeof index, "%0*zu", width, k + 1);
+    c.name = index;
+    std::size_t rest = k, stride = count;
+    for (const auto& s : plan.swept) {  // the first key varies slowest
+      stride /= s.values.size();
+      const std::string& value = s.values[rest / stride];
+      rest %= stride;
+      c.values.emplace_back(s.key, value);
+      assignments.push_back(s.key + "=" + value);
+      c.name += "_" + folder_safe(s.key.substr(s.key.find_last_of('.') + 1) + "-" + value);
+    }
+    plan.cases.push_back(c);
+    plan.assignments.push_back(assignments);
+  }
+  return plan;
+}
+
+// Reads every case's scene (input errors before anything runs).
+void check_cases(const CommandContext& ctx, const Plan& plan) {
+  std::vector<InputOverride> fixed;
+  for (const auto& o : plan.fixed)
+    fixed.push_back(parse_override(o, {"", "command line --set " + o}));
+  for (std::size_t k = 0; k < plan.cases.size(); ++k) {
+    auto overrides = fixed;
+    for (std::size_t i = 0; i < plan.swept.size(); ++i)
+      overrides.push_back(
+          parse_override(plan.assignments[k][i], {"", "command line --set " + plan.swept[i].given +
+                                                          " (case " + plan.cases[k].name + ")"}));
+    scene::load_run_scene(load_composed(ctx.scene_path, overrides));
+  }
+}
+
+std::vector<std::string> case_command(const CommandContext& ctx, const Plan& plan, std::size_t k,
+                                      const std::string& folder) {
+  std::vector<std::string> argv;
+  const std::string ranks = ctx.options.count("--ranks") ? ctx.options.at("--ranks") : "1";
+  if (ranks != "1") argv = {PCSIM_MPIEXEC, "-n", ranks};
+  argv.insert(argv.end(),
+              {app::own_executable(), "run", ctx.scene_path, "-o", folder, "--no-report"});
+  for (const auto& o : plan.fixed) argv.insert(argv.end(), {"--set", o});
+  for (const auto& a : plan.assignments[k]) argv.insert(argv.end(), {"--set", a});
+  argv.insert(argv.end(), ctx.petsc_arguments.begin(), ctx.petsc_arguments.end());
+  return argv;
+}
+
+// Environment variables of an MPI launcher, which a case must not inherit
+// (it would take itself for this process).
+const std::vector<std::string> kLauncherVariables = {"OMPI_COMM_WORLD",
+                                                     "OMPI_MCA_orte",
+                                                     "OMPI_MCA_ess",
+                                                     "OMPI_MCA_pmix",
+                                                     "OMPI_MCA_initial_wdir",
+                                                     "OMPI_MCA_shmem",
+                                                     "OMPI_MCA_mpi_oversubscribe",
+                                                     "OMPI_FILE_LOCATION",
+                                                     "OMPI_UNIVERSE_SIZE",
+                                                     "OMPI_COMMAND",
+                                                     "OMPI_ARGV",
+                                                     "OMPI_NUM_APP_CTX",
+                                                     "OMPI_FIRST_RANKS",
+                                                     "OMPI_APP_CTX",
+                                                     "PMIX_",
+                                                     "PMI_"};
+
+std::string case_line(const output::SweepCase& c) {
+  if (c.status != 0)
+    return "failed (exit " + std::to_string(c.status) + "), see cases/" + c.name + ".log";
+  std::string line = "ok";
+  for (const auto& p : c.summary.value("pantographs", nlohmann::json::array()))
+    if (p.contains("std_N"))
+      line += ", " + p.value("name", std::string()) + ": mean " +
+              number_text(std::round(10 * p["mean_N"].get<double>()) / 10) + " N, sigma " +
+              number_text(std::round(10 * p["std_N"].get<double>()) / 10) + " N";
+  return line;
+}
+
+void run_cases(const CommandContext& ctx, Plan& plan, const OutputDir& out, int jobs) {
+  const std::string cases = out.file("cases");
+  std::map<pid_t, std::size_t> running;
+  std::size_t next = 0, done = 0;
+  const auto start = std::chrono::steady_clock::now();
+  while (done < plan.cases.size()) {
+    while (next < plan.cases.size() && static_cast<int>(running.size()) < jobs) {
+      const std::string folder = cases + "/" + plan.cases[next].name;
+      std::filesystem::create_directories(cases);
+      running[app::start_process(case_command(ctx, plan, next, folder), folder + ".log",
+                                 kLauncherVariables)] = next;
+      ++next;
+    }
+    int status = 0;
+    const pid_t pid = app::wait_any_process(status);
+    if (!running.count(pid)) continue;
+    auto& c = plan.cases[running[pid]];
+    running.erase(pid);
+    c.status = status;
+    std::ifstream summary(cases + "/" + c.name + "/summary.json");
+    if (status == 0 && summary) c.summary = nlohmann::json::parse(summary, nullptr, false);
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    app::print0(ctx, "  [%zu/%zu] %s: %s (%.0f s)\n", ++done, plan.cases.size(), c.name.c_str(),
+                case_line(c).c_str(), elapsed);
+  }
+}
+
+// Plots of the figures against the swept values and report.html (warnings only).
+void write_plots_and_report(const CommandContext& ctx, const OutputDir& out) {
+  for (const auto& [script, args] : std::vector<std::pair<std::string, std::vector<std::string>>>{
+           {"sweep_plots.py", {out.partial_dir()}}, {"report.py", {"sweep", out.partial_dir()}}}) {
+    if (script == "report.py" && ctx.has_option("--no-report")) continue;
+    const std::string why = app::run_postproc(script, args);
+    if (!why.empty()) std::fprintf(stderr, "pcsim: warning: %s\n", why.c_str());
+  }
+}
+
+int positive_option(const CommandContext& ctx, const std::string& name) {
+  if (!ctx.has_option(name)) return 1;
+  char* end = nullptr;
+  const long v = std::strtol(ctx.options.at(name).c_str(), &end, 10);
+  if (*end != '\0' || v < 1 || v > 256)
+    throw InputError("command line", name, "must be a whole number from 1 to 256");
+  return static_cast<int>(v);
+}
+
+int run_sweep(const CommandContext& ctx) {
+  if (ctx.size > 1)
+    throw InputError("command line", "mpirun",
+                     "pcsim sweep starts every case as its own process: run it without mpirun "
+                     "(--ranks N gives each case N ranks)");
+  const int jobs = positive_option(ctx, "-j");
+  positive_option(ctx, "--ranks");
+  Plan plan = make_plan(ctx);
+  check_cases(ctx, plan);
+  // The scene with the overrides every case shares names the sweep; the
+  // provenance lists every --set as given.
+  CommandContext shared = ctx;
+  shared.overrides = plan.fixed;
+  const InputNode scene = shared.load_scene();
+  OutputRequest request = shared.output_request(scene);
+  request.provenance["overrides"] = ctx.overrides;
+  if (ctx.output_dir.empty()) request.dir += "-sweep";
+  OutputDir out(ctx.comm, request);
+  app::print0(ctx, "pcsim sweep: scene '%s', %zu cases, %d at a time\n",
+              ctx.scene_name(scene).c_str(), plan.cases.size(), jobs);
+  run_cases(ctx, plan, out, jobs);
+  std::vector<std::pair<std::string, std::vector<std::string>>> swept;
+  for (const auto& s : plan.swept) swept.emplace_back(s.key, s.values);
+  const std::string table = output::write_sweep_results(out, swept, plan.cases);
+  app::print0(ctx, "\n%s\n", table.c_str());
+  write_plots_and_report(ctx, out);
+  out.commit();
+  app::print0(ctx, "  results in %s/\n", out.final_dir().c_str());
+  int status = 0;
+  for (const auto& c : plan.cases) status = std::max(status, c.status);
+  return status == 0 ? 0 : std::min(status, app::kExitInternal);
+}
+
+}  // namespace
+
+PCSIM_COMMAND_HELP(
+    sweep_help, "sweep",
+    "Runs a run scene (docs/scene-format.md, \"Run scenes\") for every combination of\n"
+    "the values of the swept keys, each case as `pcsim run` with its --set:\n"
+    "  --set KEY=FROM:TO:STEP   a range (TO included), e.g. simulation.speed_kmh=200:400:20\n"
+    "  --set KEY=V1,V2,...      a list of values, e.g. pantographs[0].start=static,ramp\n"
+    "  --set KEY=VALUE          the same value in every case\n"
+    "PETSc options go to every case. Results (default out/<name>-sweep/): cases/<case>/\n"
+    "(a run result each, and its log), sweep.csv and sweep.md (the EN 50318 figures of\n"
+    "every case with their verdicts), sweep.png (figures against the swept values with\n"
+    "the acceptance ranges), summary.json, report.html. The exit status is the worst of\n"
+    "the cases'.\n",
+    {"-j", "N", "run up to N cases at a time (1)"},
+    {"--ranks", "N", "MPI ranks of each case (1; through mpiexec)"},
+    {"--no-report", "", "no report.html"});
+PCSIM_COMMAND("sweep", "a run scene over ranges of values: table, plots and report of EN 50318",
+              run_sweep);

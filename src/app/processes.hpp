@@ -1,0 +1,36 @@
+// Child processes of pcsim: the postproc scripts (reports, plots) and the
+// cases of a sweep. Called on rank 0 only (or by `pcsim sweep`, one rank).
+#pragma once
+
+#include <sys/types.h>
+
+#include <string>
+#include <vector>
+
+namespace pcsim::app {
+
+// Starts argv[0] (a path; PATH is searched when it has no '/') with its
+// stdout and stderr going to 'log_file' ("": inherited) and stdin closed.
+// 'environment_drop': prefixes of environment variables the child does not
+// get. Throws std::runtime_error if it cannot start.
+pid_t start_process(const std::vector<std::string>& argv, const std::string& log_file,
+                    const std::vector<std::string>& environment_drop = {});
+// Waits for the process; its exit status, or 128 + signal if a signal ended it.
+int wait_process(pid_t pid);
+// Waits for any child; its pid, and its status in 'status'.
+pid_t wait_any_process(int& status);
+
+// This executable (/proc/self/exe).
+std::string own_executable();
+
+// The Python interpreter for the postproc scripts: $PCSIM_PYTHON, else /usr/bin/python3.
+std::string postproc_python();
+// The script postproc/<name>: from $PCSIM_POSTPROC_DIR, the installed
+// share/pcsim/postproc next to the executable, or the source tree.
+std::string postproc_script(const std::string& name);
+
+// Runs postproc/<script> with 'args'; "" on success, else why not (one line:
+// the script's last line of output, or why it could not start).
+std::string run_postproc(const std::string& script, const std::vector<std::string>& args);
+
+}  // namespace pcsim::app

@@ -1,0 +1,76 @@
+#!/bin/bash
+# `pcsim static` on a line: the elasticity scene key writes elasticity.csv
+# and prints the non-uniformity, summary.json lists the steady arms' pull-off
+# forces and the tensioning devices; bad values of the new design and scene
+# keys exit with code 2 and one message naming the file, the key and the
+# reason.
+set -euo pipefail
+: "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:?}"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+M=$PCSIM_SOURCE_DIR/meshes/lines
+failures=0
+
+# A 3-span stitched catenary with 1 m elements and balance weights.
+sed -e 's/count: 10/count: 3/' -e 's/element_length: 0.5/element_length: 1.0/' "$M/stitched.yaml" \
+  > "$tmp/stitched3.yaml"
+echo "tensioning: {device: weight, ratio: 3}" >> "$tmp/stitched3.yaml"
+cat > "$tmp/elasticity.yaml" <<SCENE
+name: elasticity
+catenary: {design: stitched3.yaml}
+elasticity: {force: 100, from_x: 60.0, to_x: 120.0, step: 10.0}
+SCENE
+(cd "$tmp" && "$PCSIM_BIN" static elasticity.yaml -o out > out.log 2>&1)
+grep -q "elasticity (100 N at 7 points)" "$tmp/out.log" || { cat "$tmp/out.log"; failures=$((failures + 1)); }
+rows=$(grep -vc '^#' "$tmp/out/elasticity.csv")
+[ "$rows" -eq 7 ] || { echo "FAIL elasticity.csv has $rows rows" >&2; failures=$((failures + 1)); }
+"$PCSIM_PYTHON" - "$tmp/out/summary.json" <<'PY' || failures=$((failures + 1))
+import json, sys
+s = json.load(open(sys.argv[1]))
+pull = s["steady_arm_pull_off_N"]
+assert len(pull) == 2, pull                     # supports 1 and 2
+assert all(250 < abs(f) < 400 for f in pull), pull
+dev = s["tensioning_devices"]
+assert len(dev) == 4 and all(d["device"] == "weight" for d in dev), dev
+# The contact wire's ends pull with its tension (1e-4 measured); the
+# messenger's with more: between the anchor and the first stitch clamp it
+# also carries the stitch wire's 3.5 kN (16484 N measured).
+for d in dev:
+    if d["wire"] == "contact":
+        assert abs(d["pull_N"] / 20000 - 1) < 1e-3, d
+    else:
+        assert 16000 < d["pull_N"] < 16000 + 3500, d
+print("ok   summary: pull-off", [round(f, 1) for f in pull])
+PY
+
+# expect_error NAME SCENE NEEDLE...: exit code 2, one line on stderr with every NEEDLE.
+expect_error() {
+  local name=$1 scene=$2
+  shift 2
+  local status=0
+  (cd "$tmp" && "$PCSIM_BIN" static "$scene" -o "$tmp/$name" > "$tmp/$name.out" 2> "$tmp/$name.err") ||
+    status=$?
+  local ok=1 needle
+  [ "$status" -eq 2 ] || ok=0
+  [ "$(grep -c . "$tmp/$name.err" || true)" -eq 1 ] || ok=0
+  for needle in "$@"; do grep -qF -- "$needle" "$tmp/$name.err" || ok=0; done
+  if [ "$ok" -eq 1 ]; then
+    echo "ok   $name: $(cat "$tmp/$name.err")"
+  else
+    echo "FAIL $name (exit $status): $(cat "$tmp/$name.err")" >&2
+    failures=$((failures + 1))
+  fi
+}
+sed 's/to_x: 120.0/to_x: 500.0/' "$tmp/elasticity.yaml" > "$tmp/bad-elasticity.yaml"
+expect_error bad-elasticity bad-elasticity.yaml "bad-elasticity.yaml" "elasticity.to_x" \
+  "between from_x and the line's end"
+sed 's/raise: 0.3, anchor_raise: 0.6/raise: -0.3, anchor_raise: 0.6/' "$M/three-sections-short.yaml" \
+  > "$tmp/bad-overlap.yaml"
+printf 'name: bad\ncatenary: {design: bad-overlap.yaml}\n' > "$tmp/bad-overlap-scene.yaml"
+expect_error bad-overlap bad-overlap-scene.yaml "bad-overlap.yaml" "overlap.raise" "must be positive"
+
+if [ "$failures" -ne 0 ]; then
+  echo "$failures case(s) failed" >&2
+  exit 1
+fi
+echo OK
