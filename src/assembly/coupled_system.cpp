@@ -176,6 +176,19 @@ bool CoupledSystem::low_rank_change(double t, Vec U, Vec V, Vec A, std::vector<R
   return reference_ok;
 }
 
+std::vector<std::vector<double>> CoupledSystem::checkpoint_terms() const {
+  std::vector<std::vector<double>> states;
+  for (const auto& term : terms_) states.push_back(term->checkpoint());
+  return states;
+}
+
+void CoupledSystem::restore_terms(const std::vector<std::vector<double>>& states) {
+  if (states.size() != terms_.size())
+    throw SolverError("restore: " + std::to_string(states.size()) + " term states for " +
+                      std::to_string(terms_.size()) + " terms");
+  for (std::size_t k = 0; k < terms_.size(); ++k) terms_[k]->restore(states[k]);
+}
+
 double CoupledSystem::energy(double t, Vec U, Vec V) {
   load(t, U, V, nullptr);
   double e = 0;

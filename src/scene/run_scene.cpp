@@ -136,12 +136,15 @@ void read_effects_and_output(const InputNode& scene, RunScene& run) {
   }
   if (scene.has("output")) {
     const InputNode o = scene["output"];
-    o.allow_only({"dropper_forces", "snapshot_every", "energy"});
+    o.allow_only({"dropper_forces", "snapshot_every", "energy", "checkpoint_every"});
     run.dropper_forces = o.get_bool("dropper_forces", true);
     run.snapshot_every = o.get_int("snapshot_every", 0);
     run.energy = o.get_bool("energy", false);
     if (run.snapshot_every < 0)
       o.fail_key("snapshot_every", "must be 0 (none) or a number of steps");
+    run.checkpoint_every = o.get_int("checkpoint_every", 0);
+    if (run.checkpoint_every < 0)
+      o.fail_key("checkpoint_every", "must be 0 (none) or a number of steps");
   }
 }
 

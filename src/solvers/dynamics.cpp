@@ -84,6 +84,9 @@ DynamicSolver::DynamicSolver(assembly::CoupledSystem& system, double dt, double 
 }
 
 DynamicSolver::~DynamicSolver() {
+  VecDestroy(&reference_U_);
+  VecDestroy(&reference_V_);
+  VecDestroy(&reference_A_);
   TSDestroy(&ts_);
   low_rank_.reset();
   MatDestroy(&P_);
@@ -138,6 +141,13 @@ void DynamicSolver::cheap_jacobian(PetscReal t, Vec U, Vec V, Vec A, assembly::S
   system_.reference_jacobian(t, U, V, A, shifts, P);
   cached_shift_v_ = shifts.v;
   cached_shift_a_ = shifts.a;
+  reference_t_ = t;
+  const std::pair<Vec, Vec*> copies[] = {
+      {U, &reference_U_}, {V, &reference_V_}, {A, &reference_A_}};
+  for (const auto& [from, to] : copies) {
+    if (!*to) PCSIM_PETSC(VecDuplicate(from, to));
+    PCSIM_PETSC(VecCopy(from, *to));
+  }
   low_rank_->invalidate();
   system_.low_rank_change(t, U, V, A, terms_);
   low_rank_->set_terms(terms_);

@@ -54,6 +54,11 @@ class CoupledSystem {
   void reference_jacobian(double t, Vec U, Vec V, Vec A, Shifts shifts, Mat J0);
   bool low_rank_change(double t, Vec U, Vec V, Vec A, std::vector<RankOne>& terms);
 
+  // Every term's Term::checkpoint(), in order; restore_terms() gives them
+  // back (after the reference Jacobian has been rebuilt).
+  std::vector<std::vector<double>> checkpoint_terms() const;
+  void restore_terms(const std::vector<std::vector<double>>& states);
+
   // Sum of the terms' energies E(t, U, V) and powers (collective).
   double energy(double t, Vec U, Vec V);
   TermPower power(double t, Vec U, Vec V);
