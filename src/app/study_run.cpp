@@ -11,6 +11,7 @@
 #include "exit_status.hpp"
 #include "pcsim/output/output_dir.hpp"
 #include "pcsim/output/run_results.hpp"
+#include "pcsim/output/run_stream.hpp"
 #include "pcsim/scene/composition.hpp"
 #include "pcsim/scene/run_scene.hpp"
 #include "pcsim/solvers/dynamics.hpp"
@@ -81,7 +82,7 @@ scene::RunScene variant_scene(const CommandContext& ctx, const StudyVariant& v, 
 
 struct Recorder {
   assembly::CoupledSystem* system;
-  output::RunHistory history;
+  std::vector<contact::StepRecord> steps;  // rank 0
   int rank = 0;
 };
 
@@ -89,7 +90,7 @@ PetscErrorCode record(TS, PetscInt, PetscReal t, Vec U, void* ptr) {
   PCSIM_CALLBACK_BEGIN
   auto& r = *static_cast<Recorder*>(ptr);
   auto rec = r.system->record(t, U);
-  if (r.rank == 0) r.history.steps.push_back(std::move(rec));
+  if (r.rank == 0) r.steps.push_back(std::move(rec));
   PCSIM_CALLBACK_END
 }
 
@@ -135,7 +136,7 @@ double integrate(assembly::CoupledSystem& system, solvers::DynamicSolver& solver
 
 void fill_results(const output::RunStatistics& stats, const Recorder& recorder, double wall,
                   output::StudyRun& out) {
-  const auto& steps = recorder.history.steps;
+  const auto& steps = recorder.steps;
   out.steps = steps.empty() ? 0 : static_cast<long>(steps.size()) - 1;
   const double simulated = steps.empty() ? 0.0 : steps.back().t - steps.front().t;
   out.wall_s = wall;
@@ -196,10 +197,21 @@ output::StudyRun run_variant(const CommandContext& ctx, const InputNode& scene,
     output::RunStatistics stats;
     const auto settings = settings_of(run, out.label());
     on_rank0(ctx, [&] {
-      stats = output::write_run_results(dir, statics.mesh, statics.result.node_values, settings,
-                                        recorder.history);
+      output::RunLayout layout;
+      for (const auto& slot : system->pantographs()) {
+        layout.q_sizes.push_back(slot.dof_count());
+        layout.q_labels.push_back(slot.model->dof_names());
+      }
+      layout.support_x = statics.mesh.support_x;
+      for (int node : statics.mesh.support_nodes)
+        layout.support_static_z.push_back(statics.result.node_values[6 * node + 2]);
+      {
+        output::RunStream stream(dir.file("results.h5"), settings, layout, dir.provenance());
+        for (const auto& rec : recorder.steps) stream.append(rec);
+      }
+      stats = output::finish_run_results(dir, statics.mesh, settings);
       fill_results(stats, recorder, wall, out);
-      output::write_run_summary(dir, settings, stats, {{"wall_time_s", wall}});
+      output::write_run_summary(dir, settings, &stats, {{"wall_time_s", wall}});
     });
     dir.commit();
   } catch (const SolverError& e) {
