@@ -363,7 +363,7 @@ int run_dynamic(const app::CommandContext& ctx) {
               system->pantographs().size() > 1 ? "pantographs" : "pantograph",
               system->pantographs().front().run.speed * 3.6, run.duration(), dt, ts_type);
   const int signal = session.integrate();
-  nlohmann::json fidelity;
+  nlohmann::json fidelity = {{"steps", session.steps()}};  // per-step counts need it
   app::add_fidelity_facts(run, setup, *system, estimate, fidelity);
   if (signal != 0)
     return keep_interrupted(ctx, out, session, stream, settings, statics.mesh, signal);
