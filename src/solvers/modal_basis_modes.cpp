@@ -118,18 +118,9 @@ double stream_interval(const Operators& op, double lo, double hi, const ModeSink
   configure_slicing(eps, lo, hi);
   PCSIM_PETSC(EPSSetFromOptions(eps));
   PCSIM_PETSC(EPSSolve(eps));
-  PetscInt nconv = 0;
-  PCSIM_PETSC(EPSGetConverged(eps, &nconv));
-  std::vector<double> lambdas(nconv);
-  for (PetscInt i = 0; i < nconv; ++i) {
-    PetscScalar kr, ki;
-    PCSIM_PETSC(EPSGetEigenvalue(eps, i, &kr, &ki));
-    lambdas[i] = PetscRealPart(kr);
-  }
-  std::vector<PetscInt> order(nconv);
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(),
-            [&](PetscInt a, PetscInt b) { return lambdas[a] < lambdas[b]; });
+  const auto spectrum = converged_spectrum(eps);
+  const auto& lambdas = spectrum.lambdas;
+  const auto& order = spectrum.order;
   Vec phi, Mphi, Kphi;
   PCSIM_PETSC(MatCreateVecs(op.K, &phi, &Mphi));
   PCSIM_PETSC(VecDuplicate(phi, &Kphi));

@@ -160,18 +160,10 @@ ModesResult compute_modes(assembly::CatenarySystem& system, Vec x, int nev, doub
   const bool slicing = max_frequency_hz > 0;
   ModesResult result;
   result.requested = slicing ? -1 : nev;
-  PetscInt nconv = 0;
-  PCSIM_PETSC(EPSGetConverged(eps, &nconv));
-  std::vector<double> lambdas(nconv);
-  for (PetscInt i = 0; i < nconv; ++i) {
-    PetscScalar kr, ki;
-    PCSIM_PETSC(EPSGetEigenvalue(eps, i, &kr, &ki));
-    lambdas[i] = PetscRealPart(kr);
-  }
-  std::vector<PetscInt> order(nconv);
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(),
-            [&](PetscInt a, PetscInt b) { return lambdas[a] < lambdas[b]; });
+  const auto spectrum = converged_spectrum(eps);
+  const auto& lambdas = spectrum.lambdas;
+  const auto& order = spectrum.order;
+  const auto nconv = static_cast<PetscInt>(lambdas.size());
   const PetscInt keep = slicing ? nconv : std::min<PetscInt>(nconv, nev);
   result.converged = static_cast<int>(nconv);
   Vec phi, Kphi, Mphi;
@@ -191,6 +183,23 @@ ModesResult compute_modes(assembly::CatenarySystem& system, Vec x, int nev, doub
   PetscTime(&t1);
   result.wall_time_s = t1 - t0;
   return result;
+}
+
+ConvergedSpectrum converged_spectrum(EPS eps) {
+  PetscInt nconv = 0;
+  PCSIM_PETSC(EPSGetConverged(eps, &nconv));
+  ConvergedSpectrum s;
+  s.lambdas.resize(nconv);
+  for (PetscInt i = 0; i < nconv; ++i) {
+    PetscScalar kr, ki;
+    PCSIM_PETSC(EPSGetEigenvalue(eps, i, &kr, &ki));
+    s.lambdas[i] = PetscRealPart(kr);
+  }
+  s.order.resize(nconv);
+  std::iota(s.order.begin(), s.order.end(), 0);
+  std::sort(s.order.begin(), s.order.end(),
+            [&](PetscInt a, PetscInt b) { return s.lambdas[a] < s.lambdas[b]; });
+  return s;
 }
 
 }  // namespace pcsim::solvers

@@ -44,8 +44,7 @@ SHORT = ["simulation.end_x=185", "analysis.from_span=2", "analysis.to_span=3"]
 # oscillation twice the standard's, scaled by the amplification. The uplift
 # is bounded by the static uplift under that force at the softest point of a
 # span: 42.0 mm per 100 N (24.6 at the supports), measured with
-#   pcsim static SCENE with 'elasticity: {force: 100, from_x: 238, to_x: 362,
-#   step: 2}' on meshes/en50318-reference.yaml.
+#   build/pcsim static runs/en50318-elasticity.yaml
 # A run that injects energy (a wrong sign in a power, an unstable step) breaks
 # both within a few spans; the test prints the ratio to the bound.
 WAVE_SPEED_KMH = 438.0  # contact wire of meshes/en50318-reference.yaml
