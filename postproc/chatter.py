@@ -34,11 +34,11 @@ def study(folder):
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("results")
-    ap.add_argument("--plot")
+    ap.add_argument("results", help="folder of the study's runs (runs/hard/chatter_study.sh)")
+    ap.add_argument("--plot", help="PNG file for the energy and slack-event plot")
     args = ap.parse_args()
     if not os.path.isdir(args.results):
-        print(f"chatter.py: no folder '{args.results}'", file=sys.stderr)
+        print(f"chatter.py: error: no folder '{args.results}'", file=sys.stderr)
         return 2
     runs = {}
     for name in sorted(os.listdir(args.results)):

@@ -78,11 +78,11 @@ def plot(case, folder, out_dir):
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("results")
-    ap.add_argument("--plots")
+    ap.add_argument("results", help="results folder of tests/hard/hard_cases.py --keep")
+    ap.add_argument("--plots", help="folder for the PNG plots of the worst cases")
     args = ap.parse_args()
     if not os.path.isdir(args.results):
-        print(f"hard_cases.py: no folder '{args.results}'", file=sys.stderr)
+        print(f"hard_cases.py: error: no folder '{args.results}'", file=sys.stderr)
         return 2
     print("| case | Newton its/step | σ (N) | loss of contact (%) | slack events | max force (N) | "
           "max uplift (mm) | W_ext (J) | W_diss (J) | balance residual / turnover | rejected steps | ms/step |")

@@ -33,19 +33,8 @@ namespace {
 using namespace pcsim;
 
 // Starts the TS from the initial state (solvers::initial_state) and destroys it.
-void set_initial_state(assembly::CoupledSystem& system, solvers::DynamicSolver& solver, Vec U0,
-                       Vec V0) {
-  TS ts = solver.ts();
-  PCSIM_PETSC(TS2SetSolution(ts, U0, V0));
-  TSType ts_type;
-  PCSIM_PETSC(TSGetType(ts, &ts_type));
-  if (std::string(ts_type) == solvers::kTSHHT) {
-    // Static and ramp starts are equilibria (A0 = 0); a gap start is not.
-    Vec A0 = system.create_vector();
-    solvers::initial_acceleration(system, U0, V0, A0);
-    solvers::hht_set_initial_acceleration(ts, A0);
-    PCSIM_PETSC(VecDestroy(&A0));
-  }
+void set_initial_state(solvers::DynamicSolver& solver, Vec U0, Vec V0) {
+  solver.set_initial_state(U0, V0);
   PCSIM_PETSC(VecDestroy(&U0));
   PCSIM_PETSC(VecDestroy(&V0));
 }
@@ -345,7 +334,7 @@ int run_dynamic(const app::CommandContext& ctx) {
                      std::string("checkpoints and restarts need the TS type hht, not ") + ts_type);
   // A restart starts as a new run (the models keep parameters of their static
   // equilibrium), then takes the checkpoint's state.
-  set_initial_state(*system, solver, U0, V0);
+  set_initial_state(solver, U0, V0);
   if (restart) {
     warn_if_start_differs(ctx, *system, restart->state);
     solver.restore_state(restart->state);

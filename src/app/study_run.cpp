@@ -109,19 +109,9 @@ output::RunSettings settings_of(const scene::RunScene& run, const std::string& n
 }
 
 // Integrates; returns the wall time of the time loop.
-double integrate(assembly::CoupledSystem& system, solvers::DynamicSolver& solver, Vec U0, Vec V0,
-                 Recorder& recorder) {
+double integrate(solvers::DynamicSolver& solver, Vec U0, Vec V0, Recorder& recorder) {
   TS ts = solver.ts();
-  PCSIM_PETSC(TS2SetSolution(ts, U0, V0));
-  TSType ts_type;
-  PCSIM_PETSC(TSGetType(ts, &ts_type));
-  if (std::string(ts_type) == solvers::kTSHHT) {
-    // Static and ramp starts are equilibria (A0 = 0); a gap start is not.
-    Vec A0 = system.create_vector();
-    solvers::initial_acceleration(system, U0, V0, A0);
-    solvers::hht_set_initial_acceleration(ts, A0);
-    PCSIM_PETSC(VecDestroy(&A0));
-  }
+  solver.set_initial_state(U0, V0);
   PCSIM_PETSC(TSMonitorSet(ts, record, &recorder, nullptr));
   PetscLogDouble t0, t1;
   PetscTime(&t0);
@@ -188,7 +178,7 @@ output::StudyRun run_variant(const CommandContext& ctx, const InputNode& scene,
     PetscTime(&t1);
     out.setup_s = t1 - t0;
     Recorder recorder{system.get(), {}, ctx.rank};
-    const double wall = integrate(*system, solver, U0, V0, recorder);
+    const double wall = integrate(solver, U0, V0, recorder);
     PCSIM_PETSC(VecDestroy(&U0));
     PCSIM_PETSC(VecDestroy(&V0));
     OutputRequest request{run_dir,     "command line",       "-o", "study", ctx.scene_path,

@@ -6,6 +6,7 @@
 #include "pcsim/core/error.hpp"
 #include "pcsim/solvers/direct.hpp"
 #include "pcsim/solvers/hht.hpp"
+#include "pcsim/solvers/static_start.hpp"
 
 namespace pcsim::solvers {
 
@@ -151,6 +152,18 @@ void DynamicSolver::cheap_jacobian(PetscReal t, Vec U, Vec V, Vec A, assembly::S
   low_rank_->invalidate();
   system_.low_rank_change(t, U, V, A, terms_);
   low_rank_->set_terms(terms_);
+}
+
+void DynamicSolver::set_initial_state(Vec U0, Vec V0) {
+  PCSIM_PETSC(TS2SetSolution(ts_, U0, V0));
+  TSType ts_type;
+  PCSIM_PETSC(TSGetType(ts_, &ts_type));
+  if (std::string(ts_type) != kTSHHT) return;
+  // Static and ramp starts are equilibria (A0 = 0); a gap start is not.
+  Vec A0 = system_.create_vector();
+  initial_acceleration(system_, U0, V0, A0);
+  hht_set_initial_acceleration(ts_, A0);
+  PCSIM_PETSC(VecDestroy(&A0));
 }
 
 }  // namespace pcsim::solvers

@@ -66,7 +66,7 @@ def force_bound(static_force, speed_kmh):
 # dt-5ms 2.00/0.32, dt-10ms 2.46/0.47, loss-of-contact 1.02/9.9e-3,
 # gap-landing 1.04/1.2e-2, slack-droppers 1.50/4.3e-3, five-pantographs
 # 1.49/1.0e-2, dsa380-damper-friction 1.06/6.9e-3, nonlinear-380 2.00/5.7e-3,
-# undamped 1.73/1.4e-2, rejection 2.05/0.31. The bounds are 1.3 times the
+# undamped 1.73/1.4e-2, rejection 1.91/0.28. The bounds are 1.3 times the
 # iterations and 1.4-1.9 times the residuals: a Newton that stalls or a term
 # whose power is missing (the moving contact's alone is 30-60 % of W_ext)
 # breaks them. The residual is numerical dissipation (its positive part is
@@ -104,7 +104,7 @@ CASES = {
                           newton=2.6, energy=0.01, speed=380, f0=120, effect=("loss", 0.2)),
     "undamped": dict(scene="undamped", set=SHORT, newton=2.2, energy=0.02, speed=300, f0=120,
                      effect="undamped"),
-    "rejection": dict(scene="rejection", set=SHORT, options=["-snes_max_it", "3"], newton=2.7,
+    "rejection": dict(scene="rejection", set=SHORT, options=["-snes_max_it", "2"], newton=2.7,
                       energy=0.45, speed=300, f0=120, effect="rejection", injection=2e-3),
     "ranks": dict(scene="slack-droppers",
                   set=["pantographs.0.start_x=58", "simulation.end_x=122",

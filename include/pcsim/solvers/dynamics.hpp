@@ -55,6 +55,9 @@ class DynamicSolver {
   DynamicSolver& operator=(const DynamicSolver&) = delete;
 
   TS ts() const { return ts_; }
+  // Starts the TS at (U0, V0) (copied): with HHT also at the acceleration of
+  // that state (solvers::initial_acceleration; zero for equilibrium starts).
+  void set_initial_state(Vec U0, Vec V0);
   bool cheap_path() const { return low_rank_ != nullptr; }
 
   // Checkpoint/restart (collective; the TS must be of type hht). save_state()
