@@ -352,8 +352,11 @@ int run_dynamic(const app::CommandContext& ctx) {
               system->pantographs().size() > 1 ? "pantographs" : "pantograph",
               system->pantographs().front().run.speed * 3.6, run.duration(), dt, ts_type);
   const int signal = session.integrate();
-  nlohmann::json fidelity = {{"steps", session.steps()}};  // per-step counts need it
+  // The modal counters per step of this process (a restart's earlier steps
+  // are not in them); "steps" itself comes from the session.
+  nlohmann::json fidelity = {{"steps", session.steps() - (restart ? restart->state.step : 0)}};
   app::add_fidelity_facts(run, setup, *system, estimate, fidelity);
+  fidelity.erase("steps");
   if (signal != 0)
     return keep_interrupted(ctx, out, session, stream, settings, statics.mesh, signal);
   if (session.stopped_early()) session.checkpoint_last_step();  // -ts_max_steps: can go on
