@@ -18,12 +18,12 @@ import pcsim_post
 
 
 def read_snapshots(results):
-    """(times, [displacement n x 3 per snapshot]) of results.h5 (/snapshots/time and
-    /snapshots/displacement_<k>)."""
+    """(times, displacements k x n x 3) of results.h5 (/snapshots/time and
+    /snapshots/displacement: docs/results-format.md)."""
     if "/snapshots/time" not in results:
         pcsim_post.fail("the run has no snapshots (set output.snapshot_every > 0 in the scene)")
     times = results["/snapshots/time"][()]
-    return times, [results["/snapshots/displacement_%d" % k] for k in range(len(times))]
+    return times, results["/snapshots/displacement"]
 
 
 def read_mesh(path):

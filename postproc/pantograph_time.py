@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Time response of the pantograph alone (pcsim pantograph, study: time).
 
-usage: pantograph_time.py OUTDIR [OUTDIR2 ...] -o PNG [--labels A,B] [--title T]
+usage: pantograph_time.py OUTDIR [OUTDIR2 ...] -o PNG [--labels A,B] [--title T] [--xlim A B]
 Plots the head height y10 (contact dof), the frame angle and the head rotation for every
 scheme stored in OUTDIR/time.h5 (rk4, hht, and *_linear if present). Several OUTDIRs
 (e.g. without/with friction) are overlaid.
@@ -27,6 +27,8 @@ def main():
     ap.add_argument("--labels", default=None, help="comma-separated labels, one per folder")
     ap.add_argument("--title", default="", help="title of the plot")
     ap.add_argument("--schemes", default=None, help="comma list of groups of time.h5 (default: all)")
+    ap.add_argument("--xlim", type=float, nargs=2, default=None, metavar=("T0", "T1"),
+                    help="time window to show [s]")
     args = ap.parse_args()
     for d in args.outdirs:
         pcsim_post.need_run_folder(d, ("time.h5",), "pcsim pantograph (study: time)")
@@ -53,6 +55,14 @@ def main():
     axes[1].set_ylabel("frame angle change (deg)")
     axes[2].set_ylabel("head rotation θ7 (deg)")
     axes[2].set_xlabel("t (s)")
+    if args.xlim:  # zoom: y range of the data inside the window
+        axes[2].set_xlim(*args.xlim)
+        for a in axes:
+            ys = [l.get_ydata()[(l.get_xdata() >= args.xlim[0]) & (l.get_xdata() <= args.xlim[1])]
+                  for l in a.get_lines()]
+            ys = np.concatenate([y for y in ys if len(y)])
+            pad = 0.05 * (ys.max() - ys.min()) + 1e-12
+            a.set_ylim(ys.min() - pad, ys.max() + pad)
     for a in axes:
         a.grid(True)
     axes[0].legend(fontsize=8)

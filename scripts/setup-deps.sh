@@ -4,7 +4,7 @@
 set -euo pipefail
 PACKAGES=(build-essential cmake pkg-config
   petsc-dev slepc-dev libmetis-dev libhdf5-openmpi-dev libopenmpi-dev openmpi-bin
-  libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libgtest-dev
+  libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libgtest-dev libssl-dev
   python3-numpy python3-h5py python3-matplotlib python3-scipy python3-pil time
   python3-paraview)  # python3-paraview: ParaView's XDMF3 reader for tests/output;
 # python3-pil: the GIF writer of postproc/animate.py

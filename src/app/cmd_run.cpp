@@ -1,143 +1,54 @@
-// `pcsim run SCENE.yaml`: dynamic pantograph-catenary interaction.
-//   scene -> static configuration -> coupled system -> initial state -> TS -> results
-#include <petsctime.h>
+// `pcsim run SCENE.yaml [--restart DIR]`: dynamic pantograph-catenary interaction.
+//   scene -> static configuration -> coupled system -> initial state (or a
+//   checkpoint) -> TS, results streamed to results.h5 -> statistics
 #include <petscts.h>
 
+#include <algorithm>
+#include <filesystem>
+
+#include "accuracy_estimate.hpp"
+#include "catenary_setup.hpp"
 #include "command.hpp"
 #include "exit_status.hpp"
 #include "inputs.hpp"
 #include "pcsim/assembly/coupled_system.hpp"
 #include "pcsim/assembly/fe_catenary.hpp"
+#include "pcsim/output/checkpoint.hpp"
 #include "pcsim/output/en50318.hpp"
 #include "pcsim/output/energy_results.hpp"
 #include "pcsim/output/line_results.hpp"
 #include "pcsim/output/output_dir.hpp"
 #include "pcsim/output/run_results.hpp"
+#include "pcsim/output/run_stream.hpp"
 #include "pcsim/scene/run_scene.hpp"
 #include "pcsim/solvers/dynamics.hpp"
 #include "pcsim/solvers/hht.hpp"
 #include "pcsim/solvers/static_start.hpp"
 #include "pcsim/solvers/statics.hpp"
 #include "processes.hpp"
+#include "run_checkpoint.hpp"
+#include "run_session.hpp"
 
 namespace {
 
 using namespace pcsim;
 
-struct RunMonitor {
-  assembly::CoupledSystem* system = nullptr;
-  const app::CommandContext* ctx = nullptr;
-  double duration = 0;
-  PetscLogDouble wall_start = 0, last_print = 0;
-  output::RunHistory history;
-  long newton_iterations = 0;
-  long steps = 0;
-  bool keep_dropper_forces = true;
-  bool energy = false;  // output.energy: E and the powers every step
-  output::EnergyHistory energy_history;
-  long snapshot_every = 0;
-};
-
-// E(t) and the powers of the terms at the TS's state (collective).
-void record_energy(TS ts, double t, RunMonitor& m) {
-  Vec U, V;
-  PCSIM_PETSC(TS2GetSolution(ts, &U, &V));
-  const double energy = m.system->energy(t, U, V);
-  const auto power = m.system->power(t, U, V);
-  auto& h = m.energy_history;
-  h.time.push_back(t);
-  h.energy.push_back(energy);
-  h.power_external.push_back(power.external);
-  h.power_dissipative.push_back(power.dissipative);
+// Starts the TS from the initial state (solvers::initial_state) and destroys it.
+void set_initial_state(solvers::DynamicSolver& solver, Vec U0, Vec V0) {
+  solver.set_initial_state(U0, V0);
+  PCSIM_PETSC(VecDestroy(&U0));
+  PCSIM_PETSC(VecDestroy(&V0));
 }
 
-PetscErrorCode monitor(TS ts, PetscInt step, PetscReal t, Vec U, void* ptr) {
-  PCSIM_CALLBACK_BEGIN
-  auto& m = *static_cast<RunMonitor*>(ptr);
-  auto rec = m.system->record(t, U);
-  if (!m.keep_dropper_forces) rec.dropper_force.clear();
-  if (m.ctx->rank == 0) m.history.steps.push_back(std::move(rec));
-  if (m.energy) record_energy(ts, t, m);
-  if (m.snapshot_every > 0 && step % m.snapshot_every == 0) {
-    auto positions = m.system->catenary().node_positions_to_root(U);  // collective
-    if (m.ctx->rank == 0) {
-      m.history.snapshot_times.push_back(t);
-      m.history.snapshots.push_back(std::move(positions));
-    }
-  }
-  if (step > 0) {
-    SNES snes;
-    PetscInt its;
-    PCSIM_PETSC(TSGetSNES(ts, &snes));
-    PCSIM_PETSC(SNESGetIterationNumber(snes, &its));
-    m.newton_iterations += its;
-    m.steps = step;
-  }
-  PetscLogDouble now;
-  PetscTime(&now);
-  if (now - m.last_print > 5.0 || (step > 0 && t >= m.duration - 1e-12)) {
-    m.last_print = now;
-    const double done = t / m.duration;
-    const double eta = done > 0 ? (now - m.wall_start) * (1 - done) / done : 0;
-    app::print0(*m.ctx, "  t = %7.3f s of %.3f s (%5.1f%%), step %ld, ETA %.0f s\n", t, m.duration,
-                100 * done, static_cast<long>(step), eta);
-  }
-  PCSIM_CALLBACK_END
-}
-
-// The coupled system of the scene on the static configuration.
-std::unique_ptr<assembly::CoupledSystem> make_system(const app::CommandContext& ctx,
-                                                     scene::RunScene& run,
-                                                     const solvers::StaticConfiguration& statics) {
-  std::vector<assembly::PantographSlot> slots;
-  PetscInt panto_dofs = 0;
-  for (std::size_t p = 0; p < run.pantographs.size(); ++p) {
-    assembly::PantographSlot slot;
-    slot.run = run.pantographs[p];
-    slot.model = std::move(run.models[p]);
-    panto_dofs += slot.dof_count();
-    slots.push_back(std::move(slot));
-  }
-  auto catenary = std::make_unique<assembly::FECatenary>(
-      ctx.comm, statics.mesh, statics.result.node_values, panto_dofs, &statics.node_owner);
-  return std::make_unique<assembly::CoupledSystem>(std::move(catenary), std::move(slots),
-                                                   run.effects, run.contact_stiffness);
-}
-
-// Integrates from the initial state; fills the monitor.
-void integrate(const app::CommandContext& ctx, assembly::CoupledSystem& system,
-               solvers::DynamicSolver& solver, Vec U0, Vec V0, RunMonitor& mon) {
-  TS ts = solver.ts();
-  PCSIM_PETSC(TS2SetSolution(ts, U0, V0));
-  TSType ts_type;
-  PCSIM_PETSC(TSGetType(ts, &ts_type));
-  if (std::string(ts_type) == solvers::kTSHHT) {
-    // Static and ramp starts are equilibria (A0 = 0); a gap start is not.
-    Vec A0 = system.create_vector();
-    solvers::initial_acceleration(system, U0, V0, A0);
-    solvers::hht_set_initial_acceleration(ts, A0);
-    PCSIM_PETSC(VecDestroy(&A0));
-  }
-  PetscTime(&mon.wall_start);
-  mon.last_print = mon.wall_start;
-  PCSIM_PETSC(TSMonitorSet(ts, monitor, &mon, nullptr));
-  PetscReal dt;
-  PCSIM_PETSC(TSGetTimeStep(ts, &dt));
-  app::print0(ctx, "  %s at %.0f km/h, %.3f s simulated, dt = %.2e s, TS %s\n",
-              system.pantographs().size() > 1 ? "pantographs" : "pantograph",
-              system.pantographs().front().run.speed * 3.6, mon.duration, dt, ts_type);
-  PCSIM_PETSC(TSSolve(ts, nullptr));
-  TSConvergedReason reason;
-  PCSIM_PETSC(TSGetConvergedReason(ts, &reason));
-  if (reason < 0)
-    throw SolverError(std::string("time integration failed: ") + TSConvergedReasons[reason]);
-}
-
-// Steps the HHT scheme rejected and retried with a smaller Δt (0 for other TS types).
-long rejected_steps(TS ts) {
-  TSType type;
-  PCSIM_PETSC(TSGetType(ts, &type));
-  return std::string(type) == solvers::kTSHHT ? solvers::hht_get_info(ts).rejected_steps : 0;
+void warn_if_start_differs(const app::CommandContext& ctx, assembly::CoupledSystem& system,
+                           const solvers::DynamicState& checkpointed) {
+  const auto& slots = system.pantographs();
+  for (std::size_t p = 0; p < slots.size() && p < checkpointed.head_offsets.size(); ++p)
+    if (slots[p].head_offset != checkpointed.head_offsets[p])
+      app::print0(ctx,
+                  "  warning: pantograph '%s' starts %.3g m from where the checkpointed run "
+                  "started it; the restart will not equal an uninterrupted run\n",
+                  slots[p].run.name.c_str(), slots[p].head_offset - checkpointed.head_offsets[p]);
 }
 
 // The EN 50318 table of one pantograph: figure, unit, value, and the range
@@ -194,20 +105,11 @@ nlohmann::json print_statistics(const app::CommandContext& ctx, const output::Ru
 // A line of several tension sections: statistics over each section and
 // overlap, forces on each contact wire (output/line_results.hpp); printed,
 // and returned for summary.json (null for a single section).
+// The histories come from results.h5 (run_layout keeps the wire forces).
 nlohmann::json line_results(const app::CommandContext& ctx, const OutputDir& out,
-                            const catenary::CatenaryMesh& mesh, const output::RunSettings& s,
-                            const output::RunHistory& history) {
+                            const catenary::CatenaryMesh& mesh, const output::RunSettings& s) {
   if (mesh.zones.size() < 2) return nullptr;
-  std::vector<output::ContactHistory> histories(s.pantograph_names.size());
-  for (std::size_t p = 0; p < histories.size(); ++p) {
-    histories[p].name = s.pantograph_names[p];
-    for (const auto& rec : history.steps) {
-      histories[p].time.push_back(rec.t);
-      histories[p].x.push_back(rec.contact_x[p]);
-      histories[p].force.push_back(rec.contact_force[p]);
-      histories[p].wire_force.push_back(rec.wire_force[p]);
-    }
-  }
+  const auto histories = output::read_contact_histories(out, s);
   const auto json = output::write_line_results(out, mesh, histories, s.cutoff_hz);
   for (const auto& p : json)
     for (const auto& z : p["zones"]) {
@@ -221,9 +123,10 @@ nlohmann::json line_results(const app::CommandContext& ctx, const OutputDir& out
   return json;
 }
 
-// energy.h5 and the balance on the console (output.energy).
-nlohmann::json energy_results(const app::CommandContext& ctx, const OutputDir& out,
-                              const output::EnergyHistory& history) {
+// energy.h5 and the balance on the console (output.energy), from the
+// energy streamed into results.h5.
+nlohmann::json energy_results(const app::CommandContext& ctx, const OutputDir& out) {
+  const auto history = output::read_energy_history(out);
   const auto balance = output::energy_balance(history);
   app::print0(ctx,
               "  energy: W_ext %.4g J, W_diss %.4g J, E - E0 %.4g J; balance residual max %.3g J "
@@ -251,25 +154,76 @@ output::RunSettings run_settings(const app::CommandContext& ctx, const InputNode
   return s;
 }
 
-// Performance and solver facts for summary.json and the console.
-nlohmann::json run_facts(const app::CommandContext& ctx, const RunMonitor& mon,
-                         const assembly::CoupledSystem& system, bool cheap, double wall) {
-  const auto& h = mon.history.steps;
-  const double simulated = h.empty() ? 0.0 : h.back().t - h.front().t;
-  nlohmann::json j;
-  j["steps"] = mon.steps;
-  j["newton_iterations"] = mon.newton_iterations;
-  j["newton_iterations_per_step"] =
-      mon.steps > 0 ? static_cast<double>(mon.newton_iterations) / mon.steps : 0.0;
-  j["wall_time_s"] = wall;
-  j["time_per_step_ms"] = mon.steps > 0 ? 1e3 * wall / mon.steps : 0.0;
-  j["simulated_time_s"] = simulated;
-  j["real_time_factor"] = simulated / wall;
-  j["peak_memory_mb"] = app::peak_memory_mb(ctx.comm);
-  j["ranks"] = ctx.size;
-  j["dofs"] = system.global_size();
-  j["path"] = cheap ? "cheap" : "full";
-  return j;
+output::RunLayout run_layout(const scene::RunScene& run, assembly::CoupledSystem& system,
+                             const solvers::StaticConfiguration& statics) {
+  const auto& mesh = statics.mesh;
+  const auto& values = statics.result.node_values;
+  output::RunLayout layout;
+  for (const auto& slot : system.pantographs()) {
+    layout.q_sizes.push_back(slot.dof_count());
+    layout.q_labels.push_back(slot.model->dof_names());
+  }
+  layout.support_x = mesh.support_x;
+  for (int node : mesh.support_nodes) layout.support_static_z.push_back(values[6 * node + 2]);
+  if (run.dropper_forces)
+    layout.droppers = static_cast<std::size_t>(
+        std::count_if(mesh.bars.begin(), mesh.bars.end(),
+                      [](const auto& b) { return b.kind == catenary::BarKind::dropper; }));
+  if (mesh.zones.size() >= 2) layout.contact_wires = mesh.contact_wire_list().size();
+  layout.energy = run.energy;
+  layout.snapshots = run.snapshot_every > 0;
+  if (layout.snapshots) layout.static_positions = catenary::positions_from_node_values(values);
+  return layout;
+}
+
+// results.h5 on rank 0: new, or a copy of the restart folder's records up to
+// its checkpoint; the static mesh for the snapshots.
+std::unique_ptr<output::RunStream> open_stream(const app::CommandContext& ctx, const OutputDir& out,
+                                               const output::RunSettings& settings,
+                                               output::RunLayout layout,
+                                               const solvers::StaticConfiguration& statics,
+                                               const app::RunCheckpoint* restart) {
+  std::unique_ptr<output::RunStream> stream;
+  app::on_rank0(ctx, [&] {
+    const bool snapshots = layout.snapshots;
+    const std::string path = out.file("results.h5");
+    if (restart) {
+      std::filesystem::copy_file(app::restart_dir(ctx) + "/results.h5", path);
+      stream = std::make_unique<output::RunStream>(path, settings, std::move(layout),
+                                                   restart->progress.records,
+                                                   restart->progress.snapshots, out.provenance());
+    } else {
+      stream =
+          std::make_unique<output::RunStream>(path, settings, std::move(layout), out.provenance());
+    }
+    if (snapshots) output::write_static_mesh(out, statics.mesh, statics.result.node_values);
+  });
+  return stream;
+}
+
+// An interrupted run keeps its partial folder: data up to this step, a
+// checkpoint, a summary saying it is incomplete.
+int keep_interrupted(const app::CommandContext& ctx, OutputDir& out, app::RunSession& session,
+                     std::unique_ptr<output::RunStream>& stream, const output::RunSettings& s,
+                     const catenary::CatenaryMesh& mesh, int signal) {
+  const bool checkpointed = session.checkpoint_last_step();
+  nlohmann::json facts = session.facts();
+  facts["interrupted_by"] = app::signal_name(signal);
+  facts["provenance"] = out.provenance();
+  app::on_rank0(ctx, [&] {
+    stream->close();
+    output::write_run_summary(out, s, nullptr, facts);
+    output::write_snapshots_view(out, mesh);
+  });
+  out.keep_partial();
+  app::print0(ctx,
+              "\n  interrupted (%s) at t = %.4f s, step %ld: results up to this step%s in %s/\n",
+              app::signal_name(signal), session.time(), session.steps(),
+              checkpointed ? " and a checkpoint" : "", out.partial_dir().c_str());
+  if (checkpointed)
+    app::print0(ctx, "  continue with: pcsim run %s --restart %s -o NEW_FOLDER\n",
+                ctx.scene_path.c_str(), out.partial_dir().c_str());
+  return 128 + signal;
 }
 
 // report.html (postproc/report.py) in the result folder; a warning if it
@@ -282,13 +236,76 @@ void write_report(const app::CommandContext& ctx, const OutputDir& out) {
     std::fprintf(stderr, "pcsim: warning: no report.html: %s\n", why.c_str());
 }
 
+// The statistics, line and energy results of a complete run, and its summary.
+void write_complete_results(const app::CommandContext& ctx, const OutputDir& out,
+                            const output::RunSettings& settings, const catenary::CatenaryMesh& mesh,
+                            bool energy, nlohmann::json facts) {
+  const auto stats = output::finish_run_results(out, mesh, settings);
+  facts["en50318"] = print_statistics(ctx, settings, stats);
+  facts["provenance"] = out.provenance();
+  const auto zones = line_results(ctx, out, mesh, settings);
+  if (!zones.is_null()) facts["line_zones"] = zones;
+  if (energy) facts["energy"] = energy_results(ctx, out);
+  output::write_run_summary(out, settings, &stats, facts);
+}
+
+// A run that ended by itself: statistics, summary, the result in place.
+int finish_complete(const app::CommandContext& ctx, OutputDir& out, app::RunSession& session,
+                    std::unique_ptr<output::RunStream>& stream, const output::RunSettings& settings,
+                    const catenary::CatenaryMesh& mesh, bool energy,
+                    const app::RunCheckpoint* restart, const nlohmann::json& fidelity) {
+  nlohmann::json facts = session.facts();
+  facts.update(fidelity);
+  if (restart) {
+    facts["restarted_from"] = app::restart_dir(ctx);
+    facts["restart_step"] = restart->state.step;
+  }
+  app::on_rank0(ctx, [&] {
+    stream->close();
+    write_complete_results(ctx, out, settings, mesh, energy, facts);
+    app::print0(ctx,
+                "  %ld steps, %.2f Newton iterations/step, %.2f ms/step, real-time factor %.2f, "
+                "peak memory %.0f MB/rank\n",
+                session.steps(), facts["newton_iterations_per_step"].get<double>(),
+                facts["time_per_step_ms"].get<double>(), facts["real_time_factor"].get<double>(),
+                facts["peak_memory_mb"].get<double>());
+    if (facts["rejected_steps"].get<long>() > 0)
+      app::print0(ctx, "  %ld steps rejected by Newton and retried with a smaller time step\n",
+                  facts["rejected_steps"].get<long>());
+  });
+  if (!ctx.has_option("--no-report")) app::on_rank0(ctx, [&] { write_report(ctx, out); });
+  out.commit();
+  app::print0(ctx, "  results in %s/\n", out.final_dir().c_str());
+  return 0;
+}
+
+app::RunSession::Options session_options(const scene::RunScene& run, const OutputDir& out,
+                                         const std::vector<app::InputFile>& inputs) {
+  app::RunSession::Options options;
+  options.duration = run.duration();
+  options.snapshot_every = run.snapshot_every;
+  options.checkpoint_every = run.checkpoint_every;
+  options.keep_dropper_forces = run.dropper_forces;
+  options.energy = run.energy;
+  options.checkpoint_file = out.file(output::kCheckpointName);
+  options.inputs = inputs;
+  return options;
+}
+
 int run_dynamic(const app::CommandContext& ctx) {
-  app::RunInputs inputs = app::read_run_inputs(ctx);  // every input checked: exit 2 before work
-  const InputNode& scene = inputs.scene;
-  auto& run = inputs.run;
+  app::RunInputs run_inputs = app::read_run_inputs(ctx);  // every input checked: exit 2 before work
+  const InputNode& scene = run_inputs.scene;
+  auto& run = run_inputs.run;
   const auto& design = run.catenary.mesh;
   const double c = catenary::wave_speed(design.wires[design.contact_wire]);
-  OutputDir out(ctx.comm, ctx.output_request(scene));
+  const auto inputs = app::run_input_files(ctx.scene_path, scene);
+  const OutputRequest request = ctx.output_request(scene);
+  std::unique_ptr<app::RunCheckpoint> restart;
+  if (!app::restart_dir(ctx).empty()) {
+    app::check_restart_target(ctx, request.dir);
+    restart = std::make_unique<app::RunCheckpoint>(app::load_run_checkpoint(ctx, inputs));
+  }
+  OutputDir out(ctx.comm, request);
   app::print0(ctx, "pcsim run: scene '%s', design %s\n", ctx.scene_name(scene).c_str(),
               run.catenary.design_path.c_str());
   app::print_warnings(ctx, run.warnings);
@@ -302,52 +319,50 @@ int run_dynamic(const app::CommandContext& ctx) {
               statics.result.max_tension_error_rel);
   app::print_warnings(ctx, statics.result.warnings);
   const auto settings = run_settings(ctx, scene, run);
-  auto system = make_system(ctx, run, statics);
+  app::CatenarySetup setup;
+  auto system = app::make_coupled_system(ctx, run, statics, setup);
+  app::print_catenary_setup(ctx, run, setup);
+  system->set_record_dropper_forces(run.dropper_forces);
   Vec U0 = system->create_vector(), V0 = system->create_vector();
   solvers::initial_state(*system, U0, V0);
   solvers::DynamicSolver solver(*system, run.dt, run.duration(), run.hht_alpha);
+  const auto estimate = app::estimate_accuracy(ctx, run, *system, solver, U0);
   app::print0(ctx, "  %d catenary DOFs + %d pantograph DOFs on %d rank(s); %s path\n",
               static_cast<int>(system->catenary().catenary_dofs()),
               static_cast<int>(system->global_size() - system->catenary().catenary_dofs()),
               ctx.size, solver.cheap_path() ? "cheap (Jacobian reused)" : "full Newton");
-  RunMonitor mon;
-  mon.system = system.get();
-  mon.ctx = &ctx;
-  mon.duration = run.duration();
-  mon.keep_dropper_forces = run.dropper_forces;
-  mon.snapshot_every = run.snapshot_every;
-  mon.energy = run.energy;
-  integrate(ctx, *system, solver, U0, V0, mon);
-  PetscLogDouble wall_end;
-  PetscTime(&wall_end);
-  auto facts = run_facts(ctx, mon, *system, solver.cheap_path(), wall_end - mon.wall_start);
-  facts["rejected_steps"] = rejected_steps(solver.ts());
-  PCSIM_PETSC(VecDestroy(&U0));
-  PCSIM_PETSC(VecDestroy(&V0));
-  app::on_rank0(ctx, [&] {
-    const auto stats = output::write_run_results(out, statics.mesh, statics.result.node_values,
-                                                 settings, mon.history);
-    auto summary_facts = facts;
-    summary_facts["en50318"] = print_statistics(ctx, settings, stats);
-    summary_facts["provenance"] = out.provenance();
-    const auto zones = line_results(ctx, out, statics.mesh, settings, mon.history);
-    if (!zones.is_null()) summary_facts["line_zones"] = zones;
-    if (mon.energy) summary_facts["energy"] = energy_results(ctx, out, mon.energy_history);
-    output::write_run_summary(out, settings, stats, summary_facts);
-    app::print0(ctx,
-                "  %ld steps, %.2f Newton iterations/step, %.2f ms/step, real-time factor %.2f, "
-                "peak memory %.0f MB/rank\n",
-                mon.steps, facts["newton_iterations_per_step"].get<double>(),
-                facts["time_per_step_ms"].get<double>(), facts["real_time_factor"].get<double>(),
-                facts["peak_memory_mb"].get<double>());
-    if (facts["rejected_steps"].get<long>() > 0)
-      app::print0(ctx, "  %ld steps rejected by Newton and retried with a smaller time step\n",
-                  facts["rejected_steps"].get<long>());
-  });
-  if (!ctx.has_option("--no-report")) app::on_rank0(ctx, [&] { write_report(ctx, out); });
-  out.commit();
-  app::print0(ctx, "  results in %s/\n", out.final_dir().c_str());
-  return 0;
+  TSType ts_type;
+  PCSIM_PETSC(TSGetType(solver.ts(), &ts_type));
+  // A restart starts as a new run (the models keep parameters of their static
+  // equilibrium), then takes the checkpoint's state.
+  set_initial_state(solver, U0, V0);
+  if (restart) {
+    warn_if_start_differs(ctx, *system, restart->state);
+    solver.restore_state(restart->state);
+    app::print0(ctx, "  restarted from %s at t = %.4f s, step %ld\n", app::restart_dir(ctx).c_str(),
+                restart->state.t, restart->state.step);
+  }
+  const app::GracefulStop stop;  // from here SIGINT/SIGTERM stop at the next step, data kept
+  auto stream =
+      open_stream(ctx, out, settings, run_layout(run, *system, statics), statics, restart.get());
+  app::RunSession session(ctx, *system, solver, stream.get(), session_options(run, out, inputs),
+                          restart.get(), stop);
+  PetscReal dt;
+  PCSIM_PETSC(TSGetTimeStep(solver.ts(), &dt));
+  app::print0(ctx, "  %s at %.0f km/h, %.3f s simulated, dt = %.2e s, TS %s\n",
+              system->pantographs().size() > 1 ? "pantographs" : "pantograph",
+              system->pantographs().front().run.speed * 3.6, run.duration(), dt, ts_type);
+  const int signal = session.integrate();
+  // The modal counters per step of this process (a restart's earlier steps
+  // are not in them); "steps" itself comes from the session.
+  nlohmann::json fidelity = {{"steps", session.steps() - (restart ? restart->state.step : 0)}};
+  app::add_fidelity_facts(run, setup, *system, estimate, fidelity);
+  fidelity.erase("steps");
+  if (signal != 0)
+    return keep_interrupted(ctx, out, session, stream, settings, statics.mesh, signal);
+  if (session.stopped_early()) session.checkpoint_last_step();  // -ts_max_steps: can go on
+  return finish_complete(ctx, out, session, stream, settings, statics.mesh, run.energy,
+                         restart.get(), fidelity);
 }
 
 }  // namespace
@@ -357,15 +372,19 @@ PCSIM_COMMAND_HELP(
     "scene sections (docs/scene-format.md, \"Run scenes\"):\n"
     "  name         scene name: results go to out/<name>/ (default: the file name)\n"
     "  description  free text\n"
-    "  catenary     design: FILE (docs/design-format.md), form_finding: true|false\n"
+    "  catenary     design: FILE (docs/design-format.md), form_finding: true|false,\n"
+    "               model: nonlinear|linear|modal, max_frequency_hz, modal (docs/fidelity.md)\n"
     "  pantographs  list of {name, model, start_x, static_force, start, ramp_distance,\n"
     "               working_height, effects}\n"
     "  simulation   speed_kmh, end_x [m], dt [s]\n"
     "  effects      catenary_nonlinear, dropper_slack, rayleigh_damping\n"
     "  contact      stiffness [N/m]\n"
     "  analysis     from_span, to_span, cutoff_hz\n"
-    "  output       dropper_forces, snapshot_every\n"
+    "  output       dropper_forces, snapshot_every, energy, checkpoint_every\n"
     "  base, set    composition: a base scene, keys set by path\n"
-    "results: results.h5, summary.json (EN 50318 figures, provenance), report.html\n",
-    {"--no-report", "", "no report.html (postproc/report.py)"});
+    "results: results.h5, summary.json (EN 50318 figures, provenance), report.html;\n"
+    "an interrupted run (SIGINT, SIGTERM) keeps <dir>.partial with its data and a\n"
+    "checkpoint (README \"Interrupted runs and restarts\")\n",
+    {"--no-report", "", "no report.html (postproc/report.py)"},
+    {"--restart", "DIR", "continue the run whose checkpoint is in DIR, into a new folder"});
 PCSIM_COMMAND("run", "dynamic pantograph-catenary interaction (HHT, penalty contact)", run_dynamic);

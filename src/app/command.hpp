@@ -25,8 +25,10 @@ struct CommandContext {
   std::string command;                         // the command being run ("run", "static", ...)
   std::string scene_path;                      // SCENE.yaml as given
   std::string output_dir;                      // from -o, or "" for the default out/<scene name>
-  std::vector<std::string> arguments;          // the whole command line (argv)
-  std::vector<std::string> overrides;          // --set KEY=VALUE, in order
+  std::string cache_dir = "out/.pcsim-cache";  // --cache DIR (output/modal_cache.hpp)
+  std::string subcommand;              // commands with a subcommand: `pcsim study accuracy SCENE`
+  std::vector<std::string> arguments;  // the whole command line (argv)
+  std::vector<std::string> overrides;  // --set KEY=VALUE, in order
   std::vector<std::string> petsc_arguments;    // what went to PETSc's options database
   std::map<std::string, std::string> options;  // the command's own options ("" for a flag)
   bool has_option(const std::string& name) const { return options.count(name) > 0; }
@@ -54,15 +56,17 @@ struct Command {
   std::string help;     // `pcsim <command> --help`: the scene sections it reads
   std::vector<CommandOption> options;
   std::function<int(const CommandContext&)> run;
+  bool has_subcommand = false;  // the first argument names a subcommand
 };
 
 std::map<std::string, Command>& command_registry();
 
 struct CommandRegistrar {
   CommandRegistrar(const std::string& name, std::string summary,
-                   std::function<int(const CommandContext&)> run) {
+                   std::function<int(const CommandContext&)> run, bool has_subcommand = false) {
     command_registry()[name].summary = std::move(summary);
     command_registry()[name].run = std::move(run);
+    command_registry()[name].has_subcommand = has_subcommand;
   }
 };
 
@@ -88,6 +92,9 @@ double peak_memory_mb(MPI_Comm comm);
 
 #define PCSIM_COMMAND(name, summary, function) \
   static ::pcsim::app::CommandRegistrar pcsim_command_registrar_##function(name, summary, function)
+#define PCSIM_COMMAND_WITH_SUBCOMMAND(name, summary, function)                            \
+  static ::pcsim::app::CommandRegistrar pcsim_command_registrar_##function(name, summary, \
+                                                                           function, true)
 // --help text (scene sections, docs) and the command's own options.
 #define PCSIM_COMMAND_HELP(tag, name, help, ...) \
   static ::pcsim::app::CommandHelpRegistrar pcsim_command_help_##tag(name, help, {__VA_ARGS__})

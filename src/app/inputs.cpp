@@ -5,6 +5,7 @@
 #include "pcsim/scene/design_reader.hpp"
 #include "pcsim/scene/pantograph_scene.hpp"
 #include "pcsim/solvers/dynamics.hpp"
+#include "run_checkpoint.hpp"
 
 namespace pcsim::app {
 
@@ -70,6 +71,9 @@ RunInputs read_run_inputs(const CommandContext& ctx, const InputNode& scene) {
   options.size_check = memory_check(ctx, solvers::MemoryUse::run, in.memory);
   options.command_line_dt = in.numerics.dt;
   in.run = scene::load_run_scene(in.scene, options);
+  if ((in.run.checkpoint_every > 0 || !restart_dir(ctx).empty()) && in.numerics.ts_type != "hht")
+    throw InputError("command line", "-ts_type",
+                     "checkpoints and restarts need the TS type hht, not " + in.numerics.ts_type);
   in.cheap_path = solvers::choose_cheap_path(ctx.comm, cheap_path_possible(in.run));
   return in;
 }

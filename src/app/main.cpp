@@ -27,6 +27,7 @@ const char* const kCommonOptions =
     "                   pantographs[0].static_force=100; a path through a key that names a\n"
     "                   file sets a key of that file, e.g. catenary.design.spans.count=20\n"
     "                   (repeatable, applied in order, checked like the file's keys)\n"
+    "  --cache DIR      cache of reduced (modal) catenary bases (default out/.pcsim-cache)\n"
     "  -h, --help       this text\n";
 
 void print_usage() {
@@ -54,8 +55,10 @@ void print_command_help(const std::string& name, const Command& command) {
   std::string own;
   for (const auto& o : command.options)
     own += " [" + o.name + (o.value.empty() ? "" : " " + o.value) + "]";
-  std::printf("usage: pcsim %s SCENE.yaml [-o DIR] [--set KEY=VALUE]...%s [PETSc options]\n  %s\n",
-              name.c_str(), own.c_str(), command.summary.c_str());
+  std::printf(
+      "usage: pcsim %s%s SCENE.yaml [-o DIR] [--set KEY=VALUE]...%s [PETSc options]\n  %s\n",
+      name.c_str(), command.has_subcommand ? " SUBCOMMAND" : "", own.c_str(),
+      command.summary.c_str());
   if (!command.help.empty()) std::printf("\n%s", command.help.c_str());
   std::printf("\noptions:\n%s", kCommonOptions);
   for (const auto& o : command.options) {
@@ -89,6 +92,12 @@ int parse_arguments(int argc, char** argv, const Command& command, CommandContex
     if (!std::strcmp(arg, "-o") || !std::strcmp(arg, "--output")) {
       if (!needs(i, "a folder")) return 2;
       ctx.output_dir = argv[++i];
+    } else if (!std::strcmp(arg, "--cache")) {
+      if (!needs(i, "a folder")) return 2;
+      ctx.cache_dir = argv[++i];
+    } else if (command.has_subcommand && ctx.subcommand.empty() && ctx.scene_path.empty() &&
+               arg[0] != '-' && !is_help(arg)) {
+      ctx.subcommand = arg;
     } else if (!std::strcmp(arg, "--set")) {
       if (!needs(i, "KEY=VALUE")) return 2;
       ctx.overrides.push_back(argv[++i]);

@@ -126,3 +126,52 @@ bool BarForces::low_rank_change(const CoupledState&, std::vector<RankOne>& terms
 }
 
 }  // namespace pcsim::assembly
+
+namespace pcsim::assembly {
+
+// [switched bars; per bar: index, state, terms; per term: key, coefficient,
+// reuse_columns, size, indices, weights] (indices are exact in doubles).
+std::vector<double> BarForces::checkpoint() const {
+  std::vector<double> out = {static_cast<double>(frozen_.size())};
+  for (const auto& [i, frozen] : frozen_) {
+    out.insert(out.end(), {static_cast<double>(i), static_cast<double>(frozen.state),
+                           static_cast<double>(frozen.terms.size())});
+    for (const auto& t : frozen.terms) {
+      out.insert(out.end(), {static_cast<double>(t.key), t.coefficient, t.reuse_columns ? 1.0 : 0.0,
+                             static_cast<double>(t.index.size())});
+      for (PetscInt g : t.index) out.push_back(static_cast<double>(g));
+      out.insert(out.end(), t.weight.begin(), t.weight.end());
+    }
+  }
+  return out;
+}
+
+void BarForces::restore(const std::vector<double>& state) {
+  std::size_t pos = 0;
+  auto next = [&]() {
+    if (pos >= state.size()) throw SolverError("bar forces: truncated checkpoint state");
+    return state[pos++];
+  };
+  frozen_.clear();
+  const auto bars = static_cast<std::size_t>(next());
+  for (std::size_t b = 0; b < bars; ++b) {
+    const auto i = static_cast<std::size_t>(next());
+    if (i >= slack_bars_.size()) throw SolverError("bar forces: checkpoint names no slack bar");
+    Frozen& frozen = frozen_[i];
+    frozen.state = static_cast<char>(next());
+    const auto terms = static_cast<std::size_t>(next());
+    for (std::size_t k = 0; k < terms; ++k) {
+      RankOne t;
+      t.key = static_cast<int>(next());
+      t.coefficient = next();
+      t.reuse_columns = next() != 0;
+      const auto n = static_cast<std::size_t>(next());
+      for (std::size_t j = 0; j < n; ++j) t.index.push_back(static_cast<PetscInt>(next()));
+      for (std::size_t j = 0; j < n; ++j) t.weight.push_back(next());
+      frozen.terms.push_back(std::move(t));
+    }
+  }
+  if (pos != state.size()) throw SolverError("bar forces: checkpoint state too long");
+}
+
+}  // namespace pcsim::assembly

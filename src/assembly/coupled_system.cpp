@@ -26,22 +26,20 @@ CoupledSystem::CoupledSystem(std::unique_ptr<CatenaryModel> catenary,
       wire_coupled.push_back(i == slot.model->contact_dof());
     offset += slot.dof_count();
   }
-  std::vector<std::unique_ptr<Term>> interaction;
+  wire_coupled_ = wire_coupled;
   for (std::size_t p = 0; p < pantographs_.size(); ++p) {
-    interaction.push_back(std::make_unique<PantographTerm>(p, pantographs_[p]));
+    terms_.push_back(std::make_unique<PantographTerm>(p, pantographs_[p]));
     contacts_.emplace_back();
     for (int w = 0; w < catenary_->contact_wire_count(); ++w) {
       auto contact = std::make_unique<PenaltyContact>(p, pantographs_[p], contact_stiffness, w);
       contacts_.back().push_back(contact.get());
-      interaction.push_back(std::move(contact));
+      terms_.push_back(std::move(contact));
     }
   }
-  pattern_ = catenary_->create_matrix(wire_coupled);
-  for (const auto& term : interaction) term->insert_pattern(pattern_);
-  PCSIM_PETSC(MatAssemblyBegin(pattern_, MAT_FINAL_ASSEMBLY));
-  PCSIM_PETSC(MatAssemblyEnd(pattern_, MAT_FINAL_ASSEMBLY));
-  terms_ = catenary_->make_terms(effects, pattern_);
-  for (auto& term : interaction) terms_.push_back(std::move(term));
+  pattern_ = build_pattern(catenary_->has_reference_pattern());
+  auto catenary_terms = catenary_->make_terms(effects, pattern_);
+  terms_.insert(terms_.begin(), std::make_move_iterator(catenary_terms.begin()),
+                std::make_move_iterator(catenary_terms.end()));
   // Merge the linear parts that share a matrix.
   for (const auto& term : terms_)
     for (const auto& part : term->linear_parts()) {
@@ -76,7 +74,25 @@ bool CoupledSystem::cheap_path_possible() const {
   });
 }
 
+// The catenary model's pattern plus the interaction terms' (the pantographs'
+// blocks), assembled.
+Mat CoupledSystem::build_pattern(bool reference) const {
+  Mat J = reference ? catenary_->create_reference_matrix(wire_coupled_)
+                    : catenary_->create_matrix(wire_coupled_);
+  for (const auto& term : terms_) term->insert_pattern(J);
+  PCSIM_PETSC(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+  PCSIM_PETSC(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  return J;
+}
+
 Mat CoupledSystem::create_matrix() const {
+  if (catenary_->has_reference_pattern()) return build_pattern(false);
+  Mat J;
+  PCSIM_PETSC(MatDuplicate(pattern_, MAT_DO_NOT_COPY_VALUES, &J));
+  return J;
+}
+
+Mat CoupledSystem::create_reference_matrix() const {
   Mat J;
   PCSIM_PETSC(MatDuplicate(pattern_, MAT_DO_NOT_COPY_VALUES, &J));
   return J;
@@ -160,6 +176,19 @@ bool CoupledSystem::low_rank_change(double t, Vec U, Vec V, Vec A, std::vector<R
   return reference_ok;
 }
 
+std::vector<std::vector<double>> CoupledSystem::checkpoint_terms() const {
+  std::vector<std::vector<double>> states;
+  for (const auto& term : terms_) states.push_back(term->checkpoint());
+  return states;
+}
+
+void CoupledSystem::restore_terms(const std::vector<std::vector<double>>& states) {
+  if (states.size() != terms_.size())
+    throw SolverError("restore: " + std::to_string(states.size()) + " term states for " +
+                      std::to_string(terms_.size()) + " terms");
+  for (std::size_t k = 0; k < terms_.size(); ++k) terms_[k]->restore(states[k]);
+}
+
 double CoupledSystem::energy(double t, Vec U, Vec V) {
   load(t, U, V, nullptr);
   double e = 0;
@@ -183,7 +212,8 @@ contact::StepRecord CoupledSystem::record(double t, Vec U) {
   const std::size_t np = pantographs_.size();
   const std::size_t nw = static_cast<std::size_t>(catenary_->contact_wire_count());
   const auto supports = catenary_->support_heights();
-  const auto droppers = catenary_->dropper_forces();
+  const auto droppers =
+      record_dropper_forces_ ? catenary_->dropper_forces() : std::vector<double>();
   const std::size_t ns = supports.size(), nc = np * (1 + 3 * nw);
   // Reduction buffer: per pantograph [x, per wire (Fc, z, on wire)],
   // supports, droppers.

@@ -117,25 +117,6 @@ Vec FECatenary::static_forces(unsigned mask) {
   return b;
 }
 
-namespace {
-// Contact-gap offset at station x (linear in the table, zero outside).
-double gap_offset(const catenary::ContactGapOffset& g, double x) {
-  if (g.x.size() < 2 || x <= g.x.front() || x >= g.x.back()) return 0.0;
-  const auto it = std::upper_bound(g.x.begin(), g.x.end(), x);
-  const std::size_t i = static_cast<std::size_t>(it - g.x.begin()) - 1;
-  const double w = (x - g.x[i]) / (g.x[i + 1] - g.x[i]);
-  return (1 - w) * g.offset[i] + w * g.offset[i + 1];
-}
-
-// d(offset)/dx at station x (the slope of the piece holding x).
-double gap_offset_slope(const catenary::ContactGapOffset& g, double x) {
-  if (g.x.size() < 2 || x <= g.x.front() || x >= g.x.back()) return 0.0;
-  const auto it = std::upper_bound(g.x.begin(), g.x.end(), x);
-  const std::size_t i = static_cast<std::size_t>(it - g.x.begin()) - 1;
-  return (g.offset[i + 1] - g.offset[i]) / (g.x[i + 1] - g.x[i]);
-}
-}  // namespace
-
 WirePoint FECatenary::wire_point(double x, int wire) const {
   WirePoint point;
   int element;
@@ -160,8 +141,8 @@ WirePoint FECatenary::wire_point(double x, int wire) const {
     const Eigen::Vector3d r_chi = catenary::cable_point(el.ref_length, q, chi).r_chi;
     point.slope = r_chi[2] / r_chi[0];
     if (!mesh().contact_gap_offsets.empty()) {
-      point.z += gap_offset(mesh().contact_gap_offsets[wire], x);
-      point.slope += gap_offset_slope(mesh().contact_gap_offsets[wire], x);
+      point.z += mesh().contact_gap_offsets[wire].at(x);
+      point.slope += mesh().contact_gap_offsets[wire].slope_at(x);
     }
   }
   return point;

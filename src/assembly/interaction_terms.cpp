@@ -103,18 +103,20 @@ PenaltyContact::Evaluation PenaltyContact::evaluate(const CoupledState& state) c
   e.x = slot_.run.contact_x(state.t);
   e.wire = state.catenary().wire_point(e.x, wire_);
   e.head = state.head_height(index_);
+  // A reduced catenary's residual flexibility r in series: kH / (1 + kH r).
+  e.stiffness = kH_ / (1.0 + kH_ * e.wire.residual_flexibility);
   if (e.wire.on_wire && e.wire.owned) {
     e.gap = e.wire.z - e.head;
-    e.force = e.gap < 0 ? -kH_ * e.gap : 0.0;
+    e.force = e.gap < 0 ? -e.stiffness * e.gap : 0.0;
   }
   return e;
 }
 
 void PenaltyContact::add_residual(const CoupledState& state, Vec F) {
-  const Evaluation e = evaluate(state);
+  Evaluation e = evaluate(state);
   if (e.force <= 0) return;
-  std::vector<double> r(e.wire.weight.size());
-  for (std::size_t i = 0; i < r.size(); ++i) r[i] = -e.force * e.wire.weight[i];
+  std::vector<double>& r = e.wire.weight;  // -Fc dz/dU, in place
+  for (double& w : r) w *= -e.force;
   PCSIM_PETSC(
       VecSetValues(F, static_cast<PetscInt>(r.size()), e.wire.index.data(), r.data(), ADD_VALUES));
   PCSIM_PETSC(VecSetValue(F, slot_.contact_dof(), e.force, ADD_VALUES));
@@ -128,7 +130,7 @@ void PenaltyContact::add_tangent(const CoupledState& state, Shifts, Mat J) {
   idx.push_back(slot_.contact_dof());
   u.push_back(-1.0);
   const Eigen::Map<const Eigen::VectorXd> uv(u.data(), static_cast<long>(u.size()));
-  const RowMatrix K = kH_ * uv * uv.transpose();
+  const RowMatrix K = e.stiffness * uv * uv.transpose();
   const auto n = static_cast<PetscInt>(idx.size());
   PCSIM_PETSC(MatSetValues(J, n, idx.data(), n, idx.data(), K.data(), ADD_VALUES));
 }
@@ -146,8 +148,8 @@ bool PenaltyContact::low_rank_change(const CoupledState& state, std::vector<Rank
   term.weight = e.wire.weight;
   term.index.push_back(slot_.contact_dof());
   term.weight.push_back(-1.0);
-  term.coefficient = in_contact > 0.5 ? kH_ : 0.0;
-  term.reuse_columns = true;
+  term.coefficient = in_contact > 0.5 ? e.stiffness : 0.0;
+  term.reuse_columns = e.wire.reuse_columns;
   terms.push_back(std::move(term));
   return true;
 }
@@ -165,7 +167,8 @@ TermPower PenaltyContact::power(const CoupledState& state) const {
 
 double PenaltyContact::energy(const CoupledState& state) const {
   const Evaluation e = evaluate(state);
-  return sum_over_ranks(state.catenary().comm(), e.force > 0 ? 0.5 * kH_ * e.gap * e.gap : 0.0);
+  return sum_over_ranks(state.catenary().comm(),
+                        e.force > 0 ? 0.5 * e.stiffness * e.gap * e.gap : 0.0);
 }
 
 }  // namespace pcsim::assembly

@@ -24,6 +24,7 @@ EnergyBalance energy_balance(const EnergyHistory& h) {
     b.residual.push_back(change - w_ext - w_diss);
     b.turnover = std::max({b.turnover, std::abs(change), std::abs(w_ext), std::abs(w_diss)});
     b.max_residual = std::max(b.max_residual, std::abs(b.residual.back()));
+    b.max_injection = std::max(b.max_injection, b.residual.back());
   }
   if (n > 0) b.final_residual = b.residual.back();
   return b;
@@ -51,6 +52,7 @@ nlohmann::json write_energy_results(const std::string& path, const EnergyHistory
   j["turnover_J"] = b.turnover;
   j["max_balance_residual_J"] = b.max_residual;
   j["final_balance_residual_J"] = b.final_residual;
+  j["max_energy_injection_J"] = b.max_injection;
   return j;
 }
 

@@ -4,7 +4,12 @@
 
 namespace pcsim {
 
-H5File::H5File(const std::string& path) {
+H5File::H5File(const std::string& path, Mode mode) {
+  if (mode == Mode::append) {
+    file_ = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    if (file_ < 0) throw SolverError("cannot open HDF5 file " + path);
+    return;
+  }
   file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
   if (file_ < 0) throw SolverError("cannot create HDF5 file " + path);
 }

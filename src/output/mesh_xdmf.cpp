@@ -346,7 +346,7 @@ void write_snapshots_xdmf(const CatenaryMesh& mesh, const std::string& mesh_h5_n
   x << "    <Grid Name=\"snapshots\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
   for (std::size_t k = 0; k < times.size(); ++k) {
     const std::vector<XdmfAttribute> attrs = {{"displacement",
-                                               "/snapshots/displacement_" + std::to_string(k),
+                                               "/snapshots/xdmf/displacement_" + std::to_string(k),
                                                false, false, n, 3, snapshots_h5_name}};
     std::ostringstream grids;
     if (ne > 0)

@@ -81,10 +81,12 @@ std::string leftover_partial_refusal(const std::string& partial, bool remove = t
     if (remove) fs::remove_all(partial);
     return "";
   }
+  const bool restartable = fs::exists(partial + "/checkpoint.h5", ec);
   return in_quotes(partial) + " holds the results of an interrupted pcsim run (" +
          m.value("command", std::string("?")) + " " + m.value("scene_file", std::string("?")) +
-         ", started " + m.value("started", std::string("?")) +
-         "); move it away or delete it, then run again";
+         ", started " + m.value("started", std::string("?")) + "); " +
+         (restartable ? "continue it with --restart " + partial + " -o ANOTHER_FOLDER, or " : "") +
+         "move it away or delete it, then run again";
 }
 
 std::string normal_form(const std::string& dir) {
@@ -232,6 +234,18 @@ void OutputDir::commit() {
   why = broadcast_text(comm_, why);
   if (!why.empty()) fail(why);
   committed_ = true;
+}
+
+void OutputDir::keep_partial() {
+  MPI_Barrier(comm_);
+  if (rank_ == 0) {
+    keep_partial_ = true;
+    output_guard::disarm_interrupt_cleanup();
+    output_guard::release_lock(lock_fd_, lock_path_);
+    lock_fd_ = -1;
+    created_parents_.clear();
+  }
+  committed_ = true;  // nothing left to undo
 }
 
 std::string OutputDir::swap_into_place() {

@@ -1,5 +1,6 @@
 #include "pcsim/output/pantograph_results.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
@@ -9,6 +10,7 @@
 #include "pcsim/output/h5_file.hpp"
 #include "pcsim/output/provenance.hpp"
 #include "pcsim/pantograph/dsa380.hpp"
+#include "pcsim/pantograph/flexible_dsa380.hpp"
 
 namespace pcsim::output {
 
@@ -36,9 +38,33 @@ std::vector<double> to_vec(const Eigen::VectorXd& v) {
   return {v.data(), v.data() + v.size()};
 }
 
-// Name of the mode dominated by q[dof] (DSA-380 only).
-const char* mode_label(const PantographModel& m, int dof) {
-  return dynamic_cast<const Dsa380Pantograph*>(&m) ? dsa380_mode_label(dof) : "";
+// Name of a mode. Rigid DSA-380: by its dominant coordinate. Flexible DSA-380: "bending of
+// bar b" when most (> 50 %) of its strain energy ½φᵀKφ is in one bar's bending; else by
+// where its kinetic energy ½φᵀMφ is largest, as the rigid model's modes: the bars (frame),
+// the head's x10, y10 or θ7.
+std::string mode_label(const PantographModel& m, const LinearModel& lin, const Mode& mode) {
+  if (const auto* f = dynamic_cast<const FlexibleDsa380Pantograph*>(&m)) {
+    const Eigen::VectorXd phi = mode.shape.real();
+    const double strain = 0.5 * phi.dot(lin.K * phi);
+    const auto E = f->bar_strain_energies(lin.q0, phi);
+    for (int b = 0; b < 9; ++b)
+      if (strain > 0 && E[b].bending > 0.5 * strain)
+        return "bending of bar " + std::to_string(b + 1);
+    double share[4];  // frame, head horizontal, head vertical, head rotation
+    for (int i = 1; i < 4; ++i) share[i] = lin.M(i, i) * phi[i] * phi[i];
+    share[0] =
+        phi.dot(lin.M * phi) - phi.segment<3>(1).dot(lin.M.block<3, 3>(1, 1) * phi.segment<3>(1));
+    const int best = static_cast<int>(std::max_element(share, share + 4) - share);
+    return dsa380_mode_label(best);  // index = q index of θ (bars), x10, y10, θ7
+  }
+  return dynamic_cast<const Dsa380Pantograph*>(&m) ? dsa380_mode_label(mode.dominant_dof) : "";
+}
+
+// Bellows torque at the equilibrium (DSA-380 models).
+double bellows_torque(const PantographModel& m) {
+  if (const auto* d = dynamic_cast<const Dsa380Pantograph*>(&m)) return d->bellows_torque();
+  if (const auto* f = dynamic_cast<const FlexibleDsa380Pantograph*>(&m)) return f->bellows_torque();
+  return std::nan("");
 }
 
 json base_summary(const std::string& scene_name, const StudyScene& s, const StudyResult& r) {
@@ -49,10 +75,10 @@ json base_summary(const std::string& scene_name, const StudyScene& s, const Stud
   j["equilibrium"] = {{"contact_force_N", s.contact_force},
                       {"working_height_m", s.working_height},
                       {"q0", to_vec(r.q0)}};
-  if (auto* d = dynamic_cast<const Dsa380Pantograph*>(s.model.get())) {
-    j["equilibrium"]["bellows_torque_Nm"] = d->bellows_torque();
+  if (std::isfinite(bellows_torque(*s.model)))
+    j["equilibrium"]["bellows_torque_Nm"] = bellows_torque(*s.model);
+  if (auto* d = dynamic_cast<const Dsa380Pantograph*>(s.model.get()))
     j["equilibrium"]["head_descent_m"] = d->head_descent(s.contact_force);
-  }
   j["study"] = s.study_type;
   return j;
 }
@@ -139,10 +165,10 @@ std::string write_modes(const StudyScene& s, const ModesStudyResult& r, json& j)
     for (int i = 0; i < m.shape.size(); ++i) shape.push_back(m.shape[i].real());
     modes.push_back({{"frequency_hz", m.frequency_hz},
                      {"dominant_dof", names[m.dominant_dof]},
-                     {"label", mode_label(*s.model, m.dominant_dof)},
+                     {"label", mode_label(*s.model, r.linear, m)},
                      {"shape", shape}});
-    log += format("  mode %zu: %.4f Hz (undamped), %s\n", f.size(), m.frequency_hz,
-                  names[m.dominant_dof].c_str());
+    log += format("  mode %zu: %.4f Hz (undamped), %s %s\n", f.size(), m.frequency_hz,
+                  names[m.dominant_dof].c_str(), mode_label(*s.model, r.linear, m).c_str());
   }
   std::vector<double> real_roots;  // overdamped: λ real (1/s)
   for (const auto& m : r.damped) {
@@ -154,7 +180,8 @@ std::string write_modes(const StudyScene& s, const ModesStudyResult& r, json& j)
     zeta.push_back(m.damping_ratio);
     dmodes.push_back({{"frequency_hz", m.frequency_hz},
                       {"damping_ratio", m.damping_ratio},
-                      {"dominant_dof", names[m.dominant_dof]}});
+                      {"dominant_dof", names[m.dominant_dof]},
+                      {"label", mode_label(*s.model, r.linear, m)}});
   }
   for (size_t k = 0; k < fd.size(); ++k)
     log += format("  damped %zu: %.4f Hz, zeta %.4f\n", k + 1, fd[k], zeta[k]);

@@ -2,11 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 
-#include "pcsim/output/h5_file.hpp"
+#include "h5_series.hpp"
+#include "pcsim/core/error.hpp"
 #include "pcsim/output/mesh_xdmf.hpp"
-#include "pcsim/output/provenance.hpp"
 
 namespace pcsim::output {
 
@@ -42,61 +43,55 @@ std::vector<double> filter_uniformly_sampled(const std::vector<double>& time,
 
 namespace {
 
-// Uplift of the contact wire at the supports (n x supports), relative to the
-// static configuration, and its maximum over the analysis section.
-std::vector<double> support_uplift(const catenary::CatenaryMesh& mesh,
-                                   const std::vector<double>& static_values, const RunSettings& s,
-                                   const RunHistory& h, double& max_uplift) {
-  const std::size_t n = h.steps.size(), ns = mesh.support_nodes.size();
-  std::vector<double> uplift(n * ns);
-  max_uplift = 0;
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t k = 0; k < ns; ++k) {
-      const double u = h.steps[i].support_z[k] - static_values[6 * mesh.support_nodes[k] + 2];
-      uplift[i * ns + k] = u;
-      const double xs = mesh.support_x[k];
-      if (xs >= s.analysis_from_x - 1e-9 && xs <= s.analysis_to_x + 1e-9)
-        max_uplift = std::max(max_uplift, u);
-    }
-  return uplift;
-}
-
-void write_snapshots(const OutputDir& out, H5File& h5, const catenary::CatenaryMesh& mesh,
-                     const std::vector<double>& static_values, const RunHistory& h) {
-  // Static mesh + displacement snapshots: ParaView animation of the wires.
-  const auto static_positions = catenary::positions_from_node_values(static_values);
-  write_mesh_h5_xdmf(mesh, static_positions, out.file("static_mesh.h5"), out.file("static.xdmf"),
-                     {}, out.provenance());
-  for (std::size_t k = 0; k < h.snapshots.size(); ++k) {
-    std::vector<double> d(h.snapshots[k]);
-    for (std::size_t i = 0; i < d.size(); ++i) d[i] -= static_positions[i];
-    h5.write("/snapshots/displacement_" + std::to_string(k), d, mesh.nodes.size(), 3);
+// Runs f on results.h5 opened for reading.
+template <class F>
+void with_results(const OutputDir& out, F f) {
+  const std::string path = out.file("results.h5");
+  hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (file < 0) throw SolverError("cannot open " + path);
+  try {
+    f(file);
+  } catch (...) {
+    H5Fclose(file);
+    throw;
   }
-  h5.write("/snapshots/time", h.snapshot_times);
-  write_snapshots_xdmf(mesh, "static_mesh.h5", "results.h5", h.snapshot_times,
-                       out.file("snapshots.xdmf"));
+  H5Fclose(file);
 }
 
-// The pantograph's time series into results.h5 and its statistics.
-PantographStatistics pantograph_results(H5File& h5, const RunSettings& s, const RunHistory& h,
+// Rows of a rows x cols dataset.
+std::vector<std::vector<double>> read_rows(hid_t file, const std::string& path) {
+  std::vector<hsize_t> dims;
+  const auto values = h5::read(file, path, &dims);
+  const std::size_t cols = dims.size() > 1 ? dims[1] : 1;
+  std::vector<std::vector<double>> rows(dims.empty() ? 0 : dims[0]);
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    rows[i].assign(values.begin() + i * cols, values.begin() + (i + 1) * cols);
+  return rows;
+}
+
+// Largest uplift of the contact wire at the supports of the analysis section.
+double max_uplift(hid_t file, const catenary::CatenaryMesh& mesh, const RunSettings& s) {
+  std::vector<hsize_t> dims;
+  const auto uplift = h5::read(file, "/supports/uplift", &dims);
+  const std::size_t ns = mesh.support_x.size();
+  double largest = 0;
+  for (std::size_t i = 0; i < uplift.size(); ++i) {
+    const double xs = mesh.support_x[i % ns];
+    if (xs >= s.analysis_from_x - 1e-9 && xs <= s.analysis_to_x + 1e-9)
+      largest = std::max(largest, uplift[i]);
+  }
+  return largest;
+}
+
+// Pantograph p: its filtered contact force into results.h5, and its statistics.
+PantographStatistics pantograph_results(hid_t file, const RunSettings& s,
                                         const std::vector<double>& time, std::size_t p) {
-  const std::size_t n = h.steps.size();
-  std::vector<double> force(n), x(n), zw(n);
-  const std::size_t nq = h.steps.empty() ? 0 : h.steps[0].q[p].size();
-  std::vector<double> q(n * nq);
-  for (std::size_t i = 0; i < n; ++i) {
-    force[i] = h.steps[i].contact_force[p];
-    x[i] = h.steps[i].contact_x[p];
-    zw[i] = h.steps[i].wire_z[p];
-    std::copy(h.steps[i].q[p].begin(), h.steps[i].q[p].end(), q.begin() + i * nq);
-  }
   const std::string g = "/pantographs/" + s.pantograph_names[p];
-  h5.write(g + "/position", x);
-  h5.write(g + "/contact_force", force);
-  h5.write(g + "/wire_height", zw);
-  h5.write(g + "/q", q, n, nq);
+  const auto x = h5::read(file, g + "/position");
+  const auto force = h5::read(file, g + "/contact_force");
   const auto filtered = filter_uniformly_sampled(time, force, s.cutoff_hz);
-  h5.write(g + "/contact_force_filtered", filtered);
+  h5::write(file, g + "/contact_force_filtered", filtered, {filtered.size()}, "N",
+            "contact force, zero-phase low-pass filtered (analysis cutoff)");
   PantographStatistics st;
   st.name = s.pantograph_names[p];
   // A run cut short (-ts_max_steps, -ts_max_time) has no complete section.
@@ -108,62 +103,106 @@ PantographStatistics pantograph_results(H5File& h5, const RunSettings& s, const 
 
 }  // namespace
 
-RunStatistics write_run_results(const OutputDir& out, const catenary::CatenaryMesh& mesh,
-                                const std::vector<double>& static_values, const RunSettings& s,
-                                const RunHistory& h) {
+void write_static_mesh(const OutputDir& out, const catenary::CatenaryMesh& mesh,
+                       const std::vector<double>& static_values) {
+  const auto static_positions = catenary::positions_from_node_values(static_values);
+  write_mesh_h5_xdmf(mesh, static_positions, out.file("static_mesh.h5"), out.file("static.xdmf"),
+                     {}, out.provenance());
+}
+
+void write_snapshots_view(const OutputDir& out, const catenary::CatenaryMesh& mesh) {
+  std::vector<double> times;
+  with_results(out, [&](hid_t file) {
+    if (h5::exists(file, "/snapshots/time")) times = h5::read(file, "/snapshots/time");
+  });
+  if (!times.empty())
+    write_snapshots_xdmf(mesh, "static_mesh.h5", "results.h5", times, out.file("snapshots.xdmf"));
+}
+
+RunStatistics finish_run_results(const OutputDir& out, const catenary::CatenaryMesh& mesh,
+                                 const RunSettings& s) {
+  const std::string path = out.file("results.h5");
+  hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  if (file < 0) throw SolverError("cannot open " + path);
   RunStatistics stats;
-  const std::size_t n = h.steps.size();
-  std::vector<double> time(n);
-  for (std::size_t i = 0; i < n; ++i) time[i] = h.steps[i].t;
-  H5File h5(out.file("results.h5"));
-  stamp_provenance(h5, out.provenance());
-  h5.write("/time", time);
-  h5.write("/supports/x", mesh.support_x);
-  h5.write("/supports/uplift", support_uplift(mesh, static_values, s, h, stats.max_uplift_m), n,
-           mesh.support_nodes.size());
-  if (s.dropper_forces && n > 0 && !h.steps[0].dropper_force.empty()) {
-    const std::size_t nd = h.steps[0].dropper_force.size();
-    std::vector<double> forces(n * nd);
-    for (std::size_t i = 0; i < n; ++i)
-      std::copy(h.steps[i].dropper_force.begin(), h.steps[i].dropper_force.end(),
-                forces.begin() + i * nd);
-    h5.write("/droppers/force", forces, n, nd);
+  try {
+    const auto time = h5::read(file, "/time");
+    stats.max_uplift_m = max_uplift(file, mesh, s);
+    for (std::size_t p = 0; p < s.pantograph_names.size(); ++p)
+      stats.pantographs.push_back(pantograph_results(file, s, time, p));
+    h5::set_attribute(file, "/", "complete", 1.0);
+  } catch (...) {
+    H5Fclose(file);
+    throw;
   }
-  if (!h.snapshots.empty()) write_snapshots(out, h5, mesh, static_values, h);
-  h5.attribute("/", "analysis_from_x", s.analysis_from_x);
-  h5.attribute("/", "analysis_to_x", s.analysis_to_x);
-  h5.attribute("/", "speed_m_s", s.speed);
-  for (std::size_t p = 0; p < s.pantograph_names.size(); ++p)
-    stats.pantographs.push_back(pantograph_results(h5, s, h, time, p));
+  if (H5Fclose(file) < 0) throw SolverError("cannot close " + path);
+  write_snapshots_view(out, mesh);
   return stats;
 }
 
-void write_run_summary(const OutputDir& out, const RunSettings& s, const RunStatistics& stats,
+std::vector<ContactHistory> read_contact_histories(const OutputDir& out, const RunSettings& s) {
+  std::vector<ContactHistory> histories(s.pantograph_names.size());
+  with_results(out, [&](hid_t file) {
+    const auto time = h5::read(file, "/time");
+    for (std::size_t p = 0; p < histories.size(); ++p) {
+      const std::string g = "/pantographs/" + s.pantograph_names[p];
+      histories[p].name = s.pantograph_names[p];
+      histories[p].time = time;
+      histories[p].x = h5::read(file, g + "/position");
+      histories[p].force = h5::read(file, g + "/contact_force");
+      histories[p].wire_force = read_rows(file, g + "/wire_force");
+    }
+  });
+  return histories;
+}
+
+EnergyHistory read_energy_history(const OutputDir& out) {
+  EnergyHistory h;
+  with_results(out, [&](hid_t file) {
+    h.time = h5::read(file, "/time");
+    h.energy = h5::read(file, "/energy/energy");
+    h.power_external = h5::read(file, "/energy/power_external");
+    h.power_dissipative = h5::read(file, "/energy/power_dissipative");
+  });
+  return h;
+}
+
+void write_run_summary(const OutputDir& out, const RunSettings& s, const RunStatistics* stats,
                        const nlohmann::json& facts) {
   nlohmann::json summary = facts;
+  summary["complete"] = stats != nullptr;
   summary["scene"] = s.scene_name;
   summary["speed_kmh"] = s.speed * 3.6;
   summary["analysis"] = {
       {"from_x", s.analysis_from_x}, {"to_x", s.analysis_to_x}, {"cutoff_hz", s.cutoff_hz}};
-  summary["pantographs"] = nlohmann::json::array();
-  for (const auto& p : stats.pantographs) {
-    if (!p.complete) {
-      summary["pantographs"].push_back({{"name", p.name}, {"complete", false}});
-      continue;
+  if (stats) {
+    summary["pantographs"] = nlohmann::json::array();
+    for (const auto& p : stats->pantographs) {
+      if (!p.complete) {
+        summary["pantographs"].push_back({{"name", p.name}, {"complete", false}});
+        continue;
+      }
+      const auto& st = p.force;
+      summary["pantographs"].push_back({{"name", p.name},
+                                        {"mean_N", st.mean},
+                                        {"std_N", st.std_dev},
+                                        {"stat_max_N", st.statistical_max},
+                                        {"stat_min_N", st.statistical_min},
+                                        {"max_N", st.actual_max},
+                                        {"min_N", st.actual_min},
+                                        {"loss_of_contact_percent", st.loss_of_contact_percent},
+                                        {"samples", st.samples}});
     }
-    const auto& st = p.force;
-    summary["pantographs"].push_back({{"name", p.name},
-                                      {"mean_N", st.mean},
-                                      {"std_N", st.std_dev},
-                                      {"stat_max_N", st.statistical_max},
-                                      {"stat_min_N", st.statistical_min},
-                                      {"max_N", st.actual_max},
-                                      {"min_N", st.actual_min},
-                                      {"loss_of_contact_percent", st.loss_of_contact_percent},
-                                      {"samples", st.samples}});
+    summary["max_uplift_at_support_m"] = stats->max_uplift_m;
   }
-  summary["max_uplift_at_support_m"] = stats.max_uplift_m;
-  std::ofstream(out.file("summary.json")) << summary.dump(2) << "\n";
+  const std::string path = out.file("summary.json"), tmp = path + ".tmp";
+  {
+    std::ofstream file(tmp);
+    file << summary.dump(2) << "\n";
+    file.close();
+    if (!file) throw SolverError("cannot write " + tmp);
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw SolverError("cannot write " + path);
 }
 
 }  // namespace pcsim::output

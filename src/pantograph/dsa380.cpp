@@ -81,6 +81,13 @@ Dsa380Pantograph::Dsa380Pantograph(Dsa380Parameters params, Dsa380Effects effect
     : p_(std::move(params)), e_(effects) {
   if (e_.aerodynamic)
     aero_force_ = p_.aero_a + p_.aero_b * speed_m_s + p_.aero_c * speed_m_s * speed_m_s;
+  bellows_ = Bellows(p_.bellows, e_.uplift_characteristic, aero_force_);
+}
+
+std::vector<std::string> Dsa380Pantograph::dof_names() const {
+  std::vector<std::string> names = {"theta", "x10", "y10", "theta7"};
+  if (bellows_.has_state()) names.push_back("bellows_dM");
+  return names;
 }
 
 double Dsa380Pantograph::spring_force(double l, double l0, double* stiffness) const {
@@ -126,6 +133,7 @@ void Dsa380Pantograph::residual(double t, const Eigen::VectorXd& q, const Eigen:
     R[0] -= Ff * k.y5[1];
     R[2] += Ff;
   }
+  bellows_.add_residual(p_, 0, bellows_dof(), q, qd, qdd, R);  // torque beyond M0
   if (e_.head_restraint == Dsa380Effects::HeadRestraint::rotation) {
     R[3] = (I7 + m7 * LG7 * LG7) * qdd[3];  // θ̈7 = 0 (A.37)
   } else if (e_.head_restraint == Dsa380Effects::HeadRestraint::horizontal) {
@@ -138,9 +146,8 @@ void Dsa380Pantograph::tangents(double, const Eigen::VectorXd& q, const Eigen::V
                                 Eigen::Ref<Eigen::MatrixXd> Cq,
                                 Eigen::Ref<Eigen::MatrixXd> Mq) const {
   const auto k = dsa380_kinematics(p_, q[0]);
-  const double th = q[0], x10 = q[1], y10 = q[2], th7 = q[3];
+  const double x10 = q[1], y10 = q[2], th7 = q[3];
   const double thd = qd[0], yd = qd[2], th7d = qd[3];
-  (void)th;
   const double m7 = p_.m[6], LG7 = p_.LG[6], I7 = p_.I[6];
   const double s = std::sin(th7 - p_.thetaG[6]), c = std::cos(th7 - p_.thetaG[6]);
   const double a = k.inertia[0], a1 = k.inertia[1], a2 = k.inertia[2];
@@ -180,7 +187,7 @@ void Dsa380Pantograph::tangents(double, const Eigen::VectorXd& q, const Eigen::V
     H(0, 0) += dx * k.x5[2] + dy * k.y5[2];
     H(3, 3) += sigma * half * (-dx * ct7 - dy * st7);
     H = (H - grad * grad.transpose()) / l;
-    Kq += fl * grad * grad.transpose() + f * H;
+    Kq.topLeftCorner<4, 4>() += fl * grad * grad.transpose() + f * H;
   }
   if (e_.damper) {
     const double h = k.damper_length[1], h1 = k.damper_length[2], va = h * thd;
@@ -197,10 +204,11 @@ void Dsa380Pantograph::tangents(double, const Eigen::VectorXd& q, const Eigen::V
     const double Ff = e_.friction_force * M_2_PI * std::atan(vr / kt);
     const double dFf = e_.friction_force * M_2_PI * kt / (kt * kt + vr * vr);  // (3.32)
     const Eigen::Vector4d gv(-k.y5[1], 0, 1, 0);
-    Cq += dFf * gv * gv.transpose();
-    Kq.col(0) += dFf * (-k.y5[2] * thd) * gv;
+    Cq.topLeftCorner<4, 4>() += dFf * gv * gv.transpose();
+    Kq.col(0).head<4>() += dFf * (-k.y5[2] * thd) * gv;
     Kq(0, 0) += -Ff * k.y5[2];
   }
+  bellows_.add_tangents(p_, 0, bellows_dof(), q, Kq, Cq, Mq);
   if (e_.head_restraint == Dsa380Effects::HeadRestraint::rotation) {
     Kq.row(3).setZero();
     Cq.row(3).setZero();
@@ -223,7 +231,8 @@ double Dsa380Pantograph::kinetic_energy(const Eigen::VectorXd& q, const Eigen::V
   const double s = std::sin(q[3] - p_.thetaG[6]), c = std::cos(q[3] - p_.thetaG[6]);
   return 0.5 * k.inertia[0] * qd[0] * qd[0] + 0.5 * m7 * (qd[1] * qd[1] + qd[2] * qd[2]) +
          0.5 * (p_.I[6] + m7 * LG7 * LG7) * qd[3] * qd[3] +
-         m7 * LG7 * qd[3] * (c * qd[2] - s * qd[1]);  // (A.7)
+         m7 * LG7 * qd[3] * (c * qd[2] - s * qd[1]) +  // (A.7)
+         bellows_.kinetic_energy(bellows_dof(), qd);
 }
 
 double Dsa380Pantograph::potential_energy(const Eigen::VectorXd& q) const {
@@ -239,13 +248,14 @@ double Dsa380Pantograph::potential_energy(const Eigen::VectorXd& q) const {
     const double e = l - (sp == 0 ? p_.l10 : p_.l20);
     V += 0.5 * p_.kl * e * e + 0.25 * p_.kl3 * e * e * e * e;
   }
-  return V;
+  return V + bellows_.potential_energy(bellows_dof(), q);
 }
 
 PowerSplit Dsa380Pantograph::power(double, const Eigen::VectorXd& q,
                                    const Eigen::VectorXd& qd) const {
   PowerSplit P;
   P.external = M0_ * qd[0] + aero_force_ * qd[2];
+  bellows_.add_power(p_, 0, bellows_dof(), q, qd, &P);
   if (!e_.damper && !e_.friction) return P;
   const auto k = dsa380_kinematics(p_, q[0]);
   if (e_.damper) {
@@ -260,23 +270,24 @@ PowerSplit Dsa380Pantograph::power(double, const Eigen::VectorXd& q,
   return P;
 }
 
-double Dsa380Pantograph::head_descent(double contact_force) const {
-  // (2.12): 2 f(l) z / l = m7 g + F0 − F_aero, l = sqrt(z² + (L7/2)²).
-  const double weight = p_.m[6] * p_.g + contact_force - aero_force_;
-  const double half = 0.5 * p_.L7, l0 = 0.5 * (p_.l10 + p_.l20);
+double dsa380_head_descent(const Dsa380Parameters& p, double load, double* dz_dload) {
+  // (2.12): 2 f(l) z / l = W, l = sqrt(z² + (L7/2)²).
+  const double half = 0.5 * p.L7, l0 = 0.5 * (p.l10 + p.l20);
   auto phi = [&](double z, double* dphi) {
-    const double l = std::hypot(z, half);
-    double fl = 0;
-    const double f = spring_force(l, l0, &fl);
+    const double l = std::hypot(z, half), e = l - l0;
+    const double f = p.kl * e + p.kl3 * e * e * e, fl = p.kl + 3 * p.kl3 * e * e;
     *dphi = 2 * (fl * z * z / (l * l) + f * (1 / l - z * z / (l * l * l)));
-    return 2 * f * z / l - weight;
+    return 2 * f * z / l - load;
   };
   // Safeguarded Newton on [0, z_hi].
   double lo = 0, hi = 2 * l0 + 1.0, z = std::sqrt(std::max(l0 * l0 - half * half, 0.0)) + 1e-3;
   for (int it = 0; it < 200; ++it) {
     double dphi = 0;
     const double r = phi(z, &dphi);
-    if (std::abs(r) < 1e-12 * std::max(1.0, std::abs(weight))) return z;
+    if (std::abs(r) < 1e-12 * std::max(1.0, std::abs(load))) {
+      if (dz_dload) *dz_dload = 1 / dphi;
+      return z;
+    }
     if (r > 0)
       hi = z;
     else
@@ -286,6 +297,10 @@ double Dsa380Pantograph::head_descent(double contact_force) const {
     z = zn;
   }
   throw SolverError("dsa380: head equilibrium (2.12) did not converge");
+}
+
+double Dsa380Pantograph::head_descent(double contact_force) const {
+  return dsa380_head_descent(p_, p_.m[6] * p_.g + contact_force - aero_force_, nullptr);
 }
 
 double Dsa380Pantograph::bellows_torque_formula(const Eigen::VectorXd& q0,
@@ -318,6 +333,7 @@ void Dsa380Pantograph::fail_working_height(double theta, double h0, double z,
 }
 
 Eigen::VectorXd Dsa380Pantograph::static_equilibrium(double contact_force, double working_height) {
+  bellows_.clear_reference();  // the fixed-torque equilibrium first: M0 at h0
   const double z = head_descent(contact_force);
   const double y10 = working_height - p_.L7p;
   const double h5 = y10 + z;
@@ -339,25 +355,28 @@ Eigen::VectorXd Dsa380Pantograph::static_equilibrium(double contact_force, doubl
   }
   if (!converged) fail_working_height(th, working_height, z, "no frame angle reaches the height");
   const auto k = dsa380_kinematics(p_, th);
-  Eigen::VectorXd q0(4);
-  q0 << th, k.x5[0], y10, 0.0;
+  const int n = dof_count();
+  Eigen::VectorXd q0 = Eigen::VectorXd::Zero(n);
+  q0.head<4>() << th, k.x5[0], y10, 0.0;
   // Bellows torque: the θ-row of R without M0 (equivalent to 2.14 for a symmetric head).
   M0_ = 0;
-  Eigen::VectorXd R(4);
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(4);
+  Eigen::VectorXd R(n);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
   residual(0, q0, zero, zero, R);
   M0_ = R[0];
   residual(0, q0, zero, zero, R);
   R[2] += contact_force;
   if (R.norm() > 1e-8 * (1 + std::abs(contact_force)))  // asymmetric head: finish by Newton
     q0 = solve_static(contact_force, q0);
+  bellows_.set_reference(p_, q0[0], contact_force, working_height);
   return q0;
 }
 
 Eigen::VectorXd Dsa380Pantograph::solve_static(double contact_force, Eigen::VectorXd q) const {
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(4);
-  Eigen::VectorXd R(4);
-  Eigen::MatrixXd Kq(4, 4), Cq(4, 4), Mq(4, 4);
+  const int n = dof_count();
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd R(n);
+  Eigen::MatrixXd Kq(n, n), Cq(n, n), Mq(n, n);
   const double scale = 1 + std::abs(contact_force) + p_.m[6] * p_.g;
   for (int it = 0; it < 60; ++it) {
     residual(0, q, zero, zero, R);
@@ -365,11 +384,14 @@ Eigen::VectorXd Dsa380Pantograph::solve_static(double contact_force, Eigen::Vect
     R[2] += contact_force;
     if (e_.head_restraint == Dsa380Effects::HeadRestraint::rotation) {
       R[3] = q[3];
-      Kq.row(3) << 0, 0, 0, 1;
+      Kq.row(3).setZero();
+      Kq(3, 3) = 1;
     } else if (e_.head_restraint == Dsa380Effects::HeadRestraint::horizontal) {
       const auto k = dsa380_kinematics(p_, q[0]);
       R[1] = q[1] - k.x5[0];
-      Kq.row(1) << -k.x5[1], 1, 0, 0;
+      Kq.row(1).setZero();
+      Kq(1, 0) = -k.x5[1];
+      Kq(1, 1) = 1;
     }
     if (R.norm() < 1e-11 * scale) return q;
     Eigen::VectorXd dq = Kq.fullPivLu().solve(-R);

@@ -15,6 +15,7 @@ FlexibleDsa380Pantograph::FlexibleDsa380Pantograph(FlexibleDsa380Parameters para
   const Dsa380Parameters& r = p_.rigid;
   if (e_.aerodynamic)
     aero_force_ = r.aero_a + r.aero_b * speed_m_s + r.aero_c * speed_m_s * speed_m_s;
+  bellows_ = Bellows(r.bellows, e_.uplift_characteristic, aero_force_);
   const int n = dof_count();
   bar_mass_ = Eigen::MatrixXd::Zero(n, n);
   bar_weight_ = Eigen::VectorXd::Zero(n);
@@ -28,6 +29,12 @@ FlexibleDsa380Pantograph::FlexibleDsa380Pantograph(FlexibleDsa380Parameters para
         if (e.dof[b] >= 0) bar_mass_(e.dof[a], e.dof[b]) += Me(a, b);
     }
   }
+}
+
+std::vector<std::string> FlexibleDsa380Pantograph::dof_names() const {
+  std::vector<std::string> names = mesh_.names;
+  if (bellows_.has_state()) names.push_back("bellows_dM");
+  return names;
 }
 
 Vector6 FlexibleDsa380Pantograph::gather(const FlexibleDsa380Mesh::Element& e,
@@ -199,6 +206,8 @@ void FlexibleDsa380Pantograph::assemble(const Eigen::VectorXd& q, const Eigen::V
   add_beams(q, R, K);
   add_head(q, qd, qdd, R, K, C, M);
   add_drive(q, qd, R, K, C);
+  if (R) bellows_.add_residual(p_.rigid, 0, bellows_dof(), q, qd, qdd, *R);
+  if (K) bellows_.add_tangents(p_.rigid, 0, bellows_dof(), q, *K, *C, *M);
   apply_restraints(qdd, R, K, C, M);
 }
 
@@ -229,7 +238,8 @@ double FlexibleDsa380Pantograph::kinetic_energy(const Eigen::VectorXd& q,
   const double s = std::sin(q[3] - p.thetaG[6]), c = std::cos(q[3] - p.thetaG[6]);
   return 0.5 * qd.dot(bar_mass_ * qd) + 0.5 * m7 * (qd[1] * qd[1] + qd[2] * qd[2]) +
          0.5 * (p.I[6] + m7 * LG7 * LG7) * qd[3] * qd[3] +
-         m7 * LG7 * qd[3] * (c * qd[2] - s * qd[1]);  // head as in (A.7)
+         m7 * LG7 * qd[3] * (c * qd[2] - s * qd[1]) +  // head as in (A.7)
+         bellows_.kinetic_energy(bellows_dof(), qd);
 }
 
 double FlexibleDsa380Pantograph::potential_energy(const Eigen::VectorXd& q) const {
@@ -246,13 +256,14 @@ double FlexibleDsa380Pantograph::potential_energy(const Eigen::VectorXd& q) cons
     const double e = l - (sp == 0 ? p.l10 : p.l20);
     V += 0.5 * p.kl * e * e + 0.25 * p.kl3 * e * e * e * e;
   }
-  return V;
+  return V + bellows_.potential_energy(bellows_dof(), q);
 }
 
 PowerSplit FlexibleDsa380Pantograph::power(double, const Eigen::VectorXd& q,
                                            const Eigen::VectorXd& qd) const {
   PowerSplit P;
   P.external = M0_ * qd[0] + aero_force_ * qd[2];
+  bellows_.add_power(p_.rigid, 0, bellows_dof(), q, qd, &P);
   if (damper_active(qd)) {
     const double va = damper_length(p_.rigid, q[0])[1] * qd[0];
     P.dissipative -= (p_.rigid.c * va + e_.damper_quadratic * va * std::abs(va)) * va;

@@ -207,8 +207,9 @@ Eigen::VectorXd FlexibleDsa380Pantograph::rigid_configuration(double theta, doub
                                                               double theta7) const {
   const Pose pose = mechanism_pose(p_.rigid, theta);
   const Eigen::Vector3d head(x10, y10, theta7);
-  Eigen::VectorXd q(dof_count());
-  for (int i = 0; i < dof_count(); ++i) q[i] = source_value(mesh_.sources[i], pose, head);
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(dof_count());  // bellows loop state (if any): 0
+  for (std::size_t i = 0; i < mesh_.sources.size(); ++i)
+    q[i] = source_value(mesh_.sources[i], pose, head);
   return q;
 }
 

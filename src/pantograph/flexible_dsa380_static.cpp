@@ -9,6 +9,7 @@ namespace pcsim::pantograph {
 
 Eigen::VectorXd FlexibleDsa380Pantograph::static_equilibrium(double contact_force,
                                                              double working_height) {
+  bellows_.clear_reference();  // the fixed-torque equilibrium: M0 at h0
   // Start: the rigid model's equilibrium (2.12–2.14) on the undeformed mechanism.
   Dsa380Pantograph rigid(p_.rigid, e_, speed_);
   const Eigen::VectorXd qr = rigid.static_equilibrium(contact_force, working_height);
@@ -42,7 +43,10 @@ Eigen::VectorXd FlexibleDsa380Pantograph::static_equilibrium(double contact_forc
       K(1, 1) = 1;
       K(1, x5) = -1;
     }
-    if (R.norm() < tol || (R.norm() < floor && last_step < 1e-10)) return q;
+    if (R.norm() < tol || (R.norm() < floor && last_step < 1e-10)) {
+      bellows_.set_reference(p_.rigid, q[0], contact_force, working_height);
+      return q;
+    }
     K.col(2) = -Eigen::VectorXd::Unit(n, 0);
     Eigen::VectorXd dz = K.partialPivLu().solve(-R);
     const double dM0 = dz[2];

@@ -73,15 +73,55 @@ void finish_shape(const LinearModel& lin, Mode* m) {
 
 }  // namespace
 
+std::vector<int> restrained_rows(const LinearModel& lin) {
+  std::vector<int> rows;
+  for (int i = 0; i < lin.K.rows(); ++i)
+    if ((lin.K.row(i).array() == 0.0).all() && (lin.C.row(i).array() == 0.0).all() &&
+        (lin.M.row(i).array() != 0.0).any())
+      rows.push_back(i);
+  return rows;
+}
+
+RestraintReduction reduce_restraints(const LinearModel& lin) {
+  const std::vector<int> rows = restrained_rows(lin);
+  RestraintReduction r;
+  if (rows.empty()) {
+    r.reduced = lin;
+    r.T = Eigen::MatrixXd::Identity(lin.M.rows(), lin.M.rows());
+    return r;
+  }
+  const int n = static_cast<int>(lin.M.rows()), nr = static_cast<int>(rows.size());
+  Eigen::MatrixXd MR(nr, n);
+  std::vector<int> free_rows;
+  for (int i = 0, k = 0; i < n; ++i)
+    if (k < nr && rows[k] == i)
+      MR.row(k++) = lin.M.row(i);
+    else
+      free_rows.push_back(i);
+  // Kernel by full-pivot LU: each basis vector is a unit vector minus the pivots' share,
+  // exact for the single-entry rows of A.37 and two-entry rows of A.38.
+  r.T = Eigen::FullPivLU<Eigen::MatrixXd>(MR).kernel();
+  if (r.T.cols() != n - nr) throw SolverError("modes: restrained rows are dependent");
+  auto rows_of = [&](const Eigen::MatrixXd& A) {
+    Eigen::MatrixXd out(free_rows.size(), n);
+    for (std::size_t k = 0; k < free_rows.size(); ++k) out.row(k) = A.row(free_rows[k]);
+    return Eigen::MatrixXd(out * r.T);
+  };
+  r.reduced.K = rows_of(lin.K);
+  r.reduced.C = rows_of(lin.C);
+  r.reduced.M = rows_of(lin.M);
+  r.reduced.q0 = Eigen::VectorXd::Zero(n - nr);
+  return r;
+}
+
 std::vector<Mode> undamped_modes_from_eigenpairs(const LinearModel& lin,
                                                  const Eigen::VectorXcd& lambda,
                                                  const Eigen::MatrixXcd& vec) {
   // λ = ω² of K φ = λ M φ.
   std::vector<Mode> modes;
-  const double scale = lin.K.cwiseAbs().maxCoeff() / lin.M.cwiseAbs().maxCoeff();
   for (int k = 0; k < lambda.size(); ++k) {
     const double w2 = lambda[k].real();
-    if (!(w2 > 1e-9 * scale)) continue;  // restrained coordinate (or unstable)
+    if (!std::isfinite(w2) || !(w2 > 0)) continue;  // unstable (or neutral) equilibrium
     Mode m;
     m.eigenvalue = {0.0, std::sqrt(w2)};
     m.frequency_hz = std::sqrt(w2) / kTwoPi;
@@ -110,14 +150,10 @@ std::vector<Mode> damped_modes_from_eigenpairs(const LinearModel& lin,
                                                const Eigen::MatrixXcd& vec) {
   const int n = static_cast<int>(lin.M.rows());
   std::vector<Mode> modes;
-  // Restrained coordinates give a (defective) double zero eigenvalue, perturbed by
-  // rounding to O(sqrt(eps)) times the system's frequency scale.
-  const double zero_tol =
-      1e-5 * std::sqrt(lin.K.cwiseAbs().maxCoeff() / lin.M.cwiseAbs().maxCoeff());
   for (int k = 0; k < lambda.size(); ++k) {
     const std::complex<double> l = lambda[k];
     const double tol = 1e-9 * std::max(1.0, std::abs(l));
-    if (l.imag() < -tol || std::abs(l) < zero_tol) continue;  // conjugate, or restrained
+    if (!std::isfinite(std::abs(l)) || l.imag() < -tol) continue;  // the conjugate
     Mode m;
     m.real_root = l.imag() <= tol;
     m.eigenvalue = m.real_root ? std::complex<double>(l.real(), 0.0) : l;
@@ -136,15 +172,26 @@ std::vector<Mode> damped_modes_from_eigenpairs(const LinearModel& lin,
 }
 
 std::vector<Mode> undamped_modes_eigen(const LinearModel& lin) {
-  Eigen::EigenSolver<Eigen::MatrixXd> es(lin.M.lu().solve(lin.K));
-  return undamped_modes_from_eigenpairs(lin, es.eigenvalues(), es.eigenvectors());
+  const RestraintReduction r = reduce_restraints(lin);
+  Eigen::EigenSolver<Eigen::MatrixXd> es(r.reduced.M.lu().solve(r.reduced.K));
+  const Eigen::MatrixXcd vectors = r.T * es.eigenvectors();
+  return undamped_modes_from_eigenpairs(lin, es.eigenvalues(), vectors);
 }
 
 std::vector<Mode> damped_modes_eigen(const LinearModel& lin) {
+  const RestraintReduction r = reduce_restraints(lin);
   Eigen::MatrixXd A, B;
-  state_space(lin, &A, &B);
+  state_space(r.reduced, &A, &B);
   Eigen::EigenSolver<Eigen::MatrixXd> es(A.lu().solve(-B));
-  return damped_modes_from_eigenpairs(lin, es.eigenvalues(), es.eigenvectors());
+  return damped_modes_from_eigenpairs(lin, es.eigenvalues(), expand_state(r.T, es.eigenvectors()));
+}
+
+Eigen::MatrixXcd expand_state(const Eigen::MatrixXd& T, const Eigen::MatrixXcd& Y) {
+  const Eigen::Index m = T.cols();
+  Eigen::MatrixXcd out(2 * T.rows(), Y.cols());
+  out.topRows(T.rows()) = T * Y.topRows(m);
+  out.bottomRows(T.rows()) = T * Y.bottomRows(m);
+  return out;
 }
 
 std::complex<double> frf_direct(const LinearModel& lin, int i, int j, double omega) {
@@ -157,29 +204,35 @@ std::complex<double> frf_direct(const LinearModel& lin, int i, int j, double ome
   return D.fullPivLu().solve(f)[i];
 }
 
-std::complex<double> frf_modal(const LinearModel& lin, const std::vector<Mode>& damped, int i,
-                               int j, double omega) {
+std::vector<std::complex<double>> frf_modal(const LinearModel& lin, const std::vector<Mode>& damped,
+                                            int i, int j, const std::vector<double>& omegas) {
   if (!lin.M.isApprox(lin.M.transpose()) || !lin.K.isApprox(lin.K.transpose()) ||
       !lin.C.isApprox(lin.C.transpose()))
     throw SolverError("frf_modal: needs symmetric M, C, K (use frf_direct with restraints)");
   Eigen::MatrixXd A, B;
   state_space(lin, &A, &B);
-  const std::complex<double> I(0, 1);
-  std::complex<double> h = 0;
+  const Eigen::MatrixXcd Ac = A.cast<std::complex<double>>();
+  std::vector<std::complex<double>> numerator;  // φ_i φ_j / a_r
   for (const auto& m : damped) {
     const Eigen::VectorXcd& phi = m.state_vector;
-    const std::complex<double> a = phi.transpose() * A.cast<std::complex<double>>() * phi;
-    const std::complex<double> term = phi[i] * phi[j] / (a * (I * omega - m.eigenvalue));
-    if (m.real_root) {
-      h += term;
-      continue;
-    }
-    // Conjugate pair: φ̄, λ̄.
-    const std::complex<double> conj_term = std::conj(phi[i]) * std::conj(phi[j]) /
-                                           (std::conj(a) * (I * omega - std::conj(m.eigenvalue)));
-    h += term + conj_term;
+    const std::complex<double> a = phi.transpose() * Ac * phi;
+    numerator.push_back(phi[i] * phi[j] / a);
   }
+  const std::complex<double> I(0, 1);
+  std::vector<std::complex<double>> h(omegas.size(), 0.0);
+  for (std::size_t k = 0; k < omegas.size(); ++k)
+    for (std::size_t r = 0; r < damped.size(); ++r) {
+      const std::complex<double> s = I * omegas[k], lambda = damped[r].eigenvalue;
+      h[k] += numerator[r] / (s - lambda);
+      // Conjugate pair: φ̄, λ̄.
+      if (!damped[r].real_root) h[k] += std::conj(numerator[r]) / (s - std::conj(lambda));
+    }
   return h;
+}
+
+std::complex<double> frf_modal(const LinearModel& lin, const std::vector<Mode>& damped, int i,
+                               int j, double omega) {
+  return frf_modal(lin, damped, i, j, std::vector<double>{omega})[0];
 }
 
 }  // namespace pcsim::pantograph

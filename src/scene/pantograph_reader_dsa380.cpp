@@ -34,11 +34,36 @@ void load_geometry(const InputNode& g, pantograph::Dsa380Parameters* p) {
   p->lower_branch = g.get_int("lower_branch", 1) >= 0 ? 1 : -1;
   p->upper_branch = g.get_int("upper_branch", 1) >= 0 ? 1 : -1;
 }
+
+// bellows: {characteristic: constant | {height: [...], force: [...]}, time_constant,
+// valve_time_constant} (pantograph/bellows.hpp).
+void load_bellows(const InputNode& b, pantograph::BellowsParameters* p) {
+  b.allow_only({"characteristic", "time_constant", "valve_time_constant"});
+  if (b.has("characteristic") && b["characteristic"].is_map()) {
+    const auto c = b["characteristic"];
+    c.allow_only({"height", "force"});
+    p->heights = c["height"].as_doubles();
+    p->forces = c["force"].as_doubles();
+    if (p->heights.size() < 2 || p->heights.size() != p->forces.size())
+      c.fail("needs height and force lists of the same length, at least 2 points");
+    for (std::size_t i = 1; i < p->heights.size(); ++i)
+      if (!(p->heights[i] > p->heights[i - 1])) c.fail_key("height", "heights must increase");
+    for (double f : p->forces)
+      if (!(f > 0)) c.fail_key("force", "forces must be positive");
+  } else if (b.get_choice("characteristic", {"constant"}, "constant") != "constant") {
+    b.fail_key("characteristic", "must be 'constant' or {height: [...], force: [...]}");
+  }
+  p->time_constant = b.get_nonnegative("time_constant", 0.0);
+  p->valve_time_constant = b.get_nonnegative("valve_time_constant", 0.0);
+  if (p->time_constant > 0 && !(p->valve_time_constant > 0))
+    b.fail_key("valve_time_constant",
+               "must be > 0 with a time_constant (the pressure loop is two lags in series)");
+}
 }  // namespace
 
 pantograph::Dsa380Parameters load_dsa380_parameters(const InputNode& model) {
   model.allow_only({"kind", "name", "source", "geometry", "bars", "springs", "damper",
-                    "aerodynamic", "gravity", "theta_guess_deg"});
+                    "aerodynamic", "gravity", "theta_guess_deg", "bellows"});
   pantograph::Dsa380Parameters p;
   p.name = model.get_string("name", "dsa380");
   load_geometry(model["geometry"], &p);
@@ -72,6 +97,7 @@ pantograph::Dsa380Parameters load_dsa380_parameters(const InputNode& model) {
     p.aero_b = a.get_double("b", 0.0);
     p.aero_c = a.get_double("c", 0.0);
   }
+  if (model.has("bellows")) load_bellows(model["bellows"], &p.bellows);
   p.g = model.get_nonnegative("gravity", 9.81);
   p.theta_guess = deg(model, "theta_guess_deg", 35.0);
   return p;
@@ -80,8 +106,10 @@ pantograph::Dsa380Parameters load_dsa380_parameters(const InputNode& model) {
 pantograph::Dsa380Effects load_dsa380_effects(const InputNode& effects) {
   using HeadRestraint = pantograph::Dsa380Effects::HeadRestraint;
   pantograph::Dsa380Effects e;
-  effects.allow_only({"aerodynamic", "head_restraint", "friction", "damper"});
+  effects.allow_only(
+      {"aerodynamic", "head_restraint", "friction", "damper", "uplift_characteristic"});
   e.aerodynamic = effects.get_bool("aerodynamic", false);
+  e.uplift_characteristic = effects.get_bool("uplift_characteristic", false);
   const std::string r =
       effects.get_choice("head_restraint", {"none", "rotation", "horizontal"}, "none");
   e.head_restraint = r == "rotation"     ? HeadRestraint::rotation

@@ -72,12 +72,15 @@ std::vector<double> load_frequency_grid(const InputNode& st) {
 }
 
 SweepStudy load_sweep_study(const InputNode& st) {
-  st.allow_only({"type", "f_min_hz", "f_max_hz", "points", "amplitudes", "dt", "settle_s",
-                 "settle_periods", "measure_periods", "linear", "start_on_linear_steady_state"});
+  st.allow_only({"type", "f_min_hz", "f_max_hz", "points", "amplitudes", "dt", "scheme",
+                 "hht_alpha", "settle_s", "settle_periods", "measure_periods", "linear",
+                 "start_on_linear_steady_state"});
   SweepStudy s;
   s.frequencies_hz = load_frequency_grid(st);
   s.amplitudes = st["amplitudes"].as_doubles();
   s.dt = st.get_positive("dt", 1e-3);
+  s.scheme = st.get_choice("scheme", {"rk4", "hht"}, "rk4");
+  s.hht_alpha = st.get_nonnegative("hht_alpha", 0.05);
   s.settle_s = st.get_nonnegative("settle_s", 10.0);
   s.settle_periods = st.get_nonnegative("settle_periods", 20.0);
   s.measure_periods = st.get_positive("measure_periods", 5.0);
@@ -106,8 +109,8 @@ CalibrationStudy load_calibration_study(const InputNode& st, const PantographMod
 Study load_study(const InputNode& st, const std::string& type, const PantographModel& model) {
   if (type == "time") return load_time_study(st);
   if (type == "modes") {
-    st.allow_only({"type"});
-    return ModesStudy{};
+    st.allow_only({"type", "f_max_hz"});
+    return ModesStudy{st.get_nonnegative("f_max_hz", 0.0)};
   }
   if (type == "frf") {
     st.allow_only({"type", "f_min_hz", "f_max_hz", "points"});

@@ -1,5 +1,6 @@
 #include "pcsim/scene/run_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -65,8 +66,6 @@ void read_pantograph(const InputNode& p, std::size_t i, RunScene& run) {
                                 " m below the wire)");
   } else {
     const std::string start = p.get_choice("start", {"static", "ramp"}, i == 0 ? "static" : "ramp");
-    if (start == "static" && i > 0)
-      p.fail_key("start", "only the first pantograph can start in static equilibrium");
     pr.static_start = start == "static";
   }
   pr.ramp_distance = p.get_positive("ramp_distance", 20.0);
@@ -112,7 +111,20 @@ void read_effects_and_output(const InputNode& scene, RunScene& run) {
   if (scene.has("effects")) {
     const InputNode e = scene["effects"];
     e.allow_only({"catenary_nonlinear", "dropper_slack", "rayleigh_damping"});
-    run.effects.catenary_nonlinear = e.get_bool("catenary_nonlinear", false);
+    if (e.has("catenary_nonlinear")) {  // the old key of catenary.model
+      // With catenary.model too (a scene composed on one that has this key),
+      // the two must agree: false goes with linear and modal.
+      const bool nonlinear = e.get_bool("catenary_nonlinear", false);
+      const bool model_nonlinear = run.catenary.fidelity == catenary::CatenaryFidelity::nonlinear;
+      if (run.catenary.fidelity_given && nonlinear != model_nonlinear)
+        e.fail_key("catenary_nonlinear",
+                   std::string("contradicts catenary.model: ") +
+                       catenary::fidelity_name(run.catenary.fidelity) +
+                       " (the catenary's fidelity; give it once, as catenary.model)");
+      if (!run.catenary.fidelity_given)
+        run.catenary.fidelity =
+            nonlinear ? catenary::CatenaryFidelity::nonlinear : catenary::CatenaryFidelity::linear;
+    }
     run.effects.dropper_slack = e.get_bool("dropper_slack", true);
     run.effects.rayleigh_damping = e.get_bool("rayleigh_damping", true);
   }
@@ -123,12 +135,15 @@ void read_effects_and_output(const InputNode& scene, RunScene& run) {
   }
   if (scene.has("output")) {
     const InputNode o = scene["output"];
-    o.allow_only({"dropper_forces", "snapshot_every", "energy"});
+    o.allow_only({"dropper_forces", "snapshot_every", "energy", "checkpoint_every"});
     run.dropper_forces = o.get_bool("dropper_forces", true);
     run.snapshot_every = o.get_int("snapshot_every", 0);
     run.energy = o.get_bool("energy", false);
     if (run.snapshot_every < 0)
       o.fail_key("snapshot_every", "must be 0 (none) or a number of steps");
+    run.checkpoint_every = o.get_int("checkpoint_every", 0);
+    if (run.checkpoint_every < 0)
+      o.fail_key("checkpoint_every", "must be 0 (none) or a number of steps");
   }
 }
 
@@ -146,8 +161,27 @@ RunScene load_run_scene(const InputNode& scene, const RunSceneOptions& options) 
   if (!list.is_sequence() || list.size() == 0) list.fail("must be a non-empty list of pantographs");
   for (std::size_t i = 0; i < list.size(); ++i) read_pantograph(list.at(i), i, run);
   check_pantograph_positions(scene, run);
+  // A gap start is out of equilibrium on purpose; the coupled static equilibrium that
+  // any static start solves would put that pantograph in contact too.
+  const auto& pantographs = run.pantographs;
+  const bool any_static = std::any_of(pantographs.begin(), pantographs.end(),
+                                      [](const auto& p) { return p.static_start; });
+  for (std::size_t i = 0; i < pantographs.size(); ++i)
+    if (any_static && pantographs[i].start_gap > 0)
+      list.at(i).fail_key("start",
+                          "a gap start cannot be combined with static starts of other "
+                          "pantographs (their coupled static equilibrium would close "
+                          "the gap)");
   read_effects_and_output(scene, run);
   read_analysis(scene, run);
+  run.effects.catenary_nonlinear = run.catenary.fidelity == catenary::CatenaryFidelity::nonlinear;
+  // Default modal cut-off: the modes the contact force shows below the filter
+  // cut-off, cutoff_hz / (1 - v/c) (docs/fidelity.md).
+  if (!run.catenary.modal_cutoff_given) {
+    const double c = catenary::wave_speed(mesh.wires[mesh.contact_wire]);
+    run.catenary.modal.max_frequency_hz =
+        catenary::kModalCutoffMargin * catenary::doppler_frequency(run.cutoff_hz, run.speed, c);
+  }
   check_time_step(scene, run, options.command_line_dt ? "-ts_dt" : "simulation.dt");
   return run;
 }

@@ -6,6 +6,7 @@
 #include "pcsim/core/error.hpp"
 #include "pcsim/solvers/direct.hpp"
 #include "pcsim/solvers/hht.hpp"
+#include "pcsim/solvers/static_start.hpp"
 
 namespace pcsim::solvers {
 
@@ -47,7 +48,7 @@ DynamicSolver::DynamicSolver(assembly::CoupledSystem& system, double dt, double 
   Vec F = system.create_vector();
   PCSIM_PETSC(TSSetI2Function(ts_, F, residual, this));
   PCSIM_PETSC(VecDestroy(&F));
-  P_ = system.create_matrix();
+  P_ = cheap ? system.create_reference_matrix() : system.create_matrix();
   if (cheap) low_rank_ = std::make_unique<LowRankStepSolver>(P_, "cheap_");
   PCSIM_PETSC(TSSetI2Jacobian(ts_, cheap ? low_rank_->op() : P_, P_, jacobian, this));
   PCSIM_PETSC(TSSetTimeStep(ts_, dt));
@@ -84,6 +85,9 @@ DynamicSolver::DynamicSolver(assembly::CoupledSystem& system, double dt, double 
 }
 
 DynamicSolver::~DynamicSolver() {
+  VecDestroy(&reference_U_);
+  VecDestroy(&reference_V_);
+  VecDestroy(&reference_A_);
   TSDestroy(&ts_);
   low_rank_.reset();
   MatDestroy(&P_);
@@ -138,9 +142,28 @@ void DynamicSolver::cheap_jacobian(PetscReal t, Vec U, Vec V, Vec A, assembly::S
   system_.reference_jacobian(t, U, V, A, shifts, P);
   cached_shift_v_ = shifts.v;
   cached_shift_a_ = shifts.a;
+  reference_t_ = t;
+  const std::pair<Vec, Vec*> copies[] = {
+      {U, &reference_U_}, {V, &reference_V_}, {A, &reference_A_}};
+  for (const auto& [from, to] : copies) {
+    if (!*to) PCSIM_PETSC(VecDuplicate(from, to));
+    PCSIM_PETSC(VecCopy(from, *to));
+  }
   low_rank_->invalidate();
   system_.low_rank_change(t, U, V, A, terms_);
   low_rank_->set_terms(terms_);
+}
+
+void DynamicSolver::set_initial_state(Vec U0, Vec V0) {
+  PCSIM_PETSC(TS2SetSolution(ts_, U0, V0));
+  TSType ts_type;
+  PCSIM_PETSC(TSGetType(ts_, &ts_type));
+  if (std::string(ts_type) != kTSHHT) return;
+  // Static and ramp starts are equilibria (A0 = 0); a gap start is not.
+  Vec A0 = system_.create_vector();
+  initial_acceleration(system_, U0, V0, A0);
+  hht_set_initial_acceleration(ts_, A0);
+  PCSIM_PETSC(VecDestroy(&A0));
 }
 
 }  // namespace pcsim::solvers

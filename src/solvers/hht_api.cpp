@@ -78,4 +78,17 @@ HHTNewtonInfo hht_get_info(TS ts) {
   return info;
 }
 
+HHTStepControl hht_get_step_control(TS ts) {
+  HHTData* th = checked_data(ts);
+  return {th->dt_user, th->accepted_since_cut};
+}
+
+void hht_set_step_control(TS ts, HHTStepControl control) {
+  HHTData* th = checked_data(ts);
+  PCSIM_PETSC(TSSetUp(ts));  // its setup would forget the control
+  th->dt_user = control.user_time_step;
+  th->accepted_since_cut = control.accepted_since_cut;
+  th->dt_last_set = ts->time_step;  // the next step's Δt is not a change from outside
+}
+
 }  // namespace pcsim::solvers

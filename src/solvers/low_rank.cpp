@@ -143,12 +143,10 @@ PetscErrorCode LowRankStepSolver::pc_setup(PC pc) {
   PCSIM_PETSC(KSPSetUp(self->inner_));
   self->invalidate();
   self->factored_ = true;
-  // After a refactorisation every z is solved directly; later moves of a
-  // reuse_columns term combine cached unit solves.
-  for (auto& [key, e] : self->entries_) {
-    PCSIM_PETSC(KSPSolve(self->inner_, e.u, e.z));
-    e.z_valid = true;
-  }
+  // Every z the way set_terms() computes it (reuse_columns terms from unit
+  // solves): z depends only on J0 and u, never on when the PC was set up, so
+  // a run restarted from a checkpoint takes the same arithmetic path.
+  for (auto& [key, e] : self->entries_) self->update_z(e);
   PCSIM_CALLBACK_END
 }
 

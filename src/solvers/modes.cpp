@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <numeric>
 
+#include "modes_internal.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/solvers/command_line.hpp"
 
@@ -56,43 +57,57 @@ ModesRequest modes_request_from_options(MPI_Comm comm, ModesRequest scene_values
   return r;
 }
 
-namespace {
-
-// Shift-and-invert about 0 for the nev lowest modes, or spectrum slicing
-// over [0, omega_max^2] (needs the inertia of a Cholesky factorisation).
-void configure_eps(EPS eps, int nev, double max_frequency_hz) {
+// Spectrum slicing over [lambda_lo, lambda_hi] (needs the inertia of a
+// Cholesky factorisation: MUMPS).
+void configure_slicing(EPS eps, double lambda_lo, double lambda_hi) {
   ST st;
   KSP ksp;
   PC pc;
   PCSIM_PETSC(EPSSetProblemType(eps, EPS_GHEP));
   PCSIM_PETSC(EPSGetST(eps, &st));
   PCSIM_PETSC(STSetType(st, STSINVERT));
+  PCSIM_PETSC(EPSSetType(eps, EPSKRYLOVSCHUR));
+  PCSIM_PETSC(EPSSetInterval(eps, lambda_lo, lambda_hi));
+  PCSIM_PETSC(EPSSetWhichEigenpairs(eps, EPS_ALL));
+  PCSIM_PETSC(EPSKrylovSchurGetKSP(eps, &ksp));  // the slicing solver's KSP, with operators
+  PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
+  PCSIM_PETSC(KSPGetPC(ksp, &pc));
+  PCSIM_PETSC(PCSetType(pc, PCCHOLESKY));
+  PCSIM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  // The inertia of a parallel MUMPS factorisation needs ICNTL(13) = 1 (no
+  // ScaLAPACK root); -st_mat_mumps_icntl_13 still wins (read at setup).
+  PCSIM_PETSC(PCFactorSetUpMatSolverType(pc));
+  Mat F;
+  PCSIM_PETSC(PCFactorGetMatrix(pc, &F));
+  PCSIM_PETSC(MatMumpsSetIcntl(F, 13, 1));
+  PCSIM_PETSC(EPSSetTolerances(eps, 1e-12, 200));
+}
+
+namespace {
+
+// Shift-and-invert about 0 for the nev lowest modes, or spectrum slicing
+// over [0, omega_max^2].
+void configure_eps(EPS eps, int nev, double max_frequency_hz) {
   if (max_frequency_hz > 0) {
     const double omega_max = 2 * M_PI * max_frequency_hz;
-    PCSIM_PETSC(EPSSetType(eps, EPSKRYLOVSCHUR));
-    PCSIM_PETSC(EPSSetInterval(eps, 0.0, omega_max * omega_max));
-    PCSIM_PETSC(EPSSetWhichEigenpairs(eps, EPS_ALL));
-    PCSIM_PETSC(EPSKrylovSchurGetKSP(eps, &ksp));  // the slicing solver's KSP, with operators
-    PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
-    PCSIM_PETSC(KSPGetPC(ksp, &pc));
-    PCSIM_PETSC(PCSetType(pc, PCCHOLESKY));
-    PCSIM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-    // The inertia of a parallel MUMPS factorisation needs ICNTL(13) = 1 (no
-    // ScaLAPACK root); -st_mat_mumps_icntl_13 still wins (read at setup).
-    PCSIM_PETSC(PCFactorSetUpMatSolverType(pc));
-    Mat F;
-    PCSIM_PETSC(PCFactorGetMatrix(pc, &F));
-    PCSIM_PETSC(MatMumpsSetIcntl(F, 13, 1));
-  } else {
-    PCSIM_PETSC(STGetKSP(st, &ksp));
-    PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
-    PCSIM_PETSC(KSPGetPC(ksp, &pc));
-    PCSIM_PETSC(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT));
-    PCSIM_PETSC(EPSSetTarget(eps, 0.0));
-    PCSIM_PETSC(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE));
-    PCSIM_PETSC(PCSetType(pc, PCLU));
-    PCSIM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+    configure_slicing(eps, 0.0, omega_max * omega_max);
+    PCSIM_PETSC(EPSSetFromOptions(eps));
+    return;
   }
+  ST st;
+  KSP ksp;
+  PC pc;
+  PCSIM_PETSC(EPSSetProblemType(eps, EPS_GHEP));
+  PCSIM_PETSC(EPSGetST(eps, &st));
+  PCSIM_PETSC(STSetType(st, STSINVERT));
+  PCSIM_PETSC(STGetKSP(st, &ksp));
+  PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
+  PCSIM_PETSC(KSPGetPC(ksp, &pc));
+  PCSIM_PETSC(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT));
+  PCSIM_PETSC(EPSSetTarget(eps, 0.0));
+  PCSIM_PETSC(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE));
+  PCSIM_PETSC(PCSetType(pc, PCLU));
+  PCSIM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
   PCSIM_PETSC(EPSSetTolerances(eps, 1e-12, 200));
   PCSIM_PETSC(EPSSetFromOptions(eps));
 }
@@ -161,18 +176,10 @@ ModesResult compute_modes(assembly::CatenarySystem& system, Vec x, int nev, doub
   const bool slicing = max_frequency_hz > 0;
   ModesResult result;
   result.requested = slicing ? -1 : nev;
-  PetscInt nconv = 0;
-  PCSIM_PETSC(EPSGetConverged(eps, &nconv));
-  std::vector<double> lambdas(nconv);
-  for (PetscInt i = 0; i < nconv; ++i) {
-    PetscScalar kr, ki;
-    PCSIM_PETSC(EPSGetEigenvalue(eps, i, &kr, &ki));
-    lambdas[i] = PetscRealPart(kr);
-  }
-  std::vector<PetscInt> order(nconv);
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(),
-            [&](PetscInt a, PetscInt b) { return lambdas[a] < lambdas[b]; });
+  const auto spectrum = converged_spectrum(eps);
+  const auto& lambdas = spectrum.lambdas;
+  const auto& order = spectrum.order;
+  const auto nconv = static_cast<PetscInt>(lambdas.size());
   const PetscInt keep = slicing ? nconv : std::min<PetscInt>(nconv, nev);
   result.converged = static_cast<int>(nconv);
   Vec phi, Kphi, Mphi;
@@ -192,6 +199,23 @@ ModesResult compute_modes(assembly::CatenarySystem& system, Vec x, int nev, doub
   PetscTime(&t1);
   result.wall_time_s = t1 - t0;
   return result;
+}
+
+ConvergedSpectrum converged_spectrum(EPS eps) {
+  PetscInt nconv = 0;
+  PCSIM_PETSC(EPSGetConverged(eps, &nconv));
+  ConvergedSpectrum s;
+  s.lambdas.resize(nconv);
+  for (PetscInt i = 0; i < nconv; ++i) {
+    PetscScalar kr, ki;
+    PCSIM_PETSC(EPSGetEigenvalue(eps, i, &kr, &ki));
+    s.lambdas[i] = PetscRealPart(kr);
+  }
+  s.order.resize(nconv);
+  std::iota(s.order.begin(), s.order.end(), 0);
+  std::sort(s.order.begin(), s.order.end(),
+            [&](PetscInt a, PetscInt b) { return s.lambdas[a] < s.lambdas[b]; });
+  return s;
 }
 
 }  // namespace pcsim::solvers

@@ -1,5 +1,6 @@
 #include "pcsim/solvers/pantograph_study.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "pcsim/solvers/pantograph_modes.hpp"
@@ -31,11 +32,20 @@ TimeStudyResult run_time(const StudyScene& s, const TimeStudy& st, const Eigen::
   return r;
 }
 
-ModesStudyResult run_modes(const StudyScene& s, const Eigen::VectorXd& q0) {
+// Modes up to f_max_hz (all if 0).
+std::vector<Mode> up_to(std::vector<Mode> modes, double f_max_hz) {
+  if (f_max_hz > 0)
+    modes.erase(std::remove_if(modes.begin(), modes.end(),
+                               [&](const Mode& m) { return m.frequency_hz > f_max_hz; }),
+                modes.end());
+  return modes;
+}
+
+ModesStudyResult run_modes(const StudyScene& s, const ModesStudy& st, const Eigen::VectorXd& q0) {
   ModesStudyResult r;
   r.linear = linearise(*s.model, q0);
-  r.undamped = undamped_modes_slepc(r.linear);
-  r.damped = damped_modes_slepc(r.linear);
+  r.undamped = up_to(undamped_modes_slepc(r.linear), st.f_max_hz);
+  r.damped = up_to(damped_modes_slepc(r.linear), st.f_max_hz);
   const auto und_e = undamped_modes_eigen(r.linear), dam_e = damped_modes_eigen(r.linear);
   double diff = 0;
   for (size_t k = 0; k < r.undamped.size() && k < und_e.size(); ++k)
@@ -55,17 +65,15 @@ FrfStudyResult run_frf(const StudyScene& s, const FrfStudy& st, const Eigen::Vec
   const LinearModel lin = linearise(*s.model, q0);
   const int c = r.dof = s.model->contact_dof();
   r.symmetric = lin.M.isApprox(lin.M.transpose()) && lin.K.isApprox(lin.K.transpose());
-  const auto dam = damped_modes_slepc(lin);
-  for (double f : st.frequencies_hz) {
-    const double w = 2 * M_PI * f;
-    const auto h = frf_direct(lin, c, c, w);  // H_cc (2.36)
-    r.direct.push_back(h);
-    if (r.symmetric) {
-      const auto hm = frf_modal(lin, dam, c, c, w);  // (2.40)
-      r.modal.push_back(hm);
+  std::vector<double> omegas;
+  for (double f : st.frequencies_hz) omegas.push_back(2 * M_PI * f);
+  for (double w : omegas) r.direct.push_back(frf_direct(lin, c, c, w));  // H_cc (2.36)
+  if (r.symmetric) {
+    r.modal = frf_modal(lin, damped_modes_slepc(lin), c, c, omegas);  // (2.40)
+    for (std::size_t k = 0; k < omegas.size(); ++k)
       r.direct_vs_modal_max_relative_difference =
-          std::max(r.direct_vs_modal_max_relative_difference, std::abs(h - hm) / std::abs(h));
-    }
+          std::max(r.direct_vs_modal_max_relative_difference,
+                   std::abs(r.direct[k] - r.modal[k]) / std::abs(r.direct[k]));
   }
   return r;
 }
@@ -94,6 +102,8 @@ double sweep_point(const PantographModel& m, const LinearModel& lin, const Sweep
   const double period = 1.0 / f, w = 2 * M_PI * f;
   const double t_meas0 = std::max(st.settle_s, st.settle_periods * period);
   TimeOptions opt;
+  opt.scheme = st.scheme;
+  opt.hht_alpha = st.hht_alpha;
   opt.dt = st.dt;
   opt.t_end = t_meas0 + st.measure_periods * period;
   try {
@@ -137,7 +147,7 @@ StudyResult run_pantograph_study(StudyScene& s) {
   StudyResult r;
   r.q0 = s.model->static_equilibrium(s.contact_force, s.working_height);
   if (const auto* st = std::get_if<TimeStudy>(&s.study)) r.values = run_time(s, *st, r.q0);
-  if (std::holds_alternative<ModesStudy>(s.study)) r.values = run_modes(s, r.q0);
+  if (const auto* st = std::get_if<ModesStudy>(&s.study)) r.values = run_modes(s, *st, r.q0);
   if (const auto* st = std::get_if<FrfStudy>(&s.study)) r.values = run_frf(s, *st, r.q0);
   if (const auto* st = std::get_if<SweepStudy>(&s.study)) r.values = run_sweep(s, *st, r.q0);
   if (const auto* st = std::get_if<CalibrationStudy>(&s.study))

@@ -2,6 +2,7 @@
 
 #include <petscts.h>
 
+#include <cfloat>
 #include <cmath>
 
 #include "pcsim/core/error.hpp"
@@ -142,9 +143,11 @@ PetscErrorCode i2_jacobian(TS, PetscReal t, Vec U, Vec V, Vec A, PetscReal shift
   to_eigen(V, &ctx->qd, 0, n);
   to_eigen(A, &ctx->qdd, 0, n);
   ctx->model->tangents(t, ctx->q, ctx->qd, ctx->qdd, ctx->Kq, ctx->Cq, ctx->Mq);
-  const Eigen::MatrixXd T = ctx->Kq + shiftV * ctx->Cq + shiftA * ctx->Mq;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) PCSIM_PETSC(MatSetValue(P, i, j, T(i, j), INSERT_VALUES));
+  // P is dense, column-major with leading dimension n, as Eigen's default matrices.
+  PetscScalar* p_values;
+  PCSIM_PETSC(MatDenseGetArrayWrite(P, &p_values));
+  Eigen::Map<Eigen::MatrixXd>(p_values, n, n) = ctx->Kq + shiftV * ctx->Cq + shiftA * ctx->Mq;
+  PCSIM_PETSC(MatDenseRestoreArrayWrite(P, &p_values));
   PCSIM_PETSC(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY));
   PCSIM_PETSC(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY));
   if (J != P) {
@@ -190,6 +193,19 @@ void set_up_rk4(TS ts, Context* ctx, const Eigen::VectorXd& q0, const Eigen::Vec
   PCSIM_PETSC(TSSetSolution(ts, *U));
 }
 
+// Rounding floor of R near q0: 10 eps max|dR/dq| max|q|, at least 1e-12 (the rigid
+// models reach 1e-12; the flexible model's beam forces, EA/l0 up to 5e10 N/m times
+// coordinates of ~2 m, round to ~1e-4 N, which Newton cannot go below).
+double residual_floor(const PantographModel& model, const Eigen::VectorXd& q0,
+                      const Eigen::VectorXd& qd0) {
+  const int n = model.dof_count();
+  Eigen::MatrixXd K(n, n), C(n, n), M(n, n);
+  model.tangents(0.0, q0, qd0, Eigen::VectorXd::Zero(n), K, C, M);
+  const double floor =
+      10 * DBL_EPSILON * K.cwiseAbs().maxCoeff() * std::max(1.0, q0.cwiseAbs().maxCoeff());
+  return std::max(1e-12, floor);
+}
+
 // HHT on the second-order form, Newton with dense LU.
 void set_up_hht(TS ts, Context* ctx, const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0,
                 double alpha, Vec* U, Vec* V, Vec* F, Mat* J) {
@@ -213,7 +229,8 @@ void set_up_hht(TS ts, Context* ctx, const Eigen::VectorXd& q0, const Eigen::Vec
   KSP ksp;
   PC pc;
   PCSIM_PETSC(TSGetSNES(ts, &snes));
-  PCSIM_PETSC(SNESSetTolerances(snes, 1e-12, 1e-10, 1e-14, 30, PETSC_DEFAULT));
+  PCSIM_PETSC(SNESSetTolerances(snes, residual_floor(*ctx->model, q0, qd0), 1e-10, 1e-14, 30,
+                                PETSC_DEFAULT));
   PCSIM_PETSC(SNESGetKSP(snes, &ksp));
   PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
   PCSIM_PETSC(KSPGetPC(ksp, &pc));

@@ -21,51 +21,77 @@ std::string start_key(std::size_t p) {
 }
 
 // The lowest contact wire at station x for the catenary state in U (its
-// number and height, on every rank; -1 if x lies on no contact wire).
-std::pair<int, double> lowest_wire(assembly::CatenaryModel& catenary, Vec U, double x) {
+// number and height, on every rank; -1 if x lies on no contact wire), and the
+// residual flexibility there (a reduced catenary's, in series with the
+// contact spring; 0 for FE).
+std::pair<int, double> lowest_wire(assembly::CatenaryModel& catenary, Vec U, double x,
+                                   double* flexibility = nullptr) {
   catenary.load_state(U);
   const int n = catenary.contact_wire_count();
   std::vector<char> on(n, 0);  // the same on every rank
-  std::vector<double> z(n, 0.0);
+  std::vector<double> z(n, 0.0), r(n, 0.0);
   for (int w = 0; w < n; ++w) {
     const auto point = catenary.wire_point(x, w);
     on[w] = point.on_wire;
+    r[w] = point.residual_flexibility;  // every rank
     if (point.owned) z[w] = point.z;
   }
   MPI_Allreduce(MPI_IN_PLACE, z.data(), n, MPI_DOUBLE, MPI_SUM, catenary.comm());
   std::pair<int, double> lowest{-1, 0.0};
   for (int w = 0; w < n; ++w)
     if (on[w] && (lowest.first < 0 || z[w] < lowest.second)) lowest = {w, z[w]};
+  if (flexibility) *flexibility = lowest.first < 0 ? 0.0 : r[lowest.first];
   return lowest;
 }
 
 // Contact-wire height at x for the catenary state in U0 (the lowest wire
-// there), on every rank.
-double wire_height(assembly::CatenaryModel& catenary, Vec U0, double x, std::size_t p) {
-  const auto lowest = lowest_wire(catenary, U0, x);
+// there) and its residual flexibility, on every rank.
+double wire_height(assembly::CatenaryModel& catenary, Vec U0, double x, std::size_t p,
+                   double& flexibility) {
+  const auto lowest = lowest_wire(catenary, U0, x, &flexibility);
   if (lowest.first < 0)
     throw InputError("", start_key(p), "the pantograph starts outside the contact wire");
   return lowest.second;
 }
 
-// The catenary part of U0: the static configuration, or for a static start
-// of the first pantograph the FE catenary under its static force F0 at its
-// start point on the lowest contact wire (a guess for the coupled
-// equilibrium).
+bool any_static_start(assembly::CoupledSystem& system) {
+  for (const auto& slot : system.pantographs())
+    if (slot.run.static_start) return true;
+  return false;
+}
+
+// The catenary part of U0: the static configuration, or with static starts the
+// FE catenary under every such pantograph's static force F0 at its start point
+// on the lowest contact wire there (a guess for the coupled equilibrium).
 PetscInt catenary_start(assembly::CoupledSystem& system, Vec U0) {
   auto& catenary = system.catenary();
   catenary.reference_state(U0);
+  if (!any_static_start(system)) return 0;
   const auto& first = system.pantographs().front();
+  std::size_t static_count = 0;
+  for (const auto& slot : system.pantographs()) static_count += slot.run.static_start ? 1 : 0;
+  if (static_count == 1 && first.run.static_start) {
+    const int wire = lowest_wire(catenary, U0, first.run.start_x).first;
+    if (wire < 0)
+      throw InputError("", start_key(0), "the pantograph starts outside the contact wire");
+    if (catenary.closed_form_point_load(first.run.start_x, wire, first.run.static_force, U0))
+      return 0;  // a modal catenary: exact, no guess needed
+  }
   auto* fe = dynamic_cast<assembly::FECatenary*>(&catenary);
-  if (!first.run.static_start || !fe) return 0;
-  const int wire = lowest_wire(catenary, U0, first.run.start_x).first;
-  int element;
-  double chi;
-  if (wire < 0 || !fe->locator(wire).locate(first.run.start_x, element, chi))
-    throw InputError("", start_key(0), "the pantograph starts outside the contact wire");
+  if (!fe) return 0;
   assembly::CatenarySystem loaded(system.comm(), fe->mesh(), 0,
                                   &fe->system().layout().node_owner());
-  loaded.point_loads().push_back({element, chi, Eigen::Vector3d(0, 0, first.run.static_force)});
+  const auto& pantographs = system.pantographs();
+  for (std::size_t p = 0; p < pantographs.size(); ++p) {
+    const auto& run = pantographs[p].run;
+    if (!run.static_start) continue;
+    const int wire = lowest_wire(catenary, U0, run.start_x).first;
+    int element;
+    double chi;
+    if (wire < 0 || !fe->locator(wire).locate(run.start_x, element, chi))
+      throw InputError("", start_key(p), "the pantograph starts outside the contact wire");
+    loaded.point_loads().push_back({element, chi, Eigen::Vector3d(0, 0, run.static_force)});
+  }
   Vec x = loaded.create_vector();
   assembly::set_state_from_node_values(loaded, fe->static_node_values(), x);
   const auto result = solve_static(loaded, x, false, "start_load_");
@@ -73,6 +99,10 @@ PetscInt catenary_start(assembly::CoupledSystem& system, Vec U0) {
   assembly::set_state_from_node_values(fe->system(), result.node_values, U0);
   return result.snes_iterations;
 }
+
+// The start is an equilibrium to round-off: 1e-6 N on small meshes, ~6e-5 N
+// on the EN 50318 one, where Newton then stops on its step (stol).
+constexpr double kStartTolerance = 1e-5;
 
 struct CoupledStatic {
   assembly::CoupledSystem* system;
@@ -101,15 +131,23 @@ PetscInt solve_coupled_static(assembly::CoupledSystem& system, Vec U0) {
   CoupledStatic ctx{&system, system.create_vector()};
   PCSIM_PETSC(VecSet(ctx.zero, 0.0));
   Vec F = system.create_vector();
+  // A start already in equilibrium (a modal catenary's closed form) needs no
+  // Newton matrix (a modal one is dense).
+  system.residual(0.0, U0, ctx.zero, ctx.zero, F);
+  PetscReal norm;
+  PCSIM_PETSC(VecNorm(F, NORM_2, &norm));
+  if (norm < kStartTolerance) {
+    PCSIM_PETSC(VecDestroy(&F));
+    PCSIM_PETSC(VecDestroy(&ctx.zero));
+    return 0;
+  }
   Mat J = system.create_matrix();
   SNES snes;
   PCSIM_PETSC(SNESCreate(system.comm(), &snes));
   PCSIM_PETSC(SNESSetOptionsPrefix(snes, "start_"));
   PCSIM_PETSC(SNESSetFunction(snes, F, coupled_residual, &ctx));
   PCSIM_PETSC(SNESSetJacobian(snes, J, J, coupled_jacobian, &ctx));
-  // The start is an equilibrium to round-off: 1e-6 N on small meshes, ~6e-5 N
-  // on the EN 50318 one, where Newton then stops on its step (stol).
-  PCSIM_PETSC(SNESSetTolerances(snes, 1e-5, 1e-12, 1e-12, 50, 100000));
+  PCSIM_PETSC(SNESSetTolerances(snes, kStartTolerance, 1e-12, 1e-12, 50, 100000));
   SNESLineSearch line_search;
   PCSIM_PETSC(SNESGetLineSearch(snes, &line_search));
   PCSIM_PETSC(SNESLineSearchSetType(line_search, SNESLINESEARCHBASIC));
@@ -145,11 +183,15 @@ StartInfo initial_state(assembly::CoupledSystem& system, Vec U0, Vec V0) {
   // force at t = 0) or pressing it with F0 (static start).
   for (std::size_t p = 0; p < pantographs.size(); ++p) {
     auto& slot = pantographs[p];
-    const double wire_z = wire_height(system.catenary(), U0, slot.run.start_x, p);
-    // Gap start: below the wire (an initial state out of equilibrium).
-    const double penetration = slot.run.static_start
-                                   ? slot.run.static_force / system.contact_stiffness()
-                                   : -slot.run.start_gap;
+    double flexibility = 0;
+    const double wire_z = wire_height(system.catenary(), U0, slot.run.start_x, p, flexibility);
+    // Static start: pressed by F0 on the contact spring in series with the
+    // wire's residual flexibility (a reduced catenary's); gap start: below
+    // the wire (an initial state out of equilibrium).
+    const double penetration =
+        slot.run.static_start
+            ? slot.run.static_force * (1.0 / system.contact_stiffness() + flexibility)
+            : -slot.run.start_gap;
     const double contact_height = wire_z + penetration;
     const Eigen::VectorXd q0 = slot.model->static_equilibrium(
         slot.run.static_force,
@@ -165,8 +207,7 @@ StartInfo initial_state(assembly::CoupledSystem& system, Vec U0, Vec V0) {
   }
   PCSIM_PETSC(VecAssemblyBegin(U0));
   PCSIM_PETSC(VecAssemblyEnd(U0));
-  if (pantographs.front().run.static_start)
-    info.coupled_iterations = solve_coupled_static(system, U0);
+  if (any_static_start(system)) info.coupled_iterations = solve_coupled_static(system, U0);
   return info;
 }
 

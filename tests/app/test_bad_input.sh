@@ -111,7 +111,7 @@ run_scene panto-key "  - {name: p, model: $two_mass, start_x: 13.1, stiffnes: 3}
 run_scene missing-model "  - {name: p, model: no-such-model.yaml, start_x: 13.1}"
 run_scene model-dir "  - {name: p, model: adir, start_x: 13.1}"
 run_scene negative-panto "  - {name: p, model: negative-panto-model.yaml, start_x: 13.1}"
-run_scene second-static "  - {name: p, model: $two_mass, start_x: 13.1}
+run_scene gap-static "  - {name: p, model: $two_mass, start_x: 13.1, start: {gap: 0.01}}
   - {name: q, model: $two_mass, start_x: 3.1, start: static}"
 run_scene cutoff "$one" "" ", cutoff_hz: 600"
 run_scene dt-one "$one" ", dt: 1.0"
@@ -229,7 +229,7 @@ expect missing-model 2 "missing-model.yaml|key 'pantographs[0].model'|no such fi
 expect model-dir 2 "model-dir.yaml|key 'pantographs[0].model'|is a folder" yes run model-dir.yaml
 expect negative-panto 2 "negative-panto-model.yaml|key 'stages[0].mass'|positive" yes run negative-panto.yaml
 expect model-file 2 "negative-panto-model.yaml|key 'stages[0].mass'|positive" no check negative-panto-model.yaml
-expect second-static 2 "second-static.yaml|key 'pantographs[1].start'|first pantograph" yes run second-static.yaml
+expect gap-static 2 "gap-static.yaml|key 'pantographs[0].start'|gap start cannot be combined" yes run gap-static.yaml
 expect cutoff 2 "cutoff.yaml|key 'analysis.cutoff_hz'|Nyquist frequency 500 Hz" yes run cutoff.yaml
 expect dt-one 2 "dt-one.yaml|key 'analysis.cutoff_hz'|Nyquist|simulation.dt = 1 s" yes run dt-one.yaml
 expect few-samples 2 "few-samples.yaml|key 'simulation.dt'|filter needs more than 15" yes run few-samples.yaml

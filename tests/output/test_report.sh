@@ -108,7 +108,8 @@ for script in sorted(os.listdir(postproc)):
     assert not bare, (script, bare)
     args = {"interaction_plots.py": ["force", "/nonexistent", "-o", "x.png"],
             "report.py": ["run", "/nonexistent"],
-            "interaction_static_curve.py": ["/nonexistent", "/nonexistent", "-o", "x.png"]}.get(
+            "interaction_static_curve.py": ["/nonexistent", "/nonexistent", "-o", "x.png"],
+            "pantograph_compare.py": ["modes", "/nonexistent", "/nonexistent"]}.get(
         script, ["/nonexistent"] + (["-o", "x.png"] if script.startswith(("pantograph_", "animate")) else []))
     r = subprocess.run([sys.executable, path] + args, capture_output=True, text=True)
     err = r.stderr.strip().splitlines()

@@ -31,6 +31,17 @@ def leaves(data):
     return [leaf for part in parts if part is not None for leaf in leaves(part)]
 
 
+class Slice:
+    """Slice k of a time x ... dataset, read like a dataset (x[()], x.name)."""
+
+    def __init__(self, dataset, k):
+        self.name = f"{dataset.name}[{k}]"
+        self.values = dataset[k]
+
+    def __getitem__(self, index):
+        return self.values[index]
+
+
 def main():
     path, kind, expected_steps = sys.argv[1], sys.argv[2], int(sys.argv[3])
     folder = os.path.dirname(os.path.abspath(path))
@@ -55,7 +66,12 @@ def main():
         grids, fields = line_grids, [("displacement", "point")] * 2
         results = h5py.File(os.path.join(folder, "results.h5"), "r")
         count = results["/snapshots/time"].shape[0]
-        datasets = [[results[f"/snapshots/displacement_{k}"]] * 2 for k in range(count)]
+        # One dataset snapshots x nodes x 3: the XDMF reads slice k at step k.
+        displacement = results["/snapshots/displacement"]
+        if displacement.shape != (count, n, 3):
+            sys.exit(f"{path}: /snapshots/displacement is {displacement.shape}, "
+                     f"expected {(count, n, 3)}")
+        datasets = [[Slice(displacement, k)] * 2 for k in range(count)]
     else:
         sys.exit(f"{path}: unknown kind '{kind}'")
 

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <fstream>
 #include <functional>
+#include <iterator>
 
 #include "pcsim/scene/pantograph_reader.hpp"
 #include "pcsim/scene/pantograph_scene.hpp"
@@ -122,4 +123,51 @@ TEST(PantographScene, TimeStudyRead) {
   EXPECT_EQ(t.options.dt, 2e-3);
   EXPECT_EQ(t.options.t_end, 0.5);
   EXPECT_NEAR(t.force(0.125), 150.0, 1e-12);  // 120 + 30 sin(2π·2·0.125)
+}
+
+// The DSA-380 model file's `bellows:` section (uplift characteristic) and the scene's
+// switch `uplift_characteristic`: the pressure loop adds one coordinate; a bad curve or a
+// loop without its valve lag is rejected naming the file and the key.
+TEST(PantographReader, BellowsCharacteristicReadAndChecked) {
+  std::ifstream in(kModels + "dsa380_rigid.yaml");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto begin = text.find("bellows:\n"), end = text.find("aerodynamic:", begin);
+  ASSERT_NE(begin, std::string::npos);
+  auto model_with = [&](const std::string& name, const std::string& bellows) {
+    return TempFile(name, text.substr(0, begin) + bellows + text.substr(end));
+  };
+  const auto on = InputNode::load_string("uplift_characteristic: true\n", "scene.yaml");
+  const auto dsa = scene::load_pantograph_model(kModels + "dsa380_rigid.yaml", &on, 0);
+  EXPECT_EQ(dsa->dof_count(), 4);  // the set's characteristic acts at once
+  const auto loop = model_with("pantograph_reader_bellows_loop.yaml",
+                               "bellows:\n  time_constant: 0.5\n  valve_time_constant: 0.05\n");
+  const auto with_loop = scene::load_pantograph_model(loop.path, &on, 0);
+  EXPECT_EQ(with_loop->dof_count(), 5);  // the loop's torque change
+  EXPECT_EQ(with_loop->dof_names().back(), "bellows_dM");
+  const auto table = model_with("pantograph_reader_bellows_table.yaml",
+                                "bellows:\n  characteristic: {height: [1.0, 1.2, 1.4], force: "
+                                "[110, 120, 125]}\n");
+  const auto at_once = scene::load_pantograph_model(table.path, &on, 0);
+  EXPECT_EQ(at_once->dof_count(), 4);  // no time constant: the torque follows at once
+  const auto& d = dynamic_cast<const pantograph::Dsa380Pantograph&>(*at_once);
+  EXPECT_EQ(d.parameters().bellows.forces, (std::vector<double>{110, 120, 125}));
+  struct Bad {
+    const char* bellows;
+    const char* key;
+    const char* reason;
+  };
+  for (const Bad& b :
+       {Bad{"bellows:\n  characteristic: {height: [1.2, 1.1], force: [100, 120]}\n",
+            "'bellows.characteristic.height'", "heights must increase"},
+        Bad{"bellows:\n  characteristic: {height: [1.1, 1.2], force: [100, 0]}\n",
+            "'bellows.characteristic.force'", "forces must be positive"},
+        Bad{"bellows:\n  characteristic: linear\n", "'bellows.characteristic'", "must be"},
+        Bad{"bellows:\n  time_constant: 1.0\n", "'bellows.valve_time_constant'", "must be > 0"},
+        Bad{"bellows:\n  tau: 1.0\n", "tau", ""}}) {
+    const auto file = model_with("pantograph_reader_bellows_bad.yaml", b.bellows);
+    const auto msg = message_of([&] { scene::load_pantograph_model(file.path, nullptr, 0); });
+    EXPECT_NE(msg.find(file.path), std::string::npos) << msg;
+    EXPECT_NE(msg.find(b.key), std::string::npos) << msg;
+    EXPECT_NE(msg.find(b.reason), std::string::npos) << msg;
+  }
 }

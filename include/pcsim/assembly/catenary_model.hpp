@@ -34,6 +34,12 @@ struct WirePoint {
   double slope = 0;             // dz/dx of the wire at x at the loaded state
   std::vector<PetscInt> index;  // global unknowns z depends on (every rank)
   std::vector<double> weight;   // dz/dU for those unknowns (every rank)
+  // Static compliance at x that the unknowns leave out (a reduced model's
+  // truncated modes) [m/N]: a spring in series with the contact. 0 for FE.
+  double residual_flexibility = 0;
+  // The same few unknowns recur as x moves (FE: the element's DOFs), so that
+  // a solver may cache a solve per unknown; false for dense weights (modes).
+  bool reuse_columns = true;
 };
 
 class CatenaryModel {
@@ -51,6 +57,13 @@ class CatenaryModel {
   // with every unknown a wire point may involve: zeros inserted, not yet
   // assembled (the caller adds the other terms' patterns).
   virtual Mat create_matrix(const std::vector<bool>& wire_coupled) const = 0;
+  // The pattern of the reference tangents only (the cheap path's J0), when it
+  // is smaller: without the couplings only the exact tangents of low-rank
+  // terms touch (a modal model's contact and slack droppers couple every mode).
+  virtual bool has_reference_pattern() const { return false; }
+  virtual Mat create_reference_matrix(const std::vector<bool>& wire_coupled) const {
+    return create_matrix(wire_coupled);
+  }
 
   // The static configuration (the linearisation point), catenary part.
   virtual void reference_state(Vec U) const = 0;
@@ -62,6 +75,12 @@ class CatenaryModel {
   virtual WirePoint wire_point(double x, int wire) const = 0;
   virtual double wire_x_min(int wire) const = 0;
   virtual double wire_x_max(int wire) const = 0;
+  // The catenary part of U in static equilibrium under an upward force at
+  // station x on contact wire 'wire', when the model has it in closed form (a
+  // modal model, slack ignored); false otherwise (the caller solves for it).
+  virtual bool closed_form_point_load(double x, int wire, double force, Vec U) const {
+    return false;
+  }
   // Contact-wire height at every support and axial force of every dropper at
   // the loaded state: set by the ranks that own them, zero elsewhere (the
   // caller sums over ranks).

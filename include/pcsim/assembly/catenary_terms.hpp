@@ -63,6 +63,8 @@ class BarForces : public Term {
   void add_tangent(const CoupledState& state, Shifts shifts, Mat J) override;
   void add_reference_tangent(const CoupledState& state, Shifts shifts, Mat J) override;
   bool low_rank_change(const CoupledState& state, std::vector<RankOne>& terms) override;
+  std::vector<double> checkpoint() const override;  // the frozen switch terms
+  void restore(const std::vector<double>& state) override;
   double energy(const CoupledState& state) const override;
 
  private:

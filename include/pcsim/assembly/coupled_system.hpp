@@ -41,6 +41,9 @@ class CoupledSystem {
 
   Vec create_vector() const { return catenary_->create_vector(); }
   Mat create_matrix() const;  // the fixed pattern of the Jacobian (a copy)
+  // The pattern of J0 on the cheap path: create_matrix() unless the catenary
+  // model's reference tangents touch fewer entries (CatenaryModel).
+  Mat create_reference_matrix() const;
 
   void residual(double t, Vec U, Vec V, Vec A, Vec F);
   // The exact tangent, assembled into J.
@@ -51,11 +54,18 @@ class CoupledSystem {
   void reference_jacobian(double t, Vec U, Vec V, Vec A, Shifts shifts, Mat J0);
   bool low_rank_change(double t, Vec U, Vec V, Vec A, std::vector<RankOne>& terms);
 
+  // Every term's Term::checkpoint(), in order; restore_terms() gives them
+  // back (after the reference Jacobian has been rebuilt).
+  std::vector<std::vector<double>> checkpoint_terms() const;
+  void restore_terms(const std::vector<std::vector<double>>& states);
+
   // Sum of the terms' energies E(t, U, V) and powers (collective).
   double energy(double t, Vec U, Vec V);
   TermPower power(double t, Vec U, Vec V);
-  // Measured quantities at state U (collective; filled on rank 0).
+  // Measured quantities at state U (collective; filled on rank 0). Dropper
+  // forces only if asked (a reduced catenary pays a product for them).
   contact::StepRecord record(double t, Vec U);
+  void set_record_dropper_forces(bool on) { record_dropper_forces_ = on; }
 
  private:
   struct MergedPart {
@@ -66,6 +76,7 @@ class CoupledSystem {
   void load(double t, Vec U, Vec V, Vec A);
   void add_linear_parts(Vec U, Vec V, Vec A, Vec F);
   void assemble_tangent(Shifts shifts, Mat J, bool reference);
+  Mat build_pattern(bool reference) const;
 
   std::unique_ptr<CatenaryModel> catenary_;
   std::vector<PantographSlot> pantographs_;
@@ -74,8 +85,10 @@ class CoupledSystem {
   std::vector<std::vector<PenaltyContact*>> contacts_;  // per pantograph, per wire (records)
   std::vector<MergedPart> parts_;
   double contact_stiffness_;
-  Mat pattern_ = nullptr;
+  Mat pattern_ = nullptr;  // the reference pattern (the full one if the model has no other)
+  std::vector<bool> wire_coupled_;
   Vec reference_ = nullptr, work_ = nullptr;
+  bool record_dropper_forces_ = true;
 };
 
 }  // namespace pcsim::assembly

@@ -39,7 +39,9 @@ class PantographTerm : public Term {
 // u = [dz/dU; -1] in contact. On the cheap path J0 holds no contact: the
 // whole tangent is the rank-one term (coefficient 0 out of contact). A line
 // with several contact wires (overlaps) has one such term per pantograph and
-// wire; the force on the head is their sum.
+// wire; the force on the head is their sum. A reduced catenary's residual
+// flexibility r at x acts in series with the penalty spring: kH is replaced
+// by kH / (1 + kH r) (r = 0 for FE).
 class PenaltyContact : public Term {
  public:
   // wire: contact wire number (0..CatenaryModel::contact_wire_count()-1).
@@ -60,11 +62,12 @@ class PenaltyContact : public Term {
   TermPower power(const CoupledState& state) const override;  // the moving contact's work
 
   struct Evaluation {
-    WirePoint wire;    // at x_c
-    double x = 0;      // contact point along the track
-    double head = 0;   // head height
-    double gap = 0;    // dz (owner rank)
-    double force = 0;  // Fc >= 0 (owner rank)
+    WirePoint wire;        // at x_c
+    double x = 0;          // contact point along the track
+    double head = 0;       // head height
+    double gap = 0;        // dz (owner rank)
+    double force = 0;      // Fc >= 0 (owner rank)
+    double stiffness = 0;  // kH in series with the wire's residual flexibility
   };
   // At the loaded state; gap and force only on the rank that owns the point.
   Evaluation evaluate(const CoupledState& state) const;

@@ -102,6 +102,14 @@ class Term {
     return true;
   }
 
+  // Checkpoint/restart: the state the term keeps between calls that is not a
+  // function of the state vectors (e.g. rank-one terms frozen when a dropper
+  // switched), so that a restarted run solves exactly what the uninterrupted
+  // one would. Identical on every rank. restore() is called after the
+  // reference tangent has been rebuilt at the checkpoint's J0 state.
+  virtual std::vector<double> checkpoint() const { return {}; }
+  virtual void restore(const std::vector<double>& state) {}
+
   // Energy stored by the term (kinetic or potential) and the power of its
   // non-conservative forces, summed over ranks (collective).
   virtual double energy(const CoupledState& state) const { return 0; }

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -147,6 +148,25 @@ struct LineZone {
 // the station table (x ascending), zero outside.
 struct ContactGapOffset {
   std::vector<double> x, offset;
+  // The offset at station x (linear in the table, zero outside) and its
+  // slope d(offset)/dx (the slope of the piece holding x).
+  double at(double station) const {
+    const std::size_t i = piece(station);
+    if (i == kNone) return 0.0;
+    const double w = (station - x[i]) / (x[i + 1] - x[i]);
+    return (1 - w) * offset[i] + w * offset[i + 1];
+  }
+  double slope_at(double station) const {
+    const std::size_t i = piece(station);
+    return i == kNone ? 0.0 : (offset[i + 1] - offset[i]) / (x[i + 1] - x[i]);
+  }
+
+ private:
+  static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+  std::size_t piece(double station) const {
+    if (x.size() < 2 || station <= x.front() || station >= x.back()) return kNone;
+    return static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), station) - x.begin()) - 1;
+  }
 };
 
 // Form-finding: node 'node' must sit at height z in the static configuration.

@@ -20,8 +20,10 @@ struct EnergyHistory {
 
 struct EnergyBalance {
   std::vector<double> change, work_external, work_dissipated, residual;  // per step [J]
-  double turnover = 0;      // max over t of |E - E0|, |W_ext|, |W_diss| [J]
-  double max_residual = 0;  // max over t of |E - E0 - W_ext - W_diss| [J]
+  double turnover = 0;       // max over t of |E - E0|, |W_ext|, |W_diss| [J]
+  double max_residual = 0;   // max over t of |E - E0 - W_ext - W_diss| [J]
+  double max_injection = 0;  // max over t of E - E0 - W_ext - W_diss, >= 0: energy the
+                             // integration created (a negative residual it dissipated) [J]
   double final_residual = 0;
 };
 

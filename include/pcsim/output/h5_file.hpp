@@ -25,7 +25,9 @@ struct DatasetInfo {
 
 class H5File {
  public:
-  explicit H5File(const std::string& path);  // creates (truncates) the file
+  enum class Mode { create, append };
+  // create: creates (truncates) the file; append: opens an existing one.
+  explicit H5File(const std::string& path, Mode mode = Mode::create);
   ~H5File();
   H5File(const H5File&) = delete;
   H5File& operator=(const H5File&) = delete;

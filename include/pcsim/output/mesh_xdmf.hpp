@@ -66,8 +66,10 @@ void write_modes_xdmf(const catenary::CatenaryMesh& mesh, const std::string& mod
 // XDMF for a time series of field snapshots: a Temporal collection (time in s)
 // of the wires and bars grids of mesh_h5_name (the static configuration) with
 // a node vector attribute 'displacement' =
-// snapshots_h5_name:/snapshots/displacement_<k> (n x 3), the displacement from
-// that configuration (ParaView: Warp By Vector animates the wires).
+// snapshots_h5_name:/snapshots/xdmf/displacement_<k> (n x 3), the displacement
+// from that configuration (ParaView: Warp By Vector animates the wires). In a
+// run's results.h5 these are HDF5 virtual datasets, views of row k of
+// /snapshots/displacement (VTK's XDMF3 reader reads no HyperSlab items).
 void write_snapshots_xdmf(const catenary::CatenaryMesh& mesh, const std::string& mesh_h5_name,
                           const std::string& snapshots_h5_name, const std::vector<double>& times,
                           const std::string& xdmf_path);

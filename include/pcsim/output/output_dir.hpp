@@ -51,6 +51,9 @@ class OutputDir {
   const std::string& partial_dir() const { return partial_; }
   // Puts the finished results in place of any earlier result (collective).
   void commit();
+  // An interrupted run: leaves "<dir>.partial" with what it holds (its data
+  // and checkpoint), releases the lock (collective). No final folder appears.
+  void keep_partial();
 
   static constexpr const char* kManifestName = ".pcsim-result";
 

@@ -1,7 +1,8 @@
 // Results of a dynamic run (`pcsim run`): the EN 50318 statistics of every
 // pantograph (contact force low-pass filtered, zero phase, over the analysis
-// section; thesis 3.4), the uplift at the supports, results.h5 (time series),
-// field snapshots (XDMF for ParaView) and summary.json. Called on rank 0.
+// section; thesis 3.4), the uplift at the supports, read back from results.h5
+// (streamed during the run: run_stream.hpp), field snapshots (XDMF for
+// ParaView) and summary.json. Called on rank 0.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -10,6 +11,8 @@
 
 #include "pcsim/catenary/mesh.hpp"
 #include "pcsim/contact/records.hpp"
+#include "pcsim/output/energy_results.hpp"
+#include "pcsim/output/line_results.hpp"
 #include "pcsim/output/output_dir.hpp"
 #include "pcsim/output/statistics.hpp"
 
@@ -24,14 +27,6 @@ struct RunSettings {
   double cutoff_hz = 20;
   bool dropper_forces = true;
   std::vector<std::string> pantograph_names;
-};
-
-// The recorded run (rank 0): one record per accepted step, and the node
-// positions at the snapshot times.
-struct RunHistory {
-  std::vector<contact::StepRecord> steps;
-  std::vector<double> snapshot_times;
-  std::vector<std::vector<double>> snapshots;
 };
 
 struct PantographStatistics {
@@ -51,14 +46,29 @@ struct RunStatistics {
 std::vector<double> filter_uniformly_sampled(const std::vector<double>& time,
                                              const std::vector<double>& signal, double cutoff_hz);
 
-// Statistics, results.h5 and the snapshot XDMF; static_node_values: the
-// static configuration (6 per node).
-RunStatistics write_run_results(const OutputDir& out, const catenary::CatenaryMesh& mesh,
-                                const std::vector<double>& static_node_values,
-                                const RunSettings& settings, const RunHistory& history);
+// The static configuration as a mesh file for the snapshots (static_mesh.h5,
+// static.xdmf); static_node_values: 6 per node.
+void write_static_mesh(const OutputDir& out, const catenary::CatenaryMesh& mesh,
+                       const std::vector<double>& static_node_values);
+// snapshots.xdmf for the snapshots in results.h5 so far (none: no file).
+void write_snapshots_view(const OutputDir& out, const catenary::CatenaryMesh& mesh);
 
-// summary.json: the statistics plus the given performance and solver facts.
+// The end of a complete run, results.h5 closed by its stream: reads the time
+// series back, adds every pantograph's contact_force_filtered, marks the file
+// complete = 1, writes the snapshots' XDMF; returns the statistics.
+RunStatistics finish_run_results(const OutputDir& out, const catenary::CatenaryMesh& mesh,
+                                 const RunSettings& settings);
+
+// The histories streamed into results.h5 that the line and energy results
+// take (line_results.hpp, energy_results.hpp): every pantograph's time,
+// station, head force and force on each contact wire (RunLayout::
+// contact_wires), and E(t) with the powers (RunLayout::energy).
+std::vector<ContactHistory> read_contact_histories(const OutputDir& out, const RunSettings& s);
+EnergyHistory read_energy_history(const OutputDir& out);
+
+// summary.json: the statistics (complete runs) plus the given performance and
+// solver facts; an interrupted run writes "complete": false and no statistics.
 void write_run_summary(const OutputDir& out, const RunSettings& settings,
-                       const RunStatistics& stats, const nlohmann::json& facts);
+                       const RunStatistics* stats, const nlohmann::json& facts);
 
 }  // namespace pcsim::output

@@ -12,11 +12,14 @@
 // with s, c = sin, cos(θ7 − θG7), spring force f_s = kl (l−l0) + kl3 (l−l0)³, damper
 // force f_d(v_a) = c v_a + c2 v_a|v_a| along its length l_a with v_a = h θ̇, h = dl_a/dθ
 // (A.13–A.19), friction F_r = fr (2/π) atan(v_r/kt), v_r = ẏ10 − ẏ5 (2.16–2.17).
+// With the uplift characteristic (Dsa380Effects::uplift_characteristic) the bellows torque
+// is M0 plus the change that the characteristic asks for (bellows.hpp).
 #pragma once
 
 #include <array>
 #include <string>
 
+#include "pcsim/pantograph/bellows.hpp"
 #include "pcsim/pantograph/jet.hpp"
 #include "pcsim/pantograph/model.hpp"
 
@@ -43,6 +46,7 @@ struct Dsa380Parameters {
   double c = 0;                 // damper (N s/m)
   double g = 9.81;
   double aero_a = 0, aero_b = 0, aero_c = 0;  // vertical aerodynamic force on the head
+  BellowsParameters bellows;                  // uplift characteristic (bellows.hpp)
   // Reference conditions (used by studies and the calibration).
   double theta_guess = 0.6;  // start of the Newton search for θ (2.13)
 };
@@ -56,6 +60,8 @@ struct Dsa380Effects {
   bool damper_one_way = false;  // acts only while the frame descends (ẏ5 < 0)
   double damper_quadratic = 0;  // c2 (N s²/m²)
   bool aerodynamic = false;
+  // The bellows torque follows the uplift characteristic (bellows.hpp); else fixed M0.
+  bool uplift_characteristic = false;
 };
 
 // Name of the mode whose dominant coordinate is q[dof]: "frame", "head horizontal",
@@ -74,13 +80,18 @@ struct Dsa380Kinematics {
 };
 Dsa380Kinematics dsa380_kinematics(const Dsa380Parameters& p, double theta);
 
+// Head descent z under the vertical load W = m7 g + F0 − F_aero carried by the two head
+// springs (2.12): 2 f(l) z / l = W, l = √(z² + (L7/2)²); dz/dW in *dz_dload.
+double dsa380_head_descent(const Dsa380Parameters& p, double load, double* dz_dload);
+
 class Dsa380Pantograph : public PantographModel {
  public:
   Dsa380Pantograph(Dsa380Parameters params, Dsa380Effects effects, double speed_m_s);
 
   std::string kind() const override { return "dsa380"; }
-  int dof_count() const override { return 4; }
-  std::vector<std::string> dof_names() const override { return {"theta", "x10", "y10", "theta7"}; }
+  // q = {θ, x10, y10, θ7} and, with the bellows' pressure loop, its state (bellows.hpp).
+  int dof_count() const override { return bellows_.has_state() ? 5 : 4; }
+  std::vector<std::string> dof_names() const override;
   int contact_dof() const override { return 2; }
   double contact_offset() const override { return p_.L7p; }
   void residual(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
@@ -111,15 +122,18 @@ class Dsa380Pantograph : public PantographModel {
   void set_bellows_torque(double M0) { M0_ = M0; }
   const Dsa380Parameters& parameters() const { return p_; }
   const Dsa380Effects& effects() const { return e_; }
+  const Bellows& bellows() const { return bellows_; }
 
  private:
   double spring_force(double l, double l0, double* stiffness) const;
   [[noreturn]] void fail_working_height(double theta, double h0, double z,
                                         const std::string& what) const;
+  int bellows_dof() const { return bellows_.has_state() ? 4 : -1; }
   Dsa380Parameters p_;
   Dsa380Effects e_;
   double aero_force_ = 0;
   double M0_ = 0;
+  Bellows bellows_;
 };
 
 }  // namespace pcsim::pantograph

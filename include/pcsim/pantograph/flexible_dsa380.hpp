@@ -29,6 +29,8 @@
 // bars (planar_beam.hpp: linear translational interpolation, lumped rotary inertia), the
 // head's rows as in the rigid model (A.36). Restraints and friction as in the rigid model,
 // with y5 and x5 now coordinates (v_r = ẏ10 − ẏ5; x10 ≡ x5 replaces the x10 row).
+// The uplift characteristic (bellows.hpp) changes the torque by the rigid mechanism's
+// ΔM(θ) from the flexible equilibrium's M0 (the bars' deflection changes little with θ).
 #pragma once
 
 #include <array>
@@ -88,8 +90,11 @@ class FlexibleDsa380Pantograph : public PantographModel {
                            double speed_m_s);
 
   std::string kind() const override { return "dsa380_flexible"; }
-  int dof_count() const override { return static_cast<int>(mesh_.names.size()); }
-  std::vector<std::string> dof_names() const override { return mesh_.names; }
+  // The mesh's coordinates and, with the bellows' pressure loop, its state (bellows.hpp).
+  int dof_count() const override {
+    return static_cast<int>(mesh_.names.size()) + (bellows_.has_state() ? 1 : 0);
+  }
+  std::vector<std::string> dof_names() const override;
   int contact_dof() const override { return 2; }
   double contact_offset() const override { return p_.rigid.L7p; }
   void residual(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
@@ -103,6 +108,8 @@ class FlexibleDsa380Pantograph : public PantographModel {
   // torque M0 together (prestressed bars), from the rigid model's equilibrium (2.12–2.14).
   // Restrained rows are replaced by their position constraints. Sets M0, returns q0.
   Eigen::VectorXd static_equilibrium(double contact_force, double working_height) override;
+  // Heights above the base, as the rigid model: nominal working height 1.2 m.
+  double default_working_height() const override { return 1.2; }
   double kinetic_energy(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const override;
   double potential_energy(const Eigen::VectorXd& q) const override;
   PowerSplit power(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const override;
@@ -113,6 +120,7 @@ class FlexibleDsa380Pantograph : public PantographModel {
   void set_bellows_torque(double M0) { M0_ = M0; }
   int dof_x5() const { return mesh_.x5; }
   int dof_y5() const { return mesh_.y5; }
+  const Bellows& bellows() const { return bellows_; }
   const FlexibleDsa380Parameters& parameters() const { return p_; }
   const std::array<TubeSection, 9>& sections() const { return sections_; }
   const FlexibleDsa380Mesh& mesh() const { return mesh_; }
@@ -140,6 +148,9 @@ class FlexibleDsa380Pantograph : public PantographModel {
   Vector6 gather(const FlexibleDsa380Mesh::Element& e, const Eigen::VectorXd& q) const;
   double spring_force(double l, double l0, double* stiffness) const;
   bool damper_active(const Eigen::VectorXd& qd) const;
+  int bellows_dof() const {
+    return bellows_.has_state() ? static_cast<int>(mesh_.names.size()) : -1;
+  }
 
   FlexibleDsa380Parameters p_;
   Dsa380Effects e_;
@@ -150,6 +161,7 @@ class FlexibleDsa380Pantograph : public PantographModel {
   Eigen::VectorXd bar_weight_;  // dVg/dq of the beams
   double aero_force_ = 0;
   double M0_ = 0;
+  Bellows bellows_;  // uplift characteristic: M0 + ΔM(θ) with the rigid mechanism's ΔM
 };
 
 }  // namespace pcsim::pantograph

@@ -61,8 +61,25 @@ struct Mode {
   bool real_root = false;         // damped: overdamped (real λ, no conjugate)
 };
 
-// Undamped: (K − ω² M) φ = 0 (2.23); modes with ω > 0, ascending. Zero eigenvalues of
-// restrained coordinates (rows replaced by acceleration constraints) are dropped.
+// Restrained rows: rows that a restraint replaced by an acceleration constraint
+// m_r · Δq̈ = 0 (A.37, A.38), recognised by their K and C rows being exactly zero.
+std::vector<int> restrained_rows(const LinearModel& lin);
+// Every mode with λ ≠ 0 satisfies the restrained rows' m_r · φ = 0 (each such row would
+// add a zero eigenvalue, a defective double one in the state-space form). The modes are
+// those of the other rows on the null space of the constraints, Δq = T ψ:
+//   reduced.K = K_F T, reduced.C = C_F T, reduced.M = M_F T  (F: the other rows),
+// square, with M_F T invertible. Without restraints T = I and reduced = lin.
+struct RestraintReduction {
+  LinearModel reduced;
+  Eigen::MatrixXd T;
+};
+RestraintReduction reduce_restraints(const LinearModel& lin);
+// State vectors {ψ, λψ} of the reduced pencil as {Tψ, λTψ}.
+Eigen::MatrixXcd expand_state(const Eigen::MatrixXd& T, const Eigen::MatrixXcd& Y);
+
+// Undamped: (K − ω² M) φ = 0 (2.23) on the restraints' null space; modes with ω > 0,
+// ascending. Nothing is dropped by the size of ω, so the 0.66 Hz modes of a model whose
+// beams reach 1e5 Hz stay.
 std::vector<Mode> undamped_modes_eigen(const LinearModel& lin);
 // Damped: state-space form [C M; M 0] Ẏ + [K 0; 0 −M] Y = 0 (2.27); one mode per
 // complex-conjugate pair (Im λ > 0), ascending in ω.
@@ -70,11 +87,13 @@ std::vector<Mode> damped_modes_eigen(const LinearModel& lin);
 
 // State-space matrices A = [C M; M 0], B = [K 0; 0 −M] of (2.27): (λ A + B) Y = 0.
 void state_space(const LinearModel& lin, Eigen::MatrixXd* A, Eigen::MatrixXd* B);
-// Modes from all eigenpairs of K φ = λ M φ (λ = ω²), whichever solver found them.
+// Modes from all eigenpairs of K φ = λ M φ (λ = ω²), whichever solver found them, with the
+// vectors in the full coordinates (T times those of the reduced pencil).
 std::vector<Mode> undamped_modes_from_eigenpairs(const LinearModel& lin,
                                                  const Eigen::VectorXcd& lambda,
                                                  const Eigen::MatrixXcd& vectors);
-// Modes from all eigenpairs of (λ A + B) Y = 0 (2.27), whichever solver found them.
+// Modes from all eigenpairs of (λ A + B) Y = 0 (2.27), whichever solver found them, with
+// Y in the full coordinates (diag(T, T) times those of the reduced pencil).
 std::vector<Mode> damped_modes_from_eigenpairs(const LinearModel& lin,
                                                const Eigen::VectorXcd& lambda,
                                                const Eigen::MatrixXcd& vectors);
@@ -82,7 +101,10 @@ std::vector<Mode> damped_modes_from_eigenpairs(const LinearModel& lin,
 // Receptance H_ij(ω) = [K + iωC − ω²M]⁻¹_ij (2.36).
 std::complex<double> frf_direct(const LinearModel& lin, int i, int j, double omega);
 // H_ij(ω) = Σ_r φ_r,i φ_r,j / (a_r (iω − λ_r)) + conj. (2.40), a_r = φ_rᵀ A φ_r, with the
-// damped state-space modes; requires symmetric M, C, K.
+// damped state-space modes, at each ω of `omegas` (a_r computed once); requires symmetric
+// M, C, K.
+std::vector<std::complex<double>> frf_modal(const LinearModel& lin, const std::vector<Mode>& damped,
+                                            int i, int j, const std::vector<double>& omegas);
 std::complex<double> frf_modal(const LinearModel& lin, const std::vector<Mode>& damped, int i,
                                int j, double omega);
 

@@ -27,8 +27,12 @@ struct TimeStudy {
   bool linear = false;
 };
 
-// Undamped and damped modes at the equilibrium (2.21–2.28).
-struct ModesStudy {};
+// Undamped and damped modes at the equilibrium (2.21–2.28); with f_max_hz > 0 only the
+// modes up to that frequency are kept (the thesis lists 0–30 Hz; the flexible model has
+// one mode per beam unknown, up to ~1e5 Hz).
+struct ModesStudy {
+  double f_max_hz = 0;
+};
 
 // Receptance of the contact coordinate H_cc(ω): direct (2.36) and modal (2.40).
 struct FrfStudy {
@@ -41,6 +45,8 @@ struct FrfStudy {
 struct SweepStudy {
   std::vector<double> frequencies_hz, amplitudes;
   double dt = 1e-3, settle_s = 10, settle_periods = 20, measure_periods = 5;
+  std::string scheme = "rk4";  // "rk4" | "hht" (stiff models: the flexible bars)
+  double hht_alpha = 0.05;
   bool linear = false;                       // also the linearised model
   bool start_on_linear_steady_state = true;  // else start at rest in the equilibrium
 };

@@ -2,6 +2,10 @@
 //   catenary:
 //     design: ../meshes/en50318-reference.yaml   # path relative to the scene
 //     form_finding: true                         # default: the design's default
+//     model: linear            # fidelity of a dynamic run: nonlinear | linear | modal
+//     max_frequency_hz: 70     # modal cut-off [Hz] or 'all'; default: set by the run scene
+//     modal: {dropper_shapes: true, contact_flexibility: true, modes: all | vertical,
+//             participation: 0.03, droppers: bounded | all, bars: slack | exact}
 //   elasticity: {force: 100, from_x: 240, to_x: 300, step: 1}   # pcsim static
 #pragma once
 
@@ -10,6 +14,7 @@
 #include <vector>
 
 #include "pcsim/catenary/mesh.hpp"
+#include "pcsim/catenary/reduced_basis.hpp"
 #include "pcsim/scene/design_reader.hpp"
 #include "pcsim/scene/yaml_input.hpp"
 
@@ -27,11 +32,18 @@ struct CatenaryScene {
   std::string design_path;
   bool form_finding = false;
   CatenaryMesh mesh;
+  CatenaryFidelity fidelity = CatenaryFidelity::linear;
+  bool fidelity_given = false;      // the scene has catenary.model
+  ModalSettings modal;              // model: modal
+  bool modal_cutoff_given = false;  // catenary.max_frequency_hz (else the run scene sets it)
+  std::string scene_file;           // for messages about these keys
   std::optional<ElasticityRequest> elasticity;
 };
 
 // 'size_check' sees the design's mesh size before the mesh is built.
 CatenaryScene load_catenary_scene(const InputNode& scene, const MeshSizeCheck& size_check = {});
+// The fidelity keys of a catenary section (model, max_frequency_hz, modal).
+void read_catenary_model(const InputNode& section, CatenaryScene& out);
 
 // The 'modes' section (pcsim modes): {count: N >= 1 (20), max_frequency_hz: F > 0 (none: 0)}.
 struct ModesSection {

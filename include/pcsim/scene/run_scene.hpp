@@ -18,8 +18,11 @@
 //   effects: {catenary_nonlinear: false, dropper_slack: true, rayleigh_damping: true}
 //   contact: {stiffness: 50000}
 //   analysis: {from_span: 5, to_span: 6, cutoff_hz: 20}   # 1-based spans
-//   output: {dropper_forces: true, snapshot_every: 0,   # field snapshots every N steps (0: none)
-//            energy: false}                            # energy balance in energy.h5
+//   output: {dropper_forces: true, snapshot_every: 0, energy: false, checkpoint_every: 0}
+//     snapshot_every: field snapshots every N steps (0: none)
+//     energy: energy balance in energy.h5
+//     checkpoint_every: checkpoint.h5 every N steps, for --restart (0: only when
+//     the run stops early: SIGINT/SIGTERM, -ts_max_steps)
 #pragma once
 
 #include <memory>
@@ -50,6 +53,7 @@ struct RunScene {
   bool energy = false;      // energy balance every step (energy.h5)
   long snapshot_every = 0;  // steps between field snapshots (XDMF animation); 0: none
   std::vector<InputWarning> warnings;  // allowed, but probably not meant (printed by the app)
+  long checkpoint_every = 0;           // steps between checkpoints (restart); 0: none
   // Duration of the run: from t = 0 until the first pantograph reaches end_x.
   double duration() const { return (end_x - pantographs.front().start_x) / speed; }
 };

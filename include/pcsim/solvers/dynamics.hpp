@@ -25,6 +25,25 @@
 
 namespace pcsim::solvers {
 
+// Everything the integration needs to continue exactly as an uninterrupted
+// run would (checkpoint/restart; -ts_type hht). Vectors in the global order,
+// on rank 0 only (empty elsewhere); the rest is the same on every rank.
+struct DynamicState {
+  double t = 0;          // time of the last accepted step [s]
+  long step = 0;         // its number
+  double time_step = 0;  // Δt of the next step
+  double user_time_step = 0;
+  long accepted_since_cut = 0;  // HHT step-size control
+  std::vector<double> U, V, A;  // state at t (positions, velocities, accelerations)
+  // Cheap path: J0 was assembled at (reference_t, reference_U/V/A) with these
+  // shifts (so that it is rebuilt bitwise equal); false before the first J0.
+  bool has_reference = false;
+  double reference_t = 0, shift_v = 0, shift_a = 0;
+  std::vector<double> reference_U, reference_V, reference_A;
+  std::vector<std::vector<double>> terms;  // Term::checkpoint() of every term
+  std::vector<double> head_offsets;        // every pantograph's, set by the initial state
+};
+
 class DynamicSolver {
  public:
   // dt: default time step (-ts_dt overrides); duration: final time.
@@ -36,7 +55,16 @@ class DynamicSolver {
   DynamicSolver& operator=(const DynamicSolver&) = delete;
 
   TS ts() const { return ts_; }
+  // Starts the TS at (U0, V0) (copied): with HHT also at the acceleration of
+  // that state (solvers::initial_acceleration; zero for equilibrium starts).
+  void set_initial_state(Vec U0, Vec V0);
   bool cheap_path() const { return low_rank_ != nullptr; }
+
+  // Checkpoint/restart (collective; the TS must be of type hht). save_state()
+  // after an accepted step; restore_state() instead of setting an initial
+  // state, before TSSolve (which then continues from state.step).
+  DynamicState save_state() const;
+  void restore_state(const DynamicState& state);
 
  private:
   static PetscErrorCode residual(TS, PetscReal t, Vec U, Vec V, Vec A, Vec F, void* ctx);
@@ -51,6 +79,9 @@ class DynamicSolver {
   std::unique_ptr<LowRankStepSolver> low_rank_;
   std::vector<assembly::RankOne> terms_;
   double cached_shift_v_ = -1, cached_shift_a_ = -1;
+  // The state J0 was assembled at (cheap path), for checkpoints.
+  double reference_t_ = 0;
+  Vec reference_U_ = nullptr, reference_V_ = nullptr, reference_A_ = nullptr;
 };
 
 // -pcsim_path from the options database: true for the cheap path.

@@ -70,4 +70,15 @@ struct HHTNewtonInfo {
 };
 HHTNewtonInfo hht_get_info(TS ts);
 
+// Step-size control between steps (checkpoint/restart): the Δt to grow back to
+// after rejections and the accepted steps since the last cut.
+struct HHTStepControl {
+  PetscReal user_time_step = 0;
+  PetscInt accepted_since_cut = 0;
+};
+HHTStepControl hht_get_step_control(TS ts);
+// Restores it for the next step, whose Δt is the TS's time step (set it first,
+// with the solution): sets the TS up if needed, so that the first step keeps it.
+void hht_set_step_control(TS ts, HHTStepControl control);
+
 }  // namespace pcsim::solvers

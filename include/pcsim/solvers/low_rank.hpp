@@ -7,7 +7,9 @@
 // droppers); this class never knows what they are. A term whose u keeps
 // recurring on the same unknowns (reuse_columns: a contact moving along the
 // wire) gets z = J0^-1 u combined from cached unit solves J0^-1 e_g, so a new
-// solve is needed only when it reaches new unknowns. J0 is factored by an
+// solve is needed only when it reaches new unknowns (also right after a
+// refactorisation: z is a function of J0 and u alone, whatever the history,
+// so a restarted run computes the same z as an uninterrupted one). J0 is factored by an
 // inner KSP with options prefix -cheap_ (e.g. -cheap_pc_factor_mat_solver_type).
 #pragma once
 

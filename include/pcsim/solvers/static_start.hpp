@@ -2,10 +2,11 @@
 //  - every pantograph in its own static equilibrium with its contact point at
 //    the wire (ramp start: zero contact force at t = 0, the head's force ramps
 //    up over ramp_distance), or pressing it with F0 (static start);
-//  - with a static start, the coupled static equilibrium F(0, U, 0, 0) = 0 of
-//    the dynamic model itself, by SNES with the exact Jacobian, so that
-//    nothing drifts at t = 0. Its guess is the catenary under the point load
-//    F0 (options prefix -start_load_); the coupled solve takes -start_.
+//  - with static starts (any pantographs, each at its start point), the coupled
+//    static equilibrium F(0, U, 0, 0) = 0 of the dynamic model itself, by SNES
+//    with the exact Jacobian, so that nothing drifts at t = 0. Its guess is the
+//    catenary under the point loads F0 of those pantographs (options prefix
+//    -start_load_); the coupled solve takes -start_.
 #pragma once
 
 #include <petscvec.h>

@@ -1,0 +1,144 @@
+// The reduced-order catenary: the catenary linearised about its static
+// configuration and projected on a reduced basis (catenary/reduced_basis.hpp),
+//   U = U0 + Phi eta,  eta'' + (alpha + beta Omega^2) eta' + Omega^2 eta + corrections = f,
+// as a CatenaryModel. Its unknowns eta all live on the last rank (with the
+// pantographs'); load_state() gives them to every rank, so the model runs on
+// any number of ranks (it is meant for one: real time).
+//
+// Terms (assembly/modal_terms.hpp): Omega^2 and I as linear parts (modal
+// stiffness, inertia, Rayleigh damping alpha I + beta Omega^2), the dropper
+// slack correction -k min(dl, 0) b_d (dl = s_d + b_d . eta, rank one per
+// slack dropper) or every bar's exact nonlinear force minus its
+// linearisation (settings.bars = exact: the all-modes check against FE), and
+// the contact through wire_point(x, wire): z(x) = z0(x) + S_z(chi) Phi_e eta, a
+// dense row over the modes, with the truncated flexibility of the contact
+// point (every contact wire of a line with overlaps).
+//
+// Which droppers are evaluated at each state (dropper_check = bounded): the
+// elongations dl_a of every dropper are known at an anchor state eta_a to
+// within err_a (0 after an exact evaluation). At a state eta a dropper with
+//   dl_a - err_a > min(|b| |eta - eta_a|, |Omega^-1 b| |Omega (eta - eta_a)|)
+// (Cauchy-Schwarz with either weighting) is certainly taut. If that leaves
+// more than a few candidates (measured: the Cauchy-Schwarz bounds are ~1e3
+// times the true change of a step, the modes being global), every dl is
+// updated by one single-precision product B (eta - eta_a) with its rounding
+// bound (n + 2) u |b| |eta - eta_a| (u = 2^-24) and eta becomes the anchor;
+// the droppers still not certainly taut are evaluated exactly. No accuracy is
+// lost: the correction of a taut dropper is exactly 0. With dropper_check =
+// all every dropper is evaluated exactly at every state.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "pcsim/assembly/catenary_model.hpp"
+#include "pcsim/catenary/reduced_basis.hpp"
+#include "pcsim/contact/wire_locator.hpp"
+
+namespace pcsim::assembly {
+
+class ModalCatenary : public CatenaryModel {
+ public:
+  using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+  ModalCatenary(MPI_Comm comm, catenary::CatenaryMesh mesh, std::vector<double> static_node_values,
+                catenary::ReducedBasis basis, const catenary::ModalSettings& settings,
+                PetscInt extra_dofs);
+  ~ModalCatenary() override;
+
+  MPI_Comm comm() const override { return comm_; }
+  const catenary::CatenaryMesh& mesh() const override { return mesh_; }
+  PetscInt catenary_dofs() const override { return m_; }
+  PetscInt extra_global(PetscInt k) const override { return m_ + k; }
+  Vec create_vector() const override;
+  Mat create_matrix(const std::vector<bool>& wire_coupled) const override;
+  bool has_reference_pattern() const override { return true; }
+  Mat create_reference_matrix(const std::vector<bool>& wire_coupled) const override;
+  void reference_state(Vec U) const override;
+  void load_state(Vec U) override;
+  int contact_wire_count() const override { return static_cast<int>(locators_.size()); }
+  WirePoint wire_point(double x, int wire) const override;
+  double wire_x_min(int wire) const override { return locators_[wire]->x_min(); }
+  double wire_x_max(int wire) const override { return locators_[wire]->x_max(); }
+  bool closed_form_point_load(double x, int wire, double force, Vec U) const override;
+  std::vector<double> support_heights() const override;
+  std::vector<double> dropper_forces() const override;
+  std::vector<double> node_positions_to_root(Vec U) const override;
+  std::vector<std::unique_ptr<Term>> make_terms(const contact::InteractionEffects& e,
+                                                Mat pattern) override;
+
+  // For the terms.
+  const catenary::ReducedBasis& basis() const { return basis_; }
+  const catenary::ModalSettings& settings() const { return settings_; }
+  bool on_owner() const { return rank_ == size_ - 1; }
+  const Eigen::VectorXd& eta() const { return eta_; }  // at the loaded state, every rank
+  double static_value(int node, int c) const { return static_values_[6 * node + c]; }
+  // Rows of the basis for (node, component) (a kept row).
+  Eigen::Map<const Eigen::RowVectorXd> row(int node, int c) const;
+  // Slack-capable bars: elongation gradients b_d over the basis (rows),
+  // static stretch s_d (dl = s_d + b_d . eta) and stiffness.
+  const RowMatrix& elongation_rows() const { return B_; }
+  const std::vector<int>& slack_bars() const { return slack_bars_; }  // tracked bars
+  double stretch(std::size_t d) const { return stretch_[d]; }
+  double bar_stiffness(std::size_t d) const { return mesh_.bars[slack_bars_[d]].stiffness; }
+  // The slack bars at the loaded state (indices into slack_bars()) and
+  // their elongations dl < 0.
+  const std::vector<std::size_t>& slack_now() const { return slack_now_; }
+  double elongation(std::size_t d) const { return elongation_[d]; }
+  // Bars evaluated exactly so far, single-precision updates of all of them
+  // and states loaded (bounded set statistics).
+  long dropper_evaluations() const { return evaluations_; }
+  long single_precision_updates() const { return single_products_; }
+  long loads() const { return loads_; }
+
+ private:
+  void build_dropper_rows();
+  void update_slack_set();
+  Mat allocate_matrix(const std::vector<bool>& wire_coupled, bool dense) const;
+
+  MPI_Comm comm_;
+  int rank_ = 0, size_ = 1;
+  catenary::CatenaryMesh mesh_;
+  std::vector<double> static_values_;
+  catenary::ReducedBasis basis_;
+  catenary::ModalSettings settings_;
+  PetscInt m_ = 0, extra_ = 0;
+  std::vector<std::unique_ptr<contact::ContactWireLocator>> locators_;  // per contact wire
+  std::vector<long> row_index_;     // basis_row_key -> row, -1 if not kept (dense over keys)
+  std::vector<int> droppers_;       // the droppers (records), as indices into slack_bars_
+  std::vector<int> slack_bars_;     // bars tracked over the basis
+  std::vector<int> wire_position_;  // node -> position in contact_wire_nodes(), -1
+  bool slack_active_ = false;       // the slack correction is a term
+  std::vector<double> stretch_, bnorm_, bnorm_omega_;  // s_d, |b_d|, |Omega^-1 b_d|
+  RowMatrix B_;
+  Eigen::VectorXd omega_;
+  // Loaded state and the bounded set's bookkeeping (the records make exact
+  // anchors too, hence mutable).
+  using FloatRowMatrix = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  FloatRowMatrix B_single_;
+  Eigen::VectorXd eta_, work_;
+  Eigen::VectorXf work_single_, change_single_;
+  mutable Eigen::VectorXd anchor_, anchor_elongation_, anchor_error_;
+  std::vector<double> elongation_;
+  std::vector<std::size_t> slack_now_;
+  std::vector<long> candidates_;
+  mutable long evaluations_ = 0, single_products_ = 0;
+  long loads_ = 0;
+  void exact_anchor() const;
+  void single_precision_anchor(double step);
+  void find_candidates(double step, double step_omega);
+  // Wire-point weights of the last x of each contact wire (they depend on x
+  // only): the point, its static height and the slope's parts.
+  struct CachedPoint {
+    double x = -1e300;
+    WirePoint point;
+    double z0 = 0, x_chi = 1;  // static height, dx/dchi
+    Eigen::RowVectorXd z_chi;  // d(dz/dchi)/d eta
+    double z_chi0 = 0;         // static dz/dchi
+  };
+  mutable std::vector<CachedPoint> cached_;
+  const CachedPoint& cached_point(double x, int wire) const;
+};
+
+}  // namespace pcsim::assembly

@@ -1,0 +1,110 @@
+// The catenary's fidelity levels and the reduced (modal) basis of the
+// linearised catenary: plain data filled by the solver driver
+// (solvers/modal_basis.hpp), cached by output/modal_cache.hpp and used by the
+// modal catenary model (assembly/modal_catenary.hpp).
+//
+// The basis: the modes of K_T phi = omega^2 M phi about the static
+// configuration below a cut-off, optionally followed by Ritz vectors of the
+// droppers' static shapes K^-1 b_d (restore the droppers' truncated
+// flexibility); all M-orthonormal and K-diagonal. Only the rows of the basis
+// the model needs are kept (contact-wire z and z', bar ends, supports; every
+// node's position only for field snapshots), not the n x m matrix.
+// Rows of constrained DOFs are zero.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "pcsim/catenary/mesh.hpp"
+
+namespace pcsim::catenary {
+
+enum class CatenaryFidelity { nonlinear, linear, modal };
+const char* fidelity_name(CatenaryFidelity f);
+
+// How the modal model treats its droppers and which ingredients it uses
+// (the scene's `catenary: {model: modal, ...}`; docs/fidelity.md).
+struct ModalSettings {
+  double max_frequency_hz = 0;      // cut-off; <= 0: every mode (small structures only)
+  bool dropper_shapes = true;       // augment the modes with the droppers' static shapes
+  bool contact_flexibility = true;  // series spring of the contact point's residual flexibility
+  bool vertical_only = false;   // leave out modes the contact wire's vertical motion hardly shows
+  double participation = 0.03;  // vertical_only: threshold (kVerticalParticipation)
+  enum class DropperCheck { bounded, all } dropper_check = DropperCheck::bounded;
+  // slack: linear bars + the slack correction -k min(dl, 0) (rank one);
+  // exact: every bar's nonlinear force minus its linearisation (full path).
+  enum class Bars { slack, exact } bars = Bars::slack;
+  bool full_shapes = false;  // keep every node's position rows (field snapshots)
+};
+
+// A catenary mode of frequency f shows in the contact force of a pantograph
+// at speed v on a wire of wave speed c at about f (1 - v/c): the modes up to
+// filter_hz / (1 - v/c) make the filtered force.
+inline double doppler_frequency(double filter_hz, double speed, double wave_speed) {
+  return filter_hz / (1.0 - speed / wave_speed);
+}
+// Default modal cut-off over that frequency (measured: docs/fidelity.md).
+constexpr double kModalCutoffMargin = 1.1;
+
+// A row of the basis: DOF c (0..5) of node n, stored as 6 n + c.
+inline long basis_row_key(int node, int c) {
+  return 6L * node + c;
+}
+
+// What the eigensolve and the static solves of a catenary give (computed by
+// solvers/modal_basis.hpp, cached by output/modal_cache.hpp): every mode
+// below cutoff_hz and the droppers' static shapes psi_d = K^-1 b_d, as the
+// kept rows only. Any basis with a lower cut-off, fewer modes or fewer
+// ingredients is assembled from it (assemble_basis) without solving again.
+struct ModalData {
+  double cutoff_hz = 0;                    // <= 0: every mode of the structure
+  std::vector<double> omega2;              // of the modes, ascending
+  std::vector<long> row_keys;              // the kept rows (basis_row_key), ascending
+  std::vector<double> mode_rows;           // row-major, row_keys.size() x omega2.size()
+  std::vector<double> shape_rows;          // row-major, row_keys.size() x shapes (psi_d)
+  std::vector<double> mode_shape_mass;     // phi_k^T M psi_d, modes x shapes
+  std::vector<double> shape_mass;          // psi_d^T M psi_e, shapes x shapes
+  std::vector<double> shape_flexibility;   // b_d^T psi_e = b_d^T K^-1 b_e, shapes x shapes
+  std::vector<double> contact_compliance;  // (K^-1)_zz at contact_wire_nodes()
+  double max_relative_residual = 0;        // of the eigenpairs
+  double wall_time_s = 0;                  // to compute it (0 when read from the cache)
+  std::size_t modes() const { return omega2.size(); }
+  std::size_t shapes() const { return row_keys.empty() ? 0 : shape_rows.size() / row_keys.size(); }
+};
+
+// The basis the modal model uses: M-orthonormal, K-diagonal.
+struct ReducedBasis {
+  int eigenmodes = 0;          // basis vectors 0..eigenmodes-1 are modes below the cut-off
+  int dropped_modes = 0;       // modes below the cut-off left out (vertical_only)
+  std::vector<double> omega2;  // omega_k^2 of every basis vector
+  std::vector<long> row_keys;  // the kept rows (basis_row_key), ascending
+  std::vector<double> rows;    // row-major, row_keys.size() x size()
+  // Contact point's residual flexibility r = g(x,x) - sum_k phi_k(x)^2 / omega_k^2
+  // at contact_wire_nodes() [m/N] (0 when not computed).
+  std::vector<double> contact_flexibility;
+  double cutoff_hz = 0;
+  std::size_t size() const { return omega2.size(); }
+};
+
+// The basis for 'settings' from data computed at a cut-off at least as high:
+// the modes below settings.max_frequency_hz (with vertical_only those whose
+// largest contact-wire vertical amplitude reaches settings.participation of
+// the largest mode's), then, with dropper_shapes, the Ritz
+// vectors of the shapes' M-complement of the kept modes (Psi' = Psi - Phi C,
+// M' = Psi^T M Psi - C^T C, K' = Psi^T K Psi - C^T Omega^2 C; K' X = M' X
+// Lambda on the range of M': with exact eigenvectors the Rayleigh-Ritz on
+// [Phi, Psi]); with contact_flexibility the residual flexibility at the
+// contact-wire nodes.
+ReducedBasis assemble_basis(const ModalData& data, const CatenaryMesh& mesh,
+                            const ModalSettings& settings);
+
+// The nodes of every contact wire, wire after wire (mesh.contact_wire_list()
+// order): the order of the contact compliance and residual flexibility.
+std::vector<int> contact_wire_nodes(const CatenaryMesh& mesh);
+
+// The rows a modal model of 'mesh' needs: z and z' of the contact-wire nodes,
+// x, y, z of every bar's ends, z of the supports; with full_shapes x, y, z
+// of every node. Sorted, unique.
+std::vector<long> reduced_basis_rows(const CatenaryMesh& mesh, bool full_shapes);
+
+}  // namespace pcsim::catenary

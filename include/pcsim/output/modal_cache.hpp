@@ -1,0 +1,43 @@
+// The cache of modal data (catenary/reduced_basis.hpp): the modes and the
+// droppers' static shapes cost seconds to minutes of SLEPc and are the same
+// for every run of one design and mesh, so `pcsim run` keeps them in a cache
+// folder (--cache DIR, default out/.pcsim-cache) as
+//   modal-<key>-<cut-off>.h5,
+// <key> the SHA-256 of the pcsim version and cache format, the design file's
+// content, the mesh (nodes, elements, properties), the form-finding flag and
+// whether every node's rows are kept (field snapshots). Data computed at a
+// cut-off serve any lower cut-off (the basis is assembled from them), so a
+// run looks for the file of its key with the smallest cut-off at least its
+// own. A file is written to a temporary name and renamed over (atomic: a
+// reader never sees half a file); a file that cannot be read or whose key
+// differs is a miss.
+#pragma once
+
+#include <string>
+
+#include "pcsim/catenary/mesh.hpp"
+#include "pcsim/catenary/reduced_basis.hpp"
+
+namespace pcsim::output {
+
+// Default cache folder (relative to the working directory).
+constexpr const char* kDefaultCacheDir = "out/.pcsim-cache";
+
+std::string modal_cache_key(const std::string& design_content, const catenary::CatenaryMesh& mesh,
+                            bool form_finding, bool full_shapes);
+// The file for data of this key computed at cutoff_hz (<= 0: every mode).
+std::string modal_cache_file(const std::string& dir, const std::string& key, double cutoff_hz);
+
+// The cached data of 'key' that serve max_frequency_hz (the smallest cut-off
+// at least that; for every mode (<= 0) only such data), and their file;
+// false if there are none (or none readable).
+bool find_modal_data(const std::string& dir, const std::string& key, double max_frequency_hz,
+                     catenary::ModalData& data, std::string& file);
+// False (data untouched) if the file is missing, unreadable or for another key.
+bool read_modal_data(const std::string& file, const std::string& key, catenary::ModalData& data);
+// Creates the folder if needed (InputError on key --cache if it cannot);
+// writes file.tmp-<pid> and renames it to file.
+void write_modal_data(const std::string& file, const std::string& key,
+                      const catenary::ModalData& data);
+
+}  // namespace pcsim::output

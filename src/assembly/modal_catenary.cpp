@@ -1,0 +1,362 @@
+#include "pcsim/assembly/modal_catenary.hpp"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "pcsim/assembly/modal_terms.hpp"
+#include "pcsim/contact/contact_kernel.hpp"
+#include "pcsim/core/error.hpp"
+
+namespace pcsim::assembly {
+
+using catenary::basis_row_key;
+
+ModalCatenary::ModalCatenary(MPI_Comm comm, catenary::CatenaryMesh mesh,
+                             std::vector<double> static_node_values, catenary::ReducedBasis basis,
+                             const catenary::ModalSettings& settings, PetscInt extra_dofs)
+    : comm_(comm),
+      mesh_(std::move(mesh)),
+      static_values_(std::move(static_node_values)),
+      basis_(std::move(basis)),
+      settings_(settings),
+      m_(static_cast<PetscInt>(basis_.size())),
+      extra_(extra_dofs) {
+  MPI_Comm_rank(comm_, &rank_);
+  MPI_Comm_size(comm_, &size_);
+  if (basis_.rows.size() != basis_.row_keys.size() * basis_.size())
+    throw SolverError("modal catenary: the basis rows do not match its size");
+  for (int w : mesh_.contact_wire_list())
+    locators_.push_back(std::make_unique<contact::ContactWireLocator>(mesh_, static_values_, w));
+  cached_.resize(locators_.size());
+  row_index_.assign(6 * mesh_.nodes.size(), -1);
+  for (std::size_t i = 0; i < basis_.row_keys.size(); ++i) row_index_[basis_.row_keys[i]] = i;
+  omega_ = Eigen::Map<const Eigen::VectorXd>(basis_.omega2.data(), m_).cwiseSqrt();
+  wire_position_.assign(mesh_.nodes.size(), -1);
+  const auto nodes = catenary::contact_wire_nodes(mesh_);
+  for (std::size_t i = 0; i < nodes.size(); ++i) wire_position_[nodes[i]] = static_cast<int>(i);
+  build_dropper_rows();
+  eta_ = Eigen::VectorXd::Zero(m_);
+  exact_anchor();
+  evaluations_ = 0;
+}
+
+ModalCatenary::~ModalCatenary() = default;
+
+Eigen::Map<const Eigen::RowVectorXd> ModalCatenary::row(int node, int c) const {
+  const long r = row_index_[basis_row_key(node, c)];
+  if (r < 0) throw SolverError("modal catenary: a basis row was not kept");
+  return Eigen::Map<const Eigen::RowVectorXd>(basis_.rows.data() + r * m_, m_);
+}
+
+// Bars tracked over the basis: the slack-capable ones and the droppers
+// (records). b_d = e . (Phi_j - Phi_i), e the bar's static direction;
+// s_d the static stretch over the slack threshold.
+void ModalCatenary::build_dropper_rows() {
+  const auto& bars = mesh_.bars;
+  std::vector<int> tracked;
+  for (std::size_t b = 0; b < bars.size(); ++b)
+    if (bars[b].slack != catenary::SlackCriterion::none ||
+        bars[b].kind == catenary::BarKind::dropper)
+      tracked.push_back(static_cast<int>(b));
+  slack_bars_ = tracked;
+  B_.setZero(static_cast<long>(tracked.size()), m_);
+  for (std::size_t d = 0; d < tracked.size(); ++d) {
+    const auto& bar = bars[tracked[d]];
+    Eigen::Vector3d e;
+    for (int c = 0; c < 3; ++c)
+      e[c] = static_values_[6 * bar.nodes[1] + c] - static_values_[6 * bar.nodes[0] + c];
+    e.normalize();
+    for (int c = 0; c < 3; ++c) B_.row(d) += e[c] * (row(bar.nodes[1], c) - row(bar.nodes[0], c));
+    double s = 0;
+    if (bar.slack == catenary::SlackCriterion::force)
+      s = bar.equilibrium_length - bar.unstressed_length;
+    stretch_.push_back(s);
+    bnorm_.push_back(B_.row(d).norm());
+    bnorm_omega_.push_back(B_.row(d).cwiseQuotient(omega_.transpose()).norm());
+    if (bar.kind == catenary::BarKind::dropper) droppers_.push_back(static_cast<int>(d));
+  }
+  elongation_ = stretch_;
+  B_single_ = B_.cast<float>();
+}
+
+Vec ModalCatenary::create_vector() const {
+  Vec v;
+  PCSIM_PETSC(VecCreateMPI(comm_, on_owner() ? m_ + extra_ : 0, PETSC_DETERMINE, &v));
+  return v;
+}
+
+// Modes: their diagonal, or every mode with every mode (dense: the exact
+// tangents of contact and slack droppers, full path); extras: the dense
+// pantograph block, and each wire-coupled extra with every mode.
+Mat ModalCatenary::allocate_matrix(const std::vector<bool>& wire_coupled, bool dense) const {
+  const PetscInt n = on_owner() ? m_ + extra_ : 0;
+  std::vector<PetscInt> coupled;
+  for (std::size_t k = 0; k < wire_coupled.size(); ++k)
+    if (wire_coupled[k]) coupled.push_back(m_ + static_cast<PetscInt>(k));
+  std::vector<PetscInt> nnz(n);
+  for (PetscInt r = 0; r < n; ++r) {
+    const bool wired = r >= m_ && wire_coupled[r - m_];
+    nnz[r] = r < m_ ? (dense ? m_ : 1) + static_cast<PetscInt>(coupled.size())
+                    : extra_ + (wired ? m_ : 0);
+  }
+  Mat A;
+  PCSIM_PETSC(
+      MatCreateAIJ(comm_, n, n, PETSC_DETERMINE, PETSC_DETERMINE, 0, nnz.data(), 0, nullptr, &A));
+  if (!on_owner()) return A;
+  std::vector<PetscInt> modes(m_);
+  for (PetscInt k = 0; k < m_; ++k) modes[k] = k;
+  const std::vector<double> zeros(std::max<PetscInt>(m_, extra_ * extra_), 0.0);
+  for (PetscInt r = 0; r < m_; ++r) {
+    if (dense)
+      PCSIM_PETSC(MatSetValues(A, 1, &r, m_, modes.data(), zeros.data(), ADD_VALUES));
+    else
+      PCSIM_PETSC(MatSetValue(A, r, r, 0.0, ADD_VALUES));
+  }
+  std::vector<PetscInt> extras(extra_);
+  for (PetscInt k = 0; k < extra_; ++k) extras[k] = m_ + k;
+  PCSIM_PETSC(
+      MatSetValues(A, extra_, extras.data(), extra_, extras.data(), zeros.data(), ADD_VALUES));
+  for (PetscInt g : coupled) {
+    PCSIM_PETSC(MatSetValues(A, 1, &g, m_, modes.data(), zeros.data(), ADD_VALUES));
+    PCSIM_PETSC(MatSetValues(A, m_, modes.data(), 1, &g, zeros.data(), ADD_VALUES));
+  }
+  return A;
+}
+
+Mat ModalCatenary::create_matrix(const std::vector<bool>& wire_coupled) const {
+  return allocate_matrix(wire_coupled, true);
+}
+
+Mat ModalCatenary::create_reference_matrix(const std::vector<bool>& wire_coupled) const {
+  return allocate_matrix(wire_coupled, settings_.bars == catenary::ModalSettings::Bars::exact);
+}
+
+void ModalCatenary::reference_state(Vec U) const {
+  PCSIM_PETSC(VecSet(U, 0.0));
+}
+
+void ModalCatenary::load_state(Vec U) {
+  if (on_owner()) {
+    const PetscScalar* a;
+    PCSIM_PETSC(VecGetArrayRead(U, &a));
+    std::copy(a, a + m_, eta_.data());
+    PCSIM_PETSC(VecRestoreArrayRead(U, &a));
+  }
+  if (size_ > 1) MPI_Bcast(eta_.data(), static_cast<int>(m_), MPI_DOUBLE, size_ - 1, comm_);
+  ++loads_;
+  update_slack_set();
+}
+
+// Every tracked bar exactly at the loaded state: the new anchor.
+void ModalCatenary::exact_anchor() const {
+  anchor_ = eta_;
+  anchor_elongation_.noalias() = B_ * eta_;
+  anchor_elongation_ += Eigen::Map<const Eigen::VectorXd>(stretch_.data(), B_.rows());
+  anchor_error_.setZero(B_.rows());
+  evaluations_ += B_.rows();
+}
+
+// dl += fl(B (eta - eta_a)) in single precision, with the bound of its
+// rounding: the dot product of n terms, (n + 2) u |b| |d eta| (Higham, with
+// the conversions to single precision), u = 2^-24.
+void ModalCatenary::single_precision_anchor(double step) {
+  constexpr double u = 5.9604644775390625e-08;
+  const double gamma = (static_cast<double>(m_) + 2) * u / (1 - (m_ + 2) * u);
+  work_single_ = work_.cast<float>();  // eta - eta_a
+  change_single_.noalias() = B_single_ * work_single_;
+  for (long d = 0; d < B_.rows(); ++d) {
+    anchor_elongation_[d] += change_single_[d];
+    anchor_error_[d] += gamma * bnorm_[d] * step;
+  }
+  anchor_ = eta_;
+  ++single_products_;
+}
+
+// The droppers not certainly taut at the loaded state (work_: eta - eta_a).
+void ModalCatenary::find_candidates(double step, double step_omega) {
+  candidates_.clear();
+  for (long d = 0; d < B_.rows(); ++d)
+    if (anchor_elongation_[d] - anchor_error_[d] <=
+        std::min(bnorm_[d] * step, bnorm_omega_[d] * step_omega))
+      candidates_.push_back(d);
+}
+
+// The bounded candidate set (see the header).
+void ModalCatenary::update_slack_set() {
+  constexpr std::size_t kFewCandidates = 4;  // more: one single-precision product for all
+  constexpr double kErrorReset =
+      1e-5;  // [m] accumulated rounding bound (margins ~1 mm): exact anchor
+  slack_now_.clear();
+  if (!slack_active_) return;
+  const long n = B_.rows();
+  if (settings_.dropper_check == catenary::ModalSettings::DropperCheck::all) {
+    exact_anchor();
+    candidates_.resize(n);
+    for (long d = 0; d < n; ++d) candidates_[d] = d;
+  } else {
+    work_ = eta_ - anchor_;
+    const double step = work_.norm();
+    const double step_omega = (work_.array() * omega_.array()).matrix().norm();
+    find_candidates(step, step_omega);
+    if (candidates_.size() > kFewCandidates) {
+      single_precision_anchor(step);
+      if (anchor_error_.maxCoeff() > kErrorReset) exact_anchor();
+      find_candidates(0, 0);
+    }
+  }
+  for (long d : candidates_) {
+    double& dl = elongation_[d];
+    if (anchor_ == eta_ && anchor_error_[d] == 0) {
+      dl = anchor_elongation_[d];
+    } else {
+      dl = stretch_[d] + B_.row(d).dot(eta_);
+      ++evaluations_;
+    }
+    if (dl < 0 && mesh_.bars[slack_bars_[d]].slack != catenary::SlackCriterion::none)
+      slack_now_.push_back(static_cast<std::size_t>(d));
+  }
+}
+
+// The weights of contact wire 'wire' at station x: z = z0 + w . eta with
+// w = S_z(chi) Phi_e (thesis 3.13), and the parts of the slope dz/dx.
+const ModalCatenary::CachedPoint& ModalCatenary::cached_point(double x, int wire) const {
+  CachedPoint& c = cached_[wire];
+  if (x == c.x) return c;
+  WirePoint p;
+  int element;
+  double chi;
+  p.on_wire = locators_[wire]->locate(x, element, chi);
+  p.reuse_columns = false;
+  c.z0 = c.z_chi0 = 0;
+  c.x_chi = 1;
+  if (p.on_wire) {
+    const auto& el = mesh_.cables[element];
+    const auto s = contact::hermite_shape(chi, el.ref_length);
+    const auto ds = contact::hermite_shape_derivative(chi, el.ref_length);
+    const int node[4] = {el.nodes[0], el.nodes[0], el.nodes[1], el.nodes[1]};
+    const int comp[4] = {2, 5, 2, 5};  // z, z' at each end (thesis 3.13)
+    Eigen::RowVectorXd w = Eigen::RowVectorXd::Zero(m_);
+    c.z_chi = Eigen::RowVectorXd::Zero(m_);
+    c.x_chi = 0;
+    for (int k = 0; k < 4; ++k) {
+      const auto r = row(node[k], comp[k]);
+      w += s[k] * r;
+      c.z_chi += ds[k] * r;
+      c.z0 += s[k] * static_values_[6 * node[k] + comp[k]];
+      c.z_chi0 += ds[k] * static_values_[6 * node[k] + comp[k]];
+      c.x_chi += ds[k] * static_values_[6 * node[k] + comp[k] - 2];  // x, x' (static)
+    }
+    if (!mesh_.contact_gap_offsets.empty()) c.z0 += mesh_.contact_gap_offsets[wire].at(x);
+    p.weight.assign(w.data(), w.data() + m_);
+    p.index.resize(m_);
+    for (PetscInt k = 0; k < m_; ++k) p.index[k] = k;
+    const auto at = [&](int n) { return basis_.contact_flexibility[wire_position_[n]]; };
+    const double xi = chi / el.ref_length;
+    if (!basis_.contact_flexibility.empty())
+      p.residual_flexibility = (1 - xi) * at(el.nodes[0]) + xi * at(el.nodes[1]);
+  }
+  c.point = std::move(p);
+  c.x = x;
+  return c;
+}
+
+WirePoint ModalCatenary::wire_point(double x, int wire) const {
+  const CachedPoint& c = cached_point(x, wire);
+  WirePoint p = c.point;
+  if (p.on_wire && on_owner()) {
+    p.owned = true;
+    p.z = c.z0 + Eigen::Map<const Eigen::VectorXd>(p.weight.data(), m_).dot(eta_);
+    // dz/dx with x(chi) static (the contact point moves along the track).
+    p.slope = (c.z_chi0 + c.z_chi.dot(eta_)) / c.x_chi;
+    if (!mesh_.contact_gap_offsets.empty()) p.slope += mesh_.contact_gap_offsets[wire].slope_at(x);
+  }
+  return p;
+}
+
+// eta = Omega^-2 w(x) F: the modal statics under the force (slack ignored).
+bool ModalCatenary::closed_form_point_load(double x, int wire, double force, Vec U) const {
+  const WirePoint p = wire_point(x, wire);
+  if (!p.on_wire) return false;
+  PCSIM_PETSC(VecSet(U, 0.0));
+  if (on_owner()) {
+    PetscScalar* a;
+    PCSIM_PETSC(VecGetArray(U, &a));
+    for (PetscInt k = 0; k < m_; ++k) a[k] = p.weight[k] * force / basis_.omega2[k];
+    PCSIM_PETSC(VecRestoreArray(U, &a));
+  }
+  return true;
+}
+
+std::vector<double> ModalCatenary::support_heights() const {
+  std::vector<double> z(mesh_.support_nodes.size(), 0.0);
+  if (!on_owner()) return z;
+  for (std::size_t s = 0; s < z.size(); ++s) {
+    const int n = mesh_.support_nodes[s];
+    z[s] = static_values_[6 * n + 2] + row(n, 2).dot(eta_);
+  }
+  return z;
+}
+
+// N = N_eq + k b.eta (linear bars), k max(s + b.eta, 0) (force), N_eq + k
+// max(b.eta, 0) (length); the elongation's gradient b at the static state.
+std::vector<double> ModalCatenary::dropper_forces() const {
+  std::vector<double> forces(droppers_.size(), 0.0);
+  exact_anchor();  // every rank: the records' states anchor the bounded set
+  if (!on_owner()) return forces;
+  for (std::size_t i = 0; i < droppers_.size(); ++i) {
+    const auto d = static_cast<std::size_t>(droppers_[i]);
+    const auto& bar = mesh_.bars[slack_bars_[d]];
+    const double stretch = anchor_elongation_[static_cast<long>(d)] - stretch_[d];
+    const bool slack = slack_active_ || settings_.bars == catenary::ModalSettings::Bars::exact;
+    if (slack && bar.slack == catenary::SlackCriterion::force)
+      forces[i] = bar.stiffness * std::max(stretch_[d] + stretch, 0.0);
+    else if (slack && bar.slack == catenary::SlackCriterion::length)
+      forces[i] = bar.equilibrium_force + bar.stiffness * std::max(stretch, 0.0);
+    else
+      forces[i] = bar.equilibrium_force + bar.stiffness * stretch;
+  }
+  return forces;
+}
+
+std::vector<double> ModalCatenary::node_positions_to_root(Vec U) const {
+  if (!settings_.full_shapes)
+    throw SolverError("modal catenary: field snapshots need the full mode shapes");
+  Eigen::VectorXd eta(m_);
+  if (on_owner()) {
+    const PetscScalar* a;
+    PCSIM_PETSC(VecGetArrayRead(U, &a));
+    std::copy(a, a + m_, eta.data());
+    PCSIM_PETSC(VecRestoreArrayRead(U, &a));
+  }
+  if (size_ > 1) MPI_Bcast(eta.data(), static_cast<int>(m_), MPI_DOUBLE, size_ - 1, comm_);
+  if (rank_ != 0) return {};
+  std::vector<double> positions = positions_from_node_values(static_values_);
+  for (std::size_t n = 0; n < mesh_.nodes.size(); ++n)
+    for (int c = 0; c < 3; ++c) positions[3 * n + c] += row(static_cast<int>(n), c).dot(eta);
+  return positions;
+}
+
+std::vector<std::unique_ptr<Term>> ModalCatenary::make_terms(const contact::InteractionEffects& e,
+                                                             Mat pattern) {
+  if (!e.dropper_slack)
+    for (auto& bar : mesh_.bars) bar.slack = catenary::SlackCriterion::none;
+  const bool exact = settings_.bars == catenary::ModalSettings::Bars::exact;
+  slack_active_ = !exact && e.dropper_slack;
+  std::vector<std::unique_ptr<Term>> terms;
+  terms.push_back(std::make_unique<ModalStiffness>(*this));
+  terms.push_back(std::make_unique<ModalInertia>(*this));
+  if (e.rayleigh_damping)
+    terms.push_back(
+        std::make_unique<ModalDamping>(*this, mesh_.rayleigh_alpha, mesh_.rayleigh_beta));
+  if (exact)
+    terms.push_back(std::make_unique<ModalExactBars>(*this));
+  else if (slack_active_)
+    terms.push_back(std::make_unique<ModalDropperSlack>(*this));
+  return terms;
+}
+
+}  // namespace pcsim::assembly

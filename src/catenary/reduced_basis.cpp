@@ -1,0 +1,44 @@
+#include "pcsim/catenary/reduced_basis.hpp"
+
+#include <algorithm>
+
+namespace pcsim::catenary {
+
+const char* fidelity_name(CatenaryFidelity f) {
+  switch (f) {
+    case CatenaryFidelity::nonlinear:
+      return "nonlinear";
+    case CatenaryFidelity::linear:
+      return "linear";
+    case CatenaryFidelity::modal:
+      return "modal";
+  }
+  return "?";
+}
+
+std::vector<int> contact_wire_nodes(const CatenaryMesh& mesh) {
+  std::vector<int> nodes;
+  for (int w : mesh.contact_wire_list())
+    nodes.insert(nodes.end(), mesh.wires[w].nodes.begin(), mesh.wires[w].nodes.end());
+  return nodes;
+}
+
+std::vector<long> reduced_basis_rows(const CatenaryMesh& mesh, bool full_shapes) {
+  std::vector<long> keys;
+  for (int n : contact_wire_nodes(mesh)) {
+    keys.push_back(basis_row_key(n, 2));
+    keys.push_back(basis_row_key(n, 5));
+  }
+  for (const auto& bar : mesh.bars)
+    for (int n : bar.nodes)
+      for (int c = 0; c < 3; ++c) keys.push_back(basis_row_key(n, c));
+  for (int n : mesh.support_nodes) keys.push_back(basis_row_key(n, 2));
+  if (full_shapes)
+    for (std::size_t n = 0; n < mesh.nodes.size(); ++n)
+      for (int c = 0; c < 3; ++c) keys.push_back(basis_row_key(static_cast<int>(n), c));
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  return keys;
+}
+
+}  // namespace pcsim::catenary

@@ -1,0 +1,127 @@
+// assemble_basis (reduced_basis.hpp): a reduced basis from cached modal data.
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "pcsim/catenary/reduced_basis.hpp"
+
+namespace pcsim::catenary {
+
+namespace {
+
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+using ConstMap = Eigen::Map<const RowMatrix>;
+
+long row_of(const std::vector<long>& keys, long key) {
+  const auto it = std::lower_bound(keys.begin(), keys.end(), key);
+  if (it == keys.end() || *it != key) throw std::logic_error("reduced basis: a row is missing");
+  return it - keys.begin();
+}
+
+// Contact-wire z rows, at contact_wire_nodes().
+std::vector<long> contact_rows(const ModalData& data, const CatenaryMesh& mesh) {
+  std::vector<long> rows;
+  for (int n : contact_wire_nodes(mesh)) rows.push_back(row_of(data.row_keys, basis_row_key(n, 2)));
+  return rows;
+}
+
+// The modes to keep: below the cut-off and, with vertical_only, those whose
+// largest contact-wire vertical amplitude reaches s.participation of the
+// largest one's.
+std::vector<long> selected_modes(const ModalData& data, const CatenaryMesh& mesh,
+                                 const ModalSettings& s, int& dropped) {
+  const ConstMap rows(data.mode_rows.data(), static_cast<long>(data.row_keys.size()),
+                      static_cast<long>(data.modes()));
+  const double omega_max = 2 * M_PI * s.max_frequency_hz;
+  std::vector<double> amplitude(data.modes(), 0.0);
+  if (s.vertical_only)
+    for (long r : contact_rows(data, mesh))
+      for (long k = 0; k < rows.cols(); ++k)
+        amplitude[k] = std::max(amplitude[k], std::abs(rows(r, k)));
+  const double largest =
+      amplitude.empty() ? 0.0 : *std::max_element(amplitude.begin(), amplitude.end());
+  std::vector<long> keep;
+  dropped = 0;
+  for (long k = 0; k < rows.cols(); ++k) {
+    if (s.max_frequency_hz > 0 && data.omega2[k] > omega_max * omega_max) continue;
+    if (s.vertical_only && amplitude[k] < s.participation * largest) {
+      ++dropped;
+      continue;
+    }
+    keep.push_back(k);
+  }
+  return keep;
+}
+
+// Ritz vectors of the shapes' M-complement of the kept modes (header):
+// their omega^2 and rows.
+void append_ritz_vectors(const ModalData& data, const std::vector<long>& keep,
+                         const RowMatrix& mode_rows, std::vector<double>& omega2,
+                         RowMatrix& ritz_rows) {
+  const long nd = static_cast<long>(data.shapes()), m = static_cast<long>(keep.size());
+  const long nr = static_cast<long>(data.row_keys.size());
+  const ConstMap all_C(data.mode_shape_mass.data(), static_cast<long>(data.modes()), nd);
+  RowMatrix C(m, nd);
+  Eigen::VectorXd w2(m);
+  for (long i = 0; i < m; ++i) {
+    C.row(i) = all_C.row(keep[i]);
+    w2[i] = data.omega2[keep[i]];
+  }
+  Eigen::MatrixXd Mp = ConstMap(data.shape_mass.data(), nd, nd) - C.transpose() * C;
+  Eigen::MatrixXd Kp =
+      ConstMap(data.shape_flexibility.data(), nd, nd) - C.transpose() * w2.asDiagonal() * C;
+  Mp = 0.5 * (Mp + Mp.transpose()).eval();
+  Kp = 0.5 * (Kp + Kp.transpose()).eval();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> mass(Mp);
+  const double floor = 1e-10 * mass.eigenvalues().cwiseAbs().maxCoeff();
+  std::vector<long> range;
+  for (long j = 0; j < nd; ++j)
+    if (mass.eigenvalues()[j] > floor) range.push_back(j);
+  Eigen::MatrixXd T(nd, static_cast<long>(range.size()));
+  for (std::size_t j = 0; j < range.size(); ++j)
+    T.col(static_cast<long>(j)) =
+        mass.eigenvectors().col(range[j]) / std::sqrt(mass.eigenvalues()[range[j]]);
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> ritz(T.transpose() * Kp * T);
+  const Eigen::MatrixXd X = T * ritz.eigenvectors();
+  ritz_rows = (ConstMap(data.shape_rows.data(), nr, nd) - mode_rows * C) * X;
+  for (long j = 0; j < X.cols(); ++j) omega2.push_back(ritz.eigenvalues()[j]);
+}
+
+}  // namespace
+
+ReducedBasis assemble_basis(const ModalData& data, const CatenaryMesh& mesh,
+                            const ModalSettings& s) {
+  if (s.max_frequency_hz > data.cutoff_hz * (1 + 1e-12) && data.cutoff_hz > 0)
+    throw std::logic_error("reduced basis: the data stop below the cut-off asked for");
+  ReducedBasis b;
+  b.cutoff_hz = s.max_frequency_hz;
+  b.row_keys = data.row_keys;
+  const std::vector<long> keep = selected_modes(data, mesh, s, b.dropped_modes);
+  const long nr = static_cast<long>(data.row_keys.size()), m = static_cast<long>(keep.size());
+  const ConstMap all_rows(data.mode_rows.data(), nr, static_cast<long>(data.modes()));
+  RowMatrix mode_rows(nr, m), ritz_rows(nr, 0);
+  for (long i = 0; i < m; ++i) {
+    mode_rows.col(i) = all_rows.col(keep[i]);
+    b.omega2.push_back(data.omega2[keep[i]]);
+  }
+  b.eigenmodes = static_cast<int>(m);
+  if (s.dropper_shapes && data.shapes() > 0)
+    append_ritz_vectors(data, keep, mode_rows, b.omega2, ritz_rows);
+  RowMatrix rows(nr, m + ritz_rows.cols());
+  rows << mode_rows, ritz_rows;
+  b.rows.assign(rows.data(), rows.data() + rows.size());
+  if (!mesh.contact_wire_list().empty()) {
+    const auto cw = contact_rows(data, mesh);
+    b.contact_flexibility.assign(cw.size(), 0.0);
+    if (s.contact_flexibility && data.contact_compliance.size() == cw.size())
+      for (std::size_t i = 0; i < cw.size(); ++i) {
+        double r = data.contact_compliance[i];
+        for (long k = 0; k < rows.cols(); ++k) r -= rows(cw[i], k) * rows(cw[i], k) / b.omega2[k];
+        b.contact_flexibility[i] = std::max(r, 0.0);
+      }
+  }
+  return b;
+}
+
+}  // namespace pcsim::catenary

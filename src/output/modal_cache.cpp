@@ -1,0 +1,271 @@
+#include "pcsim/output/modal_cache.hpp"
+
+#include <hdf5.h>
+#include <openssl/evp.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <type_traits>
+
+#include "pcsim/core/error.hpp"
+#include "pcsim/output/h5_file.hpp"
+
+#ifndef PCSIM_VERSION
+#define PCSIM_VERSION "unknown"
+#endif
+
+namespace pcsim::output {
+
+namespace {
+
+constexpr int kCacheFormat = 1;  // bump when the basis' content or layout changes
+
+// Bytes of the values the key covers.
+class KeyBuffer {
+ public:
+  template <typename T>
+  void add(const T& value) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    bytes_.append(reinterpret_cast<const char*>(&value), sizeof(T));
+  }
+  void add(const std::string& s) {
+    add(s.size());
+    bytes_ += s;
+  }
+  template <typename T>
+  void add_all(const std::vector<T>& values) {
+    add(values.size());
+    for (const auto& v : values) add(v);
+  }
+  std::string sha256_hex() const {
+    unsigned char digest[EVP_MAX_MD_SIZE];
+    unsigned int length = 0;
+    if (EVP_Digest(bytes_.data(), bytes_.size(), digest, &length, EVP_sha256(), nullptr) != 1)
+      throw SolverError("modal cache: SHA-256 failed");
+    static const char* hex = "0123456789abcdef";
+    std::string out;
+    for (unsigned int i = 0; i < length; ++i) {
+      out += hex[digest[i] >> 4];
+      out += hex[digest[i] & 15];
+    }
+    return out;
+  }
+
+ private:
+  std::string bytes_;
+};
+
+void add_mesh(KeyBuffer& key, const catenary::CatenaryMesh& mesh) {
+  key.add(mesh.nodes.size());
+  for (const auto& n : mesh.nodes) {
+    for (int c = 0; c < 3; ++c) key.add(n.position[c]), key.add(n.slope[c]);
+    for (bool f : n.fixed) key.add(f);
+  }
+  for (const auto& w : mesh.wires) {
+    key.add(w.mass_per_length), key.add(w.EA), key.add(w.EI), key.add(w.tension);
+    key.add_all(w.nodes);
+  }
+  for (const auto& e : mesh.cables) {
+    key.add(e.nodes), key.add(e.wire), key.add(e.ref_length), key.add(e.unstressed_length);
+    key.add(e.section_factor);
+  }
+  for (const auto& b : mesh.bars) {
+    key.add(b.nodes), key.add(b.kind), key.add(b.stiffness), key.add(b.mass);
+    key.add(b.unstressed_length), key.add(b.slack);
+  }
+  for (const auto& p : mesh.point_masses) key.add(p.node), key.add(p.mass);
+  for (const auto& s : mesh.springs) {
+    key.add(s.node), key.add(s.dof), key.add(s.stiffness);
+    for (int c = 0; c < 3; ++c) key.add(s.direction[c]);
+  }
+  for (const auto& f : mesh.node_forces) {
+    key.add(f.node);
+    for (int c = 0; c < 3; ++c) key.add(f.force[c]);
+  }
+  for (const auto& d : mesh.tensioning_devices) {
+    key.add(d.node), key.add(d.wire), key.add(d.kind), key.add(d.mass), key.add(d.stiffness);
+    for (int c = 0; c < 3; ++c) key.add(d.direction[c]);
+  }
+  for (int c = 0; c < 3; ++c) key.add(mesh.gravity[c]);
+  key.add_all(mesh.support_nodes);
+  key.add(mesh.contact_wire);
+  key.add_all(mesh.contact_wire_list());
+}
+
+// A dataset of doubles or longs, whatever its size; false if absent.
+template <typename T>
+bool read_dataset(hid_t file, const char* path, std::vector<T>& out) {
+  if (H5Lexists(file, path, H5P_DEFAULT) <= 0) return false;
+  const hid_t set = H5Dopen2(file, path, H5P_DEFAULT);
+  if (set < 0) return false;
+  const hid_t space = H5Dget_space(set);
+  out.resize(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
+  H5Sclose(space);
+  const hid_t type = std::is_same_v<T, long> ? H5T_NATIVE_LONG : H5T_NATIVE_DOUBLE;
+  const bool ok = out.empty() || H5Dread(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) >= 0;
+  H5Dclose(set);
+  return ok;
+}
+
+bool read_attribute(hid_t file, const char* name, double& value) {
+  if (H5Aexists(file, name) <= 0) return false;
+  const hid_t attr = H5Aopen(file, name, H5P_DEFAULT);
+  const bool ok = attr >= 0 && H5Aread(attr, H5T_NATIVE_DOUBLE, &value) >= 0;
+  if (attr >= 0) H5Aclose(attr);
+  return ok;
+}
+
+// The key attribute: a variable-length string (H5File::attribute), or a
+// fixed-length one (files of earlier versions).
+bool read_key(hid_t file, std::string& key) {
+  if (H5Aexists(file, "key") <= 0) return false;
+  const hid_t attr = H5Aopen(file, "key", H5P_DEFAULT);
+  const hid_t type = H5Aget_type(attr);
+  bool ok = false;
+  if (H5Tis_variable_str(type) > 0) {
+    char* text = nullptr;
+    const hid_t memory = H5Tcopy(H5T_C_S1);
+    H5Tset_size(memory, H5T_VARIABLE);
+    H5Tset_cset(memory, H5Tget_cset(type));
+    ok = H5Aread(attr, memory, &text) >= 0 && text;
+    if (ok) key = text;
+    if (text) H5free_memory(text);
+    H5Tclose(memory);
+  } else {
+    std::string value(H5Tget_size(type), '\0');
+    ok = H5Aread(attr, type, value.data()) >= 0;
+    key = value.c_str();
+  }
+  H5Tclose(type);
+  H5Aclose(attr);
+  return ok;
+}
+
+// Writes a row-major matrix (rows x cols) or nothing when empty.
+void write_matrix(H5File& h5, const char* path, const std::vector<double>& data, std::size_t rows) {
+  if (rows == 0 || data.empty()) return;
+  h5.write(path, data, rows, data.size() / rows);
+}
+
+bool read_file(hid_t file, const std::string& key, catenary::ModalData& d) {
+  std::string stored;
+  if (!read_key(file, stored) || stored != key) return false;
+  const bool ok = read_attribute(file, "cutoff_hz", d.cutoff_hz) &&
+                  read_attribute(file, "max_relative_residual", d.max_relative_residual) &&
+                  read_dataset(file, "/omega2", d.omega2) &&
+                  read_dataset(file, "/row_keys", d.row_keys) &&
+                  read_dataset(file, "/mode_rows", d.mode_rows);
+  // The shapes and the compliance are absent for complete bases.
+  for (auto [path, v] :
+       {std::pair{"/shape_rows", &d.shape_rows}, std::pair{"/mode_shape_mass", &d.mode_shape_mass},
+        std::pair{"/shape_mass", &d.shape_mass},
+        std::pair{"/shape_flexibility", &d.shape_flexibility},
+        std::pair{"/contact_compliance", &d.contact_compliance}})
+    if (H5Lexists(file, path, H5P_DEFAULT) > 0 && !read_dataset(file, path, *v)) return false;
+  d.wall_time_s = 0;
+  const std::size_t nd = d.shapes();
+  return ok && d.mode_rows.size() == d.row_keys.size() * d.modes() &&
+         d.mode_shape_mass.size() == d.modes() * nd && d.shape_mass.size() == nd * nd &&
+         d.shape_flexibility.size() == nd * nd;
+}
+
+}  // namespace
+
+std::string modal_cache_key(const std::string& design_content, const catenary::CatenaryMesh& mesh,
+                            bool form_finding, bool full_shapes) {
+  KeyBuffer key;
+  key.add(std::string("pcsim " PCSIM_VERSION " modal data"));
+  key.add(kCacheFormat);
+  key.add(design_content);
+  add_mesh(key, mesh);
+  key.add(form_finding);
+  key.add(full_shapes);
+  return key.sha256_hex();
+}
+
+std::string modal_cache_file(const std::string& dir, const std::string& key, double cutoff_hz) {
+  char cutoff[32];
+  if (cutoff_hz > 0)
+    std::snprintf(cutoff, sizeof(cutoff), "%.6gHz", cutoff_hz);
+  else
+    std::snprintf(cutoff, sizeof(cutoff), "all");
+  return dir + "/modal-" + key.substr(0, 24) + "-" + cutoff + ".h5";
+}
+
+bool find_modal_data(const std::string& dir, const std::string& key, double max_frequency_hz,
+                     catenary::ModalData& data, std::string& file) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) return false;
+  const std::string prefix = "modal-" + key.substr(0, 24) + "-";
+  std::vector<std::pair<double, std::string>> candidates;  // (cut-off, file)
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(prefix, 0) != 0 || name.size() < 3 || name.substr(name.size() - 3) != ".h5")
+      continue;
+    const std::string tail = name.substr(prefix.size());
+    const double cutoff = tail.rfind("all", 0) == 0 ? 0.0 : std::atof(tail.c_str());
+    const bool serves = max_frequency_hz <= 0
+                            ? cutoff <= 0
+                            : cutoff <= 0 || cutoff >= max_frequency_hz * (1 - 1e-9);
+    if (serves) candidates.emplace_back(cutoff <= 0 ? 1e300 : cutoff, entry.path().string());
+  }
+  std::sort(candidates.begin(), candidates.end());
+  for (const auto& [cutoff, path] : candidates)
+    if (read_modal_data(path, key, data)) {
+      file = path;
+      return true;
+    }
+  return false;
+}
+
+bool read_modal_data(const std::string& file, const std::string& key, catenary::ModalData& data) {
+  if (!std::filesystem::exists(file)) return false;
+  H5E_auto2_t handler;
+  void* client;
+  H5Eget_auto2(H5E_DEFAULT, &handler, &client);
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // a broken file is a miss, not noise
+  catenary::ModalData read;
+  const hid_t h5 = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const bool ok = h5 >= 0 && read_file(h5, key, read);
+  if (h5 >= 0) H5Fclose(h5);
+  H5Eset_auto2(H5E_DEFAULT, handler, client);
+  if (ok) data = std::move(read);
+  return ok;
+}
+
+void write_modal_data(const std::string& file, const std::string& key,
+                      const catenary::ModalData& d) {
+  const std::filesystem::path path(file);
+  std::error_code ec;
+  std::filesystem::create_directories(path.parent_path(), ec);
+  if (ec)
+    throw InputError(
+        "command line", "--cache",
+        "cannot create the cache folder '" + path.parent_path().string() + "': " + ec.message());
+  const std::string tmp = file + ".tmp-" + std::to_string(getpid());
+  {
+    H5File h5(tmp);
+    h5.write("/omega2", d.omega2);
+    h5.write_int("/row_keys", std::vector<long>(d.row_keys.begin(), d.row_keys.end()));
+    write_matrix(h5, "/mode_rows", d.mode_rows, d.row_keys.size());
+    write_matrix(h5, "/shape_rows", d.shape_rows, d.row_keys.size());
+    write_matrix(h5, "/mode_shape_mass", d.mode_shape_mass, d.modes());
+    write_matrix(h5, "/shape_mass", d.shape_mass, d.shapes());
+    write_matrix(h5, "/shape_flexibility", d.shape_flexibility, d.shapes());
+    if (!d.contact_compliance.empty()) h5.write("/contact_compliance", d.contact_compliance);
+    h5.attribute("/", "key", key);
+    h5.attribute("/", "cutoff_hz", d.cutoff_hz);
+    h5.attribute("/", "max_relative_residual", d.max_relative_residual);
+    h5.attribute("/", "computed_in_s", d.wall_time_s);
+  }
+  if (std::rename(tmp.c_str(), file.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw InputError("command line", "--cache", "cannot write the cache file '" + file + "'");
+  }
+}
+
+}  // namespace pcsim::output

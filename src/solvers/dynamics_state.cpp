@@ -1,0 +1,143 @@
+// Checkpoint/restart of a dynamic run (DynamicSolver::save_state and
+// restore_state): the TS's state and step, the HHT step-size control, the
+// state J0 was assembled at, and the terms' own state.
+#include <petscts.h>
+
+#include "pcsim/core/error.hpp"
+#include "pcsim/solvers/dynamics.hpp"
+#include "pcsim/solvers/hht.hpp"
+
+namespace pcsim::solvers {
+
+namespace {
+
+// The entries of x in global order on rank 0, empty elsewhere (collective).
+std::vector<double> gather_to_root(Vec x) {
+  VecScatter scatter;
+  Vec all;
+  PCSIM_PETSC(VecScatterCreateToZero(x, &scatter, &all));
+  PCSIM_PETSC(VecScatterBegin(scatter, x, all, INSERT_VALUES, SCATTER_FORWARD));
+  PCSIM_PETSC(VecScatterEnd(scatter, x, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscInt n;
+  PCSIM_PETSC(VecGetLocalSize(all, &n));
+  const PetscScalar* a;
+  PCSIM_PETSC(VecGetArrayRead(all, &a));
+  std::vector<double> out(a, a + n);
+  PCSIM_PETSC(VecRestoreArrayRead(all, &a));
+  PCSIM_PETSC(VecScatterDestroy(&scatter));
+  PCSIM_PETSC(VecDestroy(&all));
+  return out;
+}
+
+// x from rank 0's entries in global order (collective; other ranks' ignored).
+void scatter_from_root(const std::vector<double>& values, Vec x) {
+  VecScatter scatter;
+  Vec all;
+  PCSIM_PETSC(VecScatterCreateToZero(x, &scatter, &all));
+  PetscInt n;
+  PCSIM_PETSC(VecGetLocalSize(all, &n));
+  int bad = static_cast<std::size_t>(n) != values.size() ? 1 : 0;
+  MPI_Bcast(&bad, 1, MPI_INT, 0, PetscObjectComm(reinterpret_cast<PetscObject>(x)));
+  if (bad) {
+    VecScatterDestroy(&scatter);
+    VecDestroy(&all);
+    throw SolverError("restore: a vector of " + std::to_string(values.size()) +
+                      " values for a system of another size");
+  }
+  PetscScalar* a;
+  PCSIM_PETSC(VecGetArray(all, &a));
+  std::copy(values.begin(), values.end(), a);
+  PCSIM_PETSC(VecRestoreArray(all, &a));
+  PCSIM_PETSC(VecScatterBegin(scatter, all, x, INSERT_VALUES, SCATTER_REVERSE));
+  PCSIM_PETSC(VecScatterEnd(scatter, all, x, INSERT_VALUES, SCATTER_REVERSE));
+  PCSIM_PETSC(VecScatterDestroy(&scatter));
+  PCSIM_PETSC(VecDestroy(&all));
+}
+
+void require_hht(TS ts) {
+  TSType type;
+  PCSIM_PETSC(TSGetType(ts, &type));
+  if (std::string(type) != kTSHHT)
+    throw InputError("command line", "-ts_type",
+                     std::string("checkpoints and restarts need the TS type hht, not ") + type);
+}
+
+}  // namespace
+
+DynamicState DynamicSolver::save_state() const {
+  require_hht(ts_);
+  DynamicState s;
+  PetscInt step;
+  PetscReal t, dt;
+  PCSIM_PETSC(TSGetStepNumber(ts_, &step));
+  PCSIM_PETSC(TSGetTime(ts_, &t));
+  PCSIM_PETSC(TSGetTimeStep(ts_, &dt));
+  s.step = step;
+  s.t = t;
+  s.time_step = dt;
+  const HHTStepControl control = hht_get_step_control(ts_);
+  s.user_time_step = control.user_time_step;
+  s.accepted_since_cut = control.accepted_since_cut;
+  Vec U, V, A = system_.create_vector();
+  PCSIM_PETSC(TS2GetSolution(ts_, &U, &V));
+  hht_get_acceleration(ts_, A);
+  s.U = gather_to_root(U);
+  s.V = gather_to_root(V);
+  s.A = gather_to_root(A);
+  PCSIM_PETSC(VecDestroy(&A));
+  s.has_reference = low_rank_ && cached_shift_a_ >= 0;
+  if (s.has_reference) {
+    s.reference_t = reference_t_;
+    s.shift_v = cached_shift_v_;
+    s.shift_a = cached_shift_a_;
+    s.reference_U = gather_to_root(reference_U_);
+    s.reference_V = gather_to_root(reference_V_);
+    s.reference_A = gather_to_root(reference_A_);
+  }
+  s.terms = system_.checkpoint_terms();
+  for (const auto& slot : system_.pantographs()) s.head_offsets.push_back(slot.head_offset);
+  return s;
+}
+
+void DynamicSolver::restore_state(const DynamicState& s) {
+  require_hht(ts_);
+  auto& pantographs = system_.pantographs();
+  if (s.head_offsets.size() != pantographs.size())
+    throw SolverError("restore: a state of " + std::to_string(s.head_offsets.size()) +
+                      " pantographs for " + std::to_string(pantographs.size()));
+  for (std::size_t p = 0; p < pantographs.size(); ++p)
+    pantographs[p].head_offset = s.head_offsets[p];
+  Vec U = system_.create_vector(), V = system_.create_vector(), A = system_.create_vector();
+  scatter_from_root(s.U, U);
+  scatter_from_root(s.V, V);
+  scatter_from_root(s.A, A);
+  PCSIM_PETSC(TS2SetSolution(ts_, U, V));
+  PCSIM_PETSC(TSSetTime(ts_, s.t));
+  PCSIM_PETSC(TSSetStepNumber(ts_, s.step));
+  PCSIM_PETSC(TSSetTimeStep(ts_, s.time_step));
+  hht_set_step_control(ts_, {s.user_time_step, static_cast<PetscInt>(s.accepted_since_cut)});
+  hht_set_initial_acceleration(ts_, A);
+  if (low_rank_ && s.has_reference) {
+    // J0 rebuilt at the state it was assembled at: bitwise the same matrix.
+    const std::pair<const std::vector<double>*, Vec*> vectors[] = {{&s.reference_U, &reference_U_},
+                                                                   {&s.reference_V, &reference_V_},
+                                                                   {&s.reference_A, &reference_A_}};
+    for (const auto& [values, vec] : vectors) {
+      if (!*vec) *vec = system_.create_vector();
+      scatter_from_root(*values, *vec);
+    }
+    reference_t_ = s.reference_t;
+    cached_shift_v_ = s.shift_v;
+    cached_shift_a_ = s.shift_a;
+    system_.reference_jacobian(reference_t_, reference_U_, reference_V_, reference_A_,
+                               {s.shift_v, s.shift_a}, P_);
+    low_rank_->invalidate();
+  }
+  // After the reference tangent: the terms' state refers to it.
+  system_.restore_terms(s.terms);
+  PCSIM_PETSC(VecDestroy(&U));
+  PCSIM_PETSC(VecDestroy(&V));
+  PCSIM_PETSC(VecDestroy(&A));
+}
+
+}  // namespace pcsim::solvers

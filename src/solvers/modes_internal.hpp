@@ -1,0 +1,24 @@
+// Shared by the catenary modes (modes.cpp) and the reduced basis
+// (modal_basis.cpp): SLEPc's spectrum slicing over an interval of omega^2.
+#pragma once
+
+#include <slepceps.h>
+
+#include <vector>
+
+namespace pcsim::solvers {
+
+// Krylov-Schur spectrum slicing of the GHEP K x = lambda M x over
+// [lambda_lo, lambda_hi], shift-and-invert with MUMPS Cholesky (its inertia);
+// tolerance 1e-12. The caller sets the operators and calls EPSSetFromOptions.
+void configure_slicing(EPS eps, double lambda_lo, double lambda_hi);
+
+// The converged eigenvalues of a solved EPS (real parts) and their indices
+// in ascending order of eigenvalue.
+struct ConvergedSpectrum {
+  std::vector<double> lambdas;  // by EPS index
+  std::vector<PetscInt> order;  // EPS indices, smallest eigenvalue first
+};
+ConvergedSpectrum converged_spectrum(EPS eps);
+
+}  // namespace pcsim::solvers

@@ -1,0 +1,115 @@
+#!/bin/bash
+# The reduced-order (modal) catenary against the linearised FE catenary, end
+# to end through `pcsim run` on one rank:
+# 1. Every mode and exact bars (tests/assembly/data/small-modal-all.yaml, 280
+#    unknowns, a dense Newton matrix) equal the linearised FE catenary on the
+#    full Newton path (small-linear.yaml) over 400 steps from a ramp start, in
+#    which two droppers go slack: max |dFc| <= 1e-9 max Fc. Measured 3.4e-11
+#    (1.2e-10 over the whole 792 steps): both solve the same equations in other
+#    unknowns, each to the Newton tolerance (-snes_atol 1e-6 N, above the FE
+#    residual's round-off floor of ~2e-7 N; a residual r moves the contact
+#    force by ~0.025 r, dynamics.cpp), so 1e-9 leaves a margin of ~30. The ramp start is used because the static start of an FE
+#    catenary places the pantograph from a nonlinear guess (~2e-4 N off the
+#    linear equilibrium) while the modal one is exact.
+# 2. The cache: the first run computes the modes and stores them, a second
+#    run reads them and gives the same contact force bit for bit; a lower
+#    cut-off reuses them. The bounded dropper check equals evaluating every
+#    dropper at every state (the correction of a taut dropper is exactly 0,
+#    only the order of sums differs): measured 3.3e-13 of max Fc, asserted
+#    1e-11, with fewer exact evaluations (13.9 against 72.1 per step).
+# 3. Truncated at the default cut-off (1.1 x 20 Hz / (1 - v/c) = 40.5 Hz, 232
+#    of 712 vectors) on the three-span test catenary (three-span-modal.yaml)
+#    against the linearised FE run of the same scene (app/data/study-tiny.yaml),
+#    EN 50318 figures over span 2. Measured: mean +0.05 %, sigma -0.32 %,
+#    Fm+3sigma -0.09 %, actual max +1.58 %, uplift -0.13 %; asserted within
+#    0.1 / 0.5 / 0.2 / 2.0 / 0.3 % (about 1.3-2 times the measured, the margin
+#    for round-off in the eigensolver's basis, which moves the actual max, a
+#    single sample, most).
+set -euo pipefail
+: "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:=/usr/bin/python3}"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+data=$PCSIM_SOURCE_DIR/tests/assembly/data
+run() {  # run NAME SCENE [options]: pcsim run, output in $tmp/NAME, log in $tmp/NAME.log
+  local name=$1 scene=$2
+  shift 2
+  "$PCSIM_BIN" run "$scene" -o "$tmp/$name" --cache "$tmp/cache" "$@" > "$tmp/$name.log" 2>&1 ||
+    { cat "$tmp/$name.log"; exit 1; }
+}
+
+# 1. Every mode = FE.
+run fe "$data/small-linear.yaml" -pcsim_path full -snes_atol 1e-6 -ts_max_steps 400
+run all "$data/small-modal-all.yaml" -snes_atol 1e-6 -ts_max_steps 400
+grep -q "catenary model: modal, 280 basis vectors (280 modes" "$tmp/all.log" ||
+  { cat "$tmp/all.log"; exit 1; }
+
+# 2. The cache and the bounded dropper check (design paths made absolute).
+sed -e "s#design: \.\./\.\./contact#design: $PCSIM_SOURCE_DIR/tests/contact#" \
+  -e "s#model: \.\./\.\./\.\./meshes#model: $PCSIM_SOURCE_DIR/meshes#" \
+  "$data/three-span-modal.yaml" > "$tmp/base.yaml"
+sed 's#^  model: modal#  model: modal\n  modal: {droppers: all}#' "$tmp/base.yaml" > "$tmp/all-droppers.yaml"
+sed 's#^  model: modal#  model: modal\n  max_frequency_hz: 30#' "$tmp/base.yaml" > "$tmp/lower.yaml"
+run modal "$tmp/base.yaml"
+run again "$tmp/base.yaml"
+run every "$tmp/all-droppers.yaml"
+run lower "$tmp/lower.yaml"
+grep -q "computing the catenary's modes below 40.5 Hz" "$tmp/modal.log" || { cat "$tmp/modal.log"; exit 1; }
+for name in again every lower; do
+  grep -q "read from the cache" "$tmp/$name.log" || { cat "$tmp/$name.log"; exit 1; }
+done
+ls "$tmp/cache"/modal-*.h5 > /dev/null
+
+# 3. Truncated against the linearised FE run.
+run linear "$PCSIM_SOURCE_DIR/tests/app/data/study-tiny.yaml"
+
+"$PCSIM_PYTHON" - "$tmp" <<'PY'
+import json, sys
+import h5py
+import numpy as np
+d = sys.argv[1]
+def force(name):
+    with h5py.File(f"{d}/{name}/results.h5") as f:
+        return f["/pantographs/pantograph/contact_force"][:]
+def summary(name):
+    return json.load(open(f"{d}/{name}/summary.json"))
+
+fe, modal = force("fe"), force("all")
+assert len(fe) == len(modal) == 401, (len(fe), len(modal))
+rel = np.max(np.abs(fe - modal)) / np.max(np.abs(fe))
+with h5py.File(f"{d}/fe/results.h5") as f:
+    slack = (f["/droppers/force"][:] <= 0).any(axis=0).sum()
+print(f"1. every mode vs FE: max |dFc| / max Fc = {rel:.2e} over 400 steps, {slack} droppers slack")
+assert slack >= 2, slack  # the slack correction is exercised
+assert rel <= 1e-9, rel
+
+a, b, every = force("modal"), force("again"), force("every")
+assert np.array_equal(a, b), "a cached basis gives another result"
+rel = np.max(np.abs(a - every)) / np.max(np.abs(a))
+bounded = summary("modal")["modal"]["dropper_evaluations_per_step"]
+checked = summary("every")["modal"]["dropper_evaluations_per_step"]
+print(f"2. cache reused; bounded vs every dropper: {rel:.2e}, {bounded:.1f} vs {checked:.1f} "
+      "exact evaluations per step")
+assert rel <= 1e-11, rel
+assert bounded < checked, (bounded, checked)
+assert summary("lower")["modal"]["cutoff_hz"] == 30.0
+
+# The accuracy estimate of the modal run (docs/fidelity.md): its cut-off is 1.1
+# times cutoff_hz / (1 - v/c), inside; 1.5 m elements are 1.85 per wavelength
+# v / 20 Hz, outside (converged >= 4.4), with the advice to refine.
+criteria = {c["name"]: c for c in summary("modal")["accuracy_estimate"]["criteria"]}
+assert sorted(criteria) == ["element length", "modal cut-off", "time step"], criteria
+assert abs(criteria["modal cut-off"]["value"] - 1.1) < 1e-9 and criteria["modal cut-off"]["ok"]
+assert not criteria["element length"]["ok"] and "element_length" in criteria["element length"]["advice"]
+assert "modal cut-off" not in str(summary("linear")["accuracy_estimate"])
+
+figures = {"mean_N": 0.1, "std_N": 0.5, "stat_max_N": 0.2, "max_N": 2.0}
+fe, modal = summary("linear"), summary("modal")
+assert modal["modal"]["basis_size"] == 232, modal["modal"]
+for key, limit in figures.items():
+    err = 100 * (modal["pantographs"][0][key] / fe["pantographs"][0][key] - 1)
+    print(f"3. default cut-off vs FE: {key} {err:+.2f} % (limit {limit} %)")
+    assert abs(err) <= limit, (key, err)
+err = 100 * (modal["max_uplift_at_support_m"] / fe["max_uplift_at_support_m"] - 1)
+print(f"3. default cut-off vs FE: uplift {err:+.2f} % (limit 0.3 %)")
+assert abs(err) <= 0.3, err
+PY
