@@ -30,9 +30,10 @@ struct SectionLayout {
   int first = 0, last = 0;          // supports where the section's wires start and end
   int own_first = 0, own_last = 0;  // the stretch of the line the section owns (sections[i].spans)
   std::vector<Role> role;           // per support of the line
-  // Per support: +1 or -1 where the wire runs at +-separation/2 in an
-  // overlap (+ for the section that ends there), 0 elsewhere.
-  std::vector<double> overlap_side;
+  // Per support, in units of overlap.separation: the wire's shift across the
+  // track from the stagger where several sections' wires meet (+-1/2 for
+  // two, + for the earlier section; +1, 0, -1 for three), 0 elsewhere.
+  std::vector<double> lateral_shift;
 };
 
 struct LineLayout {

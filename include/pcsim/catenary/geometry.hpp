@@ -158,6 +158,7 @@ struct ParametricDesign {
   double system_height = 0;
   double contact_wire_height = 0;
   double presag = 0;
+  std::string presag_key = "presag";  // where the sag came from ('presag.sag' in the map; messages)
   PresagProfile presag_profile = PresagProfile::parabola;
   double stagger = 0;
   double messenger_stagger = 0;
