@@ -24,10 +24,11 @@ void read_simulation(const InputNode& scene, RunScene& run, std::optional<double
   run.speed = sim.get_positive("speed_kmh") / 3.6;
   const double c = catenary::wave_speed(mesh.wires[mesh.contact_wire]);
   if (run.speed >= c)
-    sim.fail_key("speed_kmh",
-                 "speed " + fmt(run.speed * 3.6) +
-                     " km/h is not below the contact wire's wave speed sqrt(T/rho) = " +
-                     fmt(c * 3.6) + " km/h");
+    sim.fail_key(
+        "speed_kmh",
+        "speed " + fmt(run.speed * 3.6) +
+            " km/h is not below the contact wire's wave speed sqrt(T (1 + T/EA) / rho) = " +
+            fmt(c * 3.6) + " km/h");
   run.dt = sim.get_positive("dt", 1e-3);
   if (dt) run.dt = *dt;
   run.hht_alpha = sim.get_nonnegative("hht_alpha", 0.1);
