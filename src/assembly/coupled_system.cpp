@@ -51,6 +51,7 @@ CoupledSystem::CoupledSystem(std::unique_ptr<CatenaryModel> catenary,
       else
         it->cu += part.cu, it->cv += part.cv, it->ca += part.ca;
     }
+  part_axpy_.resize(parts_.size());
   reference_ = catenary_->create_vector();
   catenary_->reference_state(reference_);
   work_ = catenary_->create_vector();
@@ -151,9 +152,14 @@ void CoupledSystem::assemble_tangent(Shifts shifts, Mat J, bool reference) {
   }
   PCSIM_PETSC(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
   PCSIM_PETSC(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
-  for (const auto& part : parts_)
-    PCSIM_PETSC(
-        MatAXPY(J, part.cu + shifts.v * part.cv + shifts.a * part.ca, part.matrix, part.structure));
+  for (std::size_t k = 0; k < parts_.size(); ++k) {
+    const auto& part = parts_[k];
+    const double c = part.cu + shifts.v * part.cv + shifts.a * part.ca;
+    if (part.structure == SUBSET_NONZERO_PATTERN)
+      part_axpy_[k].apply(J, c, part.matrix);
+    else
+      PCSIM_PETSC(MatAXPY(J, c, part.matrix, part.structure));
+  }
 }
 
 void CoupledSystem::jacobian(double t, Vec U, Vec V, Vec A, Shifts shifts, Mat J) {

@@ -36,41 +36,6 @@ LocalBlocks local_blocks(Mat A) {
   return b;
 }
 
-// A copy of a SeqAIJ matrix without its stored zeros: the step matrices keep
-// explicit zeros where a term may couple later (the pantographs' rows over the
-// whole contact wire on the full path), which would otherwise couple every
-// rank to the last one and ruin the orderings' fill.
-Mat without_zeros(Mat A) {
-  PetscInt m, n;
-  PCSIM_PETSC(MatGetSize(A, &m, &n));
-  const PetscInt *ia, *ja;
-  PetscInt rows;
-  PetscBool done;
-  PCSIM_PETSC(MatGetRowIJ(A, 0, PETSC_FALSE, PETSC_FALSE, &rows, &ia, &ja, &done));
-  const PetscScalar* va;
-  PCSIM_PETSC(MatSeqAIJGetArrayRead(A, &va));
-  std::vector<PetscInt> i_new(static_cast<std::size_t>(m) + 1, 0), j_new;
-  std::vector<PetscScalar> v_new;
-  j_new.reserve(static_cast<std::size_t>(ia[m]));
-  v_new.reserve(static_cast<std::size_t>(ia[m]));
-  for (PetscInt i = 0; i < m; ++i) {
-    for (PetscInt k = ia[i]; k < ia[i + 1]; ++k)
-      if (va[k] != 0.0) {
-        j_new.push_back(ja[k]);
-        v_new.push_back(va[k]);
-      }
-    i_new[i + 1] = static_cast<PetscInt>(j_new.size());
-  }
-  PCSIM_PETSC(MatSeqAIJRestoreArrayRead(A, &va));
-  PCSIM_PETSC(MatRestoreRowIJ(A, 0, PETSC_FALSE, PETSC_FALSE, &rows, &ia, &ja, &done));
-  Mat B;
-  PCSIM_PETSC(MatCreate(PETSC_COMM_SELF, &B));
-  PCSIM_PETSC(MatSetSizes(B, m, n, m, n));
-  PCSIM_PETSC(MatSetType(B, MATSEQAIJ));
-  PCSIM_PETSC(MatSeqAIJSetPreallocationCSR(B, i_new.data(), j_new.data(), v_new.data()));
-  return B;
-}
-
 std::vector<int> all_counts(MPI_Comm comm, int mine) {
   int size;
   MPI_Comm_size(comm, &size);
@@ -112,12 +77,15 @@ class SchurDomainSolver {
 
   void set_up(Mat A);
   void apply(Vec r, Vec x);
-  DomainDecompositionInfo info() const { return info_; }
+  DomainDecompositionInfo info() const {
+    return info_;
+  }
 
  private:
   void release();
-  void split_unknowns(Mat A, const LocalBlocks& blocks);
-  void factor_interior(Mat diagonal);
+  bool split_unknowns(Mat A, const LocalBlocks& blocks);
+  void extract_blocks(Mat diagonal, MatReuse reuse);
+  void factor_interior();
   void assemble_schur(const LocalBlocks& blocks);
 
   MPI_Comm comm_;
@@ -136,11 +104,17 @@ void SchurDomainSolver::release() {
   for (Mat* m : {&A_II_, &A_IG_, &A_GI_, &X_}) MatDestroy(m);
   for (Vec* v : {&r_I_, &y_I_, &t_I_, &g_r_, &x_G_r_}) VecDestroy(v);
   F_ = nullptr;  // owned by the interior KSP's PC
+  // A new split may change the interior's size: the KSP forgets the old one.
+  if (interior_ksp_) KSPReset(interior_ksp_);
 }
 
 // Interface: owned rows with a coupling to another rank's unknowns, and owned
 // unknowns another rank's rows couple to (the pattern need not be symmetric).
-void SchurDomainSolver::split_unknowns(Mat A, const LocalBlocks& blocks) {
+// A coupling is a nonzero value: the step matrices store zeros where a term
+// may couple later (every pantograph with the whole contact wire, for the
+// full path's moving contact), which would put every contact-wire unknown
+// in the interface. Returns whether the split differs from the last one.
+bool SchurDomainSolver::split_unknowns(Mat A, const LocalBlocks& blocks) {
   PetscInt lo, hi;
   PCSIM_PETSC(MatGetOwnershipRange(A, &lo, &hi));
   std::vector<char> coupled(static_cast<std::size_t>(hi - lo), 0);
@@ -169,9 +143,13 @@ void SchurDomainSolver::split_unknowns(Mat A, const LocalBlocks& blocks) {
                  ghost_counts.data(), ghost_offsets.data(), MPIU_INT, comm_);
   for (PetscInt g : ghosts)
     if (g >= lo && g < hi) coupled[g - lo] = 1;
-  interior_.clear();
-  interface_.clear();
-  for (PetscInt i = 0; i < hi - lo; ++i) (coupled[i] ? interface_ : interior_).push_back(i);
+  std::vector<PetscInt> interior, interface;
+  for (PetscInt i = 0; i < hi - lo; ++i) (coupled[i] ? interface : interior).push_back(i);
+  int changed = interior != interior_ || interface != interface_ || !A_II_;
+  MPI_Allreduce(MPI_IN_PLACE, &changed, 1, MPI_INT, MPI_MAX, comm_);
+  if (!changed) return false;
+  interior_ = std::move(interior);
+  interface_ = std::move(interface);
   counts_ = all_counts(comm_, static_cast<int>(interface_.size()));
   offsets_ = offsets_of(counts_);
   std::vector<PetscInt> mine(interface_.size());
@@ -179,32 +157,40 @@ void SchurDomainSolver::split_unknowns(Mat A, const LocalBlocks& blocks) {
   interface_global_.resize(static_cast<std::size_t>(offsets_.back()));
   MPI_Allgatherv(mine.data(), static_cast<int>(mine.size()), MPIU_INT, interface_global_.data(),
                  counts_.data(), offsets_.data(), MPIU_INT, comm_);
+  return true;
 }
 
-Mat sub_matrix(Mat A, const std::vector<PetscInt>& rows, const std::vector<PetscInt>& cols) {
+void sub_matrix(Mat A, const std::vector<PetscInt>& rows, const std::vector<PetscInt>& cols,
+                MatReuse reuse, Mat* sub) {
   IS is_rows, is_cols;
   PCSIM_PETSC(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(rows.size()), rows.data(),
                               PETSC_USE_POINTER, &is_rows));
   PCSIM_PETSC(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(cols.size()), cols.data(),
                               PETSC_USE_POINTER, &is_cols));
-  Mat sub;
-  PCSIM_PETSC(MatCreateSubMatrix(A, is_rows, is_cols, MAT_INITIAL_MATRIX, &sub));
+  PCSIM_PETSC(MatCreateSubMatrix(A, is_rows, is_cols, reuse, sub));
   PCSIM_PETSC(ISDestroy(&is_rows));
   PCSIM_PETSC(ISDestroy(&is_cols));
-  return sub;
+}
+
+// A_II, A_IG, A_GI from the diagonal block: new matrices after a new split,
+// else the same ones with new values (the interior LU then keeps its
+// ordering and symbolic factorisation: only the numeric one is redone).
+void SchurDomainSolver::extract_blocks(Mat diagonal, MatReuse reuse) {
+  sub_matrix(diagonal, interior_, interior_, reuse, &A_II_);
+  sub_matrix(diagonal, interior_, interface_, reuse, &A_IG_);
+  sub_matrix(diagonal, interface_, interior_, reuse, &A_GI_);
+  if (reuse == MAT_REUSE_MATRIX) return;
+  PCSIM_PETSC(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(interior_.size()), &r_I_));
+  for (Vec* v : {&y_I_, &t_I_}) PCSIM_PETSC(VecDuplicate(r_I_, v));
+  PCSIM_PETSC(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(interface_.size()), &g_r_));
+  PCSIM_PETSC(VecDuplicate(g_r_, &x_G_r_));
 }
 
 // A_II = L U (sequential), X = A_II^-1 A_IG (dense, |I_r| x |G_r|).
-void SchurDomainSolver::factor_interior(Mat diagonal) {
-  A_II_ = sub_matrix(diagonal, interior_, interior_);
-  A_IG_ = sub_matrix(diagonal, interior_, interface_);
-  A_GI_ = sub_matrix(diagonal, interface_, interior_);
+void SchurDomainSolver::factor_interior() {
   const PetscInt n_I = static_cast<PetscInt>(interior_.size());
   const PetscInt m = static_cast<PetscInt>(interface_.size());
-  PCSIM_PETSC(VecCreateSeq(PETSC_COMM_SELF, n_I, &r_I_));
-  for (Vec* v : {&y_I_, &t_I_}) PCSIM_PETSC(VecDuplicate(r_I_, v));
-  PCSIM_PETSC(VecCreateSeq(PETSC_COMM_SELF, m, &g_r_));
-  PCSIM_PETSC(VecDuplicate(g_r_, &x_G_r_));
+  PCSIM_PETSC(MatDestroy(&X_));
   Mat B;
   PCSIM_PETSC(MatConvert(A_IG_, MATSEQDENSE, MAT_INITIAL_MATRIX, &B));
   PCSIM_PETSC(MatDuplicate(B, MAT_DO_NOT_COPY_VALUES, &X_));
@@ -228,7 +214,8 @@ void SchurDomainSolver::assemble_schur(const LocalBlocks& blocks) {
   const int n_G = offsets_.back(), first = offsets_[rank_];
   const int m = static_cast<int>(interface_.size());
   Eigen::MatrixXd S = Eigen::MatrixXd::Zero(n_G, n_G);
-  Mat A_GG = sub_matrix(blocks.diagonal, interface_, interface_);
+  Mat A_GG = nullptr;
+  sub_matrix(blocks.diagonal, interface_, interface_, MAT_INITIAL_MATRIX, &A_GG);
   Mat C = nullptr;
   if (!interior_.empty() && m > 0)
     PCSIM_PETSC(MatMatMult(A_GI_, X_, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &C));
@@ -265,15 +252,13 @@ void SchurDomainSolver::assemble_schur(const LocalBlocks& blocks) {
 
 void SchurDomainSolver::set_up(Mat A) {
   const ScopedEvent timed(log_events().dd_setup);
-  release();
+  const LocalBlocks blocks = local_blocks(A);
+  const bool new_split = split_unknowns(A, blocks);
+  if (new_split) release();
   info_ = {};
-  LocalBlocks blocks = local_blocks(A);
-  Mat diagonal = without_zeros(blocks.diagonal);
-  blocks.diagonal = diagonal;
-  split_unknowns(A, blocks);
-  factor_interior(blocks.diagonal);
+  extract_blocks(blocks.diagonal, new_split ? MAT_INITIAL_MATRIX : MAT_REUSE_MATRIX);
+  factor_interior();
   assemble_schur(blocks);
-  PCSIM_PETSC(MatDestroy(&diagonal));
   MPI_Allreduce(MPI_IN_PLACE, &info_.factor_nonzeros, 1, MPI_DOUBLE, MPI_SUM, comm_);
 }
 

@@ -32,7 +32,10 @@ PetscInt coupled_node(PetscInt k) {
   return (2 * k + 1) * kNodes / (2 * kExtras);
 }
 
-Mat chain_matrix() {
+// far: the value of a coupling between the first extra and node 0 (on rank
+// 0), stored even when zero (as the step matrices store the pantographs'
+// possible couplings with the whole contact wire).
+Mat chain_matrix(double far) {
   int rank, size;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
@@ -40,8 +43,8 @@ Mat chain_matrix() {
   const PetscInt first_node = kNodes * rank / size, end_node = kNodes * (rank + 1) / size;
   const PetscInt local = (end_node - first_node) * kBlock + (rank == size - 1 ? kExtras : 0);
   Mat A;
-  PCSIM_PETSC(MatCreateAIJ(PETSC_COMM_WORLD, local, local, kSize, kSize, 3 * kBlock + kExtras,
-                           nullptr, 3 * kBlock + kExtras, nullptr, &A));
+  PCSIM_PETSC(MatCreateAIJ(PETSC_COMM_WORLD, local, local, kSize, kSize, 3 * kBlock + kExtras + 1,
+                           nullptr, 3 * kBlock + kExtras + 1, nullptr, &A));
   for (PetscInt n = first_node; n < end_node; ++n)
     for (PetscInt a = 0; a < kBlock; ++a) {
       const PetscInt row = n * kBlock + a;
@@ -51,6 +54,7 @@ Mat chain_matrix() {
           const double v = row == col ? 40.0 : pseudo(row, col);
           PCSIM_PETSC(MatSetValue(A, row, col, v, INSERT_VALUES));
         }
+      if (n == 0 && a == 2) PCSIM_PETSC(MatSetValue(A, row, kChain, far, INSERT_VALUES));
       for (PetscInt k = 0; k < kExtras; ++k)
         if (n == coupled_node(k) && a == 2)
           PCSIM_PETSC(MatSetValue(A, row, kChain + k, -2.0 + 0.1 * k, INSERT_VALUES));
@@ -61,6 +65,7 @@ Mat chain_matrix() {
       PCSIM_PETSC(MatSetValue(A, row, row, 5.0 + k, INSERT_VALUES));
       PCSIM_PETSC(MatSetValue(A, row, coupled_node(k) * kBlock + 2, -3.0, INSERT_VALUES));
       if (k > 0) PCSIM_PETSC(MatSetValue(A, row, row - 1, 0.5, INSERT_VALUES));
+      if (k == 0) PCSIM_PETSC(MatSetValue(A, row, 2, far, INSERT_VALUES));
     }
   PCSIM_PETSC(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
   PCSIM_PETSC(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
@@ -68,7 +73,7 @@ Mat chain_matrix() {
 }
 
 TEST(SchurDomainDecomposition, SolvesExactlyOnAnyNumberOfRanks) {
-  Mat A = chain_matrix();
+  Mat A = chain_matrix(0.0);
   Vec x_true, b, x;
   PCSIM_PETSC(MatCreateVecs(A, &x_true, &b));
   PCSIM_PETSC(VecDuplicate(b, &x));
@@ -113,6 +118,18 @@ TEST(SchurDomainDecomposition, SolvesExactlyOnAnyNumberOfRanks) {
   PCSIM_PETSC(VecAXPY(x, -1.0, x_true));
   PCSIM_PETSC(VecNorm(x, NORM_INFINITY, &error));
   EXPECT_LT(error / scale, 1e-12);
+
+  // The far coupling switched on: on several ranks node 0 and the first extra
+  // join the interface (a new split, new interior factors), still exact.
+  Mat A_far = chain_matrix(1.5);
+  PCSIM_PETSC(MatMult(A_far, x_true, b));
+  PCSIM_PETSC(KSPSetOperators(ksp, A_far, A_far));
+  PCSIM_PETSC(KSPSolve(ksp, b, x));
+  PCSIM_PETSC(VecAXPY(x, -1.0, x_true));
+  PCSIM_PETSC(VecNorm(x, NORM_INFINITY, &error));
+  EXPECT_LT(error / scale, 1e-12);
+  if (size > 1) EXPECT_GT(domain_decomposition_info(ksp).interface_size, info.interface_size);
+  MatDestroy(&A_far);
 
   KSPDestroy(&ksp);
   VecDestroy(&x_true);
