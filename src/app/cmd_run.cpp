@@ -10,6 +10,7 @@
 #include "catenary_setup.hpp"
 #include "command.hpp"
 #include "exit_status.hpp"
+#include "inputs.hpp"
 #include "pcsim/assembly/coupled_system.hpp"
 #include "pcsim/assembly/fe_catenary.hpp"
 #include "pcsim/core/profiling.hpp"
@@ -295,8 +296,9 @@ app::RunSession::Options session_options(const scene::RunScene& run, const Outpu
 }
 
 int run_dynamic(const app::CommandContext& ctx) {
-  const InputNode scene = ctx.load_scene();
-  auto run = scene::load_run_scene(scene);
+  app::RunInputs run_inputs = app::read_run_inputs(ctx);  // every input checked: exit 2 before work
+  const InputNode& scene = run_inputs.scene;
+  auto& run = run_inputs.run;
   const auto& design = run.catenary.mesh;
   const double c = catenary::wave_speed(design.wires[design.contact_wire]);
   const auto inputs = app::run_input_files(ctx.scene_path, scene);
@@ -309,6 +311,7 @@ int run_dynamic(const app::CommandContext& ctx) {
   OutputDir out(ctx.comm, request);
   app::print0(ctx, "pcsim run: scene '%s', design %s\n", ctx.scene_name(scene).c_str(),
               run.catenary.design_path.c_str());
+  app::print_warnings(ctx, run.warnings);
   if (run.speed > 0.7 * c)
     app::print0(ctx, "  warning: speed %.0f km/h is above 70%% of the wave speed (%.0f km/h)\n",
                 run.speed * 3.6, c * 3.6);
@@ -318,6 +321,7 @@ int run_dynamic(const app::CommandContext& ctx) {
   app::print0(ctx, "  static: %d Newton iterations, height error %.2e m, tension error %.2e\n",
               statics.result.snes_iterations, statics.result.max_height_error_m,
               statics.result.max_tension_error_rel);
+  app::print_warnings(ctx, statics.result.warnings);
   stage.next("Static start");
   const auto settings = run_settings(ctx, scene, run);
   app::CatenarySetup setup;
@@ -334,9 +338,6 @@ int run_dynamic(const app::CommandContext& ctx) {
               ctx.size, solver.cheap_path() ? "cheap (Jacobian reused)" : "full Newton");
   TSType ts_type;
   PCSIM_PETSC(TSGetType(solver.ts(), &ts_type));
-  if ((run.checkpoint_every > 0 || restart) && std::string(ts_type) != solvers::kTSHHT)
-    throw InputError("command line", "-ts_type",
-                     std::string("checkpoints and restarts need the TS type hht, not ") + ts_type);
   // A restart starts as a new run (the models keep parameters of their static
   // equilibrium), then takes the checkpoint's state.
   set_initial_state(solver, U0, V0);

@@ -2,6 +2,7 @@
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <cstdio>
 
 #include "command.hpp"
 
@@ -34,6 +35,8 @@ void print_static_summary(const CommandContext& ctx, const catenary::CatenaryMes
            r.registration_forces.size(), *lo, *hi);
   }
   print0(ctx, "  wall time %.3f s\n", r.wall_time_s);
+  if (ctx.rank == 0)
+    for (const auto& w : r.warnings) std::fprintf(stderr, "pcsim: warning: %s\n", w.c_str());
 }
 
 double peak_memory_mb(MPI_Comm comm) {
