@@ -47,4 +47,12 @@ double peak_memory_mb(MPI_Comm comm) {
   return max_mb;
 }
 
+double total_peak_memory_mb(MPI_Comm comm) {
+  struct rusage usage;
+  getrusage(RUSAGE_SELF, &usage);
+  double mb = usage.ru_maxrss / 1024.0, total = 0;
+  MPI_Allreduce(&mb, &total, 1, MPI_DOUBLE, MPI_SUM, comm);
+  return total;
+}
+
 }  // namespace pcsim::app

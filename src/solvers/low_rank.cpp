@@ -5,6 +5,7 @@
 #include <set>
 
 #include "pcsim/core/error.hpp"
+#include "pcsim/core/profiling.hpp"
 
 namespace pcsim::solvers {
 
@@ -178,6 +179,7 @@ PetscErrorCode LowRankStepSolver::pc_apply(PC pc, Vec r, Vec x) {
   LowRankStepSolver* self;
   PCSIM_PETSC(PCShellGetContext(pc, &self));
   PCSIM_PETSC(KSPSolve(self->inner_, r, x));
+  const ScopedEvent timed(log_events().woodbury);
   if (self->capacitance_dirty_) self->update_capacitance();
   const std::size_t k = self->active_.size();
   if (k == 0) return 0;
