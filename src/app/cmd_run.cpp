@@ -31,6 +31,7 @@
 #include "processes.hpp"
 #include "run_checkpoint.hpp"
 #include "run_session.hpp"
+#include "run_settings.hpp"
 
 namespace {
 
@@ -140,21 +141,6 @@ nlohmann::json energy_results(const app::CommandContext& ctx, const OutputDir& o
               balance.turnover > 0 ? balance.max_residual / balance.turnover : 0.0,
               balance.turnover);
   return output::write_energy_results(out.file("energy.h5"), history, balance);
-}
-
-output::RunSettings run_settings(const app::CommandContext& ctx, const InputNode& scene,
-                                 const scene::RunScene& run) {
-  output::RunSettings s;
-  s.scene_name = ctx.scene_name(scene);
-  s.speed = run.speed;
-  s.analysis_from_x = run.analysis_from_x;
-  s.analysis_to_x = run.analysis_to_x;
-  s.analysis_from_span = run.analysis_from_span;
-  s.analysis_to_span = run.analysis_to_span;
-  s.cutoff_hz = run.cutoff_hz;
-  s.dropper_forces = run.dropper_forces;
-  for (const auto& p : run.pantographs) s.pantograph_names.push_back(p.name);
-  return s;
 }
 
 output::RunLayout run_layout(const scene::RunScene& run, assembly::CoupledSystem& system,
@@ -323,7 +309,7 @@ int run_dynamic(const app::CommandContext& ctx) {
               statics.result.max_tension_error_rel);
   app::print_warnings(ctx, statics.result.warnings);
   stage.next("Static start");
-  const auto settings = run_settings(ctx, scene, run);
+  const auto settings = app::run_settings(run, ctx.scene_name(scene));
   app::CatenarySetup setup;
   auto system = app::make_coupled_system(ctx, run, statics, setup);
   app::print_catenary_setup(ctx, run, setup);

@@ -17,6 +17,7 @@
 #include "pcsim/solvers/dynamics.hpp"
 #include "pcsim/solvers/hht.hpp"
 #include "pcsim/solvers/static_start.hpp"
+#include "run_settings.hpp"
 
 namespace pcsim::app {
 
@@ -92,20 +93,6 @@ PetscErrorCode record(TS, PetscInt, PetscReal t, Vec U, void* ptr) {
   auto rec = r.system->record(t, U);
   if (r.rank == 0) r.steps.push_back(std::move(rec));
   PCSIM_CALLBACK_END
-}
-
-output::RunSettings settings_of(const scene::RunScene& run, const std::string& name) {
-  output::RunSettings s;
-  s.scene_name = name;
-  s.speed = run.speed;
-  s.analysis_from_x = run.analysis_from_x;
-  s.analysis_to_x = run.analysis_to_x;
-  s.analysis_from_span = run.analysis_from_span;
-  s.analysis_to_span = run.analysis_to_span;
-  s.cutoff_hz = run.cutoff_hz;
-  s.dropper_forces = false;
-  for (const auto& p : run.pantographs) s.pantograph_names.push_back(p.name);
-  return s;
 }
 
 // Integrates; returns the wall time of the time loop.
@@ -185,7 +172,8 @@ output::StudyRun run_variant(const CommandContext& ctx, const InputNode& scene,
                           out.label(), ctx.provenance(scene)};
     OutputDir dir(ctx.comm, request);
     output::RunStatistics stats;
-    const auto settings = settings_of(run, out.label());
+    auto settings = app::run_settings(run, out.label());
+    settings.dropper_forces = false;  // the study keeps the contact force only
     on_rank0(ctx, [&] {
       output::RunLayout layout;
       for (const auto& slot : system->pantographs()) {

@@ -1,5 +1,6 @@
 #include "pcsim/output/line_results.hpp"
 
+#include "pcsim/output/en50318.hpp"
 #include "pcsim/output/h5_file.hpp"
 #include "pcsim/output/run_results.hpp"
 
@@ -27,16 +28,7 @@ nlohmann::json zone_json(const ZoneStatistics& z) {
                       {"from_x", z.zone.from_x},
                       {"to_x", z.zone.to_x},
                       {"complete", z.complete}};
-  if (!z.complete) return j;
-  const auto& st = z.force;
-  j["mean_N"] = st.mean;
-  j["std_N"] = st.std_dev;
-  j["stat_max_N"] = st.statistical_max;
-  j["stat_min_N"] = st.statistical_min;
-  j["max_N"] = st.actual_max;
-  j["min_N"] = st.actual_min;
-  j["loss_of_contact_percent"] = st.loss_of_contact_percent;
-  j["samples"] = st.samples;
+  if (z.complete) j.update(force_statistics_json(z.force));
   return j;
 }
 

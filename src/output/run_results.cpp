@@ -7,6 +7,7 @@
 
 #include "h5_series.hpp"
 #include "pcsim/core/error.hpp"
+#include "pcsim/output/en50318.hpp"
 #include "pcsim/output/mesh_xdmf.hpp"
 
 namespace pcsim::output {
@@ -182,16 +183,9 @@ void write_run_summary(const OutputDir& out, const RunSettings& s, const RunStat
         summary["pantographs"].push_back({{"name", p.name}, {"complete", false}});
         continue;
       }
-      const auto& st = p.force;
-      summary["pantographs"].push_back({{"name", p.name},
-                                        {"mean_N", st.mean},
-                                        {"std_N", st.std_dev},
-                                        {"stat_max_N", st.statistical_max},
-                                        {"stat_min_N", st.statistical_min},
-                                        {"max_N", st.actual_max},
-                                        {"min_N", st.actual_min},
-                                        {"loss_of_contact_percent", st.loss_of_contact_percent},
-                                        {"samples", st.samples}});
+      nlohmann::json figures = force_statistics_json(p.force);
+      figures["name"] = p.name;
+      summary["pantographs"].push_back(figures);
     }
     summary["max_uplift_at_support_m"] = stats->max_uplift_m;
   }

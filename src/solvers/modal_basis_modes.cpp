@@ -17,14 +17,7 @@ Operators::Operators(assembly::CatenarySystem& system, Vec x) {
   if (L.extra_dofs() != 0) throw SolverError("reduced basis: the system has extra unknowns");
   K = L.create_matrix();
   M = L.create_matrix();
-  system.load_state(x);
-  PCSIM_PETSC(MatZeroEntries(K));
-  system.add_forces(nullptr, K);
-  PCSIM_PETSC(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY));
-  PCSIM_PETSC(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
-  system.assemble_mass(M);
-  PCSIM_PETSC(MatSetOption(K, MAT_SYMMETRIC, PETSC_TRUE));
-  PCSIM_PETSC(MatSetOption(M, MAT_SYMMETRIC, PETSC_TRUE));
+  assemble_stiffness_and_mass(system, x, K, M);
 }
 
 Operators::~Operators() {

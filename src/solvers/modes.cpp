@@ -151,6 +151,17 @@ void extract_mode(EPS eps, PetscInt i, double lambda, Mat K, Mat M, Vec phi, Vec
 
 }  // namespace
 
+void assemble_stiffness_and_mass(assembly::CatenarySystem& system, Vec x, Mat K, Mat M) {
+  system.load_state(x);
+  PCSIM_PETSC(MatZeroEntries(K));
+  system.add_forces(nullptr, K);
+  PCSIM_PETSC(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY));
+  PCSIM_PETSC(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
+  system.assemble_mass(M);
+  PCSIM_PETSC(MatSetOption(K, MAT_SYMMETRIC, PETSC_TRUE));
+  PCSIM_PETSC(MatSetOption(M, MAT_SYMMETRIC, PETSC_TRUE));
+}
+
 ModesResult compute_modes(assembly::CatenarySystem& system, Vec x, int nev, double max_frequency_hz,
                           bool want_shapes) {
   PetscLogDouble t0, t1;
@@ -158,15 +169,7 @@ ModesResult compute_modes(assembly::CatenarySystem& system, Vec x, int nev, doub
   const auto& L = system.layout();
   if (L.extra_dofs() != 0) throw SolverError("compute_modes needs a system without extra unknowns");
   Mat K = L.create_matrix(), M = L.create_matrix();
-  system.load_state(x);
-  PCSIM_PETSC(MatZeroEntries(K));
-  system.add_forces(nullptr, K);
-  PCSIM_PETSC(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY));
-  PCSIM_PETSC(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
-  system.assemble_mass(M);
-  // The tangent of a conservative system is symmetric; remove round-off.
-  PCSIM_PETSC(MatSetOption(K, MAT_SYMMETRIC, PETSC_TRUE));
-  PCSIM_PETSC(MatSetOption(M, MAT_SYMMETRIC, PETSC_TRUE));
+  assemble_stiffness_and_mass(system, x, K, M);
   EPS eps;
   PCSIM_PETSC(EPSCreate(L.comm(), &eps));
   PCSIM_PETSC(EPSSetOperators(eps, K, M));

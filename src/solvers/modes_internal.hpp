@@ -6,7 +6,16 @@
 
 #include <vector>
 
+namespace pcsim::assembly {
+class CatenarySystem;
+}
+
 namespace pcsim::solvers {
+
+// The tangent stiffness K at state x and the mass M of a catenary system,
+// into matrices created by its layout; both flagged symmetric (a conservative
+// system: the flag removes round-off asymmetry).
+void assemble_stiffness_and_mass(assembly::CatenarySystem& system, Vec x, Mat K, Mat M);
 
 // Krylov-Schur spectrum slicing of the GHEP K x = lambda M x over
 // [lambda_lo, lambda_hi], shift-and-invert with MUMPS Cholesky (its inertia);
