@@ -45,16 +45,27 @@ void LowRankStepSolver::invalidate() {
   capacitance_dirty_ = true;
 }
 
+// Every rank knows every index: each writes the entries it owns (no
+// communication).
 void LowRankStepSolver::build_u(Entry& e) const {
   if (!e.u) PCSIM_PETSC(MatCreateVecs(J0_, &e.u, &e.z));
-  PCSIM_PETSC(VecSet(e.u, 0.0));
-  PetscMPIInt rank;
-  MPI_Comm_rank(PetscObjectComm(reinterpret_cast<PetscObject>(J0_)), &rank);
-  if (rank == 0)  // every rank knows every index: one sets them
-    PCSIM_PETSC(VecSetValues(e.u, static_cast<PetscInt>(e.term.index.size()), e.term.index.data(),
-                             e.term.weight.data(), INSERT_VALUES));
-  PCSIM_PETSC(VecAssemblyBegin(e.u));
-  PCSIM_PETSC(VecAssemblyEnd(e.u));
+  PetscInt lo, hi;
+  PCSIM_PETSC(VecGetOwnershipRange(e.u, &lo, &hi));
+  PetscScalar* u;
+  PCSIM_PETSC(VecGetArray(e.u, &u));
+  std::fill(u, u + (hi - lo), 0.0);
+  const auto& index = e.term.index;
+  const auto n = static_cast<PetscInt>(index.size());
+  if (e.term.contiguous && n > 0) {  // the part of index[0] .. index[0] + n - 1 in [lo, hi)
+    const PetscInt first = std::max(index[0], lo), last = std::min(index[0] + n, hi);
+    if (first < last)
+      std::copy(e.term.weight.begin() + (first - index[0]),
+                e.term.weight.begin() + (last - index[0]), u + (first - lo));
+  } else {
+    for (PetscInt i = 0; i < n; ++i)
+      if (index[i] >= lo && index[i] < hi) u[index[i] - lo] = e.term.weight[i];
+  }
+  PCSIM_PETSC(VecRestoreArray(e.u, &u));
 }
 
 // J0^-1 e_g, solved once per factorisation and cached.
