@@ -64,12 +64,15 @@ void ModalOscillators::add_residual(const CoupledState& state, Vec F) {
   PCSIM_PETSC(VecGetArray(F, &f));
   Eigen::Map<Eigen::ArrayXd> fa(f, m);
   const PetscScalar *u = read(state.U), *v = read(state.V), *a = read(state.A);
-  if (a) {
+  const bool damped = v && damping_.size() > 0;
+  if (a && damped)  // one pass (the usual residual)
+    fa = ((fa + stiffness_ * Map(u, m)) + Map(a, m)) + damping_ * Map(v, m);
+  else if (a)
     fa = (fa + stiffness_ * Map(u, m)) + Map(a, m);
-  } else {
+  else if (damped)
+    fa = (fa + stiffness_ * Map(u, m)) + damping_ * Map(v, m);
+  else
     fa += stiffness_ * Map(u, m);
-  }
-  if (v && damping_.size() > 0) fa += damping_ * Map(v, m);
   release(state.A, a);
   release(state.V, v);
   release(state.U, u);

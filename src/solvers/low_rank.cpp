@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <set>
 
+#include "block_diagonal.hpp"
 #include "pcsim/core/error.hpp"
 
 namespace pcsim::solvers {
@@ -80,7 +81,7 @@ Vec LowRankStepSolver::unit_solution(PetscInt g) {
   if (g >= lo && g < hi) PCSIM_PETSC(VecSetValue(e, g, 1.0, INSERT_VALUES));
   PCSIM_PETSC(VecAssemblyBegin(e));
   PCSIM_PETSC(VecAssemblyEnd(e));
-  PCSIM_PETSC(KSPSolve(inner_, e, z));
+  solve_j0(e, z);
   PCSIM_PETSC(VecDestroy(&e));
   columns_[g] = z;
   return z;
@@ -95,7 +96,7 @@ void LowRankStepSolver::update_z(Entry& e) {
     PCSIM_PETSC(
         VecMAXPY(e.z, static_cast<PetscInt>(columns.size()), e.term.weight.data(), columns.data()));
   } else {
-    PCSIM_PETSC(KSPSolve(inner_, e.u, e.z));
+    solve_j0(e.u, e.z);
   }
   e.z_valid = true;
   capacitance_dirty_ = true;
@@ -144,14 +145,41 @@ void LowRankStepSolver::set_terms(const std::vector<assembly::RankOne>& terms) {
   for (auto& [key, e] : entries_) update_z(e);
 }
 
+// A J0 whose pattern is block diagonal with small blocks (the modal
+// catenary's: its modes and each pantograph's block) is inverted block by
+// block (block_diagonal.hpp) instead of factored by the inner KSP, unless the
+// options give the inner solver a -cheap_pc_type.
+void LowRankStepSolver::choose_inner(Mat P) {
+  inner_chosen_ = true;
+  const char* prefix = nullptr;
+  PetscBool pc_option = PETSC_FALSE;
+  PCSIM_PETSC(KSPGetOptionsPrefix(inner_, &prefix));
+  PCSIM_PETSC(PetscOptionsHasName(nullptr, prefix, "-pc_type", &pc_option));
+  auto blocks = std::make_unique<BlockDiagonalInverse>();
+  if (!pc_option && blocks->analyse(P)) blocks_ = std::move(blocks);
+}
+
+// x = J0^-1 r.
+void LowRankStepSolver::solve_j0(Vec r, Vec x) const {
+  if (blocks_)
+    blocks_->solve(r, x);
+  else
+    PCSIM_PETSC(KSPSolve(inner_, r, x));
+}
+
 PetscErrorCode LowRankStepSolver::pc_setup(PC pc) {
   PCSIM_CALLBACK_BEGIN
   LowRankStepSolver* self;
   PCSIM_PETSC(PCShellGetContext(pc, &self));
   Mat A, P;
   PCSIM_PETSC(PCGetOperators(pc, &A, &P));
-  PCSIM_PETSC(KSPSetOperators(self->inner_, P, P));
-  PCSIM_PETSC(KSPSetUp(self->inner_));
+  if (!self->inner_chosen_) self->choose_inner(P);
+  if (self->blocks_) {
+    self->blocks_->factor(P);
+  } else {
+    PCSIM_PETSC(KSPSetOperators(self->inner_, P, P));
+    PCSIM_PETSC(KSPSetUp(self->inner_));
+  }
   self->invalidate();
   self->factored_ = true;
   // Every z the way set_terms() computes it (reuse_columns terms from unit
@@ -188,7 +216,7 @@ PetscErrorCode LowRankStepSolver::pc_apply(PC pc, Vec r, Vec x) {
   PCSIM_CALLBACK_BEGIN
   LowRankStepSolver* self;
   PCSIM_PETSC(PCShellGetContext(pc, &self));
-  PCSIM_PETSC(KSPSolve(self->inner_, r, x));
+  self->solve_j0(r, x);
   if (self->capacitance_dirty_) self->update_capacitance();
   const std::size_t k = self->active_.size();
   if (k == 0) return 0;

@@ -112,6 +112,7 @@ class ModalCatenary : public CatenaryModel {
   bool slack_active_ = false;       // the slack correction is a term
   std::vector<double> stretch_, bnorm_, bnorm_omega_;  // s_d, |b_d|, |Omega^-1 b_d|
   RowMatrix B_;
+  RowMatrix support_rows_;  // the contact-wire height rows of the supports
   Eigen::VectorXd omega_;
   // Loaded state and the bounded set's bookkeeping (the records make exact
   // anchors too, hence mutable).
@@ -119,6 +120,7 @@ class ModalCatenary : public CatenaryModel {
   FloatRowMatrix B_single_;
   Eigen::VectorXd eta_, work_, incoming_;
   long eta_version_ = 0;                    // counts the changes of eta_
+  mutable long anchor_version_ = -1;        // the eta_version_ of the anchor
   mutable bool slack_set_current_ = false;  // slack_now_ is that of eta_ and the anchor
   Eigen::VectorXf work_single_, change_single_;
   mutable Eigen::VectorXd anchor_, anchor_elongation_, anchor_error_;
