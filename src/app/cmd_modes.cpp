@@ -3,6 +3,7 @@
 // -eps_nev overrides count; -modes_fmax overrides max_frequency_hz.
 #include "command.hpp"
 #include "exit_status.hpp"
+#include "inputs.hpp"
 #include "pcsim/assembly/static_problem.hpp"
 #include "pcsim/output/catenary_results.hpp"
 #include "pcsim/scene/catenary_scene.hpp"
@@ -13,18 +14,11 @@ namespace {
 
 using namespace pcsim;
 
-solvers::ModesRequest scene_modes(const InputNode& scene) {
-  const auto section = catenary::load_modes_section(scene);
-  solvers::ModesRequest r;
-  r.count = section.count;
-  r.max_frequency_hz = section.max_frequency_hz;
-  return r;
-}
-
 int run_modes(const app::CommandContext& ctx) {
-  const InputNode scene = ctx.load_scene();
-  auto cat = catenary::load_catenary_scene(scene);
-  const auto request = solvers::modes_request_from_options(ctx.comm, scene_modes(scene));
+  const app::ModesInputs in = app::read_modes_inputs(ctx);
+  const InputNode& scene = in.statics.scene;
+  const auto& cat = in.statics.catenary;
+  const auto& request = in.request;
   OutputDir out(ctx.comm, ctx.output_request(scene));
   app::print0(ctx, "pcsim modes: scene '%s', design %s\n", ctx.scene_name(scene).c_str(),
               cat.design_path.c_str());

@@ -5,6 +5,7 @@
 
 #include "command.hpp"
 #include "exit_status.hpp"
+#include "inputs.hpp"
 #include "pcsim/output/output_dir.hpp"
 #include "pcsim/output/pantograph_results.hpp"
 #include "pcsim/scene/pantograph_scene.hpp"
@@ -16,9 +17,10 @@ using namespace pcsim;
 using pcsim::app::CommandContext;
 
 int run_pantograph(const CommandContext& ctx) {
-  const auto node = ctx.load_scene();
-  pantograph::StudyScene study = scene::load_pantograph_study_scene(node);
-  const std::string name = ctx.scene_name(node);
+  app::PantographInputs in = app::read_pantograph_inputs(ctx);
+  const InputNode& node = in.scene;
+  pantograph::StudyScene& study = in.study;
+  const std::string& name = in.name;
   OutputDir out(ctx.comm, ctx.output_request(node));
   app::print0(ctx, "pcsim pantograph: scene '%s', %s model, study %s\n", name.c_str(),
               study.model->kind().c_str(), study.study_type.c_str());

@@ -10,8 +10,10 @@
 #include "catenary_setup.hpp"
 #include "command.hpp"
 #include "exit_status.hpp"
+#include "inputs.hpp"
 #include "pcsim/assembly/coupled_system.hpp"
 #include "pcsim/assembly/fe_catenary.hpp"
+#include "pcsim/core/profiling.hpp"
 #include "pcsim/output/checkpoint.hpp"
 #include "pcsim/output/en50318.hpp"
 #include "pcsim/output/energy_results.hpp"
@@ -20,8 +22,10 @@
 #include "pcsim/output/run_results.hpp"
 #include "pcsim/output/run_stream.hpp"
 #include "pcsim/scene/run_scene.hpp"
+#include "pcsim/solvers/direct.hpp"
 #include "pcsim/solvers/dynamics.hpp"
 #include "pcsim/solvers/hht.hpp"
+#include "pcsim/solvers/schur_dd.hpp"
 #include "pcsim/solvers/static_start.hpp"
 #include "pcsim/solvers/statics.hpp"
 #include "processes.hpp"
@@ -292,8 +296,9 @@ app::RunSession::Options session_options(const scene::RunScene& run, const Outpu
 }
 
 int run_dynamic(const app::CommandContext& ctx) {
-  const InputNode scene = ctx.load_scene();
-  auto run = scene::load_run_scene(scene);
+  app::RunInputs run_inputs = app::read_run_inputs(ctx);  // every input checked: exit 2 before work
+  const InputNode& scene = run_inputs.scene;
+  auto& run = run_inputs.run;
   const auto& design = run.catenary.mesh;
   const double c = catenary::wave_speed(design.wires[design.contact_wire]);
   const auto inputs = app::run_input_files(ctx.scene_path, scene);
@@ -306,14 +311,18 @@ int run_dynamic(const app::CommandContext& ctx) {
   OutputDir out(ctx.comm, request);
   app::print0(ctx, "pcsim run: scene '%s', design %s\n", ctx.scene_name(scene).c_str(),
               run.catenary.design_path.c_str());
+  app::print_warnings(ctx, run.warnings);
   if (run.speed > 0.7 * c)
     app::print0(ctx, "  warning: speed %.0f km/h is above 70%% of the wave speed (%.0f km/h)\n",
                 run.speed * 3.6, c * 3.6);
+  LogStage stage("Form-finding");  // -log_view: the phases of a run
   const auto statics =
       solvers::static_configuration(ctx.comm, design, run.catenary.form_finding, "static_");
   app::print0(ctx, "  static: %d Newton iterations, height error %.2e m, tension error %.2e\n",
               statics.result.snes_iterations, statics.result.max_height_error_m,
               statics.result.max_tension_error_rel);
+  app::print_warnings(ctx, statics.result.warnings);
+  stage.next("Static start");
   const auto settings = run_settings(ctx, scene, run);
   app::CatenarySetup setup;
   auto system = app::make_coupled_system(ctx, run, statics, setup);
@@ -329,9 +338,6 @@ int run_dynamic(const app::CommandContext& ctx) {
               ctx.size, solver.cheap_path() ? "cheap (Jacobian reused)" : "full Newton");
   TSType ts_type;
   PCSIM_PETSC(TSGetType(solver.ts(), &ts_type));
-  if ((run.checkpoint_every > 0 || restart) && std::string(ts_type) != solvers::kTSHHT)
-    throw InputError("command line", "-ts_type",
-                     std::string("checkpoints and restarts need the TS type hht, not ") + ts_type);
   // A restart starts as a new run (the models keep parameters of their static
   // equilibrium), then takes the checkpoint's state.
   set_initial_state(solver, U0, V0);
@@ -351,11 +357,16 @@ int run_dynamic(const app::CommandContext& ctx) {
   app::print0(ctx, "  %s at %.0f km/h, %.3f s simulated, dt = %.2e s, TS %s\n",
               system->pantographs().size() > 1 ? "pantographs" : "pantograph",
               system->pantographs().front().run.speed * 3.6, run.duration(), dt, ts_type);
+  stage.next("Time loop");
   const int signal = session.integrate();
+  stage.next("Output");
   // The modal counters per step of this process (a restart's earlier steps
   // are not in them); "steps" itself comes from the session.
   nlohmann::json fidelity = {{"steps", session.steps() - (restart ? restart->state.step : 0)}};
   app::add_fidelity_facts(run, setup, *system, estimate, fidelity);
+  fidelity["step_factor_nonzeros"] = solvers::step_factor_nonzeros(solver.step_ksp());
+  fidelity["step_interface_unknowns"] =
+      solvers::domain_decomposition_info(solver.step_ksp()).interface_size;
   fidelity.erase("steps");
   if (signal != 0)
     return keep_interrupted(ctx, out, session, stream, settings, statics.mesh, signal);

@@ -4,8 +4,8 @@
 
 #include "command.hpp"
 #include "exit_status.hpp"
+#include "inputs.hpp"
 #include "pcsim/output/catenary_results.hpp"
-#include "pcsim/scene/catenary_scene.hpp"
 #include "pcsim/solvers/elasticity.hpp"
 #include "pcsim/solvers/statics.hpp"
 
@@ -14,8 +14,9 @@ namespace {
 using namespace pcsim;
 
 int run_static(const app::CommandContext& ctx) {
-  const InputNode scene = ctx.load_scene();
-  auto cat = catenary::load_catenary_scene(scene);
+  const app::StaticInputs in = app::read_static_inputs(ctx);
+  const InputNode& scene = in.scene;
+  const auto& cat = in.catenary;
   OutputDir out(ctx.comm, ctx.output_request(scene));
   app::print0(ctx, "pcsim static: scene '%s', design %s\n", ctx.scene_name(scene).c_str(),
               cat.design_path.c_str());

@@ -13,6 +13,7 @@
 
 #include "command.hpp"
 #include "exit_status.hpp"
+#include "inputs.hpp"
 #include "pcsim/output/sweep_results.hpp"
 #include "pcsim/scene/composition.hpp"
 #include "pcsim/scene/run_scene.hpp"
@@ -117,7 +118,8 @@ Plan make_plan(const CommandContext& ctx) {
   return plan;
 }
 
-// Reads every case's scene (input errors before anything runs).
+// Reads and checks every case's inputs as `pcsim run` would (inputs.hpp:
+// input errors before anything runs).
 void check_cases(const CommandContext& ctx, const Plan& plan) {
   std::vector<InputOverride> fixed;
   for (const auto& o : plan.fixed)
@@ -128,7 +130,7 @@ void check_cases(const CommandContext& ctx, const Plan& plan) {
       overrides.push_back(
           parse_override(plan.assignments[k][i], {"", "command line --set " + plan.swept[i].given +
                                                           " (case " + plan.cases[k].name + ")"}));
-    scene::load_run_scene(load_composed(ctx.scene_path, overrides));
+    app::read_run_inputs(ctx, load_composed(ctx.scene_path, overrides));
   }
 }
 

@@ -87,6 +87,8 @@ void print_static_summary(const CommandContext& ctx, const catenary::CatenaryMes
 
 // Largest peak resident memory of any rank [MB] (collective).
 double peak_memory_mb(MPI_Comm comm);
+// The sum over the ranks of their peak resident memory [MB] (collective).
+double total_peak_memory_mb(MPI_Comm comm);
 
 }  // namespace pcsim::app
 

@@ -2,6 +2,7 @@
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <cstdio>
 
 #include "command.hpp"
 
@@ -34,6 +35,8 @@ void print_static_summary(const CommandContext& ctx, const catenary::CatenaryMes
            r.registration_forces.size(), *lo, *hi);
   }
   print0(ctx, "  wall time %.3f s\n", r.wall_time_s);
+  if (ctx.rank == 0)
+    for (const auto& w : r.warnings) std::fprintf(stderr, "pcsim: warning: %s\n", w.c_str());
 }
 
 double peak_memory_mb(MPI_Comm comm) {
@@ -42,6 +45,14 @@ double peak_memory_mb(MPI_Comm comm) {
   double mb = usage.ru_maxrss / 1024.0, max_mb = 0;
   MPI_Allreduce(&mb, &max_mb, 1, MPI_DOUBLE, MPI_MAX, comm);
   return max_mb;
+}
+
+double total_peak_memory_mb(MPI_Comm comm) {
+  struct rusage usage;
+  getrusage(RUSAGE_SELF, &usage);
+  double mb = usage.ru_maxrss / 1024.0, total = 0;
+  MPI_Allreduce(&mb, &total, 1, MPI_DOUBLE, MPI_SUM, comm);
+  return total;
 }
 
 }  // namespace pcsim::app

@@ -44,7 +44,9 @@ void print_usage() {
       "\noptions:\n%s"
       "Any other option goes to PETSc's options database, e.g. -snes_monitor,\n"
       "-snes_test_jacobian, -ksp_type, -ts_dt, -eps_nev, -log_view, -options_left;\n"
-      "-help lists every option a command reads (pcsim's own: -pcsim_*, -modes_fmax).\n"
+      "-help lists every option a command reads. pcsim's own, checked before any work:\n"
+      "  -ts_dt, -ts_type hht|alpha2, -ts_hht_alpha [0, 1/3], -pcsim_path auto|full|cheap (run);\n"
+      "  -eps_nev N, -modes_fmax F (modes); -pcsim_debug_* (tests).\n"
       "Scene files: docs/scene-format.md; catenary designs: docs/design-format.md.\n",
       kCommonOptions);
 }

@@ -201,6 +201,7 @@ nlohmann::json RunSession::facts() const {
   j["simulated_time_s"] = simulated;
   j["real_time_factor"] = simulated / wall;
   j["peak_memory_mb"] = peak_memory_mb(ctx_.comm);
+  j["peak_memory_total_mb"] = total_peak_memory_mb(ctx_.comm);
   j["ranks"] = ctx_.size;
   j["dofs"] = system_.global_size();
   j["path"] = path_;

@@ -7,6 +7,7 @@
 
 #include "pcsim/assembly/interaction_terms.hpp"
 #include "pcsim/core/error.hpp"
+#include "pcsim/core/profiling.hpp"
 
 namespace pcsim::assembly {
 
@@ -50,6 +51,7 @@ CoupledSystem::CoupledSystem(std::unique_ptr<CatenaryModel> catenary,
       else
         it->cu += part.cu, it->cv += part.cv, it->ca += part.ca;
     }
+  part_axpy_.resize(parts_.size());
   reference_ = catenary_->create_vector();
   catenary_->reference_state(reference_);
   work_ = catenary_->create_vector();
@@ -99,11 +101,13 @@ Mat CoupledSystem::create_reference_matrix() const {
 }
 
 void CoupledSystem::load(double t, Vec U, Vec V, Vec A) {
+  const ScopedEvent timed(log_events().state_load);
   state_.load(t, U, V, A);
 }
 
 // F += sum over constant matrices A_k (cu (U - U_ref) + cv V + ca A).
 void CoupledSystem::add_linear_parts(Vec U, Vec V, Vec A, Vec F) {
+  const ScopedEvent timed(log_events().linear_parts);
   for (const auto& part : parts_) {
     bool empty = true;
     auto add = [&](double c, Vec x) {
@@ -126,6 +130,7 @@ void CoupledSystem::add_linear_parts(Vec U, Vec V, Vec A, Vec F) {
 }
 
 void CoupledSystem::residual(double t, Vec U, Vec V, Vec A, Vec F) {
+  const ScopedEvent timed(log_events().residual);
   load(t, U, V, A);
   PCSIM_PETSC(VecSet(F, 0.0));
   add_linear_parts(U, V, A, F);
@@ -147,9 +152,14 @@ void CoupledSystem::assemble_tangent(Shifts shifts, Mat J, bool reference) {
   }
   PCSIM_PETSC(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
   PCSIM_PETSC(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
-  for (const auto& part : parts_)
-    PCSIM_PETSC(
-        MatAXPY(J, part.cu + shifts.v * part.cv + shifts.a * part.ca, part.matrix, part.structure));
+  for (std::size_t k = 0; k < parts_.size(); ++k) {
+    const auto& part = parts_[k];
+    const double c = part.cu + shifts.v * part.cv + shifts.a * part.ca;
+    if (part.structure == SUBSET_NONZERO_PATTERN)
+      part_axpy_[k].apply(J, c, part.matrix);
+    else
+      PCSIM_PETSC(MatAXPY(J, c, part.matrix, part.structure));
+  }
 }
 
 void CoupledSystem::jacobian(double t, Vec U, Vec V, Vec A, Shifts shifts, Mat J) {
@@ -163,6 +173,7 @@ void CoupledSystem::reference_jacobian(double t, Vec U, Vec V, Vec A, Shifts shi
 }
 
 bool CoupledSystem::low_rank_change(double t, Vec U, Vec V, Vec A, std::vector<RankOne>& terms) {
+  const ScopedEvent timed(log_events().low_rank_change);
   load(t, U, V, A);
   terms.clear();
   bool reference_ok = true;
@@ -208,6 +219,7 @@ TermPower CoupledSystem::power(double t, Vec U, Vec V) {
 }
 
 contact::StepRecord CoupledSystem::record(double t, Vec U) {
+  const ScopedEvent timed(log_events().record);
   load(t, U, nullptr, nullptr);
   const std::size_t np = pantographs_.size();
   const std::size_t nw = static_cast<std::size_t>(catenary_->contact_wire_count());

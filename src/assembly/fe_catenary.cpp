@@ -80,26 +80,21 @@ Mat FECatenary::create_matrix(const std::vector<bool>& wire_coupled) const {
   return A;  // not assembled: the caller adds the other terms' entries
 }
 
+// The constant matrices hold only their own entries (a subset of the
+// Jacobian's pattern): the Jacobian's pattern couples every pantograph with the
+// whole contact wire, which in a product would send every contact-wire value
+// to the pantographs' rank (docs/scaling.md).
 Mat FECatenary::mass_matrix() {
   if (mass_) return mass_;
-  if (!pattern_) throw SolverError("FECatenary: the Jacobian pattern is not set");
-  PCSIM_PETSC(MatDuplicate(pattern_, MAT_DO_NOT_COPY_VALUES, &mass_));
+  mass_ = system_->layout().create_matrix();
   system_->assemble_mass(mass_);
   return mass_;
 }
 
-// kOwnPattern in the mask: a matrix with only the element couplings of the
-// selected terms (a subset of the Jacobian's pattern), else the full pattern.
 Mat FECatenary::static_tangent(unsigned mask) {
   auto it = tangents_.find(mask);
   if (it != tangents_.end()) return it->second;
-  Mat K;
-  if (mask & kOwnPattern) {
-    K = system_->layout().create_matrix();
-  } else {
-    if (!pattern_) throw SolverError("FECatenary: the Jacobian pattern is not set");
-    PCSIM_PETSC(MatDuplicate(pattern_, MAT_DO_NOT_COPY_VALUES, &K));
-  }
+  Mat K = system_->layout().create_matrix();
   system_->load_state(U0_);
   system_->add_forces(nullptr, K, mask & CatenarySystem::kAllTerms);
   PCSIM_PETSC(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY));

@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 
 #include "pcsim/core/error.hpp"
+#include "pcsim/core/profiling.hpp"
 
 namespace pcsim::assembly {
 
@@ -99,6 +100,7 @@ TermPower PantographTerm::power(const CoupledState& state) const {
 // ---------------------------------------------------------- contact ----
 
 PenaltyContact::Evaluation PenaltyContact::evaluate(const CoupledState& state) const {
+  const ScopedEvent timed(log_events().contact);
   Evaluation e;
   e.x = slot_.run.contact_x(state.t);
   e.wire = &state.catenary().wire_point(e.x, wire_);

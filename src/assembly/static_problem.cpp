@@ -2,6 +2,7 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "pcsim/catenary/elements.hpp"
@@ -188,6 +189,9 @@ void StaticProblem::add_form_finding_terms(Vec R, Mat J) {
     PCSIM_PETSC(VecSetValue(R, row, weight * T, ADD_VALUES));
     if (!J) continue;
     cable_internal_force(section, el.ref_length, el.unstressed_length, q12, f12, nullptr, &df12);
+    // Gravity rho (L0 / Lref) int S^T g: d/dL0 = gravity / L0 (mass per
+    // unstressed length).
+    df12 -= cable_gravity_force(section, el.ref_length, mesh.gravity) / el.unstressed_length;
     system_.cable_indices(e, idx12);
     for (int i = 0; i < 12; ++i) {
       if (idx12[i] < 0) continue;
@@ -304,6 +308,60 @@ StaticResult StaticProblem::finish(Vec x) {
     result.max_height_error_m = std::max(result.max_height_error_m, std::abs(z - t.z));
   }
   return result;
+}
+
+}  // namespace pcsim::assembly
+
+namespace pcsim::assembly {
+
+double StaticProblem::force_scale() const {
+  const auto& mesh = system_.mesh();
+  double mass = 0, tension = 0;
+  for (const auto& e : mesh.cables) mass += mesh.wires[e.wire].mass_per_length * e.ref_length;
+  for (const auto& b : mesh.bars) mass += b.mass;
+  for (const auto& m : mesh.point_masses) mass += m.mass;
+  for (const auto& w : mesh.wires) tension = std::max(tension, w.tension);
+  for (const auto& s : mesh.tension_segments) tension = std::max(tension, s.tension);
+  return std::max({mass * mesh.gravity.norm(), tension, 1.0});
+}
+
+void StaticProblem::static_tangent(Vec x, Mat K) {
+  if (form_finding_) apply_unknowns(x);
+  system_.load_state(x);
+  PCSIM_PETSC(MatZeroEntries(K));
+  system_.add_forces(nullptr, K);
+  const auto& L = system_.layout();
+  if (L.rank() == L.size() - 1)
+    for (PetscInt k = 0; k < L.extra_dofs(); ++k)
+      PCSIM_PETSC(MatSetValue(K, L.extra_global(k), L.extra_global(k), 1.0, ADD_VALUES));
+  PCSIM_PETSC(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY));
+  PCSIM_PETSC(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
+}
+
+std::vector<StaticProblem::Compressed> StaticProblem::compressed_elements(double tolerance) const {
+  const auto& mesh = system_.mesh();
+  const auto& L = system_.layout();
+  // Element force of each local element (0 elsewhere), summed over the ranks.
+  std::vector<double> cable_force(mesh.cables.size(), 0.0);
+  for (int e : L.local_cables()) cable_force[e] = system_.cable_mean_tension(e);
+  allreduce_sum(L.comm(), cable_force);
+  std::vector<Compressed> list;
+  auto middle_x = [&](int a, int b) {
+    return 0.5 * (mesh.nodes[a].position.x() + mesh.nodes[b].position.x());
+  };
+  for (std::size_t e = 0; e < mesh.cables.size(); ++e)
+    if (cable_force[e] < -tolerance)
+      list.push_back({true, static_cast<int>(e), cable_force[e],
+                      middle_x(mesh.cables[e].nodes[0], mesh.cables[e].nodes[1])});
+  // Bars that stand for wires (droppers, stitch wires) cannot push.
+  for (std::size_t b = 0; b < mesh.bars.size(); ++b) {
+    const auto& bar = mesh.bars[b];
+    const bool wire_like = bar.kind == BarKind::dropper || bar.kind == BarKind::stitch;
+    if (wire_like && bar.equilibrium_force < -tolerance)
+      list.push_back({false, static_cast<int>(b), bar.equilibrium_force,
+                      middle_x(bar.nodes[0], bar.nodes[1])});
+  }
+  return list;
 }
 
 }  // namespace pcsim::assembly

@@ -101,9 +101,10 @@ void apply_wear(CatenaryMesh& mesh, const IrregularityDesign& in) {
       auto& el = mesh.cables[e];
       const double mid = mesh.track.station(
           0.5 * (mesh.nodes[el.nodes[0]].position + mesh.nodes[el.nodes[1]].position).head<2>());
+      // Stretches do not overlap (check_wear); [from, to) so that touching
+      // ones share no element.
       for (const auto& stretch : in.wear)
-        if (mid >= stretch.from && mid <= stretch.to)
-          el.section_factor = 1.0 - stretch.section_loss;
+        if (mid >= stretch.from && mid < stretch.to) el.section_factor = 1.0 - stretch.section_loss;
     }
 }
 

@@ -15,12 +15,45 @@ void set_roles(SectionLayout& sec, int S, int i, const std::vector<int>& q, int 
   if (i > 0) {  // starts in the overlap with section i-1: anchor, raised, in service
     sec.role[sec.first] = Role::anchor;
     sec.role[q[i - 1]] = Role::raised;
-    for (int k = q[i - 1] - 1; k <= q[i - 1] + m + 1; ++k) sec.overlap_side[k] = -1.0;
   }
   if (i + 1 < S) {  // ends in the overlap with section i+1: in service, raised, anchor
     sec.role[q[i] + m] = Role::raised;
     sec.role[sec.last] = Role::anchor;
-    for (int k = q[i] - 1; k <= q[i] + m + 1; ++k) sec.overlap_side[k] = 1.0;
+  }
+}
+
+// At every support the wires there (n of them, in section order) are spread
+// across the track 'separation' apart around the stagger position, the
+// earlier section to the left: +-1/2 for two, +1, 0, -1 for three (a short
+// middle section, whose two overlaps share supports).
+void set_lateral_shifts(std::vector<SectionLayout>& sections, int N) {
+  for (int k = 0; k <= N; ++k) {
+    int n = 0;
+    for (const auto& sec : sections) n += sec.role[k] != Role::none;
+    int index = 0;
+    for (auto& sec : sections)
+      if (sec.role[k] != Role::none) sec.lateral_shift[k] = 0.5 * (n - 1) - index++;
+  }
+}
+
+// Spans a section needs for its overlaps: a first one floor(m/2) + 1 (its
+// wires run to the anchor one span beyond the overlap), a last one
+// ceil(m/2) + 1, a middle one m + 1 (raised supports of its two overlaps
+// apart).
+void check_section_lengths(const ParametricDesign& in, const std::vector<SectionDesign>& sections,
+                           int m) {
+  const std::size_t S = sections.size();
+  if (S < 2) return;
+  for (std::size_t i = 0; i < S; ++i) {
+    const char* which = i == 0 ? "a first" : (i + 1 == S ? "a last" : "a middle");
+    const long need = i == 0 ? m / 2 + 1 : (i + 1 == S ? (m + 1) / 2 + 1 : m + 1);
+    if (sections[i].spans < need)
+      throw InputError(in.file, "sections[" + std::to_string(i) + "].spans",
+                       "section " + std::to_string(i + 1) + " of " +
+                           std::to_string(sections[i].spans) +
+                           " spans is too short for its overlaps of " + std::to_string(m) +
+                           " spans: " + which + " section needs at least " + std::to_string(need) +
+                           " (its wires run over the overlap and one anchor span beyond it)");
   }
 }
 
@@ -34,22 +67,13 @@ LineLayout make_line_layout(const ParametricDesign& in) {
   std::vector<SectionDesign> sections = in.sections;
   if (sections.empty()) sections.push_back({in.span_count, 0.0});
   const int S = static_cast<int>(sections.size()), m = static_cast<int>(in.overlap.spans);
+  check_section_lengths(in, sections, m);
   line.overlap_spans = m;
   std::vector<int> boundary = {0};  // B_i: last support each section owns
   for (const auto& sec : sections)
     boundary.push_back(boundary.back() + static_cast<int>(sec.spans));
   for (int j = 0; j + 1 < S; ++j) line.overlap_first.push_back(boundary[j + 1] - m / 2);
   const auto& q = line.overlap_first;
-  for (int i = 0; i < S; ++i) {  // every section's range first: set_roles indexes supports
-    const int first = i > 0 ? q[i - 1] - 1 : 0, last = i + 1 < S ? q[i] + m + 1 : N;
-    if (first < 0 || last > N || (i > 0 && i + 1 < S && q[i - 1] + m >= q[i]))
-      throw InputError(in.file, "sections[" + std::to_string(i) + "].spans",
-                       "section " + std::to_string(i + 1) + " of " +
-                           std::to_string(sections[i].spans) +
-                           " spans is too short for its overlaps of " + std::to_string(m) +
-                           " spans (each needs " + std::to_string(m) +
-                           " spans and one anchor span on each side)");
-  }
   for (int i = 0; i < S; ++i) {
     SectionLayout sec;
     sec.own_first = boundary[i];
@@ -57,10 +81,11 @@ LineLayout make_line_layout(const ParametricDesign& in) {
     sec.first = i > 0 ? q[i - 1] - 1 : 0;
     sec.last = i + 1 < S ? q[i] + m + 1 : N;
     sec.role.assign(N + 1, Role::none);
-    sec.overlap_side.assign(N + 1, 0.0);
+    sec.lateral_shift.assign(N + 1, 0.0);
     set_roles(sec, S, i, q, m);
     line.sections.push_back(sec);
   }
+  set_lateral_shifts(line.sections, N);
   bool curved = false;
   std::vector<TrackPiece> pieces;
   for (const auto& sec : sections) {
@@ -127,12 +152,12 @@ double SectionGeometry::support_z(int k) const {
   return h;
 }
 
-// The stagger pattern; in an overlap both wires of a section shifted by
-// +-separation/2 (the droppers' lateral offsets stay those of a plain span).
+// The stagger pattern; where several sections' wires meet both wires of a
+// section shifted across by its lateral_shift x separation.
 double SectionGeometry::lateral(int k, bool messenger) const {
   const double y = (k % 2 == 0 ? 1.0 : -1.0) * (messenger ? in_.messenger_stagger : in_.stagger);
-  const double side = layout().overlap_side[k];
-  return side == 0 ? y : y + side * 0.5 * in_.overlap.separation;
+  const double shift = layout().lateral_shift[k];
+  return shift == 0 ? y : y + shift * in_.overlap.separation;
 }
 
 Eigen::Vector3d SectionGeometry::track_normal(int k) const {

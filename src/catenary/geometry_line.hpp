@@ -30,9 +30,10 @@ struct SectionLayout {
   int first = 0, last = 0;          // supports where the section's wires start and end
   int own_first = 0, own_last = 0;  // the stretch of the line the section owns (sections[i].spans)
   std::vector<Role> role;           // per support of the line
-  // Per support: +1 or -1 where the wire runs at +-separation/2 in an
-  // overlap (+ for the section that ends there), 0 elsewhere.
-  std::vector<double> overlap_side;
+  // Per support, in units of overlap.separation: the wire's shift across the
+  // track from the stagger where several sections' wires meet (+-1/2 for
+  // two, + for the earlier section; +1, 0, -1 for three), 0 elsewhere.
+  std::vector<double> lateral_shift;
 };
 
 struct LineLayout {
@@ -43,6 +44,10 @@ struct LineLayout {
   int overlap_spans = 0;
   TrackAlignment track;
 };
+
+// Every range check of a parametric design (InputError naming the key;
+// geometry_parametric.cpp).
+void check_parametric(const ParametricDesign& in);
 
 // Sections, overlaps and the track of a design; throws InputError on a line
 // whose sections cannot hold their overlaps.
@@ -112,6 +117,9 @@ class SectionBuilder {
   SectionBuilder(const ParametricDesign& in, const LineLayout& line, int section,
                  const IrregularProfile& profile, CatenaryMesh& mesh);
   void build();
+  // Adds the size of the section's mesh to 'size', counted span by span
+  // without building it (geometry_size.cpp; the same key points and supports).
+  void add_size(MeshSize& size) const;
   int contact_wire() const { return contact_wire_; }
   // Contact-wire node at support k of the line (-1 if none).
   int contact_node_at(int k) const;

@@ -5,6 +5,7 @@
 // geometry_section.cpp, geometry_supports.cpp and geometry_irregular.cpp.
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <set>
 
@@ -32,7 +33,7 @@ void check_spans_and_heights(const ParametricDesign& in) {
   require_positive(f, "spans.length", in.span_length);
   require_positive(f, "system_height", in.system_height);
   require_positive(f, "contact_wire_height", in.contact_wire_height);
-  require_nonnegative(f, "presag", in.presag);
+  require_nonnegative(f, in.presag_key, in.presag);
   if (!(in.system_height > in.presag))
     throw InputError(f, "system_height",
                      "must exceed the contact-wire presag (" + fmt(in.presag) + " m), got " +
@@ -192,17 +193,59 @@ void check_steady_arm(const std::string& f, const std::string& key, const Steady
 void check_supports(const ParametricDesign& in) {
   check_messenger_support(in.file, "messenger_supports", in.messenger_supports);
   check_steady_arm(in.file, "steady_arms", in.steady_arms);
+  std::map<long, std::size_t> listed;  // support -> entry that lists it
   for (std::size_t i = 0; i < in.support_overrides.size(); ++i) {
     const auto& o = in.support_overrides[i];
     const std::string key = at("support_overrides", i);
     if (o.supports.empty()) throw InputError(in.file, key + ".supports", "must list a support");
-    for (std::size_t j = 0; j < o.supports.size(); ++j)
-      if (o.supports[j] < 0 || o.supports[j] > in.span_count)
+    for (std::size_t j = 0; j < o.supports.size(); ++j) {
+      const long k = o.supports[j];
+      if (k < 0 || k > in.span_count)
         throw InputError(in.file, at(key + ".supports", j),
-                         "support " + std::to_string(o.supports[j]) + " is not on the line (0.." +
+                         "support " + std::to_string(k) + " is not on the line (0.." +
                              std::to_string(in.span_count) + ")");
+      const auto [it, first] = listed.emplace(k, i);
+      if (!first)
+        throw InputError(in.file, at(key + ".supports", j),
+                         "support " + std::to_string(k) + " is listed twice (also in " +
+                             at("support_overrides", it->second) +
+                             "): give each support one entry");
+    }
     if (o.messenger) check_messenger_support(in.file, key + ".messenger_supports", *o.messenger);
     if (o.steady_arm) check_steady_arm(in.file, key + ".steady_arms", *o.steady_arm);
+  }
+}
+
+// Worn stretches: on the line (stations 0 .. N L), from < to, no two
+// overlapping (touching ends are allowed).
+void check_wear(const ParametricDesign& in) {
+  const std::string& f = in.file;
+  const auto& wear = in.irregularities.wear;
+  const double length = in.span_count * in.span_length;
+  for (std::size_t i = 0; i < wear.size(); ++i) {
+    const std::string key = at("irregularities.wear", i);
+    const WearStretch& w = wear[i];
+    if (!(w.from >= 0 && w.from < length))
+      throw InputError(
+          f, key + ".from",
+          "must lie on the line, in [0, " + fmt(length) + ") m (got " + fmt(w.from) + ")");
+    if (!(w.to > w.from))
+      throw InputError(f, key + ".to",
+                       "must exceed 'from' (" + fmt(w.from) + " m), got " + fmt(w.to));
+    if (!(w.to <= length))
+      throw InputError(
+          f, key + ".to",
+          "must lie on the line, at most its length " + fmt(length) + " m (got " + fmt(w.to) + ")");
+    if (!(w.section_loss >= 0 && w.section_loss < 1))
+      throw InputError(f, key + ".section_loss",
+                       "must lie in [0, 1) (got " + fmt(w.section_loss) + ")");
+    for (std::size_t j = 0; j < i; ++j)
+      if (w.from < wear[j].to && wear[j].from < w.to)
+        throw InputError(f, key,
+                         "the stretch " + fmt(w.from) + ".." + fmt(w.to) +
+                             " m overlaps irregularities.wear[" + std::to_string(j) + "] (" +
+                             fmt(wear[j].from) + ".." + fmt(wear[j].to) +
+                             " m): give each part of the wire one section_loss");
   }
 }
 
@@ -240,19 +283,12 @@ void check_irregularities(const ParametricDesign& in) {
       throw InputError(f, "irregularities.random.exponent", "must be a finite number");
     if (r.seed < 0) throw InputError(f, "irregularities.random.seed", "must not be negative");
   }
-  for (std::size_t i = 0; i < ir.wear.size(); ++i) {
-    const std::string key = at("irregularities.wear", i);
-    if (!(ir.wear[i].to > ir.wear[i].from))
-      throw InputError(
-          f, key + ".to",
-          "must exceed 'from' (" + fmt(ir.wear[i].from) + " m), got " + fmt(ir.wear[i].to));
-    if (!(ir.wear[i].section_loss >= 0 && ir.wear[i].section_loss < 1))
-      throw InputError(f, key + ".section_loss",
-                       "must lie in [0, 1) (got " + fmt(ir.wear[i].section_loss) + ")");
-  }
+  check_wear(in);
 }
 
-void check_parametric(const ParametricDesign& in) {
+}  // namespace
+
+void detail::check_parametric(const ParametricDesign& in) {
   check_spans_and_heights(in);
   check_cable(in.file, "wires.contact", in.contact);
   check_cable(in.file, "wires.messenger", in.messenger);
@@ -263,6 +299,8 @@ void check_parametric(const ParametricDesign& in) {
   check_supports(in);
   check_irregularities(in);
 }
+
+namespace {
 
 // Supports, sections' and overlaps' zones, from the layout.
 void add_track_description(CatenaryMesh& mesh, const detail::LineLayout& line,
@@ -286,11 +324,43 @@ void add_track_description(CatenaryMesh& mesh, const detail::LineLayout& line,
   }
 }
 
+// An override must act on some wire: the messenger model at a support
+// inner to a section, a steady-arm model other than 'constraint' where a
+// steady arm holds a wire in service (at the line's first and last supports
+// only the arm's mass is used).
+void check_overrides_have_effect(const ParametricDesign& in, const detail::LineLayout& line) {
+  for (std::size_t i = 0; i < in.support_overrides.size(); ++i) {
+    const auto& o = in.support_overrides[i];
+    for (std::size_t j = 0; j < o.supports.size(); ++j) {
+      const int k = static_cast<int>(o.supports[j]);
+      bool inner = false, arm = false;
+      for (const auto& sec : line.sections) {
+        if (sec.role[k] == detail::Role::none || k == sec.first || k == sec.last) continue;
+        inner = true;
+        arm = arm || sec.role[k] == detail::Role::service;
+      }
+      const std::string key = at(at("support_overrides", i) + ".supports", j);
+      const std::string where = "support " + std::to_string(k) + " is a wire end";
+      if (o.messenger && !inner)
+        throw InputError(in.file, key,
+                         where +
+                             ": the messenger is anchored there whatever its model, so "
+                             "messenger_supports would have no effect");
+      if (o.steady_arm && !arm && o.steady_arm->model != SteadyArmModel::constraint)
+        throw InputError(in.file, key,
+                         where +
+                             ": it has no steady arm, only the steady_arms 'mass' is used "
+                             "there (a point mass); give model 'constraint'");
+    }
+  }
+}
+
 }  // namespace
 
 CatenaryMesh build_parametric(const ParametricDesign& design) {
-  check_parametric(design);
+  detail::check_parametric(design);
   const detail::LineLayout line = detail::make_line_layout(design);
+  check_overrides_have_effect(design, line);
   CatenaryMesh mesh;
   detail::set_common(mesh, design.file, design.name, design.gravity, design.damping);
   mesh.form_finding_default = true;

@@ -24,6 +24,10 @@ nlohmann::json static_json(const catenary::CatenaryMesh& mesh, const catenary::S
   j["form_finding"] = info.form_finding;
   j["snes_iterations"] = r.snes_iterations;
   j["snes_residual_history"] = r.residual_history;
+  j["converged_reason"] = r.converged_reason;
+  j["force_scale_N"] = r.force_scale;  // tolerances are fractions of it (solvers/statics.hpp)
+  j["tangent_negative_eigenvalues"] = r.negative_eigenvalues;
+  j["warnings"] = r.warnings;
   j["max_height_error_m"] = r.max_height_error_m;
   j["max_tension_error_rel"] = r.max_tension_error_rel;
   j["segment_tensions_N"] = r.segment_tensions;

@@ -208,14 +208,19 @@ bool find_modal_data(const std::string& dir, const std::string& key, double max_
       continue;
     const std::string tail = name.substr(prefix.size());
     const double cutoff = tail.rfind("all", 0) == 0 ? 0.0 : std::atof(tail.c_str());
+    // The name gives the cut-off to 6 digits; the file's own value decides below.
     const bool serves = max_frequency_hz <= 0
                             ? cutoff <= 0
-                            : cutoff <= 0 || cutoff >= max_frequency_hz * (1 - 1e-9);
+                            : cutoff <= 0 || cutoff >= max_frequency_hz * (1 - 1e-5);
     if (serves) candidates.emplace_back(cutoff <= 0 ? 1e300 : cutoff, entry.path().string());
   }
   std::sort(candidates.begin(), candidates.end());
+  const auto covers = [&](double cutoff) {
+    return max_frequency_hz <= 0 ? cutoff <= 0
+                                 : cutoff <= 0 || cutoff >= max_frequency_hz * (1 - 1e-12);
+  };
   for (const auto& [cutoff, path] : candidates)
-    if (read_modal_data(path, key, data)) {
+    if (read_modal_data(path, key, data) && covers(data.cutoff_hz)) {
       file = path;
       return true;
     }

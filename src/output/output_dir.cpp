@@ -67,9 +67,10 @@ std::string target_refusal(const std::string& dir, const std::string& scene_file
   return "";
 }
 
-// A leftover "<dir>.partial" from an interrupted run: removed when it holds
-// nothing but its manifest, else kept and the run refused ("" if none left).
-std::string leftover_partial_refusal(const std::string& partial) {
+// A leftover "<dir>.partial" from an interrupted run: removed (if 'remove')
+// when it holds nothing but its manifest, else kept and the run refused ("" if
+// none left).
+std::string leftover_partial_refusal(const std::string& partial, bool remove = true) {
   std::error_code ec;
   const auto status = fs::symlink_status(partial, ec);
   if (status.type() == fs::file_type::not_found) return "";
@@ -77,7 +78,7 @@ std::string leftover_partial_refusal(const std::string& partial) {
   if (status.type() != fs::file_type::directory || !output_guard::read_manifest(partial, m))
     return in_quotes(partial) + " exists and was not written by pcsim; move it away";
   if (output_guard::holds_only_manifest(partial)) {
-    fs::remove_all(partial);
+    if (remove) fs::remove_all(partial);
     return "";
   }
   const bool restartable = fs::exists(partial + "/checkpoint.h5", ec);
@@ -124,6 +125,24 @@ std::string invalid_folder_name_reason(const std::string& name) {
            "use -o to choose another folder)";
   if (name.find('\0') != std::string::npos) return "must not contain a NUL character";
   return "";
+}
+
+void check_output_request(MPI_Comm comm, const OutputRequest& request) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  std::string why;
+  if (rank == 0) {
+    try {
+      const std::string dir = normal_form(request.dir);
+      why = request.dir.empty() ? "the output folder is empty"
+                                : target_refusal(dir, request.scene_file);
+      if (why.empty()) why = leftover_partial_refusal(dir + ".partial", false);
+    } catch (const std::exception& e) {
+      why = std::string("cannot check the output folder: ") + e.what();
+    }
+  }
+  why = broadcast_text(comm, why);
+  if (!why.empty()) throw InputError(request.given_in, request.given_by, why);
 }
 
 OutputDir::OutputDir(MPI_Comm comm, OutputRequest request)

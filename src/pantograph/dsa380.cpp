@@ -1,6 +1,8 @@
 #include "pcsim/pantograph/dsa380.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace pcsim::pantograph {
 namespace {
@@ -309,6 +311,27 @@ double Dsa380Pantograph::bellows_torque_formula(const Eigen::VectorXd& q0,
          (p_.m[6] * p_.g + contact_force - aero_force_) * k.y5[1];
 }
 
+// Why no frame angle gives the working height h0 (InputError on key
+// 'working_height'; the reader adds the file): the angle Newton reached and
+// the heights the mechanism can reach under this contact force.
+void Dsa380Pantograph::fail_working_height(double theta, double h0, double z,
+                                           const std::string& what) const {
+  double lo = HUGE_VAL, hi = -HUGE_VAL;
+  for (double th = -M_PI; th <= M_PI; th += 1e-3) {
+    const auto k = dsa380_kinematics(p_, th);
+    if (!k.assembled) continue;
+    lo = std::min(lo, k.y5[0] - z + p_.L7p);
+    hi = std::max(hi, k.y5[0] - z + p_.L7p);
+  }
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "DSA-380: %s at frame angle θ = %.4g rad (%.1f°) while solving (2.13) for working "
+                "height %.4g m; under this contact force the mechanism reaches working heights "
+                "from %.4g to %.4g m",
+                what.c_str(), theta, theta * 180 / M_PI, h0, lo, hi);
+  throw InputError("", "working_height", text);
+}
+
 Eigen::VectorXd Dsa380Pantograph::static_equilibrium(double contact_force, double working_height) {
   bellows_.clear_reference();  // the fixed-torque equilibrium first: M0 at h0
   const double z = head_descent(contact_force);
@@ -319,7 +342,8 @@ Eigen::VectorXd Dsa380Pantograph::static_equilibrium(double contact_force, doubl
   bool converged = false;
   for (int it = 0; it < 100; ++it) {
     const auto k = dsa380_kinematics(p_, th);
-    if (!k.assembled) throw SolverError("dsa380: mechanism cannot be assembled at θ");
+    if (!k.assembled)
+      fail_working_height(th, working_height, z, "the mechanism cannot be assembled");
     const double r = k.y5[0] - h5;
     if (std::abs(r) < 1e-13) {
       converged = true;
@@ -329,7 +353,7 @@ Eigen::VectorXd Dsa380Pantograph::static_equilibrium(double contact_force, doubl
     if (std::abs(step) > 0.2) step = step > 0 ? 0.2 : -0.2;
     th += step;
   }
-  if (!converged) throw SolverError("dsa380: no frame angle reaches the working height (2.13)");
+  if (!converged) fail_working_height(th, working_height, z, "no frame angle reaches the height");
   const auto k = dsa380_kinematics(p_, th);
   const int n = dof_count();
   Eigen::VectorXd q0 = Eigen::VectorXd::Zero(n);

@@ -1,7 +1,6 @@
 #include "pcsim/scene/catenary_scene.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "pcsim/scene/design_reader.hpp"
@@ -78,18 +77,16 @@ void read_catenary_model(const InputNode& section, CatenaryScene& out) {
   if (section.has("modal")) read_modal_settings(section["modal"], out.modal);
 }
 
-CatenaryScene load_catenary_scene(const InputNode& scene) {
+CatenaryScene load_catenary_scene(const InputNode& scene, const MeshSizeCheck& size_check) {
   check_scene_sections(scene);
   const InputNode section = scene["catenary"];
   section.allow_only({"design", "form_finding", "model", "max_frequency_hz", "modal"});
   CatenaryScene out;
   out.scene_file = scene.file();
-  out.design_path = section.path_value("design");
-  if (!std::ifstream(out.design_path))
-    section.fail_key("design", "cannot open catenary design file '" + out.design_path + "'");
+  out.design_path = section.get_file_path("design");
   const InputNode design = section.load_referenced("design");
   try {
-    out.mesh = build_catenary_design(design);
+    out.mesh = build_catenary_design(design, size_check);
   } catch (const InputError& e) {
     design.rethrow_with_origin(e);
   }

@@ -95,7 +95,7 @@ void defer(const InputOverride& o, std::size_t next, const YAML::Node& reference
            const std::string& path, InputSources& s) {
   const std::string named = reference.Scalar();
   const std::string file = resolve(s.origin_of(path).file, named);
-  if (!std::ifstream(file))
+  if (!unreadable_file_reason(file).empty())
     bad_override(o, "'" + path + "' is '" + named + "', not a file whose keys can be set");
   InputOverride rest = o;
   rest.origin.label += " (in " + file + ")";
@@ -157,8 +157,9 @@ YAML::Node parse_root(const std::string& text, const std::string& file) {
 }
 
 std::string read_text(const std::string& path) {
+  const std::string why = unreadable_file_reason(path);
+  if (!why.empty()) throw InputError(path, "", "cannot open file: " + why);
   std::ifstream in(path);
-  if (!in) throw InputError(path, "", "cannot open file (missing or unreadable)");
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
@@ -176,8 +177,9 @@ Composed compose(const std::string& text, const std::string& file, std::vector<s
     for (const auto& f : chain)
       if (f == base_file)
         throw InputError(file, "base", "circular base chain through '" + base_file + "'");
-    if (!std::ifstream(base_file))
-      throw InputError(file, "base", "cannot open base file '" + base_file + "'");
+    const std::string why = unreadable_file_reason(base_file);
+    if (!why.empty())
+      throw InputError(file, "base", "cannot open base file '" + base_file + "': " + why);
     out = compose(read_text(base_file), base_file, chain);
   } else {
     out.root = YAML::Node(YAML::NodeType::Map);

@@ -140,16 +140,22 @@ ParametricDesign read_parametric_design(const InputNode& root) {
   return d;
 }
 
-CatenaryMesh build_catenary_design(const InputNode& root) {
+CatenaryMesh build_catenary_design(const InputNode& root, const MeshSizeCheck& check) {
   if (!root.is_map()) root.fail("a design must be a map of keys");
   const std::string type = root.get_choice("type", {"parametric", "explicit"}, "");
   if (type.empty()) root.fail_key("type", "required key is missing (parametric or explicit)");
-  if (type == "parametric") return build_parametric(read_parametric_design(root));
-  return build_explicit(read_explicit_design(root));
+  if (type == "parametric") {
+    const ParametricDesign design = read_parametric_design(root);
+    if (check) check(mesh_size(design));
+    return build_parametric(design);
+  }
+  const ExplicitDesign design = read_explicit_design(root);
+  if (check) check(mesh_size(design));
+  return build_explicit(design);
 }
 
-CatenaryMesh load_catenary_design(const std::string& path) {
-  CatenaryMesh mesh = build_catenary_design(load_composed(path));
+CatenaryMesh load_catenary_design(const std::string& path, const MeshSizeCheck& check) {
+  CatenaryMesh mesh = build_catenary_design(load_composed(path), check);
   mesh.source_file = path;
   return mesh;
 }

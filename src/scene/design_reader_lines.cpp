@@ -32,6 +32,11 @@ MessengerSupportDesign read_messenger_support(const InputNode& n) {
   s.model = model == "spring"        ? MessengerSupportModel::spring
             : model == "spring_mass" ? MessengerSupportModel::spring_mass
                                      : MessengerSupportModel::fixed;
+  // A key the model does not use is an error, as for steady_arms.
+  if (s.model == MessengerSupportModel::fixed && n.has("stiffness"))
+    n.fail_key("stiffness", "only for models 'spring' and 'spring_mass'");
+  if (s.model != MessengerSupportModel::spring_mass && n.has("mass"))
+    n.fail_key("mass", "only for model 'spring_mass'");
   if (s.model != MessengerSupportModel::fixed) s.stiffness = n.get_double("stiffness");
   if (s.model == MessengerSupportModel::spring_mass) s.mass = n.get_double("mass");
   return s;
@@ -88,6 +93,9 @@ void read_profile_file(const InputNode& n, IrregularityDesign& out) {
     out.profile_x.push_back(x);
     out.profile_dz.push_back(dz);
   }
+  if (out.profile_x.size() < 2)
+    n.fail("'" + path + "' needs at least two (x, dz) points, it has " +
+           std::to_string(out.profile_x.size()));
 }
 
 RandomIrregularity read_random(const InputNode& n) {
@@ -126,6 +134,7 @@ void read_presag(const InputNode& root, ParametricDesign& d) {
     if (p.has("sag")) p.fail_key("sag", "profile 'heights' takes its sags from droppers.sags");
   } else {
     d.presag = p.get_double("sag");
+    d.presag_key = "presag.sag";
   }
 }
 

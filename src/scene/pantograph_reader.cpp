@@ -1,12 +1,21 @@
 // The registry of pantograph model kinds and the lumped-mass reader.
 #include "pcsim/scene/pantograph_reader.hpp"
 
+#include <sstream>
+
 #include "pcsim/scene/composition.hpp"
 #include "pcsim/scene/flexible_dsa380_reader.hpp"
 
 namespace pcsim::scene {
 
 namespace {
+
+std::string format_number(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
 
 std::unique_ptr<pantograph::PantographModel> read_lumped(const InputNode& model,
                                                          const InputNode* effects,
@@ -125,6 +134,23 @@ pantograph::LumpedParameters load_lumped_parameters(const InputNode& model) {
     p.aero_c = a.get_double("c", 0.0);
   }
   return p;
+}
+
+void check_working_height(const InputNode& entry, pantograph::PantographModel& model,
+                          double contact_force, double working_height, bool height_given) {
+  const std::string note = height_given ? ""
+                                        : " (working_height not given: the model's default " +
+                                              format_number(working_height) + " m)";
+  try {
+    model.static_equilibrium(contact_force, working_height);
+  } catch (const InputError& e) {
+    if (!e.file().empty()) throw;
+    entry.fail_key("working_height", e.reason() + note);
+  } catch (const SolverError& e) {
+    entry.fail_key("working_height", "the pantograph has no static equilibrium at working height " +
+                                         format_number(working_height) + " m under " +
+                                         format_number(contact_force) + " N: " + e.what() + note);
+  }
 }
 
 }  // namespace pcsim::scene

@@ -15,9 +15,8 @@ using namespace pcsim::pantograph;
 
 // Force from a file of "t, F" rows (commas or blanks; '#' comments).
 ForceHistory load_force_file(const InputNode& f) {
-  const std::string path = f.path_value("file");
+  const std::string path = f.get_file_path("file");
   std::ifstream in(path);
-  if (!in) f.fail_key("file", "cannot open " + path);
   std::vector<double> ts, fs;
   std::string line;
   while (std::getline(in, line)) {
@@ -148,12 +147,15 @@ StudyScene load_pantograph_study_scene(const InputNode& scene) {
   if (s.study_type.empty()) st.fail_key("type", "required key is missing");
   s.speed = scene.get_nonnegative("speed_kmh", 0.0) / 3.6;
   s.model = load_pantograph(scene["pantograph"], s.speed);
+  const InputNode e = scene.has("equilibrium")
+                          ? scene["equilibrium"]
+                          : InputNode(YAML::Node(), scene.file(), "equilibrium");
   if (scene.has("equilibrium")) {
-    const auto e = scene["equilibrium"];
     e.allow_only({"contact_force", "working_height"});
     s.contact_force = e.get_double("contact_force", 120.0);
     s.working_height = e.get_double("working_height", 1.2);
   }
+  check_working_height(e, *s.model, s.contact_force, s.working_height, e.has("working_height"));
   s.study = load_study(st, s.study_type, *s.model);
   return s;
 }

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "pcsim/scene/pantograph_reader.hpp"
@@ -18,18 +17,20 @@ static std::string fmt(double v) {
 
 namespace {
 
-void read_simulation(const InputNode& scene, RunScene& run) {
+void read_simulation(const InputNode& scene, RunScene& run, std::optional<double> dt) {
   const auto& mesh = run.catenary.mesh;
   const InputNode sim = scene["simulation"];
   sim.allow_only({"speed_kmh", "end_x", "dt", "hht_alpha"});
   run.speed = sim.get_positive("speed_kmh") / 3.6;
   const double c = catenary::wave_speed(mesh.wires[mesh.contact_wire]);
   if (run.speed >= c)
-    sim.fail_key("speed_kmh",
-                 "speed " + fmt(run.speed * 3.6) +
-                     " km/h is not below the contact wire's wave speed sqrt(T/rho) = " +
-                     fmt(c * 3.6) + " km/h");
+    sim.fail_key(
+        "speed_kmh",
+        "speed " + fmt(run.speed * 3.6) +
+            " km/h is not below the contact wire's wave speed sqrt(T (1 + T/EA) / rho) = " +
+            fmt(c * 3.6) + " km/h");
   run.dt = sim.get_positive("dt", 1e-3);
+  if (dt) run.dt = *dt;
   run.hht_alpha = sim.get_nonnegative("hht_alpha", 0.1);
   if (run.hht_alpha > 1.0 / 3.0)
     sim.fail_key("hht_alpha",
@@ -48,9 +49,6 @@ void read_pantograph(const InputNode& p, std::size_t i, RunScene& run) {
   contact::PantographRun pr;
   pr.name = p.get_string("name", "pantograph" + std::to_string(i + 1));
   const InputNode effects = p.has("effects") ? p["effects"] : InputNode(YAML::Node(), p.file(), "");
-  const std::string model_path = p.path_value("model");
-  if (!std::ifstream(model_path))
-    p.fail_key("model", "cannot open pantograph model file '" + model_path + "'");
   auto model = load_pantograph_model(p.load_referenced("model"),
                                      p.has("effects") ? &effects : nullptr, run.speed);
   pr.start_x = p.get_double("start_x", x_first + 5.0);
@@ -74,6 +72,8 @@ void read_pantograph(const InputNode& p, std::size_t i, RunScene& run) {
   pr.ramp_distance = p.get_positive("ramp_distance", 20.0);
   // The model states its default: a height above its base, or 0 (absolute heights).
   pr.working_height = p.get_positive("working_height", model->default_working_height());
+  if (pr.working_height > 0)  // else the head meets the wire wherever it is (lumped models)
+    check_working_height(p, *model, pr.static_force, pr.working_height, p.has("working_height"));
   run.pantographs.push_back(std::move(pr));
   run.models.push_back(std::move(model));
 }
@@ -150,17 +150,18 @@ void read_effects_and_output(const InputNode& scene, RunScene& run) {
 
 }  // namespace
 
-RunScene load_run_scene(const InputNode& scene) {
+RunScene load_run_scene(const InputNode& scene, const RunSceneOptions& options) {
   RunScene run;
-  run.catenary = catenary::load_catenary_scene(scene);
+  run.catenary = catenary::load_catenary_scene(scene, options.size_check);
   const auto& mesh = run.catenary.mesh;
   if (mesh.contact_wire < 0 || mesh.support_x.size() < 2)
     scene["catenary"].fail_key(
         "design", "a dynamic run needs a parametric design (contact wire and supports)");
-  read_simulation(scene, run);
+  read_simulation(scene, run, options.command_line_dt);
   const InputNode list = scene["pantographs"];
   if (!list.is_sequence() || list.size() == 0) list.fail("must be a non-empty list of pantographs");
   for (std::size_t i = 0; i < list.size(); ++i) read_pantograph(list.at(i), i, run);
+  check_pantograph_positions(scene, run);
   // A gap start is out of equilibrium on purpose; the coupled static equilibrium that
   // any static start solves would put that pantograph in contact too.
   const auto& pantographs = run.pantographs;
@@ -182,6 +183,7 @@ RunScene load_run_scene(const InputNode& scene) {
     run.catenary.modal.max_frequency_hz =
         catenary::kModalCutoffMargin * catenary::doppler_frequency(run.cutoff_hz, run.speed, c);
   }
+  check_time_step(scene, run, options.command_line_dt ? "-ts_dt" : "simulation.dt");
   return run;
 }
 

@@ -1,6 +1,7 @@
 #include "pcsim/scene/yaml_input.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -17,6 +18,16 @@ std::string short_repr(const YAML::Node& n) {
   return "nothing";
 }
 }  // namespace
+
+std::string unreadable_file_reason(const std::string& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (status.type() == std::filesystem::file_type::not_found) return "no such file";
+  if (status.type() == std::filesystem::file_type::directory) return "is a folder, not a file";
+  if (ec || status.type() != std::filesystem::file_type::regular) return "is not a regular file";
+  if (!std::ifstream(path)) return "cannot be read (permissions?)";
+  return "";
+}
 
 const InputOrigin& InputSources::origin_of(const std::string& key_path) const {
   std::string p = key_path;
@@ -40,8 +51,8 @@ InputNode::InputNode(YAML::Node node, std::string file, std::string path)
 }
 
 InputNode InputNode::load_file(const std::string& path) {
-  std::ifstream probe(path);
-  if (!probe) throw InputError(path, "", "cannot open file (missing or unreadable)");
+  const std::string why = unreadable_file_reason(path);
+  if (!why.empty()) throw InputError(path, "", "cannot open file: " + why);
   try {
     YAML::Node root = YAML::LoadFile(path);
     if (!root.IsMap()) throw InputError(path, "", "top level must be a map of keys");
@@ -70,13 +81,19 @@ std::string InputNode::resolve_path(const std::string& relative) const {
   return directory() + relative;
 }
 
+std::string InputNode::get_file_path(const std::string& key) const {
+  const std::string path = path_value(key);
+  const std::string why = unreadable_file_reason(path);
+  if (!why.empty()) fail_key(key, "cannot open '" + path + "': " + why);
+  return path;
+}
+
 std::string InputNode::path_value(const std::string& key) const {
   return (*this)[key].resolve_path(get_string(key));
 }
 
 InputNode InputNode::load_referenced(const std::string& key) const {
-  const std::string file = path_value(key);
-  if (!std::ifstream(file)) fail_key(key, "cannot open file '" + file + "'");
+  const std::string file = get_file_path(key);
   const auto it = sources_->deferred.find(child_path(key));
   return load_composed(file,
                        it == sources_->deferred.end() ? std::vector<InputOverride>{} : it->second);

@@ -1,8 +1,10 @@
 #include "pcsim/solvers/direct.hpp"
 
 #include <cstring>
+#include <string>
 
 #include "pcsim/core/error.hpp"
+#include "pcsim/solvers/schur_dd.hpp"
 
 namespace pcsim::solvers {
 
@@ -14,17 +16,64 @@ void use_direct_lu(KSP ksp, MatSolverType package) {
   PCSIM_PETSC(PCFactorSetMatSolverType(pc, package));
 }
 
-void use_step_lu(KSP ksp) {
+namespace {
+PetscErrorCode read_step_solver_option(MPI_Comm comm, char* value, std::size_t size) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "pcsim step solver", "pcsim");
+  PetscCall(PetscOptionsString(
+      "-pcsim_step_solver",
+      "exact solver of the step matrices: dd (LU of each rank's interior + Schur complement of "
+      "the interface, docs/scaling.md), lu (PETSc's LU with QMD ordering, one rank), mumps",
+      "pcsim run", value, value, size, nullptr));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+}  // namespace
+
+std::string step_solver_choice(MPI_Comm comm) {
   PetscMPIInt size;
-  MPI_Comm_size(PetscObjectComm(reinterpret_cast<PetscObject>(ksp)), &size);
-  if (size > 1) {
+  MPI_Comm_size(comm, &size);
+  char value[32] = "dd";
+  PCSIM_PETSC(read_step_solver_option(comm, value, sizeof(value)));
+  const std::string choice = value;
+  if (choice != "lu" && choice != "dd" && choice != "mumps")
+    throw InputError("command line", "-pcsim_step_solver",
+                     "must be lu, dd or mumps (got '" + choice + "')");
+  if (choice == "lu" && size > 1)
+    throw InputError("command line", "-pcsim_step_solver",
+                     "lu is PETSc's sequential LU: on several ranks use dd or mumps");
+  return choice;
+}
+
+void use_step_lu(KSP ksp) {
+  const std::string choice =
+      step_solver_choice(PetscObjectComm(reinterpret_cast<PetscObject>(ksp)));
+  if (choice == "mumps") {
     use_direct_lu(ksp, MATSOLVERMUMPS);
+    return;
+  }
+  if (choice == "dd") {
+    use_schur_domain_decomposition(ksp);
     return;
   }
   use_direct_lu(ksp, MATSOLVERPETSC);
   PC pc;
   PCSIM_PETSC(KSPGetPC(ksp, &pc));
   PCSIM_PETSC(PCFactorSetMatOrderingType(pc, MATORDERINGQMD));
+}
+
+double step_factor_nonzeros(KSP ksp) {
+  PC pc;
+  PCSIM_PETSC(KSPGetPC(ksp, &pc));
+  PetscBool is_lu = PETSC_FALSE;
+  PCSIM_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCLU, &is_lu));
+  if (!is_lu) return domain_decomposition_info(ksp).factor_nonzeros;
+  Mat F = nullptr;
+  PCSIM_PETSC(PCFactorGetMatrix(pc, &F));
+  if (!F) return 0;
+  MatInfo info;
+  PCSIM_PETSC(MatGetInfo(F, MAT_GLOBAL_SUM, &info));
+  return info.nz_used;
 }
 
 void set_mumps_metis_ordering(KSP ksp) {

@@ -93,17 +93,19 @@ DynamicSolver::~DynamicSolver() {
   MatDestroy(&P_);
 }
 
+KSP DynamicSolver::step_ksp() const {
+  if (low_rank_) return low_rank_->inner();
+  SNES snes;
+  KSP ksp;
+  PCSIM_PETSC(TSGetSNES(ts_, &snes));
+  PCSIM_PETSC(SNESGetKSP(snes, &ksp));
+  return ksp;
+}
+
 // MUMPS's ordering is set on its factor object, which exists once the KSP
 // has its operators (the ones the TS will give it).
 void DynamicSolver::configure_direct_solvers() {
-  KSP ksp = nullptr;
-  if (low_rank_) {
-    ksp = low_rank_->inner();
-  } else {
-    SNES snes;
-    PCSIM_PETSC(TSGetSNES(ts_, &snes));
-    PCSIM_PETSC(SNESGetKSP(snes, &ksp));
-  }
+  KSP ksp = step_ksp();
   PCSIM_PETSC(KSPSetOperators(ksp, P_, P_));
   set_mumps_metis_ordering(ksp);
 }

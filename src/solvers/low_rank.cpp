@@ -6,6 +6,7 @@
 
 #include "block_diagonal.hpp"
 #include "pcsim/core/error.hpp"
+#include "pcsim/core/profiling.hpp"
 
 namespace pcsim::solvers {
 
@@ -217,6 +218,7 @@ PetscErrorCode LowRankStepSolver::pc_apply(PC pc, Vec r, Vec x) {
   LowRankStepSolver* self;
   PCSIM_PETSC(PCShellGetContext(pc, &self));
   self->solve_j0(r, x);
+  const ScopedEvent timed(log_events().woodbury);
   if (self->capacitance_dirty_) self->update_capacitance();
   const std::size_t k = self->active_.size();
   if (k == 0) return 0;

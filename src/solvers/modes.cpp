@@ -5,25 +5,29 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 
 #include "modes_internal.hpp"
 #include "pcsim/core/error.hpp"
+#include "pcsim/solvers/command_line.hpp"
 
 namespace pcsim::solvers {
 
 using catenary::ModesResult;
 
 namespace {
-PetscErrorCode read_modes_options(MPI_Comm comm, PetscInt* count, PetscReal* fmax) {
+// Read as text: a malformed value is an input error naming the option.
+PetscErrorCode read_modes_options(MPI_Comm comm, char* count, char* fmax, std::size_t size,
+                                  PetscBool* count_set, PetscBool* fmax_set) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "pcsim modes", "pcsim");
-  PetscCall(PetscOptionsInt("-eps_nev", "number of catenary modes (scene modes.count)",
-                            "pcsim modes", *count, count, nullptr));
-  PetscCall(PetscOptionsReal("-modes_fmax",
-                             "every mode below this frequency [Hz] (scene modes.max_frequency_hz; "
-                             "0: use the count)",
-                             "pcsim modes", *fmax, fmax, nullptr));
+  PetscCall(PetscOptionsString("-eps_nev", "number of catenary modes, >= 1 (scene modes.count)",
+                               "pcsim modes", count, count, size, count_set));
+  PetscCall(PetscOptionsString("-modes_fmax",
+                               "every mode below this frequency [Hz], >= 0 (scene "
+                               "modes.max_frequency_hz; 0: use the count)",
+                               "pcsim modes", fmax, fmax, size, fmax_set));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
@@ -31,13 +35,25 @@ PetscErrorCode read_modes_options(MPI_Comm comm, PetscInt* count, PetscReal* fma
 
 ModesRequest modes_request_from_options(MPI_Comm comm, ModesRequest scene_values) {
   ModesRequest r = scene_values;
-  PetscInt count = r.count;
-  PetscReal fmax = r.max_frequency_hz;
-  PCSIM_PETSC(read_modes_options(comm, &count, &fmax));
-  if (count < 1) throw InputError("command line", "-eps_nev", "must be at least 1");
-  if (fmax < 0) throw InputError("command line", "-modes_fmax", "must be >= 0 (0: use the count)");
-  r.count = static_cast<int>(count);
-  r.max_frequency_hz = fmax;
+  char count[64], fmax[64];
+  std::snprintf(count, sizeof count, "%d", r.count);
+  std::snprintf(fmax, sizeof fmax, "%g", r.max_frequency_hz);
+  PetscBool count_set = PETSC_FALSE, fmax_set = PETSC_FALSE;
+  PCSIM_PETSC(read_modes_options(comm, count, fmax, sizeof count, &count_set, &fmax_set));
+  if (count_set) {
+    const long n = parse_int_option("-eps_nev", count);
+    if (n < 1 || n > 1000000)
+      throw InputError("command line", "-eps_nev",
+                       "must be a number of modes from 1 to 1e6 (got " + std::string(count) + ")");
+    r.count = static_cast<int>(n);
+  }
+  if (fmax_set) {
+    const double f = parse_real_option("-modes_fmax", fmax);
+    if (f < 0)
+      throw InputError("command line", "-modes_fmax",
+                       "must be >= 0 (0: use the count; got " + std::string(fmax) + ")");
+    r.max_frequency_hz = f;
+  }
   return r;
 }
 

@@ -16,6 +16,7 @@
 #include "pcsim/assembly/static_problem.hpp"
 #include "pcsim/catenary/elements.hpp"
 #include "pcsim/catenary/geometry.hpp"
+#include "pcsim/catenary/reactions.hpp"
 #include "pcsim/scene/design_reader.hpp"
 #include "pcsim/solvers/elasticity.hpp"
 #include "pcsim/solvers/statics.hpp"
@@ -133,9 +134,11 @@ TEST(LineStatics, StitchedFormFindingAndMoreUniformElasticity) {
     const auto st = solvers::static_configuration(PETSC_COMM_WORLD, catenary::build_parametric(*d),
                                                   true, "lines_");
     // Form-finding errors as for the simple catenary (the stitch wires'
-    // tension segments included).
+    // tension segments included). Newton stops once ||R||_2 < 1e-8 of the
+    // loads (solvers/statics.hpp): here at 2.6e-5 N, which leaves tension
+    // errors of 1.3e-9 (stitched; 2e-12 after one more, rounding-bound step).
     EXPECT_LE(st.result.max_height_error_m, 1e-9);
-    EXPECT_LE(st.result.max_tension_error_rel, 1e-9);
+    EXPECT_LE(st.result.max_tension_error_rel, 1e-8);
     const auto e = solvers::static_elasticity(PETSC_COMM_WORLD, st, xs, 100.0);
     nonuniform.push_back(non_uniformity(e.uplift));
     if (rank() == 0) {
@@ -148,7 +151,7 @@ TEST(LineStatics, StitchedFormFindingAndMoreUniformElasticity) {
       for (std::size_t s = 0; s < st.mesh.tension_segments.size(); ++s)
         if (!st.mesh.tension_segments[s].bars.empty()) {
           ++stitch_segments;
-          EXPECT_NEAR(st.result.segment_tensions[s], 3500.0, 1e-9 * 3500.0);
+          EXPECT_NEAR(st.result.segment_tensions[s], 3500.0, 1e-8 * 3500.0);  // measured 1.3e-9
         }
       EXPECT_EQ(stitch_segments, 3);
     }
@@ -204,6 +207,75 @@ TEST(LineStatics, PrescribedProfileAtTheDroppersAndBetween) {
         at_droppers, between);
   EXPECT_LT(at_droppers, 1e-9);
   EXPECT_LT(between, 5e-5);
+}
+
+// Wear in the static solution: the 20 m taut string (40 elements, ends
+// pinned) with its right half worn to f = 0.6 of the section
+// (CableElement::section_factor, as irregularities.wear sets it). EA scales
+// with f: without gravity the string takes one tension T, each element
+// stretching to lambda with f EA (lambda^2 - 1) lambda / 2 = T (elements.hpp)
+// and the stretched lengths filling the 20 m. The mass scales with f: under
+// gravity the ends carry the weight g mu 10 (1 + f), split by moments as
+// g mu 20 (3 + f) / 8 left and g mu 20 (1 + 3 f) / 8 right.
+TEST(LineStatics, WornStretchIsSofterAndLighter) {
+  catenary::CatenaryMesh m = catenary::build_explicit(design_fixtures::taut_string_design());
+  const double f = 0.6, EA = 1.44e7, mu = 1.35, g = 9.81, L = 20.0;
+  for (auto& el : m.cables)
+    if (m.nodes[el.nodes[0]].position.x() >= 10.0 - 1e-9) el.section_factor = f;
+  // Exact tension: Newton on T, with lambda(T) of every element by Newton.
+  auto lambda = [](double T, double k) {
+    double l = 1.0 + T / k;
+    for (int it = 0; it < 50; ++it)
+      l -= (0.5 * k * (l * l * l - l) - T) / (0.5 * k * (3 * l * l - 1));
+    return l;
+  };
+  auto length = [&](double T) {
+    double sum = 0;
+    for (const auto& el : m.cables) sum += el.unstressed_length * lambda(T, el.section_factor * EA);
+    return sum;
+  };
+  double T = 2e4;
+  for (int it = 0; it < 50; ++it)
+    T -= (length(T) - L) / ((length(T + 1.0) - length(T - 1.0)) / 2.0);
+  double left_L0 = 0;  // unstressed length of the unworn half
+  for (const auto& el : m.cables)
+    if (el.section_factor == 1.0) left_L0 += el.unstressed_length;
+  const auto st = solvers::static_configuration(PETSC_COMM_WORLD, m, false, "lines_");
+  const auto& v = st.result.node_values;
+  int middle = -1;
+  for (int n : m.wires[0].nodes)
+    if (std::abs(m.nodes[n].position.x() - 10.0) < 1e-9) middle = n;
+  ASSERT_GE(middle, 0);
+  const double tension = support_tension(st.mesh, v, middle);
+  if (rank() == 0)
+    std::printf("  worn half: T %.6f N (exact %.6f), middle node at %.9f m (exact %.9f)\n", tension,
+                T, v[6 * middle], left_L0 * lambda(T, EA));
+  // About 15 kN instead of 20 kN (unworn: 20 kN); the worn half stretches
+  // 1/f times more. The exact solution has a slope jump at 10 m that the C1
+  // cable element cannot follow: the two elements there share one slope,
+  // which shifts the middle node by about a strain jump (7e-4) times an
+  // element length over ~20 (1.9e-5 m measured) and the tension by that
+  // shift over the total stretch of 0.028 m (3.7e-4 measured): 5e-5 m and
+  // 1e-3 asserted, well inside the 25 % the wear makes.
+  EXPECT_NEAR(tension / T, 1.0, 1e-3);
+  EXPECT_NEAR(v[6 * middle], left_L0 * lambda(T, EA), 5e-5);
+  EXPECT_LT(T, 0.8 * 2e4);
+  // Under gravity: the vertical reactions.
+  m.gravity = {0.0, 0.0, -g};
+  const auto heavy = solvers::static_configuration(PETSC_COMM_WORLD, m, false, "lines_");
+  const int a = m.wires[0].nodes.front(), b = m.wires[0].nodes.back();
+  const auto R = catenary::support_forces(heavy.mesh, heavy.result.node_values, {a, b});
+  const double weight = g * mu * 10.0 * (1.0 + f);
+  if (rank() == 0)
+    std::printf("  worn half under gravity: reactions %.6f + %.6f N (weight %.6f N)\n", R[0].z(),
+                R[1].z(), weight);
+  // The sum is the weight to Newton's floor (1e-8 asserted, relative). The
+  // split assumes the loads at their design stations: the worn half's extra
+  // stretch moves them by up to 4 mm in 20 m, 2e-4 of the moment (1.6e-4
+  // and 2.1e-4 measured): 1e-3.
+  EXPECT_NEAR((R[0].z() + R[1].z()) / weight, 1.0, 1e-8);
+  EXPECT_NEAR(R[0].z() / (g * mu * L * (3.0 + f) / 8.0), 1.0, 1e-3);
+  EXPECT_NEAR(R[1].z() / (g * mu * L * (1.0 + 3.0 * f) / 8.0), 1.0, 1e-3);
 }
 
 TEST(LineStatics, PullOffForcesOnStraightAndCurvedTrack) {

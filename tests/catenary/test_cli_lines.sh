@@ -43,17 +43,22 @@ for d in dev:
 print("ok   summary: pull-off", [round(f, 1) for f in pull])
 PY
 
-# expect_error NAME SCENE NEEDLE...: exit code 2, one line on stderr with every NEEDLE.
+# expect_error NAME SCENE NEEDLE... [--set PATH=VALUE]...: exit code 2, one
+# line on stderr with every NEEDLE.
 expect_error() {
   local name=$1 scene=$2
   shift 2
   local status=0
-  (cd "$tmp" && "$PCSIM_BIN" static "$scene" -o "$tmp/$name" > "$tmp/$name.out" 2> "$tmp/$name.err") ||
-    status=$?
+  local needles=() extra=()
+  while [ $# -gt 0 ]; do  # NEEDLE... [--set PATH=VALUE]...
+    if [ "$1" = --set ]; then extra+=(--set "$2"); shift 2; else needles+=("$1"); shift; fi
+  done
+  (cd "$tmp" && "$PCSIM_BIN" static "$scene" -o "$tmp/$name" "${extra[@]}" > "$tmp/$name.out" \
+    2> "$tmp/$name.err") || status=$?
   local ok=1 needle
   [ "$status" -eq 2 ] || ok=0
   [ "$(grep -c . "$tmp/$name.err" || true)" -eq 1 ] || ok=0
-  for needle in "$@"; do grep -qF -- "$needle" "$tmp/$name.err" || ok=0; done
+  for needle in "${needles[@]}"; do grep -qF -- "$needle" "$tmp/$name.err" || ok=0; done
   if [ "$ok" -eq 1 ]; then
     echo "ok   $name: $(cat "$tmp/$name.err")"
   else
@@ -68,6 +73,23 @@ sed 's/raise: 0.3, anchor_raise: 0.6/raise: -0.3, anchor_raise: 0.6/' "$M/three-
   > "$tmp/bad-overlap.yaml"
 printf 'name: bad\ncatenary: {design: bad-overlap.yaml}\n' > "$tmp/bad-overlap-scene.yaml"
 expect_error bad-overlap bad-overlap-scene.yaml "bad-overlap.yaml" "overlap.raise" "must be positive"
+# Keys checked since issue 12's review: overlapping worn stretches, an empty
+# profile file, a messenger stiffness the fixed model does not use, a support
+# overridden twice, presag.sag.
+printf 'name: bad\ncatenary: {design: %s}\n' "$M/three-sections-short.yaml" > "$tmp/short.yaml"
+expect_error bad-wear short.yaml "three-sections-short.yaml" "irregularities.wear[1]" \
+  "overlaps irregularities.wear[0]" --set \
+  "catenary.design.irregularities={wear: [{from: 10, to: 30, section_loss: 0.1}, {from: 20, to: 40, section_loss: 0.1}]}"
+printf '# x [m], dz [m]\nx,dz\n' > "$tmp/empty-profile.csv"
+expect_error empty-profile short.yaml "irregularities.profile" "empty-profile.csv" \
+  "needs at least two (x, dz) points" --set "catenary.design.irregularities.profile=$tmp/empty-profile.csv"
+expect_error unused-stiffness short.yaml "messenger_supports.stiffness" \
+  "only for models 'spring' and 'spring_mass'" --set \
+  "catenary.design.messenger_supports={model: fixed, stiffness: -1}"
+expect_error override-twice short.yaml "support_overrides[1].supports[0]" "listed twice" --set \
+  "catenary.design.support_overrides=[{supports: [3], steady_arms: {mass: 2}}, {supports: [3], steady_arms: {mass: 3}}]"
+expect_error negative-presag short.yaml "presag.sag" "must not be negative" --set \
+  "catenary.design.presag={profile: parabola, sag: -0.01}"
 
 if [ "$failures" -ne 0 ]; then
   echo "$failures case(s) failed" >&2

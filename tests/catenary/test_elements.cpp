@@ -268,6 +268,31 @@ TEST(CableElement, MassMatrixAndGravity) {
   EXPECT_LT((M * acc - fg).norm(), 1e-12 * fg.norm());
 }
 
+// Wire::mass_per_length is per unstressed length (the wire as bought): an
+// element stretched from L0 to its design length Lref weighs rho L0 g, and
+// the wire's wave speed is sqrt(T / rho_T) with rho_T = rho / (1 + T/EA) the
+// mass per stretched length (issue 12). Exact formulas: round-off margins.
+TEST(CableElement, MassIsPerUnstressedLength) {
+  Wire wire;
+  wire.mass_per_length = 1.35, wire.EA = 1.44e7, wire.EI = 195.0, wire.tension = 20000.0;
+  CableElement element;
+  element.ref_length = 0.5;
+  element.unstressed_length = 0.5 / (1.0 + wire.tension / wire.EA);
+  const CableSection section = cable_section(wire, element);
+  const Eigen::Vector3d g(0.0, 0.0, -9.81);
+  const Vec12 fg = cable_gravity_force(section, element.ref_length, g);
+  const Eigen::Vector3d total = fg.segment<3>(0) + fg.segment<3>(6);
+  EXPECT_LT((total - wire.mass_per_length * element.unstressed_length * g).norm(), 1e-13);
+  // 0.14 % lighter than the design length would make it (T/EA = 1.39e-3).
+  EXPECT_NEAR(total.norm() / (wire.mass_per_length * element.ref_length * 9.81),
+              1.0 / (1.0 + wire.tension / wire.EA), 1e-15);
+  const double rho_stretched = wire.mass_per_length / (1.0 + wire.tension / wire.EA);
+  EXPECT_NEAR(wave_speed(wire), std::sqrt(wire.tension / rho_stretched), 1e-12);
+  // A worn element: the mass scales with the section left.
+  element.section_factor = 0.8;
+  EXPECT_NEAR(cable_section(wire, element).mass_per_length, 0.8 * section.mass_per_length, 1e-15);
+}
+
 TEST(CableElement, CantileverTipDeflectionIsEulerBernoulli) {
   // One element clamped at node i (r_i, r'_i fixed), tip load P at node j;
   // linear analysis with EA = 0: tip deflection P L^3/(3EI), rotation P L^2/(2EI).

@@ -106,6 +106,51 @@ TEST(LineGeometry, OverlapRolesHeightsAndLateralOffsets) {
   EXPECT_EQ(contact_segments, 3);
 }
 
+// Every support of every overlap: the wires there (contact and messenger) at
+// the stagger shifted across by separation steps, in section order from the
+// left: +-0.1 m for two wires; +0.2, 0, -0.2 for three, where a middle
+// section of fewer than m + 3 spans has both its overlaps at one support.
+TEST(LineGeometry, WiresSeparationApartAtEverySupportOfTheOverlaps) {
+  struct Case {
+    std::vector<long> spans;
+    int most_wires;  // at one support
+  };
+  for (const auto& c : {Case{{3, 3, 3}, 3}, Case{{2, 4, 3}, 3}, Case{{3, 5, 3}, 2}}) {
+    ParametricDesign d = three_sections();
+    d.span_count = 0;
+    d.sections.clear();
+    for (long n : c.spans) d.sections.push_back({n, 0.0}), d.span_count += n;
+    d.messenger_stagger = 0.05;
+    const CatenaryMesh m = build_parametric(d);
+    const double L = 60.0;
+    int most = 0;
+    for (int k = 0; k <= d.span_count; ++k)
+      for (bool messenger : {false, true}) {
+        std::vector<double> y;  // wires at support k, in section order
+        for (int w : m.contact_wires) {
+          const int n = node_at(m, w + (messenger ? 1 : 0), k * L);
+          if (n >= 0) y.push_back(m.nodes[n].position.y());
+        }
+        const double stagger = (k % 2 == 0 ? 1.0 : -1.0) * (messenger ? 0.05 : 0.2);
+        for (std::size_t i = 0; i < y.size(); ++i)
+          EXPECT_NEAR(y[i], stagger + (0.5 * (y.size() - 1.0) - i) * 0.2, 1e-12)
+              << "sections " << c.spans[1] << ", support " << k << ", wire " << i
+              << (messenger ? " (messenger)" : "");
+        most = std::max(most, static_cast<int>(y.size()));
+      }
+    EXPECT_EQ(most, c.most_wires) << "middle section of " << c.spans[1] << " spans";
+  }
+  // The short line's support 4: section 1's raised wire, section 2's in
+  // service and section 3's anchor, 0.2 m apart (stagger +0.2).
+  const CatenaryMesh m = build_parametric(three_sections());
+  const double y1 = m.nodes[node_at(m, 0, 240.0)].position.y();
+  const double y2 = m.nodes[node_at(m, 2, 240.0)].position.y();
+  const double y3 = m.nodes[node_at(m, 4, 240.0)].position.y();
+  EXPECT_NEAR(y1, 0.4, 1e-12);
+  EXPECT_NEAR(y2, 0.2, 1e-12);
+  EXPECT_NEAR(y3, 0.0, 1e-12);
+}
+
 TEST(LineGeometry, BalanceWeightsAndMidpointAnchors) {
   ParametricDesign d = three_sections();
   d.tensioning.device = TensioningDeviceKind::weight;
@@ -243,7 +288,9 @@ TEST(LineGeometry, RandomIrregularityHasItsRmsAndZeroGapAtTheDroppers) {
   r.wavelength_max = 50.0;
   r.seed = 7;
   d.irregularities.random = r;
-  d.irregularities.wear = {{100.0, 130.0, 0.25}};
+  // Two touching stretches: each element in the one holding its midpoint
+  // ([from, to)).
+  d.irregularities.wear = {{100.0, 115.0, 0.25}, {115.0, 130.0, 0.5}};
   const CatenaryMesh m = build_parametric(d);
   // The profile on the contact wire's design heights. The line (300 m) is
   // one period of every component, so the RMS over a uniform sample is
@@ -267,13 +314,15 @@ TEST(LineGeometry, RandomIrregularityHasItsRmsAndZeroGapAtTheDroppers) {
     if (it != g.x.end() && std::abs(*it - x) < 1e-9)
       EXPECT_NEAR(g.offset[it - g.x.begin()], 0.0, 1e-15);
   }
-  // Wear: the elements of 100..130 m keep 75 % of the section.
+  // Wear: the elements of 100..115 m keep 75 % of the section, those of
+  // 115..130 m half of it.
   int worn = 0;
   for (int e : m.wires[0].elements) {
     const auto& el = m.cables[e];
     const double mid =
         0.5 * (m.nodes[el.nodes[0]].position.x() + m.nodes[el.nodes[1]].position.x());
-    EXPECT_EQ(el.section_factor, mid >= 100.0 && mid <= 130.0 ? 0.75 : 1.0);
+    const double f = mid < 100.0 || mid >= 130.0 ? 1.0 : (mid < 115.0 ? 0.75 : 0.5);
+    EXPECT_EQ(el.section_factor, f) << mid;
     worn += el.section_factor < 1;
   }
   EXPECT_EQ(worn, 60);

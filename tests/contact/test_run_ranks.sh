@@ -4,7 +4,8 @@
 # 59-189 N) on 1 and 2 ranks: the contact forces in results.h5 must agree to
 # 1e-8 of their maximum. The equations are the same on any number of ranks; only the
 # order of floating-point sums differs (assembly, MPI reductions) and the
-# linear solver (PETSc LU on 1 rank, MUMPS in parallel, both exact), so the
+# linear solver (the domain decomposition of solvers/schur_dd.hpp: one LU on
+# 1 rank, interior LUs + Schur complement on 2; both exact), so the
 # runs differ by round-off amplified by the dynamics (measured ~1e-10 over
 # the full 1440-step run, 1 vs 2 ranks; 2.4e-11 for 300 steps on 3 ranks, left
 # out here: 3 ranks oversubscribe the 2 CI cores, ~30x slower per step).

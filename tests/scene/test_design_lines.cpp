@@ -93,8 +93,17 @@ TEST(LineDesignFiles, BadValuesOfEveryNewKey) {
       {sections, "sections: [{spans: 3}, {spans: 3}, {spans: 4}]", "'sections'", "add up to 10"},
       {sections, "sections: [{spans: 3}, {spans: 0}, {spans: 6}]", "'sections[1].spans'",
        "at least 1"},
-      {sections, "sections: [{spans: 1}, {spans: 2}, {spans: 6}]", "'sections[1].spans'",
-       "too short for its overlaps"},
+      // The section named is the short one (m = 2): a first section needs
+      // 2 spans, a middle one 3, a last one 2.
+      {sections, "sections: [{spans: 1}, {spans: 2}, {spans: 6}]", "'sections[0].spans'",
+       "a first section needs at least 2"},
+      {"spans: {count: 9, length: 50.0}\n" + sections,
+       "spans: {count: 7, length: 50.0}\nsections: [{spans: 1}, {spans: 3}, {spans: 3}]",
+       "'sections[0].spans'", "section 1 of 1 spans is too short"},
+      {sections, "sections: [{spans: 3}, {spans: 2}, {spans: 4}]", "'sections[1].spans'",
+       "a middle section needs at least 3"},
+      {sections, "sections: [{spans: 4}, {spans: 4}, {spans: 1}]", "'sections[2].spans'",
+       "a last section needs at least 2"},
       {sections, "sections: [{spans: 3}, {spans: 3, radius: 20}, {spans: 3}]",
        "'sections[1].radius'", "at least the span length"},
       {sections, "sections: [{spans: 3}, {spans: 3, curve: 20}, {spans: 3}]", "'sections[1].curve'",
@@ -130,6 +139,32 @@ TEST(LineDesignFiles, BadValuesOfEveryNewKey) {
        "'messenger_supports.mass'", "must be positive"},
       {"", "messenger_supports: {model: rubber}", "'messenger_supports.model'",
        "must be one of fixed, spring, spring_mass"},
+      // Keys the model does not use, and their signs.
+      {"", "messenger_supports: {model: fixed, stiffness: -5}", "'messenger_supports.stiffness'",
+       "only for models 'spring' and 'spring_mass'"},
+      {"", "messenger_supports: {model: spring, stiffness: 1e6, mass: -2}",
+       "'messenger_supports.mass'", "only for model 'spring_mass'"},
+      {"", "messenger_supports: {model: spring, stiffness: -1e6}", "'messenger_supports.stiffness'",
+       "must be positive"},
+      {"", "support_overrides: [{supports: [3], messenger_supports: {mass: 8}}]",
+       "'support_overrides[0].messenger_supports.mass'", "only for model 'spring_mass'"},
+      {"",
+       "support_overrides: [{supports: [3], messenger_supports: {model: spring_mass, "
+       "stiffness: 1e6, mass: -8}}]",
+       "'support_overrides[0].messenger_supports.mass'", "must be positive"},
+      // A support in two entries, or twice in one.
+      {"",
+       "support_overrides: [{supports: [3, 4], steady_arms: {mass: 2}}, {supports: [4], "
+       "messenger_supports: {model: spring, stiffness: 1e6}}]",
+       "'support_overrides[1].supports[0]'", "listed twice (also in support_overrides[0])"},
+      {"", "support_overrides: [{supports: [3, 3], steady_arms: {mass: 2}}]",
+       "'support_overrides[0].supports[1]'", "support 3 is listed twice"},
+      // Overrides without effect at the line's wire ends.
+      {"",
+       "support_overrides: [{supports: [9], messenger_supports: {model: spring, stiffness: 1e6}}]",
+       "'support_overrides[0].supports[0]'", "support 9 is a wire end: the messenger is anchored"},
+      {"", "support_overrides: [{supports: [2, 0], steady_arms: {model: spring, stiffness: 2000}}]",
+       "'support_overrides[0].supports[1]'", "give model 'constraint'"},
       {"", "support_overrides: [{supports: [3, 12], steady_arms: {mass: 2}}]",
        "'support_overrides[0].supports[1]'", "not on the line (0..9)"},
       {"", "support_overrides: [{supports: [3]}]", "'support_overrides[0]'",
@@ -138,6 +173,8 @@ TEST(LineDesignFiles, BadValuesOfEveryNewKey) {
        "'support_overrides[0].steady_arms.stiffness'", "must be positive"},
       {"", "presag: {profile: sine, sag: 0.1}", "'presag.profile'",
        "must be one of parabola, droppers, heights"},
+      {"", "presag: {profile: parabola, sag: -0.01}", "'presag.sag'", "must not be negative"},
+      {"", "presag: -0.01", "key 'presag'", "must not be negative"},
       {positions, positions + "\n  sags: [0, 0, 0]", "'droppers.sags'",
        "only with the presag profile 'heights'"},
       {positions, positions + "\n  spans: [{spans: [2, 11], positions: [10, 20]}]",
@@ -161,6 +198,17 @@ TEST(LineDesignFiles, BadValuesOfEveryNewKey) {
        "'irregularities.wear[0].to'", "must exceed 'from'"},
       {"", "irregularities: {wear: [{from: 10, to: 30, section_loss: 1.0}]}",
        "'irregularities.wear[0].section_loss'", "must lie in [0, 1)"},
+      // Stretches on the line (0..450 m), not overlapping.
+      {"", "irregularities: {wear: [{from: -5, to: 30, section_loss: 0.1}]}",
+       "'irregularities.wear[0].from'", "must lie on the line, in [0, 450) m"},
+      {"", "irregularities: {wear: [{from: 460, to: 470, section_loss: 0.1}]}",
+       "'irregularities.wear[0].from'", "must lie on the line"},
+      {"", "irregularities: {wear: [{from: 400, to: 451, section_loss: 0.1}]}",
+       "'irregularities.wear[0].to'", "at most its length 450 m"},
+      {"",
+       "irregularities: {wear: [{from: 10, to: 30, section_loss: 0.1}, "
+       "{from: 50, to: 60, section_loss: 0.1}, {from: 20, to: 40, section_loss: 0.2}]}",
+       "'irregularities.wear[2]'", "20..40 m overlaps irregularities.wear[0] (10..30 m)"},
       {"", "irregularities: {profile: no-such-file.csv}", "'irregularities.profile'",
        "cannot open the profile file"},
   };
@@ -182,6 +230,19 @@ TEST(LineDesignFiles, ProfileFileErrorsNameTheLine) {
     std::ofstream(dir + "/" + name) << text;
   };
   write("bad-line.csv", "x,dz\n0,0\n10 0.001 7\n");
+  // No data line, or a single point: not a profile.
+  for (const char* name : {"empty.csv", "header-only.csv", "one-point.csv"}) {
+    write(name, std::string(name) == "header-only.csv" ? "# dz [m]\nx,dz\n\n"
+                : std::string(name) == "one-point.csv" ? "x,dz\n10,0.001\n"
+                                                       : "");
+    write("design.yaml", text_of(kLines + "three-sections-short.yaml") +
+                             "irregularities: {profile: " + name + "}\n");
+    const std::string msg =
+        message_of([&] { catenary::load_catenary_design(dir + "/design.yaml"); });
+    EXPECT_TRUE(contains(msg, "design.yaml") && contains(msg, "'irregularities.profile'") &&
+                contains(msg, name) && contains(msg, "needs at least two (x, dz) points"))
+        << msg;
+  }
   write("decreasing.csv", "0,0\n10,0.001\n5,0\n");
   write("design.yaml", text_of(kLines + "three-sections-short.yaml") +
                            "irregularities: {profile: bad-line.csv}\n");

@@ -34,7 +34,9 @@ class LinearisedCableForces : public Term {
   ~LinearisedCableForces() override;
   std::string name() const override { return "cable forces (linearised)"; }
   TangentKind tangent_kind() const override { return TangentKind::constant; }
-  std::vector<LinearPart> linear_parts() const override { return {{K0_, 1.0, 0.0, 0.0}}; }
+  std::vector<LinearPart> linear_parts() const override {
+    return {{K0_, 1.0, 0.0, 0.0, SUBSET_NONZERO_PATTERN}};
+  }
   void add_residual(const CoupledState& state, Vec F) override;
   double energy(const CoupledState& state) const override;
 
@@ -89,7 +91,9 @@ class Inertia : public Term {
   explicit Inertia(FECatenary& catenary) : catenary_(catenary), M_(catenary.mass_matrix()) {}
   std::string name() const override { return "inertia"; }
   TangentKind tangent_kind() const override { return TangentKind::constant; }
-  std::vector<LinearPart> linear_parts() const override { return {{M_, 0.0, 0.0, 1.0}}; }
+  std::vector<LinearPart> linear_parts() const override {
+    return {{M_, 0.0, 0.0, 1.0, SUBSET_NONZERO_PATTERN}};
+  }
   double energy(const CoupledState& state) const override;  // 1/2 V.M V
 
  private:

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "pcsim/assembly/coupled_state.hpp"
+#include "pcsim/assembly/subset_axpy.hpp"
 #include "pcsim/assembly/term.hpp"
 #include "pcsim/contact/records.hpp"
 
@@ -84,6 +85,7 @@ class CoupledSystem {
   std::vector<std::unique_ptr<Term>> terms_;
   std::vector<std::vector<PenaltyContact*>> contacts_;  // per pantograph, per wire (records)
   std::vector<MergedPart> parts_;
+  std::vector<SubsetAxpy> part_axpy_;  // J += c A_k for the parts with a pattern of their own
   double contact_stiffness_;
   Mat pattern_ = nullptr;  // the reference pattern (the full one if the model has no other)
   std::vector<bool> wire_coupled_;

@@ -22,8 +22,9 @@ namespace pcsim::assembly {
 
 class FECatenary : public CatenaryModel {
  public:
-  // Flag for static_tangent(): a matrix holding only the element couplings
-  // of the selected terms (a subset of the Jacobian's pattern).
+  // Flag for static_tangent(): a separate matrix of the selected terms (every
+  // constant matrix holds only its own entries, a subset of the Jacobian's
+  // pattern; the flag keeps the bars' matrix apart from K0 of the same terms).
   static constexpr unsigned kOwnPattern = 0x100;
 
   // static_node_values: the static configuration (6 per node). node_owner:
@@ -38,8 +39,9 @@ class FECatenary : public CatenaryModel {
   // Locator of contact wire k (0-based among the contact wires).
   const contact::ContactWireLocator& locator(int wire = 0) const { return *locators_[wire]; }
 
-  // Constant matrices at the static configuration, with the pattern given to
-  // make_terms (owned by the model, built on first use).
+  // Constant matrices at the static configuration, with their own entries
+  // only (a subset of the pattern given to make_terms; owned by the model,
+  // built on first use).
   Mat mass_matrix();
   Mat static_tangent(unsigned system_terms);  // CatenarySystem::Terms mask
   Vec static_forces(unsigned system_terms);   // forces at the static configuration

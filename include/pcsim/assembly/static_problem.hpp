@@ -47,6 +47,22 @@ class StaticProblem {
   // the result's fields (everything but the solver's own counters).
   catenary::StaticResult finish(Vec x);
 
+  // Size of the loads [N]: max(total weight, largest design tension, 1 N);
+  // the solver's force tolerances are fractions of it.
+  double force_scale() const;
+  // The tangent of the static residual alone at x (form-finding unknowns held
+  // fixed: identity rows), into a matrix from create_matrix(). Before finish().
+  void static_tangent(Vec x, Mat K);
+  // After finish(): cable elements and droppers / stitch wires whose axial
+  // force is below -tolerance (collective; the same list on every rank).
+  struct Compressed {
+    bool cable = true;
+    int index = 0;     // cable or bar index
+    double force = 0;  // [N], < 0
+    double x = 0;      // x of the element's middle [m]
+  };
+  std::vector<Compressed> compressed_elements(double tolerance) const;
+
  private:
   void apply_unknowns(Vec x);
   void add_form_finding_terms(Vec R, Mat J);

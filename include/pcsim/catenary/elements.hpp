@@ -34,7 +34,7 @@ using Mat12 = Eigen::Matrix<double, 12, 12>;
 struct CableSection {
   double EA = 0;               // axial stiffness [N]
   double EI = 0;               // bending stiffness [N m^2]
-  double mass_per_length = 0;  // [kg/m]
+  double mass_per_length = 0;  // per unit of chi (design length) [kg/m]
 };
 
 inline CableSection cable_section(const Wire& wire) {
@@ -43,9 +43,13 @@ inline CableSection cable_section(const Wire& wire) {
 
 // Section of one element of the wire: scaled by the element's section
 // factor f (a worn wire: EA and the mass with the area, EI with its square).
+// Wire::mass_per_length is per unstressed length (the wire as bought): the
+// element's mass rho L0 spread over its design length Lref, so the mass per
+// unit chi is rho L0 / Lref (depends on L0: form-finding differentiates it).
 inline CableSection cable_section(const Wire& wire, const CableElement& element) {
   const double f = element.section_factor;
-  return {wire.EA * f, wire.EI * f * f, wire.mass_per_length * f};
+  return {wire.EA * f, wire.EI * f * f,
+          wire.mass_per_length * f * element.unstressed_length / element.ref_length};
 }
 
 // Hermite shape functions (eq. 3.3) and their first and second derivatives

@@ -158,6 +158,7 @@ struct ParametricDesign {
   double system_height = 0;
   double contact_wire_height = 0;
   double presag = 0;
+  std::string presag_key = "presag";  // where the sag came from ('presag.sag' in the map; messages)
   PresagProfile presag_profile = PresagProfile::parabola;
   double stagger = 0;
   double messenger_stagger = 0;
@@ -269,6 +270,28 @@ struct ExplicitDesign {
 // on a mesh that fails mesh_consistency_error.
 CatenaryMesh build_parametric(const ParametricDesign& design);
 CatenaryMesh build_explicit(const ExplicitDesign& design);
+
+// ---------------------------------------------------------------- sizes ----
+
+// Size of the mesh a design builds, counted without building it (the memory
+// estimate refuses a design too large for the machine before allocating).
+struct MeshSize {
+  long nodes = 0;                  // every node
+  long cable_nodes = 0;            // nodes of cable elements (6 DOFs each; the others 3)
+  long cables = 0;                 // ANCF cable elements
+  long bars = 0;                   // droppers, stitch wires, other bars
+  long fixed_dofs = 0;             // DOFs held by supports
+  long form_finding_unknowns = 0;  // height targets + tension segments
+  std::string file;                // the design file
+  std::string key;                 // the key that sets the size ('spans.count', ...)
+  // Unknowns of the catenary system (fixed DOFs and slopes of bar-only nodes excluded).
+  long dofs() const { return 6 * cable_nodes + 3 * (nodes - cable_nodes) - fixed_dofs; }
+};
+// Both run the design's range checks first (the builders' InputErrors).
+MeshSize mesh_size(const ParametricDesign& design);
+MeshSize mesh_size(const ExplicitDesign& design);
+// Of a built mesh (tests compare the counts with it).
+MeshSize mesh_size(const CatenaryMesh& mesh);
 
 // Internal consistency of a mesh (indices in range, element lengths positive,
 // targets pointing at form-finding bars, ...). Returns an empty string when

@@ -35,7 +35,7 @@ enum class WireKind { messenger, contact, stitch, other };
 struct Wire {
   std::string name;
   WireKind kind = WireKind::other;
-  double mass_per_length = 0;  // [kg/m]
+  double mass_per_length = 0;  // per unstressed length (the wire as bought) [kg/m]
   double EA = 0;               // axial stiffness [N]
   double EI = 0;               // bending stiffness [N m^2]
   double tension = 0;          // design tension [N] (form-finding target)
@@ -43,9 +43,10 @@ struct Wire {
   std::vector<int> elements;   // cable element indices in order
 };
 
-// Transverse wave speed sqrt(T / rho) of a wire at its design tension [m/s].
+// Transverse wave speed sqrt(T / rho_T) of a wire at its design tension,
+// rho_T = rho / (1 + T/EA) the mass per stretched length [m/s].
 inline double wave_speed(const Wire& wire) {
-  return std::sqrt(wire.tension / wire.mass_per_length);
+  return std::sqrt(wire.tension * (1.0 + wire.tension / wire.EA) / wire.mass_per_length);
 }
 
 // ANCF cable element between nodes[0] and nodes[1].

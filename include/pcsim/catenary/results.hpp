@@ -24,6 +24,10 @@ struct StaticResult {
   // Lateral force of every steady arm on its wire (mesh.registrations) [N].
   std::vector<double> registration_forces;
   double wall_time_s = 0;
+  double force_scale = 0;             // loads: max(total weight, largest design tension) [N]
+  double residual_norm = 0;           // final ||R||_2 [N]
+  int negative_eigenvalues = -1;      // of the static tangent (-1: not computed)
+  std::vector<std::string> warnings;  // compression, unstable tangent (printed by the app)
 };
 
 // Static elasticity of the contact wire (EN 50119): the uplift of the

@@ -2,6 +2,8 @@
 //
 // InputError: bad user input (file, key, reason). The app prints it once and
 // exits non-zero; nothing is left in the output directory.
+// InputWarning: input that is allowed but probably not what was meant (same
+// three parts); the app prints it and goes on.
 // SolverError: a numerical failure (PETSc error code, divergence).
 #pragma once
 
@@ -23,14 +25,21 @@ class InputError : public std::runtime_error {
   const std::string& key() const { return key_; }
   const std::string& reason() const { return reason_; }
 
- private:
+  // "file: key 'a.b': reason" (the text of what()).
   static std::string format(const std::string& file, const std::string& key,
                             const std::string& reason) {
     std::string msg = file.empty() ? std::string("input") : file;
     if (!key.empty()) msg += ": key '" + key + "'";
     return msg + ": " + reason;
   }
+
+ private:
   std::string file_, key_, reason_;
+};
+
+struct InputWarning {
+  std::string file, key, reason;
+  std::string message() const { return InputError::format(file, key, reason); }
 };
 
 class SolverError : public std::runtime_error {

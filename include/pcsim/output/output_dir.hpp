@@ -74,6 +74,10 @@ class OutputDir {
   bool keep_partial_ = false;  // a failed commit keeps the new results
 };
 
+// Throws what OutputDir's constructor would throw for 'request', touching
+// nothing (`pcsim check`; a lock held by a running pcsim is not looked at).
+void check_output_request(MPI_Comm comm, const OutputRequest& request);
+
 // Why 'name' cannot name an output folder ("" if it can): empty, ".", "..",
 // or with a path separator.
 std::string invalid_folder_name_reason(const std::string& name);

@@ -126,6 +126,8 @@ class Dsa380Pantograph : public PantographModel {
 
  private:
   double spring_force(double l, double l0, double* stiffness) const;
+  [[noreturn]] void fail_working_height(double theta, double h0, double z,
+                                        const std::string& what) const;
   int bellows_dof() const { return bellows_.has_state() ? 4 : -1; }
   Dsa380Parameters p_;
   Dsa380Effects e_;

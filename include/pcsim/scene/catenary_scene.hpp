@@ -15,6 +15,7 @@
 
 #include "pcsim/catenary/mesh.hpp"
 #include "pcsim/catenary/reduced_basis.hpp"
+#include "pcsim/scene/design_reader.hpp"
 #include "pcsim/scene/yaml_input.hpp"
 
 namespace pcsim::catenary {
@@ -39,7 +40,8 @@ struct CatenaryScene {
   std::optional<ElasticityRequest> elasticity;
 };
 
-CatenaryScene load_catenary_scene(const InputNode& scene);
+// 'size_check' sees the design's mesh size before the mesh is built.
+CatenaryScene load_catenary_scene(const InputNode& scene, const MeshSizeCheck& size_check = {});
 // The fidelity keys of a catenary section (model, max_frequency_hz, modal).
 void read_catenary_model(const InputNode& section, CatenaryScene& out);
 

@@ -7,6 +7,7 @@
 // reason.
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include "pcsim/catenary/geometry.hpp"
@@ -15,11 +16,15 @@
 
 namespace pcsim::catenary {
 
+// Called with the size of a design's mesh after the design's checks and before
+// the mesh is built; throws (InputError naming size.file and size.key) to refuse it.
+using MeshSizeCheck = std::function<void(const MeshSize&)>;
+
 // Loads and builds the design in 'path'; mesh.source_file = path.
-CatenaryMesh load_catenary_design(const std::string& path);
+CatenaryMesh load_catenary_design(const std::string& path, const MeshSizeCheck& check = {});
 
 // Builds a design from an already-parsed YAML root (key 'type' selects the kind).
-CatenaryMesh build_catenary_design(const pcsim::InputNode& root);
+CatenaryMesh build_catenary_design(const pcsim::InputNode& root, const MeshSizeCheck& check = {});
 
 // The parameters of a design root of type parametric / explicit (the key
 // 'type' is accepted, not checked); range checks are left to the builders.

@@ -41,6 +41,12 @@ std::unique_ptr<pantograph::PantographModel> load_pantograph_model(const InputNo
 std::unique_ptr<pantograph::PantographModel> load_pantograph(const InputNode& entry,
                                                              double speed_m_s);
 
+// Solves the model's static equilibrium at its working height; impossible
+// geometry is an InputError naming entry's 'working_height' (the angle, the
+// height, the reachable range), with a note when the height is the default.
+void check_working_height(const InputNode& entry, pantograph::PantographModel& model,
+                          double contact_force, double working_height, bool height_given);
+
 // The readers of the registered kinds, by parts.
 pantograph::LumpedParameters load_lumped_parameters(const InputNode& model);
 pantograph::Dsa380Parameters load_dsa380_parameters(const InputNode& model);

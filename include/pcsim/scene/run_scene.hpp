@@ -26,6 +26,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,11 +52,29 @@ struct RunScene {
   double hht_alpha = 0.1;   // HHT numerical dissipation (simulation.hht_alpha; -ts_hht_alpha wins)
   bool energy = false;      // energy balance every step (energy.h5)
   long snapshot_every = 0;  // steps between field snapshots (XDMF animation); 0: none
-  long checkpoint_every = 0;  // steps between checkpoints (restart); 0: none
+  std::vector<InputWarning> warnings;  // allowed, but probably not meant (printed by the app)
+  long checkpoint_every = 0;           // steps between checkpoints (restart); 0: none
   // Duration of the run: from t = 0 until the first pantograph reaches end_x.
   double duration() const { return (end_x - pantographs.front().start_x) / speed; }
 };
 
-RunScene load_run_scene(const InputNode& scene);
+// What the reader needs from outside the scene to check it completely.
+struct RunSceneOptions {
+  catenary::MeshSizeCheck size_check;     // sees the design's mesh size before it is built
+  std::optional<double> command_line_dt;  // -ts_dt, already checked; replaces simulation.dt
+};
+
+// Reads and checks the whole scene: everything wrong is an InputError naming
+// the file and key, found before any work (duplicate pantograph names, every
+// pantograph's start and end on the contact wire, its static equilibrium at
+// its working height, the filter's cut-off against the time step's Nyquist
+// frequency, ...); pantographs closer than 10 m and more than 1e7 time steps
+// are warnings.
+RunScene load_run_scene(const InputNode& scene, const RunSceneOptions& options = {});
+
+// The checks of load_run_scene that need every pantograph (names, positions
+// along the line, spacing) and the time step (run_scene_checks.cpp).
+void check_pantograph_positions(const InputNode& scene, RunScene& run);
+void check_time_step(const InputNode& scene, RunScene& run, const std::string& dt_key);
 
 }  // namespace pcsim::scene

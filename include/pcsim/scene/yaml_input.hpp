@@ -25,6 +25,10 @@
 
 namespace pcsim {
 
+// Why 'path' cannot be read as an input file ("" if it can): missing, a
+// folder, not a regular file, or unreadable.
+std::string unreadable_file_reason(const std::string& path);
+
 // Where a value came from.
 struct InputOrigin {
   std::string file;   // relative paths are resolved from its folder ("": working directory)
@@ -73,7 +77,10 @@ class InputNode {
   // The path given by the string value of 'key', resolved relative to the
   // file that value was written in.
   std::string path_value(const std::string& key) const;
-  // Loads the YAML file named by the string value of 'key' (path_value),
+  // path_value(key), checked: fails naming the key when the file is missing, a
+  // folder or unreadable.
+  std::string get_file_path(const std::string& key) const;
+  // Loads the YAML file named by the string value of 'key' (get_file_path),
   // composed (base, set) and with the overrides that address it through this
   // key (e.g. --set catenary.design.spans.count=20). InputError naming 'key'
   // if the file cannot be opened.

@@ -59,6 +59,8 @@ class DynamicSolver {
   // that state (solvers::initial_acceleration; zero for equilibrium starts).
   void set_initial_state(Vec U0, Vec V0);
   bool cheap_path() const { return low_rank_ != nullptr; }
+  // The KSP that factors the step matrix (J0's on the cheap path).
+  KSP step_ksp() const;
 
   // Checkpoint/restart (collective; the TS must be of type hht). save_state()
   // after an accepted step; restore_state() instead of setting an initial

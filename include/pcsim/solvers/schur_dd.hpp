@@ -1,0 +1,36 @@
+// Exact domain-decomposition solve of a distributed sparse matrix
+// (docs/scaling.md "The parallel step"): every rank's owned unknowns are
+// split into interior ones I_r (coupled only to unknowns of the same rank)
+// and interface ones G_r (coupled to another rank's). In the order
+// [I_1 .. I_p, G] the matrix is block-arrowhead, and
+//
+//   S = A_GG - sum_r A_{G I_r} A_{I_r I_r}^-1 A_{I_r G}      (Schur complement)
+//
+// is small (a few unknowns per cut of the quasi-1D catenary). Set-up, once per
+// matrix: each rank factors A_{I_r I_r} (sequential LU, options prefix
+// pcsim_dd_: -pcsim_dd_pc_factor_mat_ordering_type ...), forms
+// X_r = A_{I_r I_r}^-1 A_{I_r G_r} and its block of S; the blocks are summed
+// into a dense S replicated on every rank (one MPI_Allreduce) and LU-factored.
+// Solve: y = A_II^-1 r_I (local), g = r_G - A_GI y (local), one
+// MPI_Allgatherv of g, x_G = S^-1 g (replicated), x_I = y - X x_G (local).
+// The result is the exact solution (round-off only).
+#pragma once
+
+#include <petscksp.h>
+
+namespace pcsim::solvers {
+
+// Makes the KSP apply the exact domain-decomposition solve: KSPPREONLY + a
+// PCSHELL that owns its factors (freed with the PC). Options given later win.
+void use_schur_domain_decomposition(KSP ksp);
+
+// Nonzeros of the interior factors summed over the ranks, and the size of the
+// Schur complement, of a KSP set up with use_schur_domain_decomposition
+// (zeros for any other KSP).
+struct DomainDecompositionInfo {
+  double factor_nonzeros = 0;
+  PetscInt interface_size = 0;
+};
+DomainDecompositionInfo domain_decomposition_info(KSP ksp);
+
+}  // namespace pcsim::solvers

@@ -1,0 +1,105 @@
+#include "pcsim/solvers/command_line.hpp"
+
+#include <petscts.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+
+#include "pcsim/core/error.hpp"
+#include "pcsim/solvers/hht.hpp"
+
+namespace pcsim::solvers {
+
+namespace {
+
+constexpr const char* kCommandLine = "command line";
+
+[[noreturn]] void fail(const std::string& option, const std::string& reason) {
+  throw InputError(kCommandLine, option, reason);
+}
+
+std::string quoted(const std::string& text) {
+  return text.empty() ? std::string("nothing") : "'" + text + "'";
+}
+
+struct OptionTexts {
+  char dt[256] = "", type[256] = "", alpha[256] = "";
+  PetscBool dt_set = PETSC_FALSE, type_set = PETSC_FALSE, alpha_set = PETSC_FALSE;
+};
+
+// Read as text so that a malformed value is our input error, not PETSc's.
+PetscErrorCode read_texts(MPI_Comm comm, OptionTexts* o) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "pcsim run: time integration (checked before the run)", "pcsim");
+  PetscCall(PetscOptionsString("-ts_dt", "time step [s], > 0 (scene simulation.dt)", "pcsim run",
+                               o->dt, o->dt, sizeof o->dt, &o->dt_set));
+  PetscCall(PetscOptionsString("-ts_type",
+                               "time integrator of the second-order system: hht (default) or "
+                               "alpha2",
+                               "pcsim run", "hht", o->type, sizeof o->type, &o->type_set));
+  PetscCall(PetscOptionsString("-ts_hht_alpha", "HHT alpha in [0, 1/3] (default 0.1)", "pcsim run",
+                               o->alpha, o->alpha, sizeof o->alpha, &o->alpha_set));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
+// Types whose step solves M A + f(U, V) = 0 given by TSSetI2Function.
+bool integrates_second_order(const std::string& type) {
+  return type == kTSHHT || type == TSALPHA2;
+}
+
+}  // namespace
+
+double parse_real_option(const std::string& option, const std::string& text) {
+  errno = 0;
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size())
+    fail(option, "must be a number (got " + quoted(text) + ")");
+  if (errno == ERANGE || !std::isfinite(value))
+    fail(option, "must be a finite number (got " + quoted(text) + ")");
+  return value;
+}
+
+long parse_int_option(const std::string& option, const std::string& text) {
+  errno = 0;
+  char* end = nullptr;
+  const long value = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE)
+    fail(option, "must be an integer (got " + quoted(text) + ")");
+  return value;
+}
+
+TimeIntegrationOptions read_time_integration_options(MPI_Comm comm) {
+  OptionTexts texts;
+  PCSIM_PETSC(read_texts(comm, &texts));
+  TimeIntegrationOptions o;
+  if (texts.dt_set) {
+    const double dt = parse_real_option("-ts_dt", texts.dt);
+    if (!(dt > 0))
+      fail("-ts_dt", "must be a positive time step in seconds (got " + quoted(texts.dt) + ")");
+    o.dt = dt;
+  }
+  if (texts.type_set) {
+    o.ts_type = texts.type;
+    register_hht_ts();
+    PetscErrorCode (*create)(TS) = nullptr;
+    PCSIM_PETSC(PetscFunctionListFind(TSList, o.ts_type.c_str(), &create));
+    if (!create)
+      fail("-ts_type", "unknown time integrator " + quoted(o.ts_type) + "; use hht or alpha2");
+    if (!integrates_second_order(o.ts_type))
+      fail("-ts_type", "'" + o.ts_type +
+                           "' integrates first-order systems only; a run is second order (M A + "
+                           "f(U, V) = 0, PETSc's I2 form): use hht (default) or alpha2");
+  }
+  if (texts.alpha_set) {
+    const double alpha = parse_real_option("-ts_hht_alpha", texts.alpha);
+    if (!(alpha >= 0 && alpha <= 1.0 / 3.0 + 1e-14))
+      fail("-ts_hht_alpha", "must lie in [0, 1/3] (got " + quoted(texts.alpha) + ")");
+    o.hht_alpha = alpha;
+  }
+  return o;
+}
+
+}  // namespace pcsim::solvers

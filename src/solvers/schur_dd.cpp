@@ -1,0 +1,368 @@
+#include "pcsim/solvers/schur_dd.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+#include "pcsim/core/error.hpp"
+#include "pcsim/core/profiling.hpp"
+
+namespace pcsim::solvers {
+
+namespace {
+
+constexpr const char* kShellName = "pcsim: exact domain decomposition (interior LU + Schur)";
+
+// The matrix's diagonal block (owned rows and columns), its off-diagonal
+// block and the global numbers of that block's columns.
+struct LocalBlocks {
+  Mat diagonal = nullptr, off_diagonal = nullptr;
+  const PetscInt* off_columns = nullptr;
+  PetscInt n_off_columns = 0;
+};
+
+LocalBlocks local_blocks(Mat A) {
+  LocalBlocks b;
+  PetscBool mpi = PETSC_FALSE;
+  PCSIM_PETSC(PetscObjectBaseTypeCompare(reinterpret_cast<PetscObject>(A), MATMPIAIJ, &mpi));
+  if (!mpi) {
+    b.diagonal = A;
+    return b;
+  }
+  PCSIM_PETSC(MatMPIAIJGetSeqAIJ(A, &b.diagonal, &b.off_diagonal, &b.off_columns));
+  PetscInt rows;
+  PCSIM_PETSC(MatGetSize(b.off_diagonal, &rows, &b.n_off_columns));
+  return b;
+}
+
+std::vector<int> all_counts(MPI_Comm comm, int mine) {
+  int size;
+  MPI_Comm_size(comm, &size);
+  std::vector<int> counts(size);
+  MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+  return counts;
+}
+
+std::vector<int> offsets_of(const std::vector<int>& counts) {
+  std::vector<int> offsets(counts.size() + 1, 0);
+  for (std::size_t r = 0; r < counts.size(); ++r) offsets[r + 1] = offsets[r] + counts[r];
+  return offsets;
+}
+
+class SchurDomainSolver {
+ public:
+  explicit SchurDomainSolver(MPI_Comm comm) : comm_(comm) {
+    MPI_Comm_rank(comm_, &rank_);
+    PCSIM_PETSC(KSPCreate(PETSC_COMM_SELF, &interior_ksp_));
+    PCSIM_PETSC(KSPSetOptionsPrefix(interior_ksp_, "pcsim_dd_"));
+    PCSIM_PETSC(KSPSetType(interior_ksp_, KSPPREONLY));
+    PC pc;
+    PCSIM_PETSC(KSPGetPC(interior_ksp_, &pc));
+    PCSIM_PETSC(PCSetType(pc, PCLU));
+    PCSIM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERPETSC));
+    // Measured on the EN 50318 catenary (docs/scaling.md): AMD leaves the
+    // least fill (0.86 of nested dissection's) and orders fastest.
+#if defined(PETSC_HAVE_SUITESPARSE)
+    PCSIM_PETSC(PCFactorSetMatOrderingType(pc, MATORDERINGAMD));
+#else
+    PCSIM_PETSC(PCFactorSetMatOrderingType(pc, MATORDERINGND));
+#endif
+    PCSIM_PETSC(KSPSetFromOptions(interior_ksp_));
+  }
+  ~SchurDomainSolver() {
+    release();
+    KSPDestroy(&interior_ksp_);
+  }
+
+  void set_up(Mat A);
+  void apply(Vec r, Vec x);
+  DomainDecompositionInfo info() const {
+    return info_;
+  }
+
+ private:
+  void release();
+  bool split_unknowns(Mat A, const LocalBlocks& blocks);
+  void extract_blocks(Mat diagonal, MatReuse reuse);
+  void factor_interior();
+  void assemble_schur(const LocalBlocks& blocks);
+
+  MPI_Comm comm_;
+  int rank_ = 0;
+  KSP interior_ksp_ = nullptr;
+  std::vector<PetscInt> interior_, interface_;  // local row numbers
+  std::vector<PetscInt> interface_global_;      // global G numbers of all ranks, ascending
+  std::vector<int> counts_, offsets_;           // |G_r| and their offsets in G
+  Mat A_II_ = nullptr, A_IG_ = nullptr, A_GI_ = nullptr, X_ = nullptr, F_ = nullptr;
+  Vec r_I_ = nullptr, y_I_ = nullptr, t_I_ = nullptr, g_r_ = nullptr, x_G_r_ = nullptr;
+  Eigen::PartialPivLU<Eigen::MatrixXd> schur_;
+  DomainDecompositionInfo info_;
+};
+
+void SchurDomainSolver::release() {
+  for (Mat* m : {&A_II_, &A_IG_, &A_GI_, &X_}) MatDestroy(m);
+  for (Vec* v : {&r_I_, &y_I_, &t_I_, &g_r_, &x_G_r_}) VecDestroy(v);
+  F_ = nullptr;  // owned by the interior KSP's PC
+  // A new split may change the interior's size: the KSP forgets the old one.
+  if (interior_ksp_) KSPReset(interior_ksp_);
+}
+
+// Interface: owned rows with a coupling to another rank's unknowns, and owned
+// unknowns another rank's rows couple to (the pattern need not be symmetric).
+// A coupling is a nonzero value: the step matrices store zeros where a term
+// may couple later (every pantograph with the whole contact wire, for the
+// full path's moving contact), which would put every contact-wire unknown
+// in the interface. Returns whether the split differs from the last one.
+bool SchurDomainSolver::split_unknowns(Mat A, const LocalBlocks& blocks) {
+  PetscInt lo, hi;
+  PCSIM_PETSC(MatGetOwnershipRange(A, &lo, &hi));
+  std::vector<char> coupled(static_cast<std::size_t>(hi - lo), 0);
+  std::vector<char> ghost_used(static_cast<std::size_t>(blocks.n_off_columns), 0);
+  if (blocks.off_diagonal) {
+    PetscInt n;
+    const PetscInt *ia, *ja;
+    PetscBool done;
+    const PetscScalar* va;
+    PCSIM_PETSC(MatGetRowIJ(blocks.off_diagonal, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
+    PCSIM_PETSC(MatSeqAIJGetArrayRead(blocks.off_diagonal, &va));
+    for (PetscInt i = 0; i < n; ++i)
+      for (PetscInt k = ia[i]; k < ia[i + 1]; ++k)
+        if (va[k] != 0.0) coupled[i] = ghost_used[ja[k]] = 1;
+    PCSIM_PETSC(MatSeqAIJRestoreArrayRead(blocks.off_diagonal, &va));
+    PCSIM_PETSC(
+        MatRestoreRowIJ(blocks.off_diagonal, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
+  }
+  std::vector<PetscInt> used;  // the other ranks' unknowns this rank's rows couple to
+  for (PetscInt k = 0; k < blocks.n_off_columns; ++k)
+    if (ghost_used[k]) used.push_back(blocks.off_columns[k]);
+  const auto ghost_counts = all_counts(comm_, static_cast<int>(used.size()));
+  const auto ghost_offsets = offsets_of(ghost_counts);
+  std::vector<PetscInt> ghosts(static_cast<std::size_t>(ghost_offsets.back()));
+  MPI_Allgatherv(used.data(), static_cast<int>(used.size()), MPIU_INT, ghosts.data(),
+                 ghost_counts.data(), ghost_offsets.data(), MPIU_INT, comm_);
+  for (PetscInt g : ghosts)
+    if (g >= lo && g < hi) coupled[g - lo] = 1;
+  std::vector<PetscInt> interior, interface;
+  for (PetscInt i = 0; i < hi - lo; ++i) (coupled[i] ? interface : interior).push_back(i);
+  int changed = interior != interior_ || interface != interface_ || !A_II_;
+  MPI_Allreduce(MPI_IN_PLACE, &changed, 1, MPI_INT, MPI_MAX, comm_);
+  if (!changed) return false;
+  interior_ = std::move(interior);
+  interface_ = std::move(interface);
+  counts_ = all_counts(comm_, static_cast<int>(interface_.size()));
+  offsets_ = offsets_of(counts_);
+  std::vector<PetscInt> mine(interface_.size());
+  for (std::size_t j = 0; j < mine.size(); ++j) mine[j] = lo + interface_[j];
+  interface_global_.resize(static_cast<std::size_t>(offsets_.back()));
+  MPI_Allgatherv(mine.data(), static_cast<int>(mine.size()), MPIU_INT, interface_global_.data(),
+                 counts_.data(), offsets_.data(), MPIU_INT, comm_);
+  return true;
+}
+
+void sub_matrix(Mat A, const std::vector<PetscInt>& rows, const std::vector<PetscInt>& cols,
+                MatReuse reuse, Mat* sub) {
+  IS is_rows, is_cols;
+  PCSIM_PETSC(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(rows.size()), rows.data(),
+                              PETSC_USE_POINTER, &is_rows));
+  PCSIM_PETSC(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(cols.size()), cols.data(),
+                              PETSC_USE_POINTER, &is_cols));
+  PCSIM_PETSC(MatCreateSubMatrix(A, is_rows, is_cols, reuse, sub));
+  PCSIM_PETSC(ISDestroy(&is_rows));
+  PCSIM_PETSC(ISDestroy(&is_cols));
+}
+
+// A_II, A_IG, A_GI from the diagonal block: new matrices after a new split,
+// else the same ones with new values (the interior LU then keeps its
+// ordering and symbolic factorisation: only the numeric one is redone).
+void SchurDomainSolver::extract_blocks(Mat diagonal, MatReuse reuse) {
+  sub_matrix(diagonal, interior_, interior_, reuse, &A_II_);
+  sub_matrix(diagonal, interior_, interface_, reuse, &A_IG_);
+  sub_matrix(diagonal, interface_, interior_, reuse, &A_GI_);
+  if (reuse == MAT_REUSE_MATRIX) return;
+  PCSIM_PETSC(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(interior_.size()), &r_I_));
+  for (Vec* v : {&y_I_, &t_I_}) PCSIM_PETSC(VecDuplicate(r_I_, v));
+  PCSIM_PETSC(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(interface_.size()), &g_r_));
+  PCSIM_PETSC(VecDuplicate(g_r_, &x_G_r_));
+}
+
+// A_II = L U (sequential), X = A_II^-1 A_IG (dense, |I_r| x |G_r|).
+void SchurDomainSolver::factor_interior() {
+  const PetscInt n_I = static_cast<PetscInt>(interior_.size());
+  const PetscInt m = static_cast<PetscInt>(interface_.size());
+  PCSIM_PETSC(MatDestroy(&X_));
+  Mat B;
+  PCSIM_PETSC(MatConvert(A_IG_, MATSEQDENSE, MAT_INITIAL_MATRIX, &B));
+  PCSIM_PETSC(MatDuplicate(B, MAT_DO_NOT_COPY_VALUES, &X_));
+  if (n_I > 0) {
+    PCSIM_PETSC(KSPSetOperators(interior_ksp_, A_II_, A_II_));
+    PCSIM_PETSC(KSPSetUp(interior_ksp_));
+    PC pc;
+    PCSIM_PETSC(KSPGetPC(interior_ksp_, &pc));
+    PCSIM_PETSC(PCFactorGetMatrix(pc, &F_));
+    if (m > 0) PCSIM_PETSC(MatMatSolve(F_, B, X_));
+    MatInfo mi;
+    PCSIM_PETSC(MatGetInfo(F_, MAT_LOCAL, &mi));
+    info_.factor_nonzeros = mi.nz_used;
+  }
+  PCSIM_PETSC(MatDestroy(&B));
+}
+
+// S: every rank writes its rows (A_GG - A_GI X within the rank, A_GG
+// couplings to other ranks' interface), one MPI_Allreduce sums them.
+void SchurDomainSolver::assemble_schur(const LocalBlocks& blocks) {
+  const int n_G = offsets_.back(), first = offsets_[rank_];
+  const int m = static_cast<int>(interface_.size());
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(n_G, n_G);
+  Mat A_GG = nullptr;
+  sub_matrix(blocks.diagonal, interface_, interface_, MAT_INITIAL_MATRIX, &A_GG);
+  Mat C = nullptr;
+  if (!interior_.empty() && m > 0)
+    PCSIM_PETSC(MatMatMult(A_GI_, X_, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &C));
+  for (int i = 0; i < m; ++i) {
+    PetscInt n;
+    const PetscInt* cols;
+    const PetscScalar* vals;
+    PCSIM_PETSC(MatGetRow(A_GG, i, &n, &cols, &vals));
+    for (PetscInt k = 0; k < n; ++k) S(first + i, first + cols[k]) += vals[k];
+    PCSIM_PETSC(MatRestoreRow(A_GG, i, &n, &cols, &vals));
+    if (C)
+      for (int j = 0; j < m; ++j) {
+        PetscScalar c;
+        const PetscInt row = i, col = j;
+        PCSIM_PETSC(MatGetValues(C, 1, &row, 1, &col, &c));
+        S(first + i, first + j) -= c;
+      }
+    if (!blocks.off_diagonal) continue;
+    PCSIM_PETSC(MatGetRow(blocks.off_diagonal, interface_[i], &n, &cols, &vals));
+    for (PetscInt k = 0; k < n; ++k) {
+      if (vals[k] == 0.0) continue;  // not a coupling (split_unknowns)
+      const PetscInt g = blocks.off_columns[cols[k]];
+      const auto at = std::lower_bound(interface_global_.begin(), interface_global_.end(), g);
+      S(first + i, at - interface_global_.begin()) += vals[k];
+    }
+    PCSIM_PETSC(MatRestoreRow(blocks.off_diagonal, interface_[i], &n, &cols, &vals));
+  }
+  PCSIM_PETSC(MatDestroy(&C));
+  PCSIM_PETSC(MatDestroy(&A_GG));
+  MPI_Allreduce(MPI_IN_PLACE, S.data(), n_G * n_G, MPI_DOUBLE, MPI_SUM, comm_);
+  schur_.compute(S);
+  info_.interface_size = n_G;
+}
+
+void SchurDomainSolver::set_up(Mat A) {
+  const ScopedEvent timed(log_events().dd_setup);
+  const LocalBlocks blocks = local_blocks(A);
+  const bool new_split = split_unknowns(A, blocks);
+  if (new_split) release();
+  info_ = {};
+  extract_blocks(blocks.diagonal, new_split ? MAT_INITIAL_MATRIX : MAT_REUSE_MATRIX);
+  factor_interior();
+  assemble_schur(blocks);
+  MPI_Allreduce(MPI_IN_PLACE, &info_.factor_nonzeros, 1, MPI_DOUBLE, MPI_SUM, comm_);
+}
+
+void SchurDomainSolver::apply(Vec r, Vec x) {
+  const ScopedEvent timed(log_events().dd_apply);
+  const PetscScalar* rr;
+  PetscScalar *ri, *gr;
+  PCSIM_PETSC(VecGetArrayRead(r, &rr));
+  PCSIM_PETSC(VecGetArray(r_I_, &ri));
+  for (std::size_t k = 0; k < interior_.size(); ++k) ri[k] = rr[interior_[k]];
+  PCSIM_PETSC(VecRestoreArray(r_I_, &ri));
+  if (F_) PCSIM_PETSC(MatSolve(F_, r_I_, y_I_));  // y = A_II^-1 r_I
+  if (!interface_.empty()) {
+    if (F_)
+      PCSIM_PETSC(MatMult(A_GI_, y_I_, g_r_));
+    else
+      PCSIM_PETSC(VecSet(g_r_, 0.0));
+    PCSIM_PETSC(VecGetArray(g_r_, &gr));  // g = r_G - A_GI y
+    for (std::size_t j = 0; j < interface_.size(); ++j) gr[j] = rr[interface_[j]] - gr[j];
+  } else {
+    PCSIM_PETSC(VecGetArray(g_r_, &gr));
+  }
+  PCSIM_PETSC(VecRestoreArrayRead(r, &rr));
+  Eigen::VectorXd g(offsets_.back());
+  MPI_Allgatherv(gr, counts_[rank_], MPI_DOUBLE, g.data(), counts_.data(), offsets_.data(),
+                 MPI_DOUBLE, comm_);
+  PCSIM_PETSC(VecRestoreArray(g_r_, &gr));
+  const Eigen::VectorXd x_G = offsets_.back() > 0 ? schur_.solve(g) : g;
+  PetscScalar* xs;
+  PCSIM_PETSC(VecGetArray(x_G_r_, &xs));
+  for (std::size_t j = 0; j < interface_.size(); ++j) xs[j] = x_G(offsets_[rank_] + j);
+  PCSIM_PETSC(VecRestoreArray(x_G_r_, &xs));
+  if (F_ && !interface_.empty()) {  // x_I = y - X x_G
+    PCSIM_PETSC(MatMult(X_, x_G_r_, t_I_));
+    PCSIM_PETSC(VecAXPY(y_I_, -1.0, t_I_));
+  }
+  PetscScalar* xx;
+  const PetscScalar* yi;
+  PCSIM_PETSC(VecGetArray(x, &xx));
+  PCSIM_PETSC(VecGetArrayRead(y_I_, &yi));
+  for (std::size_t k = 0; k < interior_.size(); ++k) xx[interior_[k]] = F_ ? yi[k] : 0.0;
+  for (std::size_t j = 0; j < interface_.size(); ++j) xx[interface_[j]] = x_G(offsets_[rank_] + j);
+  PCSIM_PETSC(VecRestoreArrayRead(y_I_, &yi));
+  PCSIM_PETSC(VecRestoreArray(x, &xx));
+}
+
+PetscErrorCode shell_setup(PC pc) {
+  PCSIM_CALLBACK_BEGIN
+  SchurDomainSolver* self;
+  PCSIM_PETSC(PCShellGetContext(pc, &self));
+  Mat A, P;
+  PCSIM_PETSC(PCGetOperators(pc, &A, &P));
+  self->set_up(P);
+  PCSIM_CALLBACK_END
+}
+
+PetscErrorCode shell_apply(PC pc, Vec r, Vec x) {
+  PCSIM_CALLBACK_BEGIN
+  SchurDomainSolver* self;
+  PCSIM_PETSC(PCShellGetContext(pc, &self));
+  self->apply(r, x);
+  PCSIM_CALLBACK_END
+}
+
+PetscErrorCode shell_destroy(PC pc) {
+  PCSIM_CALLBACK_BEGIN
+  SchurDomainSolver* self;
+  PCSIM_PETSC(PCShellGetContext(pc, &self));
+  delete self;
+  PCSIM_CALLBACK_END
+}
+
+SchurDomainSolver* solver_of(KSP ksp) {
+  PC pc;
+  PCSIM_PETSC(KSPGetPC(ksp, &pc));
+  PetscBool shell = PETSC_FALSE;
+  PCSIM_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCSHELL, &shell));
+  if (!shell) return nullptr;
+  const char* name = nullptr;
+  PCSIM_PETSC(PCShellGetName(pc, &name));
+  if (!name || std::strcmp(name, kShellName) != 0) return nullptr;
+  SchurDomainSolver* self;
+  PCSIM_PETSC(PCShellGetContext(pc, &self));
+  return self;
+}
+
+}  // namespace
+
+void use_schur_domain_decomposition(KSP ksp) {
+  PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
+  PC pc;
+  PCSIM_PETSC(KSPGetPC(ksp, &pc));
+  PCSIM_PETSC(PCSetType(pc, PCSHELL));
+  auto* self = new SchurDomainSolver(PetscObjectComm(reinterpret_cast<PetscObject>(ksp)));
+  PCSIM_PETSC(PCShellSetContext(pc, self));
+  PCSIM_PETSC(PCShellSetSetUp(pc, shell_setup));
+  PCSIM_PETSC(PCShellSetApply(pc, shell_apply));
+  PCSIM_PETSC(PCShellSetDestroy(pc, shell_destroy));
+  PCSIM_PETSC(PCShellSetName(pc, kShellName));
+}
+
+DomainDecompositionInfo domain_decomposition_info(KSP ksp) {
+  const SchurDomainSolver* self = solver_of(ksp);
+  return self ? self->info() : DomainDecompositionInfo{};
+}
+
+}  // namespace pcsim::solvers

@@ -1,0 +1,315 @@
+#!/bin/bash
+# Table-driven bad-input test (issue 8): every case runs the real command and
+# `pcsim check` with the same arguments and asserts
+#  - the exit code (2 for bad input; 0 for the accepted cases at the end),
+#  - that the message names the file and the key (and the reason's gist),
+#  - that no user file was touched (checksums of everything in the work folder),
+#  - that nothing was left behind (no out/, -o folder, .partial or lock),
+# in well under a second per case: every error is found before any solve (the
+# few cases found by the static solve use designs of a few dozen DOFs).
+# Then one case of each error class on 2 ranks under `timeout 60`.
+set -euo pipefail
+: "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+S=$PCSIM_SOURCE_DIR
+w=$tmp/work # the user's folder: cases run here; nothing in it may change
+mkdir -p "$w/foreign" "$w/adir"
+echo "not pcsim's" > "$w/foreign/notes.txt"
+echo "keep me" > "$w/keep.txt"
+two_mass=$S/meshes/pantographs/en50318_two_mass.yaml
+dsa=$S/meshes/pantographs/dsa380_rigid.yaml
+three=$S/tests/contact/data/three-span.yaml
+failures=0
+cases=0
+
+# ---- input files (tiny designs: three spans of 30 m, 1.5 m elements) ----
+sed 's/mass_per_length: 1.35,/mass_per_length: -1.35,/' "$three" > "$w/negative-mass-design.yaml"
+# The EN 50318 line with 100000 spans: 2.4e7 nodes, ~190 GB by the estimate.
+sed 's/^spans: {count: 10, length: 60.0}/spans: {count: 100000, length: 60.0}/' \
+  "$S/meshes/en50318-reference.yaml" > "$w/huge-design.yaml"
+grep -q "mass_per_length: -1.35" "$w/negative-mass-design.yaml"
+grep -q "count: 100000" "$w/huge-design.yaml"
+cat > "$w/long-wire-design.yaml" << 'YAML'
+type: explicit
+nodes: [[0, 0, 0], [1.0e6, 0, 0]]
+wires:
+  - {name: w, nodes: {from: 0, to: 1, elements: 2000000000}, mass_per_length: 1, EA: 1.0e7, EI: 1, tension: 1000}
+supports: [{node: 0}, {node: 1}]
+YAML
+# A straight wire pinned at both ends whose unstressed length is 4 % too long:
+# it "converges" at once to a state under 3.6e7 N of compression (EA 1e9).
+cat > "$w/slack-wire-design.yaml" << 'YAML'
+type: explicit
+gravity: 9.81
+nodes: [[0, 0, 0], [10, 0, 0]]
+wires:
+  - {name: wire, nodes: {from: 0, to: 1, elements: 10}, mass_per_length: 1.35, EA: 1.0e9, EI: 195, tension: 1000, unstressed: 1.04}
+supports: [{node: 0}, {node: 1}]
+YAML
+# A heavy vertical wire pinned at both ends: form-finding to a mean tension of
+# 10 N leaves its lower half in compression.
+cat > "$w/hanging-design.yaml" << 'YAML'
+type: explicit
+gravity: 9.81
+form_finding: true
+nodes: [[0, 0, 0], [0, 0, 10]]
+wires:
+  - {name: hanger, nodes: {from: 0, to: 1, elements: 10}, mass_per_length: 100, EA: 1.0e7, EI: 1, tension: 10}
+supports: [{node: 0}, {node: 1}]
+tension_segments: [{wire: hanger, tension: 10}]
+YAML
+# Two spans with EA 1e9: Newton's residual stalls at rounding (~1e-4 N).
+sed 's/EA: 1.0e7/EA: 1.0e9/; s/EA: 1.44e7/EA: 1.0e9/' "$S/tests/catenary/data/two-span.yaml" > "$w/stiff-design.yaml"
+grep -c "EA: 1.0e9" "$w/stiff-design.yaml" | grep -q 2
+sed 's/mass: 7.2,/mass: -7.2,/' "$two_mass" > "$w/negative-panto-model.yaml"
+
+# catenary_scene NAME DESIGN [EXTRA LINES]
+catenary_scene() {
+  printf 'name: %s\ncatenary: {design: %s}\n%s' "$1" "$2" "${3:-}" > "$w/$1.yaml"
+}
+# run_scene NAME PANTOGRAPH-LINES [SIMULATION EXTRA] [ANALYSIS EXTRA] [DESIGN]
+run_scene() {
+  cat > "$w/$1.yaml" << YAML
+name: $1
+catenary: {design: ${5:-$three}}
+pantographs:
+$2
+simulation: {speed_kmh: 200, end_x: 80${3:-}}
+analysis: {from_span: 2, to_span: 2${4:-}}
+YAML
+}
+one="  - {name: p, model: $two_mass, start_x: 13.1}"
+
+catenary_scene good-static "$three"
+catenary_scene modes-scene "$three" $'modes: {count: 4}\n'
+catenary_scene bad-name "$three"
+printf 'name: ".."\ncatenary: {design: %s}\n' "$three" > "$w/bad-name.yaml"
+catenary_scene unknown-section "$three" $'modez: {count: 3}\n'
+catenary_scene wrong-type "$three" $'modes: {count: three}\n'
+catenary_scene zero-modes "$three" $'modes: {count: 0}\n'
+catenary_scene negative-mass "negative-mass-design.yaml"
+catenary_scene design-dir "adir"
+catenary_scene missing-design "no-such-design.yaml"
+catenary_scene bad-design-key "$S/meshes/bad/unknown-key.yaml"
+catenary_scene huge "huge-design.yaml"
+catenary_scene long-wire "long-wire-design.yaml"
+catenary_scene slack-wire "slack-wire-design.yaml"
+catenary_scene hanging "hanging-design.yaml"
+catenary_scene stiff "stiff-design.yaml"
+run_scene good-run "$one"
+run_scene twins "  - {name: p, model: $two_mass, start_x: 13.1}
+  - {name: p, model: $two_mass, start_x: 3.1}"
+run_scene past-end "  - {name: p, model: $two_mass, start_x: 13.1}
+  - {name: q, model: $two_mass, start_x: 40}"
+run_scene before-line "  - {name: p, model: $two_mass, start_x: -10}"
+run_scene end-beyond "$one"
+sed -i 's/end_x: 80/end_x: 200/' "$w/end-beyond.yaml"
+run_scene too-fast "  - {name: p, model: $two_mass, start_x: 13.1}" "" "" "$three"
+sed -i 's/speed_kmh: 200/speed_kmh: 500/' "$w/too-fast.yaml"
+run_scene panto-key "  - {name: p, model: $two_mass, start_x: 13.1, stiffnes: 3}"
+run_scene missing-model "  - {name: p, model: no-such-model.yaml, start_x: 13.1}"
+run_scene model-dir "  - {name: p, model: adir, start_x: 13.1}"
+run_scene negative-panto "  - {name: p, model: negative-panto-model.yaml, start_x: 13.1}"
+run_scene gap-static "  - {name: p, model: $two_mass, start_x: 13.1, start: {gap: 0.01}}
+  - {name: q, model: $two_mass, start_x: 3.1, start: static}"
+run_scene cutoff "$one" "" ", cutoff_hz: 600"
+run_scene dt-one "$one" ", dt: 1.0"
+run_scene few-samples "$one" ", dt: 0.5" ", cutoff_hz: 0.5"
+run_scene spans "$one" "" ", to_span: 7"
+sed -i 's/from_span: 2, to_span: 2, to_span: 7/from_span: 2, to_span: 7/' "$w/spans.yaml"
+run_scene dsa-high "  - {name: p, model: $dsa, start_x: 13.1, working_height: 3.0}"
+run_scene dsa-cheap "  - {name: p, model: $dsa, start_x: 13.1}"
+run_scene huge-run "$one" "" "" "huge-design.yaml"
+run_scene close "  - {name: p, model: $two_mass, start_x: 13.1}
+  - {name: q, model: $two_mass, start_x: 8.1}"
+run_scene gap "  - {name: p, model: $two_mass, start_x: 13.1, start: {gap: 0.8}}"
+run_scene hht-scene "$one" ", hht_alpha: 0.5"
+catenary_scene reference-static "$S/meshes/en50318-reference.yaml"
+run_scene crawl "$one"
+sed -i 's/speed_kmh: 200/speed_kmh: 0.001/' "$w/crawl.yaml"
+cat > "$w/study-high.yaml" << YAML
+name: study-high
+pantograph: {model: $dsa}
+equilibrium: {contact_force: 120, working_height: 3.5}
+study: {type: modes}
+YAML
+
+snapshot() { (cd "$w" && find . -print0 | sort -z | xargs -0 md5sum 2> /dev/null; find . | sort); }
+before=$(snapshot)
+
+# expect NAME CODE "NEEDLE|NEEDLE..." CHECK(yes|no) COMMAND ARGS...
+# CHECK=yes: `pcsim check` with the same arguments must give the same code and
+# message (no: the error is found by the solve, which check does not run).
+expect() {
+  local name=$1 code=$2 needles=$3 also_check=$4 command=$5
+  shift 5
+  local runs=("$command")
+  [ "$also_check" = yes ] && [ "$command" != check ] && runs+=(check)
+  local cmd
+  for cmd in "${runs[@]}"; do
+    cases=$((cases + 1))
+    local status=0 problems=() start end
+    start=$(date +%s%N)
+    (cd "$w" && "$PCSIM_BIN" "$cmd" "$@" > "$tmp/out.txt" 2> "$tmp/err.txt") || status=$?
+    end=$(date +%s%N)
+    [ "$status" -eq "$code" ] || problems+=("exit $status instead of $code")
+    local needle
+    IFS='|' read -r -a list <<< "$needles"
+    for needle in "${list[@]}"; do
+      grep -qF -- "$needle" "$tmp/err.txt" || problems+=("stderr lacks '$needle'")
+    done
+    if [ "$code" -ne 0 ]; then
+      local lines
+      lines=$(grep -c "^pcsim: error" "$tmp/err.txt" || true)
+      [ "$lines" -eq 1 ] || problems+=("$lines error messages instead of 1")
+    fi
+    # Accepted runs of the real command write their results: remove them
+    # (pcsim's own folder) before comparing the work folder.
+    [ "$code" -eq 0 ] && [ "$cmd" != check ] && rm -rf "$w/out"
+    [ "$(snapshot)" = "$before" ] || problems+=("the work folder changed: $(diff <(echo "$before") <(snapshot) | grep '^[<>]' | head -3 | tr '\n' ' ')")
+    if [ ${#problems[@]} -gt 0 ]; then
+      echo "FAIL $name ($cmd): $(IFS=';'; echo "${problems[*]}")" >&2
+      sed 's/^/    /' "$tmp/err.txt" >&2
+      failures=$((failures + 1))
+    else
+      printf 'ok   %-16s %-10s %4d ms: %s\n' "$name" "$cmd" $(((end - start) / 1000000)) \
+        "$(grep "^pcsim" "$tmp/err.txt" | head -1 | cut -c1-150)"
+    fi
+  done
+}
+
+# ---- the files of meshes/bad/ (checked as designs) ----
+expect bad/bar-same-node 2 "meshes/bad/bar-same-node.yaml|key 'bars[0].nodes'|to itself" no \
+  check "$S/meshes/bad/bar-same-node.yaml"
+expect bad/dropper 2 "meshes/bad/dropper-outside-span.yaml|key 'droppers.positions[3]'|outside the span" no \
+  check "$S/meshes/bad/dropper-outside-span.yaml"
+expect bad/tension 2 "meshes/bad/negative-tension.yaml|key 'wires.contact.tension'|must be positive" no \
+  check "$S/meshes/bad/negative-tension.yaml"
+expect bad/node-range 2 "meshes/bad/node-out-of-range.yaml|key 'bars[0].nodes[1]'|out of range" no \
+  check "$S/meshes/bad/node-out-of-range.yaml"
+expect bad/unknown-key 2 "meshes/bad/unknown-key.yaml|key 'droppers.stiffnes'|unknown key" no \
+  check "$S/meshes/bad/unknown-key.yaml"
+[ "$(ls "$S"/meshes/bad/*.yaml | wc -l)" -eq 5 ] || { echo "FAIL: meshes/bad/ has new files: add them here" >&2; failures=$((failures + 1)); }
+
+# ---- scenes, designs, output folders (static, modes) ----
+expect missing-scene 2 "no-such-scene.yaml|cannot open|no such file" yes static no-such-scene.yaml
+expect unknown-section 2 "unknown-section.yaml|key 'modez'|unknown key" yes static unknown-section.yaml
+expect wrong-type 2 "wrong-type.yaml|key 'modes.count'|integer" yes modes wrong-type.yaml
+expect zero-modes 2 "zero-modes.yaml|key 'modes.count'|at least 1" yes modes zero-modes.yaml
+expect negative-mass 2 "negative-mass-design.yaml|key 'wires.contact.mass_per_length'|must be positive" yes \
+  static negative-mass.yaml
+expect design-dir 2 "design-dir.yaml|key 'catenary.design'|is a folder" yes static design-dir.yaml
+expect missing-design 2 "missing-design.yaml|key 'catenary.design'|no such file" yes static missing-design.yaml
+expect bad-design-key 2 "meshes/bad/unknown-key.yaml|key 'droppers.stiffnes'" yes modes bad-design-key.yaml
+expect scene-name 2 "bad-name.yaml|key 'name'|must not be '..'" yes static bad-name.yaml
+expect out-dot 2 "command line|key '-o'|working directory" yes static good-static.yaml -o .
+expect out-foreign 2 "command line|key '-o'|not written by pcsim" yes static good-static.yaml -o foreign
+expect huge 2 "huge-design.yaml|key 'spans.count'|too large for this machine|/proc/meminfo" yes static huge.yaml
+expect huge-run 2 "huge-design.yaml|key 'spans.count'|too large for this machine" yes run huge-run.yaml
+expect huge-set 2 "command line --set catenary.design.spans.count=100000|key 'spans.count'|too large" yes \
+  static reference-static.yaml --set catenary.design.spans.count=100000
+expect huge-design-set 2 "command line --set spans.count=100000|key 'spans.count'|too large" no \
+  check "$S/meshes/en50318-reference.yaml" --set spans.count=100000
+expect long-wire 2 "long-wire-design.yaml|key 'wires[0].nodes.elements'|too large" yes static long-wire.yaml
+expect eps-nev-0 2 "command line|key '-eps_nev'|from 1" yes modes modes-scene.yaml -eps_nev 0
+expect eps-nev-abc 2 "command line|key '-eps_nev'|integer" yes modes modes-scene.yaml -eps_nev abc
+expect modes-fmax 2 "command line|key '-modes_fmax'|>= 0" yes modes modes-scene.yaml -modes_fmax -1
+expect check-as 2 "command line|key '--as'|static, modes, run or pantograph" no check good-static.yaml --as nonsense
+expect check-as-run 2 "good-static.yaml|key 'simulation'|missing" no check good-static.yaml --as run
+
+# ---- run scenes ----
+expect twins 2 "twins.yaml|key 'pantographs[1].name'|already used" yes run twins.yaml
+expect past-end 2 "past-end.yaml|key 'pantographs[1].start_x'|past the end of the contact wire" yes run past-end.yaml
+expect before-line 2 "before-line.yaml|key 'pantographs[0].start_x'|got -10" yes run before-line.yaml
+expect end-beyond 2 "end-beyond.yaml|key 'simulation.end_x'|on the line" yes run end-beyond.yaml
+expect too-fast 2 "too-fast.yaml|key 'simulation.speed_kmh'|wave speed" yes run too-fast.yaml
+expect panto-key 2 "panto-key.yaml|key 'pantographs[0].stiffnes'|unknown key" yes run panto-key.yaml
+expect missing-model 2 "missing-model.yaml|key 'pantographs[0].model'|no such file" yes run missing-model.yaml
+expect model-dir 2 "model-dir.yaml|key 'pantographs[0].model'|is a folder" yes run model-dir.yaml
+expect negative-panto 2 "negative-panto-model.yaml|key 'stages[0].mass'|positive" yes run negative-panto.yaml
+expect model-file 2 "negative-panto-model.yaml|key 'stages[0].mass'|positive" no check negative-panto-model.yaml
+expect gap-static 2 "gap-static.yaml|key 'pantographs[0].start'|gap start cannot be combined" yes run gap-static.yaml
+expect cutoff 2 "cutoff.yaml|key 'analysis.cutoff_hz'|Nyquist frequency 500 Hz" yes run cutoff.yaml
+expect dt-one 2 "dt-one.yaml|key 'analysis.cutoff_hz'|Nyquist|simulation.dt = 1 s" yes run dt-one.yaml
+expect few-samples 2 "few-samples.yaml|key 'simulation.dt'|filter needs more than 15" yes run few-samples.yaml
+expect spans 2 "spans.yaml|key 'analysis'|to_span" yes run spans.yaml
+expect gap 2 "gap.yaml|key 'pantographs[0].start.gap'|at most 0.5 m" yes run gap.yaml
+expect hht-scene 2 "hht-scene.yaml|key 'simulation.hht_alpha'|[0, 1/3]" yes run hht-scene.yaml
+expect set-dt 2 "command line --set simulation.dt=0.5|key 'simulation.dt'|filter needs more than 15" yes \
+  run good-run.yaml --set simulation.dt=0.5 --set analysis.cutoff_hz=0.5
+expect dsa-high 2 "dsa-high.yaml|key 'pantographs[0].working_height'|cannot be assembled at frame angle|working height 3 m" \
+  yes run dsa-high.yaml
+expect study-high 2 "study-high.yaml|key 'equilibrium.working_height'|working height 3.5 m" yes \
+  pantograph study-high.yaml
+
+# ---- command-line numerics of a run ----
+expect ts-dt-0 2 "command line|key '-ts_dt'|positive" yes run good-run.yaml -ts_dt 0
+expect ts-dt-neg 2 "command line|key '-ts_dt'|positive" yes run good-run.yaml -ts_dt -1e-3
+expect ts-dt-abc 2 "command line|key '-ts_dt'|must be a number (got 'abc')" yes run good-run.yaml -ts_dt abc
+expect ts-dt-inf 2 "command line|key '-ts_dt'|finite" yes run good-run.yaml -ts_dt inf
+expect ts-dt-nyquist 2 "good-run.yaml|key 'analysis.cutoff_hz'|-ts_dt = 0.05 s" yes run good-run.yaml -ts_dt 0.05
+expect hht-alpha 2 "command line|key '-ts_hht_alpha'|[0, 1/3]" yes run good-run.yaml -ts_hht_alpha 0.9
+expect ts-euler 2 "command line|key '-ts_type'|second order" yes run good-run.yaml -ts_type euler
+expect ts-unknown 2 "command line|key '-ts_type'|unknown" yes run good-run.yaml -ts_type nonsense
+expect path-bad 2 "command line|key '-pcsim_path'|auto, full or cheap" yes run good-run.yaml -pcsim_path fast
+expect path-cheap 2 "command line|key '-pcsim_path'|cheap path needs" yes run dsa-cheap.yaml -pcsim_path cheap
+
+# ---- found by the static solve (pcsim check solves nothing) ----
+expect hanging 2 "hanging-design.yaml|key 'wires'|form-finding found no tension distribution|wire 'hanger'" no \
+  static hanging.yaml
+
+# ---- accepted: warnings name the file and key, or the elements ----
+expect close 0 "pcsim: warning: close.yaml|key 'pantographs[1].start_x'|5 m from 'p'" no check close.yaml
+expect crawl 0 "pcsim: warning: crawl.yaml|key 'simulation'|time steps" no check crawl.yaml
+expect slack-wire 0 "pcsim: warning: elements in compression|wire 'wire', cable elements: 10|negative eigenvalue" no \
+  static slack-wire.yaml
+expect stiff 0 "" no static stiff.yaml
+grep -q "stagnated at rounding\|CONVERGED_FNORM" "$tmp/out.txt" || { echo "FAIL stiff: no convergence note" >&2; failures=$((failures + 1)); }
+
+# spans.count 100000 is refused before the mesh is built: the process's CPU
+# time (user + system) must stay well under a second (building the mesh
+# allocated for 9 s before std::bad_alloc). Wall time is printed only: on a
+# loaded machine MPI's start-up waits for the scheduler.
+TIMEFORMAT='%R %U %S'
+times=$({ time (cd "$w" && "$PCSIM_BIN" static huge.yaml > /dev/null 2>&1 || true); } 2>&1)
+read -r wall user sys <<< "$times"
+cpu=$(awk -v u="$user" -v s="$sys" 'BEGIN { printf "%.2f", u + s }')
+echo "     spans.count 100000 refused: CPU $cpu s, wall $wall s"
+awk -v c="$cpu" 'BEGIN { exit !(c < 0.5) }' || { echo "FAIL: spans.count 100000 took $cpu s of CPU" >&2; failures=$((failures + 1)); }
+
+# ---- each error class on 2 ranks: same code, one message, nothing left ----
+# expect2 NAME NEEDLE COMMAND ARGS...
+expect2() {
+  local name=$1 needle=$2
+  shift 2
+  cases=$((cases + 1))
+  local status=0 problems=()
+  (cd "$w" && timeout 60 mpirun -n 2 "$PCSIM_BIN" "$@" > "$tmp/out.txt" 2> "$tmp/err.txt") || status=$?
+  [ "$status" -eq 2 ] || problems+=("exit $status instead of 2")
+  [ "$(grep -c "^pcsim: error" "$tmp/err.txt" || true)" -eq 1 ] || problems+=("not one message")
+  grep -qF -- "$needle" "$tmp/err.txt" || problems+=("stderr lacks '$needle'")
+  ! grep -q "other ranks did not stop" "$tmp/err.txt" || problems+=("MPI_Abort")
+  [ "$(snapshot)" = "$before" ] || problems+=("the work folder changed")
+  if [ ${#problems[@]} -gt 0 ]; then
+    echo "FAIL 2 ranks $name: $(IFS=';'; echo "${problems[*]}")" >&2
+    sed 's/^/    /' "$tmp/err.txt" >&2
+    failures=$((failures + 1))
+  else
+    echo "ok   2 ranks $name: $(grep "^pcsim: error" "$tmp/err.txt" | cut -c1-120)"
+  fi
+}
+expect2 design "key 'wires.contact.tension'" check "$S/meshes/bad/negative-tension.yaml"
+expect2 scene "key 'pantographs[1].name'" run twins.yaml
+expect2 positions "key 'pantographs[1].start_x'" run past-end.yaml
+expect2 nyquist "key 'analysis.cutoff_hz'" run cutoff.yaml
+expect2 memory "key 'spans.count'" static huge.yaml
+expect2 numerics "key '-ts_dt'" run good-run.yaml -ts_dt abc
+expect2 modes "key '-eps_nev'" modes modes-scene.yaml -eps_nev 0
+expect2 geometry "key 'pantographs[0].working_height'" run dsa-high.yaml
+expect2 output "key '-o'" static good-static.yaml -o foreign
+expect2 design-dir "key 'catenary.design'" static design-dir.yaml
+expect2 form-finding "key 'wires'" static hanging.yaml
+
+echo "$cases runs, $failures failure(s)"
+[ "$failures" -eq 0 ]

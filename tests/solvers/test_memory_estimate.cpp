@@ -1,0 +1,143 @@
+// The mesh size counted from a design without building it, the memory
+// estimate built on it (against the sizes of the built mesh, its DOF layout and
+// its assembled matrix, and against the measured peak memory), and the check
+// against the machine's memory.
+// pcsim-test-ranks: 1 2
+#include <gtest/gtest.h>
+#include <petscmat.h>
+
+#include "../catenary/design_fixtures.hpp"
+#include "pcsim/assembly/catenary_system.hpp"
+#include "pcsim/assembly/static_problem.hpp"
+#include "pcsim/core/error.hpp"
+#include "pcsim/scene/composition.hpp"
+#include "pcsim/scene/design_reader.hpp"
+#include "pcsim/solvers/memory_estimate.hpp"
+
+using namespace pcsim;
+using catenary::MeshSize;
+using solvers::MemoryUse;
+
+namespace {
+
+void expect_same_size(const MeshSize& counted, const MeshSize& built) {
+  EXPECT_EQ(counted.nodes, built.nodes);
+  EXPECT_EQ(counted.cable_nodes, built.cable_nodes);
+  EXPECT_EQ(counted.cables, built.cables);
+  EXPECT_EQ(counted.bars, built.bars);
+  EXPECT_EQ(counted.fixed_dofs, built.fixed_dofs);
+  EXPECT_EQ(counted.form_finding_unknowns, built.form_finding_unknowns);
+}
+
+catenary::ParametricDesign with_stitch_wire(long spans) {
+  auto d = design_fixtures::reference_design(spans);
+  d.stitch_wire = catenary::StitchWireDesign{18.0, 3500.0, 0.6, 5e6};  // over 2 droppers each side
+  return d;
+}
+
+}  // namespace
+
+TEST(MeshSize, CountedEqualsBuilt) {
+  for (long spans : {1L, 2L, 3L, 10L}) {
+    SCOPED_TRACE("spans " + std::to_string(spans));
+    const auto plain = design_fixtures::reference_design(spans);
+    expect_same_size(catenary::mesh_size(plain), catenary::mesh_size(build_parametric(plain)));
+    const auto stitched = with_stitch_wire(spans);
+    expect_same_size(catenary::mesh_size(stitched),
+                     catenary::mesh_size(build_parametric(stitched)));
+  }
+  const auto taut = design_fixtures::taut_string_design();
+  expect_same_size(catenary::mesh_size(taut), catenary::mesh_size(build_explicit(taut)));
+  EXPECT_EQ(catenary::mesh_size(design_fixtures::reference_design(10)).key, "spans.count");
+}
+
+// Real lines (meshes/lines/): several tension sections with overlaps, per-span
+// droppers, stitch wires, support and steady-arm models (hinged arms add a
+// pivot node and a bar), tensioning devices (a midpoint anchor), curved track
+// (lateral springs instead of fixed y).
+TEST(MeshSize, CountedEqualsBuiltForLines) {
+  const std::string lines = std::string(PCSIM_SOURCE_DIR) + "/meshes/lines/";
+  for (const char* file :
+       {"three-sections.yaml", "three-sections-short.yaml", "stitched.yaml", "unstitched.yaml",
+        "presag-droppers.yaml", "presag-heights.yaml", "supports.yaml", "irregular-profile.yaml",
+        "irregular-random.yaml", "curved.yaml"}) {
+    SCOPED_TRACE(file);
+    const auto design = catenary::read_parametric_design(load_composed(lines + file));
+    expect_same_size(catenary::mesh_size(design), catenary::mesh_size(build_parametric(design)));
+  }
+}
+
+TEST(MeshSize, UnknownsAndNonzerosMatchTheSystem) {
+  const auto mesh = build_parametric(design_fixtures::reference_design(3));
+  const MeshSize size = catenary::mesh_size(mesh);
+  const auto estimate = solvers::estimate_memory(size, MemoryUse::statics);
+  assembly::CatenarySystem system(PETSC_COMM_WORLD, mesh, assembly::form_finding_unknowns(mesh));
+  EXPECT_EQ(size.dofs(), system.layout().catenary_dofs());
+  EXPECT_EQ(estimate.dofs, system.layout().catenary_dofs() + system.layout().extra_dofs());
+  // Nonzeros of the form-finding Jacobian as assembled at the design state.
+  assembly::StaticProblem problem(system, true);
+  Mat J = problem.create_matrix();
+  Vec x = system.create_vector();
+  system.design_state(x);
+  problem.initial_guess(x);
+  problem.jacobian(x, J);
+  MatInfo info;
+  MatGetInfo(J, MAT_GLOBAL_SUM, &info);
+  // Measured: estimate 1.2 % above the assembled count (the pattern's blocks
+  // include the fixed DOFs' rows that the layout leaves out).
+  EXPECT_NEAR(estimate.matrix_nonzeros / info.nz_used, 1.0, 0.03);
+  MatDestroy(&J);
+  VecDestroy(&x);
+}
+
+// Peak resident memory measured on EN 50318 lines (1 rank, and the sum of both
+// ranks on 2): `pcsim static` here (GNU time) on 10 and 100 spans; 1000 spans and
+// `pcsim modes` from README "Benchmarks"; `pcsim run` on 10 spans from the
+// interaction benchmark (79 MB, 7080 steps of history included). The estimate
+// is meant to be above, by at most 25 %.
+TEST(MemoryEstimate, CalibratedAgainstMeasuredPeaks) {
+  struct Measured {
+    long spans;
+    MemoryUse use;
+    int ranks;
+    double megabytes;
+  };
+  const Measured table[] = {
+      {10, MemoryUse::statics, 1, 67},     {10, MemoryUse::statics, 2, 121},
+      {100, MemoryUse::statics, 1, 226},   {100, MemoryUse::statics, 2, 339},
+      {1000, MemoryUse::statics, 1, 1770}, {10, MemoryUse::modes, 1, 72},
+      {100, MemoryUse::modes, 1, 286},     {1000, MemoryUse::modes, 1, 2425},
+      {10, MemoryUse::run, 1, 79},
+  };
+  for (const auto& m : table) {
+    const auto size = catenary::mesh_size(design_fixtures::reference_design(m.spans));
+    const double estimate = solvers::estimate_memory(size, m.use).total_bytes(m.ranks) / 1e6;
+    SCOPED_TRACE(std::to_string(m.spans) + " spans, " + std::to_string(m.ranks) +
+                 " rank(s): " + std::to_string(estimate) + " MB estimated, " +
+                 std::to_string(m.megabytes) + " MB measured");
+    EXPECT_GE(estimate, 0.98 * m.megabytes);
+    EXPECT_LE(estimate, 1.25 * m.megabytes);
+  }
+}
+
+TEST(MemoryEstimate, ThousandSpansFitIn24GiBAndHundredThousandDoNot) {
+  const double machine = 24.0 * 1024 * 1024 * 1024;
+  const auto line = catenary::mesh_size(design_fixtures::reference_design(1000));
+  for (MemoryUse use : {MemoryUse::statics, MemoryUse::modes, MemoryUse::run})
+    for (int ranks : {1, 2}) EXPECT_NO_THROW(solvers::check_memory(line, use, ranks, machine));
+  auto design = design_fixtures::reference_design(100000);
+  design.file = "huge.yaml";
+  try {
+    solvers::check_memory(catenary::mesh_size(design), MemoryUse::statics, 1, machine);
+    FAIL() << "100000 spans accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "huge.yaml");
+    EXPECT_EQ(e.key(), "spans.count");
+    EXPECT_NE(e.reason().find("too large for this machine"), std::string::npos) << e.reason();
+  }
+}
+
+TEST(MemoryEstimate, MachineMemoryFromProcMeminfo) {
+  const double bytes = solvers::machine_memory_bytes();
+  EXPECT_GT(bytes, 1e8);  // any machine that runs the tests has more than 100 MB
+}
