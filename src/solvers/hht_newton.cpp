@@ -149,9 +149,11 @@ PetscErrorCode own_newton(TS ts, Vec X, SNESConvergedReason* reason, PetscInt* i
       *reason = SNES_DIVERGED_LINE_SEARCH;  // the basic line search's failure
       break;
     }
-    if (tol.stol > 0) {
-      PetscCall(VecNorm(X, NORM_2, &xnorm));
-      PetscCall(VecNorm(Y, NORM_2, &ynorm));
+    if (tol.stol > 0) {  // the line search's norms too
+      PetscCall(VecNormBegin(Y, NORM_2, &ynorm));
+      PetscCall(VecNormBegin(X, NORM_2, &xnorm));
+      PetscCall(VecNormEnd(Y, NORM_2, &ynorm));
+      PetscCall(VecNormEnd(X, NORM_2, &xnorm));
     }
     *reason = converged(tol, *its, nfuncs, fnorm, ttol, fnorm0, xnorm, ynorm);
   }

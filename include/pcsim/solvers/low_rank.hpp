@@ -46,6 +46,8 @@ class LowRankStepSolver {
   // evaluation. Terms keep their J0^-1 u while their u stays the same.
   void set_terms(const std::vector<assembly::RankOne>& terms);
   KSP inner() const { return inner_; }
+  // J0 is inverted block by block (known after the first setup), not by the inner KSP.
+  bool block_inverse() const { return blocks_ != nullptr; }
 
  private:
   struct Entry {
