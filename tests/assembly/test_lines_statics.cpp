@@ -265,7 +265,13 @@ TEST(LineStatics, WornStretchIsSofterAndLighter) {
   const auto heavy = solvers::static_configuration(PETSC_COMM_WORLD, m, false, "lines_");
   const int a = m.wires[0].nodes.front(), b = m.wires[0].nodes.back();
   const auto R = catenary::support_forces(heavy.mesh, heavy.result.node_values, {a, b});
-  const double weight = g * mu * 10.0 * (1.0 + f);
+  // Mass per unstressed length (the wire as bought): each half weighs
+  // g mu f L0 of its elements.
+  double worn_L0 = 0;
+  for (const auto& el : m.cables)
+    if (el.section_factor != 1.0) worn_L0 += el.unstressed_length;
+  const double W1 = g * mu * left_L0, W2 = g * mu * f * worn_L0;
+  const double weight = W1 + W2;
   if (rank() == 0)
     std::printf("  worn half under gravity: reactions %.6f + %.6f N (weight %.6f N)\n", R[0].z(),
                 R[1].z(), weight);
@@ -274,8 +280,8 @@ TEST(LineStatics, WornStretchIsSofterAndLighter) {
   // stretch moves them by up to 4 mm in 20 m, 2e-4 of the moment (1.6e-4
   // and 2.1e-4 measured): 1e-3.
   EXPECT_NEAR((R[0].z() + R[1].z()) / weight, 1.0, 1e-8);
-  EXPECT_NEAR(R[0].z() / (g * mu * L * (3.0 + f) / 8.0), 1.0, 1e-3);
-  EXPECT_NEAR(R[1].z() / (g * mu * L * (1.0 + 3.0 * f) / 8.0), 1.0, 1e-3);
+  EXPECT_NEAR(R[0].z() / (0.75 * W1 + 0.25 * W2), 1.0, 1e-3);
+  EXPECT_NEAR(R[1].z() / (0.25 * W1 + 0.75 * W2), 1.0, 1e-3);
 }
 
 TEST(LineStatics, PullOffForcesOnStraightAndCurvedTrack) {
