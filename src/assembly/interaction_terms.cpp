@@ -176,7 +176,10 @@ bool PenaltyContact::low_rank_change(const CoupledState& state, std::vector<Rank
   term.weight.push_back(-1.0);
   term.coefficient = in_contact > 0.5 ? e.stiffness : 0.0;
   term.reuse_columns = e.wire->reuse_columns;
-  term.contiguous = e.wire->contiguous;
+  // Contiguous only if the head's unknown follows the wire's (the first
+  // pantograph of a modal catenary; not the others).
+  const std::size_t n = term.index.size();
+  term.contiguous = e.wire->contiguous && (n == 1 || term.index[n - 1] == term.index[n - 2] + 1);
   terms.push_back(std::move(term));
   return true;
 }

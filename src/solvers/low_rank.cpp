@@ -58,7 +58,7 @@ void LowRankStepSolver::build_u(Entry& e) const {
   std::fill(u, u + (hi - lo), 0.0);
   const auto& index = e.term.index;
   const auto n = static_cast<PetscInt>(index.size());
-  if (e.term.contiguous && n > 0) {  // the part of index[0] .. index[0] + n - 1 in [lo, hi)
+  if (e.term.contiguous && n > 0 && index[n - 1] == index[0] + n - 1) {  // [lo, hi) part
     const PetscInt first = std::max(index[0], lo), last = std::min(index[0] + n, hi);
     if (first < last)
       std::copy(e.term.weight.begin() + (first - index[0]),
