@@ -235,9 +235,9 @@ contact::StepRecord CoupledSystem::record(double t, Vec U) {
     for (std::size_t w = 0; w < nw; ++w) {
       const auto e = contacts_[p][w]->evaluate(state_);
       if (state_.rank() == 0) b[0] = e.x;
-      if (!e.wire.owned) continue;
+      if (!e.wire->owned) continue;
       b[1 + 3 * w] = e.force;
-      b[2 + 3 * w] = e.wire.z;
+      b[2 + 3 * w] = e.wire->z;
       b[3 + 3 * w] = 1.0;
     }
   }

@@ -21,6 +21,7 @@ FECatenary::FECatenary(MPI_Comm comm, catenary::CatenaryMesh mesh,
   if (wires.empty()) throw InputError(m.source_file, "wires", "the design has no contact wire");
   for (int w : wires)
     locators_.push_back(std::make_unique<contact::ContactWireLocator>(m, static_values_, w));
+  points_.resize(locators_.size());
   const auto& bars = system_->mesh().bars;
   for (std::size_t b = 0; b < bars.size(); ++b)
     if (bars[b].kind == BarKind::dropper) droppers_.push_back(static_cast<int>(b));
@@ -112,8 +113,12 @@ Vec FECatenary::static_forces(unsigned mask) {
   return b;
 }
 
-WirePoint FECatenary::wire_point(double x, int wire) const {
-  WirePoint point;
+const WirePoint& FECatenary::wire_point(double x, int wire) const {
+  WirePoint& point = points_[wire];
+  point.on_wire = point.owned = false;
+  point.z = point.slope = 0;
+  point.index.clear();
+  point.weight.clear();
   int element;
   double chi;
   point.on_wire = locators_[wire]->locate(x, element, chi);

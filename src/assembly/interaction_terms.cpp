@@ -103,32 +103,56 @@ PenaltyContact::Evaluation PenaltyContact::evaluate(const CoupledState& state) c
   const ScopedEvent timed(log_events().contact);
   Evaluation e;
   e.x = slot_.run.contact_x(state.t);
-  e.wire = state.catenary().wire_point(e.x, wire_);
+  e.wire = &state.catenary().wire_point(e.x, wire_);
   e.head = state.head_height(index_);
   // A reduced catenary's residual flexibility r in series: kH / (1 + kH r).
-  e.stiffness = kH_ / (1.0 + kH_ * e.wire.residual_flexibility);
-  if (e.wire.on_wire && e.wire.owned) {
-    e.gap = e.wire.z - e.head;
+  e.stiffness = kH_ / (1.0 + kH_ * e.wire->residual_flexibility);
+  if (e.wire->on_wire && e.wire->owned) {
+    e.gap = e.wire->z - e.head;
     e.force = e.gap < 0 ? -e.stiffness * e.gap : 0.0;
   }
   return e;
 }
 
+// -Fc dz/dU on the wire, +Fc on the head. The entries this rank owns are
+// added into F's array directly (what VecSetValues with ADD_VALUES does for
+// them, without its per-entry checks: a modal wire point has every mode).
 void PenaltyContact::add_residual(const CoupledState& state, Vec F) {
-  Evaluation e = evaluate(state);
+  const Evaluation e = evaluate(state);
   if (e.force <= 0) return;
-  std::vector<double>& r = e.wire.weight;  // -Fc dz/dU, in place
-  for (double& w : r) w *= -e.force;
-  PCSIM_PETSC(
-      VecSetValues(F, static_cast<PetscInt>(r.size()), e.wire.index.data(), r.data(), ADD_VALUES));
+  const auto& index = e.wire->index;
+  const auto& weight = e.wire->weight;
+  PetscInt lo, hi;
+  PCSIM_PETSC(VecGetOwnershipRange(F, &lo, &hi));
+  remote_index_.clear();
+  remote_value_.clear();
+  PetscScalar* f;
+  PCSIM_PETSC(VecGetArray(F, &f));
+  const auto n = static_cast<PetscInt>(index.size());
+  if (e.wire->contiguous && n > 0 && index[0] >= lo && index[0] + n <= hi) {  // one block here
+    Eigen::Map<Eigen::ArrayXd>(f + index[0] - lo, n) +=
+        Eigen::Map<const Eigen::ArrayXd>(weight.data(), n) * -e.force;
+  } else {
+    for (std::size_t i = 0; i < index.size(); ++i) {
+      if (index[i] >= lo && index[i] < hi) {
+        f[index[i] - lo] += weight[i] * -e.force;
+      } else {
+        remote_index_.push_back(index[i]);
+        remote_value_.push_back(weight[i] * -e.force);
+      }
+    }
+  }
+  PCSIM_PETSC(VecRestoreArray(F, &f));
+  PCSIM_PETSC(VecSetValues(F, static_cast<PetscInt>(remote_index_.size()), remote_index_.data(),
+                           remote_value_.data(), ADD_VALUES));
   PCSIM_PETSC(VecSetValue(F, slot_.contact_dof(), e.force, ADD_VALUES));
 }
 
 void PenaltyContact::add_tangent(const CoupledState& state, Shifts, Mat J) {
   const Evaluation e = evaluate(state);
   if (e.force <= 0) return;
-  std::vector<PetscInt> idx = e.wire.index;
-  std::vector<double> u = e.wire.weight;
+  std::vector<PetscInt> idx = e.wire->index;
+  std::vector<double> u = e.wire->weight;
   idx.push_back(slot_.contact_dof());
   u.push_back(-1.0);
   const Eigen::Map<const Eigen::VectorXd> uv(u.data(), static_cast<long>(u.size()));
@@ -142,16 +166,20 @@ void PenaltyContact::add_tangent(const CoupledState& state, Shifts, Mat J) {
 bool PenaltyContact::low_rank_change(const CoupledState& state, std::vector<RankOne>& terms) {
   const Evaluation e = evaluate(state);
   const double in_contact =
-      sum_over_ranks(state.catenary().comm(), e.wire.owned && e.force > 0 ? 1.0 : 0.0);
-  if (!e.wire.on_wire) return true;
+      sum_over_ranks(state.catenary().comm(), e.wire->owned && e.force > 0 ? 1.0 : 0.0);
+  if (!e.wire->on_wire) return true;
   RankOne term;
   term.key = 0;
-  term.index = e.wire.index;
-  term.weight = e.wire.weight;
+  term.index = e.wire->index;
+  term.weight = e.wire->weight;
   term.index.push_back(slot_.contact_dof());
   term.weight.push_back(-1.0);
   term.coefficient = in_contact > 0.5 ? e.stiffness : 0.0;
-  term.reuse_columns = e.wire.reuse_columns;
+  term.reuse_columns = e.wire->reuse_columns;
+  // Contiguous only if the head's unknown follows the wire's (the first
+  // pantograph of a modal catenary; not the others).
+  const std::size_t n = term.index.size();
+  term.contiguous = e.wire->contiguous && (n == 1 || term.index[n - 1] == term.index[n - 2] + 1);
   terms.push_back(std::move(term));
   return true;
 }
@@ -161,7 +189,7 @@ bool PenaltyContact::low_rank_change(const CoupledState& state, std::vector<Rank
 // contact on the system).
 TermPower PenaltyContact::power(const CoupledState& state) const {
   const Evaluation e = evaluate(state);
-  const double local = e.force > 0 ? kH_ * e.gap * e.wire.slope * slot_.run.speed : 0.0;
+  const double local = e.force > 0 ? kH_ * e.gap * e.wire->slope * slot_.run.speed : 0.0;
   TermPower p;
   p.external = sum_over_ranks(state.catenary().comm(), local);
   return p;

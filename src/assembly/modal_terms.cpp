@@ -28,10 +28,6 @@ Eigen::VectorXd modal_part(const ModalCatenary& catenary, Vec v) {
   return x;
 }
 
-Eigen::Map<const Eigen::VectorXd> omega2(const ModalCatenary& catenary) {
-  return {catenary.basis().omega2.data(), catenary.catenary_dofs()};
-}
-
 // Adds a dense modal block (m x m) to J on the owner.
 void add_modal_block(const ModalCatenary& catenary, const RowMatrix& block, Mat J) {
   if (!catenary.on_owner()) return;
@@ -43,67 +39,67 @@ void add_modal_block(const ModalCatenary& catenary, const RowMatrix& block, Mat 
 
 }  // namespace
 
-// F_k += cu_k eta_k + cv_k eta_k' + ca_k eta_k'' on the owner (the modes
-// lead its rows).
-void ModalDiagonalTerm::add_residual(const CoupledState& state, Vec F) {
+ModalOscillators::ModalOscillators(ModalCatenary& catenary, bool damping, double alpha, double beta)
+    : catenary_(catenary),
+      stiffness_(Eigen::Map<const Eigen::ArrayXd>(catenary.basis().omega2.data(),
+                                                  catenary.catenary_dofs())) {
+  if (damping) damping_ = alpha + beta * stiffness_;
+}
+
+// F_k += omega_k^2 eta_k + eta_k'' + c_k eta_k' on the owner (the modes lead
+// its rows), summed in that order.
+void ModalOscillators::add_residual(const CoupledState& state, Vec F) {
   if (!catenary_.on_owner()) return;
   const PetscInt m = catenary_.catenary_dofs();
+  const auto read = [](Vec x) {
+    const PetscScalar* a = nullptr;
+    if (x) PCSIM_PETSC(VecGetArrayRead(x, &a));
+    return a;
+  };
+  const auto release = [](Vec x, const PetscScalar* a) {
+    if (x) PCSIM_PETSC(VecRestoreArrayRead(x, &a));
+  };
+  using Map = Eigen::Map<const Eigen::ArrayXd>;
   PetscScalar* f;
   PCSIM_PETSC(VecGetArray(F, &f));
-  const auto add = [&](const std::vector<double>& c, Vec x) {
-    if (c.empty() || !x) return;
-    const PetscScalar* a;
-    PCSIM_PETSC(VecGetArrayRead(x, &a));
-    for (PetscInt k = 0; k < m; ++k) f[k] += c[k] * a[k];
-    PCSIM_PETSC(VecRestoreArrayRead(x, &a));
-  };
-  add(cu_, state.U);
-  add(cv_, state.V);
-  add(ca_, state.A);
+  Eigen::Map<Eigen::ArrayXd> fa(f, m);
+  const PetscScalar *u = read(state.U), *v = read(state.V), *a = read(state.A);
+  const bool damped = v && damping_.size() > 0;
+  if (a && damped)  // one pass (the usual residual)
+    fa = ((fa + stiffness_ * Map(u, m)) + Map(a, m)) + damping_ * Map(v, m);
+  else if (a)
+    fa = (fa + stiffness_ * Map(u, m)) + Map(a, m);
+  else if (damped)
+    fa = (fa + stiffness_ * Map(u, m)) + damping_ * Map(v, m);
+  else
+    fa += stiffness_ * Map(u, m);
+  release(state.A, a);
+  release(state.V, v);
+  release(state.U, u);
   PCSIM_PETSC(VecRestoreArray(F, &f));
 }
 
-void ModalDiagonalTerm::add_tangent(const CoupledState&, Shifts shifts, Mat J) {
+void ModalOscillators::add_tangent(const CoupledState&, Shifts shifts, Mat J) {
   if (!catenary_.on_owner()) return;
   for (PetscInt k = 0; k < catenary_.catenary_dofs(); ++k) {
-    const double value = (cu_.empty() ? 0.0 : cu_[k]) + (cv_.empty() ? 0.0 : shifts.v * cv_[k]) +
-                         (ca_.empty() ? 0.0 : shifts.a * ca_[k]);
+    double value = stiffness_[k] + shifts.a;
+    if (damping_.size() > 0) value += shifts.v * damping_[k];
     PCSIM_PETSC(MatSetValue(J, k, k, value, ADD_VALUES));
   }
 }
 
-ModalStiffness::ModalStiffness(ModalCatenary& catenary)
-    : ModalDiagonalTerm(catenary, catenary.basis().omega2, {}, {}) {}
-
-double ModalStiffness::energy(const CoupledState&) const {
+double ModalOscillators::energy(const CoupledState& state) const {
   const auto& eta = catenary_.eta();
-  return 0.5 * eta.dot(omega2(catenary_).cwiseProduct(eta));
+  double e = 0.5 * eta.dot((stiffness_ * eta.array()).matrix());
+  if (state.V) e += 0.5 * modal_part(catenary_, state.V).squaredNorm();
+  return e;
 }
 
-ModalInertia::ModalInertia(ModalCatenary& catenary)
-    : ModalDiagonalTerm(catenary, {}, {}, std::vector<double>(catenary.basis().size(), 1.0)) {}
-
-double ModalInertia::energy(const CoupledState& state) const {
-  if (!state.V) return 0;
-  return 0.5 * modal_part(catenary_, state.V).squaredNorm();
-}
-
-namespace {
-std::vector<double> rayleigh(const ModalCatenary& catenary, double alpha, double beta) {
-  std::vector<double> c;
-  for (double w2 : catenary.basis().omega2) c.push_back(alpha + beta * w2);
-  return c;
-}
-}  // namespace
-
-ModalDamping::ModalDamping(ModalCatenary& catenary, double alpha, double beta)
-    : ModalDiagonalTerm(catenary, {}, rayleigh(catenary, alpha, beta), {}) {}
-
-TermPower ModalDamping::power(const CoupledState& state) const {
+TermPower ModalOscillators::power(const CoupledState& state) const {
   TermPower p;
-  if (!state.V) return p;
+  if (!state.V || damping_.size() == 0) return p;
   const Eigen::VectorXd v = modal_part(catenary_, state.V);
-  p.dissipative = -v.dot(Eigen::Map<const Eigen::VectorXd>(cv_.data(), v.size()).cwiseProduct(v));
+  p.dissipative = -v.dot((damping_ * v.array()).matrix());
   return p;
 }
 
@@ -146,6 +142,7 @@ bool ModalDropperSlack::low_rank_change(const CoupledState&, std::vector<RankOne
     term.weight.assign(b, b + m);
     term.coefficient = -catenary_.bar_stiffness(d);
     term.reuse_columns = false;
+    term.contiguous = true;
     terms.push_back(std::move(term));
   }
   return true;

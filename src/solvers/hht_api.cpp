@@ -75,6 +75,7 @@ HHTNewtonInfo hht_get_info(TS ts) {
   info.accepted_steps = th->accepted;
   info.rejected_steps = th->rejected;
   info.user_time_step = th->dt_user;
+  info.own_newton = th->own_newton;
   return info;
 }
 

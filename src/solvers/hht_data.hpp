@@ -29,6 +29,7 @@ struct HHTData {
   Vec R_prev = nullptr;  // SNES residual the last Newton update was computed from
   Vec A_user = nullptr;  // user-supplied initial acceleration
   Vec work = nullptr;    // M(U_n) A_{n+1} (averaged inertia)
+  Vec newton_F = nullptr, newton_Y = nullptr;  // residual and update of the own Newton
   Mat M0 = nullptr;      // M(U_n) (averaged inertia), created at the first step
   Mat K_work = nullptr;  // dF/dU while extracting a mass matrix
   PetscBool user_accel_pending = PETSC_FALSE;
@@ -36,6 +37,15 @@ struct HHTData {
   // A1 is the acceleration of (vec_sol, vec_dot) at accel_time when accel_valid.
   PetscBool accel_valid = PETSC_FALSE;
   PetscReal accel_time = 0;
+
+  // Newton of a step: the TS's SNES, or the type's own iteration of the same
+  // method (hht_newton.cpp) when no SNES feature is asked for.
+  PetscBool use_snes = PETSC_FALSE;  // -ts_hht_use_snes: always the SNES
+  PetscBool newton_chosen = PETSC_FALSE, own_newton = PETSC_FALSE;  // decided at the first step
+
+  // V1, A1, A1_arg belong to stage_X at its state stage_state (nullptr: stale).
+  Vec stage_X = nullptr;
+  PetscObjectState stage_state = 0;
 
   // Current solve.
   SolveMode mode = SolveMode::kStep;
@@ -64,6 +74,13 @@ inline HHTData* data_of(TS ts) {
 
 // The TS type's constructor (TSRegister) and the SNES test with the energy norm.
 PetscErrorCode ts_create_hht(TS ts);
+// The SNES callbacks of a step (hht.cpp).
+PetscErrorCode snes_function(SNES snes, Vec X, Vec F, TS ts);
+PetscErrorCode snes_jacobian(SNES snes, Vec X, Mat J, Mat P, TS ts);
+// Solves a step's equations for X (initial guess in X) with the SNES or the
+// own Newton, leaves the reason and iteration count in the SNES and adds the
+// iterations to the TS's counts (hht_newton.cpp).
+PetscErrorCode newton_solve(TS ts, Vec X);
 PetscErrorCode converged_energy(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm,
                                 PetscReal fnorm, SNESConvergedReason* reason, void* ctx);
 

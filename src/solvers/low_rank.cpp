@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <set>
 
+#include "block_diagonal.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/core/profiling.hpp"
 
@@ -46,16 +47,27 @@ void LowRankStepSolver::invalidate() {
   capacitance_dirty_ = true;
 }
 
+// Every rank knows every index: each writes the entries it owns (no
+// communication).
 void LowRankStepSolver::build_u(Entry& e) const {
   if (!e.u) PCSIM_PETSC(MatCreateVecs(J0_, &e.u, &e.z));
-  PCSIM_PETSC(VecSet(e.u, 0.0));
-  PetscMPIInt rank;
-  MPI_Comm_rank(PetscObjectComm(reinterpret_cast<PetscObject>(J0_)), &rank);
-  if (rank == 0)  // every rank knows every index: one sets them
-    PCSIM_PETSC(VecSetValues(e.u, static_cast<PetscInt>(e.term.index.size()), e.term.index.data(),
-                             e.term.weight.data(), INSERT_VALUES));
-  PCSIM_PETSC(VecAssemblyBegin(e.u));
-  PCSIM_PETSC(VecAssemblyEnd(e.u));
+  PetscInt lo, hi;
+  PCSIM_PETSC(VecGetOwnershipRange(e.u, &lo, &hi));
+  PetscScalar* u;
+  PCSIM_PETSC(VecGetArray(e.u, &u));
+  std::fill(u, u + (hi - lo), 0.0);
+  const auto& index = e.term.index;
+  const auto n = static_cast<PetscInt>(index.size());
+  if (e.term.contiguous && n > 0 && index[n - 1] == index[0] + n - 1) {  // [lo, hi) part
+    const PetscInt first = std::max(index[0], lo), last = std::min(index[0] + n, hi);
+    if (first < last)
+      std::copy(e.term.weight.begin() + (first - index[0]),
+                e.term.weight.begin() + (last - index[0]), u + (first - lo));
+  } else {
+    for (PetscInt i = 0; i < n; ++i)
+      if (index[i] >= lo && index[i] < hi) u[index[i] - lo] = e.term.weight[i];
+  }
+  PCSIM_PETSC(VecRestoreArray(e.u, &u));
 }
 
 // J0^-1 e_g, solved once per factorisation and cached.
@@ -70,7 +82,7 @@ Vec LowRankStepSolver::unit_solution(PetscInt g) {
   if (g >= lo && g < hi) PCSIM_PETSC(VecSetValue(e, g, 1.0, INSERT_VALUES));
   PCSIM_PETSC(VecAssemblyBegin(e));
   PCSIM_PETSC(VecAssemblyEnd(e));
-  PCSIM_PETSC(KSPSolve(inner_, e, z));
+  solve_j0(e, z);
   PCSIM_PETSC(VecDestroy(&e));
   columns_[g] = z;
   return z;
@@ -85,7 +97,7 @@ void LowRankStepSolver::update_z(Entry& e) {
     PCSIM_PETSC(
         VecMAXPY(e.z, static_cast<PetscInt>(columns.size()), e.term.weight.data(), columns.data()));
   } else {
-    PCSIM_PETSC(KSPSolve(inner_, e.u, e.z));
+    solve_j0(e.u, e.z);
   }
   e.z_valid = true;
   capacitance_dirty_ = true;
@@ -134,14 +146,41 @@ void LowRankStepSolver::set_terms(const std::vector<assembly::RankOne>& terms) {
   for (auto& [key, e] : entries_) update_z(e);
 }
 
+// A J0 whose pattern is block diagonal with small blocks (the modal
+// catenary's: its modes and each pantograph's block) is inverted block by
+// block (block_diagonal.hpp) instead of factored by the inner KSP, unless the
+// options give the inner solver a -cheap_pc_type.
+void LowRankStepSolver::choose_inner(Mat P) {
+  inner_chosen_ = true;
+  const char* prefix = nullptr;
+  PetscBool pc_option = PETSC_FALSE;
+  PCSIM_PETSC(KSPGetOptionsPrefix(inner_, &prefix));
+  PCSIM_PETSC(PetscOptionsHasName(nullptr, prefix, "-pc_type", &pc_option));
+  auto blocks = std::make_unique<BlockDiagonalInverse>();
+  if (!pc_option && blocks->analyse(P)) blocks_ = std::move(blocks);
+}
+
+// x = J0^-1 r.
+void LowRankStepSolver::solve_j0(Vec r, Vec x) const {
+  if (blocks_)
+    blocks_->solve(r, x);
+  else
+    PCSIM_PETSC(KSPSolve(inner_, r, x));
+}
+
 PetscErrorCode LowRankStepSolver::pc_setup(PC pc) {
   PCSIM_CALLBACK_BEGIN
   LowRankStepSolver* self;
   PCSIM_PETSC(PCShellGetContext(pc, &self));
   Mat A, P;
   PCSIM_PETSC(PCGetOperators(pc, &A, &P));
-  PCSIM_PETSC(KSPSetOperators(self->inner_, P, P));
-  PCSIM_PETSC(KSPSetUp(self->inner_));
+  if (!self->inner_chosen_) self->choose_inner(P);
+  if (self->blocks_) {
+    self->blocks_->factor(P);
+  } else {
+    PCSIM_PETSC(KSPSetOperators(self->inner_, P, P));
+    PCSIM_PETSC(KSPSetUp(self->inner_));
+  }
   self->invalidate();
   self->factored_ = true;
   // Every z the way set_terms() computes it (reuse_columns terms from unit
@@ -178,7 +217,7 @@ PetscErrorCode LowRankStepSolver::pc_apply(PC pc, Vec r, Vec x) {
   PCSIM_CALLBACK_BEGIN
   LowRankStepSolver* self;
   PCSIM_PETSC(PCShellGetContext(pc, &self));
-  PCSIM_PETSC(KSPSolve(self->inner_, r, x));
+  self->solve_j0(r, x);
   const ScopedEvent timed(log_events().woodbury);
   if (self->capacitance_dirty_) self->update_capacitance();
   const std::size_t k = self->active_.size();

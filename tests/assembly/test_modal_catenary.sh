@@ -4,7 +4,7 @@
 # 1. Every mode and exact bars (tests/assembly/data/small-modal-all.yaml, 280
 #    unknowns, a dense Newton matrix) equal the linearised FE catenary on the
 #    full Newton path (small-linear.yaml) over 400 steps from a ramp start, in
-#    which two droppers go slack: max |dFc| <= 1e-9 max Fc. Measured 3.4e-11
+#    which two droppers go slack: max |dFc| <= 1e-9 max Fc. Measured 7.4e-11
 #    (1.2e-10 over the whole 792 steps): both solve the same equations in other
 #    unknowns, each to the Newton tolerance (-snes_atol 1e-6 N, above the FE
 #    residual's round-off floor of ~2e-7 N; a residual r moves the contact
@@ -16,7 +16,8 @@
 #    cut-off reuses them. The bounded dropper check equals evaluating every
 #    dropper at every state (the correction of a taut dropper is exactly 0,
 #    only the order of sums differs): measured 3.3e-13 of max Fc, asserted
-#    1e-11, with fewer exact evaluations (13.9 against 72.1 per step).
+#    1e-11, with fewer exact evaluations (12.3 against 48.0 per step, each
+#    record evaluating every dropper).
 # 3. Truncated at the default cut-off (1.1 x 20 Hz / (1 - v/c) = 40.5 Hz, 232
 #    of 712 vectors) on the three-span test catenary (three-span-modal.yaml)
 #    against the linearised FE run of the same scene (app/data/study-tiny.yaml),
@@ -25,6 +26,13 @@
 #    0.1 / 0.5 / 0.2 / 2.0 / 0.3 % (about 1.3-2 times the measured, the margin
 #    for round-off in the eigensolver's basis, which moves the actual max, a
 #    single sample, most).
+# 4. Two pantographs on the cheap path (rank-one terms of two contacts, the
+#    second head's unknown after the first's) against the full Newton path
+#    over 400 steps: the cheap path's operator is the exact Jacobian, so Newton
+#    takes one iteration per step (measured 1.00; a wrong rank-one term, as a
+#    head's unknown misplaced, took 4.0) and both paths give the same contact
+#    forces to the Newton tolerance's floor (-snes_atol 1e-6: measured 5e-13 of
+#    max Fc, asserted 1e-10).
 set -euo pipefail
 : "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:=/usr/bin/python3}"
 tmp=$(mktemp -d)
@@ -61,6 +69,17 @@ ls "$tmp/cache"/modal-*.h5 > /dev/null
 
 # 3. Truncated against the linearised FE run.
 run linear "$PCSIM_SOURCE_DIR/tests/app/data/study-tiny.yaml"
+
+# 4. Two pantographs, cheap against full path.
+model=$PCSIM_SOURCE_DIR/meshes/pantographs/en50318_two_mass.yaml
+cat > "$tmp/two.yaml" <<EOF
+base: $tmp/base.yaml
+pantographs:
+  - {name: leading, model: $model, start_x: 25.0, static_force: 120, start: static}
+  - {name: trailing, model: $model, start_x: 5.0, static_force: 120, start: static}
+EOF
+run two-cheap "$tmp/two.yaml" -ts_max_steps 400 -snes_atol 1e-6
+run two-full "$tmp/two.yaml" -ts_max_steps 400 -snes_atol 1e-6 -pcsim_path full
 
 "$PCSIM_PYTHON" - "$tmp" <<'PY'
 import json, sys
@@ -112,4 +131,19 @@ for key, limit in figures.items():
 err = 100 * (modal["max_uplift_at_support_m"] / fe["max_uplift_at_support_m"] - 1)
 print(f"3. default cut-off vs FE: uplift {err:+.2f} % (limit 0.3 %)")
 assert abs(err) <= 0.3, err
+
+cheap, full = summary("two-cheap"), summary("two-full")
+assert cheap["path"] == "cheap" and full["path"] == "full", (cheap["path"], full["path"])
+rel = 0.0
+for name in ("leading", "trailing"):
+    with h5py.File(f"{d}/two-cheap/results.h5") as a, h5py.File(f"{d}/two-full/results.h5") as b:
+        fa = a[f"/pantographs/{name}/contact_force"][:]
+        fb = b[f"/pantographs/{name}/contact_force"][:]
+    assert len(fa) == len(fb) == 401 and fa.max() > 50, (len(fa), fa.max())
+    rel = max(rel, np.max(np.abs(fa - fb)) / np.max(np.abs(fb)))
+its = cheap["newton_iterations_per_step"]
+print(f"4. two pantographs, cheap vs full path: max |dFc| / max Fc = {rel:.2e}, "
+      f"{its:.2f} Newton iterations per step on the cheap path")
+assert its <= 1.05, its
+assert rel <= 1e-10, rel
 PY

@@ -40,6 +40,8 @@ struct WirePoint {
   // The same few unknowns recur as x moves (FE: the element's DOFs), so that
   // a solver may cache a solve per unknown; false for dense weights (modes).
   bool reuse_columns = true;
+  // index is index[0], index[0] + 1, ... (dense weights over a block).
+  bool contiguous = false;
 };
 
 class CatenaryModel {
@@ -70,9 +72,11 @@ class CatenaryModel {
   // Makes the state U current for the queries below (collective).
   virtual void load_state(Vec U) = 0;
   // Contact wires 0..contact_wire_count()-1 (mesh().contact_wire_list()
-  // order): the point at station x and each wire's station range.
+  // order): the point at station x and each wire's station range. The point
+  // is the model's own (no copy of its weights): valid until the next
+  // wire_point() of the same wire or the next load_state().
   virtual int contact_wire_count() const = 0;
-  virtual WirePoint wire_point(double x, int wire) const = 0;
+  virtual const WirePoint& wire_point(double x, int wire) const = 0;
   virtual double wire_x_min(int wire) const = 0;
   virtual double wire_x_max(int wire) const = 0;
   // The catenary part of U in static equilibrium under an upward force at

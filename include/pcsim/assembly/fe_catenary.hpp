@@ -56,7 +56,7 @@ class FECatenary : public CatenaryModel {
   void reference_state(Vec U) const override;
   void load_state(Vec U) override { system_->load_state(U); }
   int contact_wire_count() const override { return static_cast<int>(locators_.size()); }
-  WirePoint wire_point(double x, int wire) const override;
+  const WirePoint& wire_point(double x, int wire) const override;
   double wire_x_min(int wire) const override { return locators_[wire]->x_min(); }
   double wire_x_max(int wire) const override { return locators_[wire]->x_max(); }
   std::vector<double> support_heights() const override;
@@ -71,7 +71,8 @@ class FECatenary : public CatenaryModel {
   std::unique_ptr<CatenarySystem> system_;
   std::vector<double> static_values_;
   std::vector<std::unique_ptr<contact::ContactWireLocator>> locators_;
-  std::vector<int> droppers_;  // dropper bars in mesh order (records)
+  mutable std::vector<WirePoint> points_;  // the last wire_point() of each wire
+  std::vector<int> droppers_;              // dropper bars in mesh order (records)
   Mat pattern_ = nullptr, mass_ = nullptr;
   std::map<unsigned, Mat> tangents_;
   std::map<unsigned, Vec> forces_;

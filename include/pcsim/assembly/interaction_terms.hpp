@@ -62,12 +62,12 @@ class PenaltyContact : public Term {
   TermPower power(const CoupledState& state) const override;  // the moving contact's work
 
   struct Evaluation {
-    WirePoint wire;        // at x_c
-    double x = 0;          // contact point along the track
-    double head = 0;       // head height
-    double gap = 0;        // dz (owner rank)
-    double force = 0;      // Fc >= 0 (owner rank)
-    double stiffness = 0;  // kH in series with the wire's residual flexibility
+    const WirePoint* wire = nullptr;  // at x_c: the model's (CatenaryModel::wire_point)
+    double x = 0;                     // contact point along the track
+    double head = 0;                  // head height
+    double gap = 0;                   // dz (owner rank)
+    double force = 0;                 // Fc >= 0 (owner rank)
+    double stiffness = 0;             // kH in series with the wire's residual flexibility
   };
   // At the loaded state; gap and force only on the rank that owns the point.
   Evaluation evaluate(const CoupledState& state) const;
@@ -77,6 +77,8 @@ class PenaltyContact : public Term {
   const PantographSlot& slot_;
   double kH_;
   int wire_;
+  std::vector<PetscInt> remote_index_;  // add_residual's entries of other ranks
+  std::vector<double> remote_value_;
 };
 
 }  // namespace pcsim::assembly

@@ -58,7 +58,7 @@ class ModalCatenary : public CatenaryModel {
   void reference_state(Vec U) const override;
   void load_state(Vec U) override;
   int contact_wire_count() const override { return static_cast<int>(locators_.size()); }
-  WirePoint wire_point(double x, int wire) const override;
+  const WirePoint& wire_point(double x, int wire) const override;
   double wire_x_min(int wire) const override { return locators_[wire]->x_min(); }
   double wire_x_max(int wire) const override { return locators_[wire]->x_max(); }
   bool closed_form_point_load(double x, int wire, double force, Vec U) const override;
@@ -112,14 +112,24 @@ class ModalCatenary : public CatenaryModel {
   bool slack_active_ = false;       // the slack correction is a term
   std::vector<double> stretch_, bnorm_, bnorm_omega_;  // s_d, |b_d|, |Omega^-1 b_d|
   RowMatrix B_;
+  RowMatrix support_rows_;  // the contact-wire height rows of the supports
   Eigen::VectorXd omega_;
   // Loaded state and the bounded set's bookkeeping (the records make exact
   // anchors too, hence mutable).
   using FloatRowMatrix = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   FloatRowMatrix B_single_;
-  Eigen::VectorXd eta_, work_;
+  Eigen::VectorXd eta_, work_, incoming_;
+  long eta_version_ = 0;                    // counts the changes of eta_
+  mutable long anchor_version_ = -1;        // the eta_version_ of the anchor
+  mutable bool slack_set_current_ = false;  // slack_now_ is that of eta_ and the anchor
   Eigen::VectorXf work_single_, change_single_;
   mutable Eigen::VectorXd anchor_, anchor_elongation_, anchor_error_;
+  // The last exact anchor (eta_e, dl_e), and the line from the one before:
+  // line_ = eta_e - eta_p, line_elongation_ = dl_e - dl_p, |line_|^2, |eta_p|.
+  mutable Eigen::VectorXd exact_eta_, exact_elongation_, line_, line_elongation_;
+  mutable long exact_count_ = 0;
+  mutable bool line_valid_ = false;
+  mutable double line_norm2_ = 0, exact_norm_ = 0, previous_exact_norm_ = 0;
   std::vector<double> elongation_;
   std::vector<std::size_t> slack_now_;
   std::vector<long> candidates_;
@@ -128,6 +138,7 @@ class ModalCatenary : public CatenaryModel {
   void exact_anchor() const;
   void single_precision_anchor(double step);
   void find_candidates(double step, double step_omega);
+  bool line_candidates(std::size_t few);
   // Wire-point weights of the last x of each contact wire (they depend on x
   // only): the point, its static height and the slope's parts.
   struct CachedPoint {
@@ -136,9 +147,10 @@ class ModalCatenary : public CatenaryModel {
     double z0 = 0, x_chi = 1;  // static height, dx/dchi
     Eigen::RowVectorXd z_chi;  // d(dz/dchi)/d eta
     double z_chi0 = 0;         // static dz/dchi
+    long eta_version = -1;     // point.z and point.slope belong to this eta_version_
   };
   mutable std::vector<CachedPoint> cached_;
-  const CachedPoint& cached_point(double x, int wire) const;
+  CachedPoint& cached_point(double x, int wire) const;
 };
 
 }  // namespace pcsim::assembly

@@ -56,6 +56,7 @@ struct RankOne {
   std::vector<double> weight;
   double coefficient = 0;
   bool reuse_columns = false;
+  bool contiguous = false;  // index is index[0], index[0] + 1, ... (dense u over a block)
 };
 
 enum class TangentKind {

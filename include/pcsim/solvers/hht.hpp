@@ -29,6 +29,14 @@
 //                                 accurate (measured in tests/solvers/test_hht.cpp), the averaged
 //                                 form second order. Costs M(U_n) once per step (extracted
 //                                 from 2-3 I2Jacobian evaluations) and one MatMult per residual.
+//   -ts_hht_use_snes <0>          Newton of the steps through the TS's SNES object. By default
+//                                 the type runs the same iteration itself (SNESNEWTONLS with
+//                                 full steps and SNESConvergedDefault, the SNES's tolerances
+//                                 and KSP: the same iterates, src/solvers/hht_newton.cpp)
+//                                 unless an -snes_ option other than the tolerances (e.g.
+//                                 -snes_test_jacobian, -snes_monitor), the energy-norm test or
+//                                 an SNES other than newtonls with the basic line search asks
+//                                 for the SNES.
 // The initial acceleration solves F(t0, U0, V0, A0) = 0 with the TS's SNES at the first step
 // (and whenever the time differs from the end of the last step), unless
 // hht_set_initial_acceleration() supplied it. With -ts_hht_energy_norm_tol the TS installs its
@@ -67,6 +75,8 @@ struct HHTNewtonInfo {
   PetscInt accepted_steps = 0;   // since setup
   PetscInt rejected_steps = 0;   // since setup
   PetscReal user_time_step = 0;  // the Δt the step size grows back to
+  // The steps' Newton: the type's own iteration (true) or the SNES (after the first step).
+  PetscBool own_newton = PETSC_FALSE;
 };
 HHTNewtonInfo hht_get_info(TS ts);
 

@@ -10,18 +10,23 @@
 // solve is needed only when it reaches new unknowns (also right after a
 // refactorisation: z is a function of J0 and u alone, whatever the history,
 // so a restarted run computes the same z as an uninterrupted one). J0 is factored by an
-// inner KSP with options prefix -cheap_ (e.g. -cheap_pc_factor_mat_solver_type).
+// inner KSP with options prefix -cheap_ (e.g. -cheap_pc_factor_mat_solver_type), or,
+// when its pattern is block diagonal with small blocks (the reduced-order catenary's)
+// and no -cheap_pc_type is given, inverted block by block (block_diagonal.hpp).
 #pragma once
 
 #include <petscksp.h>
 
 #include <Eigen/Core>
 #include <map>
+#include <memory>
 #include <vector>
 
 #include "pcsim/assembly/term.hpp"
 
 namespace pcsim::solvers {
+
+class BlockDiagonalInverse;
 
 class LowRankStepSolver {
  public:
@@ -41,6 +46,8 @@ class LowRankStepSolver {
   // evaluation. Terms keep their J0^-1 u while their u stays the same.
   void set_terms(const std::vector<assembly::RankOne>& terms);
   KSP inner() const { return inner_; }
+  // J0 is inverted block by block (known after the first setup), not by the inner KSP.
+  bool block_inverse() const { return blocks_ != nullptr; }
 
  private:
   struct Entry {
@@ -56,11 +63,14 @@ class LowRankStepSolver {
   Vec unit_solution(PetscInt g);
   void evict_unused_columns();
   void update_capacitance();
+  void choose_inner(Mat P);
+  void solve_j0(Vec r, Vec x) const;
   std::vector<Entry*> active();
 
   Mat J0_, op_ = nullptr;
   KSP inner_ = nullptr;
-  bool factored_ = false, capacitance_dirty_ = true;
+  std::unique_ptr<BlockDiagonalInverse> blocks_;  // J0 block diagonal: inverted by blocks
+  bool factored_ = false, capacitance_dirty_ = true, inner_chosen_ = false;
   std::map<int, Entry> entries_;
   std::map<PetscInt, Vec> columns_;  // J0^-1 e_g
   Eigen::MatrixXd capacitance_;      // C^-1 + U^T Z over the active terms

@@ -1,0 +1,38 @@
+// The inverse of a matrix whose pattern is block diagonal with small blocks,
+// block by block (the cheap path's J0 of the reduced-order catenary: its modes
+// and each pantograph's block). A solve is one pass over the unknowns, where
+// an LU factor's triangular pair with its permutations costs several
+// (measured: 2 solves per step were ~8 % of a step of EN 50318, see
+// docs/fidelity.md). Private to src/solvers (the low-rank step solver).
+#pragma once
+
+#include <petscmat.h>
+
+#include <Eigen/Dense>
+#include <vector>
+
+namespace pcsim::solvers {
+
+class BlockDiagonalInverse {
+ public:
+  // The blocks of P's pattern on this rank: true if it is block diagonal with
+  // blocks of at most max_block rows, each within this rank's rows and holding
+  // its diagonal (collective: the same answer on every rank).
+  bool analyse(Mat P, PetscInt max_block = 32);
+  // Inverts the blocks of P's current values; throws SolverError on a
+  // singular one.
+  void factor(Mat P);
+  // x = P^-1 r (local to each rank).
+  void solve(Vec r, Vec x) const;
+
+ private:
+  struct Block {
+    PetscInt first = 0;  // local row
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+  };
+  std::vector<PetscInt> sizes_;
+  Eigen::ArrayXd inverse_diagonal_;  // 1/d on the rows of 1 x 1 blocks, 0 elsewhere
+  std::vector<Block> blocks_;        // the larger blocks
+};
+
+}  // namespace pcsim::solvers
