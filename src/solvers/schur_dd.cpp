@@ -87,6 +87,7 @@ class SchurDomainSolver {
   void extract_blocks(Mat diagonal, MatReuse reuse);
   void factor_interior();
   void assemble_schur(const LocalBlocks& blocks);
+  void refill_blocks(Mat diagonal);
 
   MPI_Comm comm_;
   int rank_ = 0;
@@ -98,12 +99,18 @@ class SchurDomainSolver {
   Vec r_I_ = nullptr, y_I_ = nullptr, t_I_ = nullptr, g_r_ = nullptr, x_G_r_ = nullptr;
   Eigen::PartialPivLU<Eigen::MatrixXd> schur_;
   DomainDecompositionInfo info_;
+  Mat source_ = nullptr;             // the diagonal block the blocks were taken from
+  PetscInt diagonal_nonzeros_ = -1;  // and its number of stored values
+  // Where each stored value of A_II, A_IG, A_GI sits in the diagonal block's
+  // values (empty: no map, MatCreateSubMatrix refills the block).
+  std::vector<PetscInt> at_II_, at_IG_, at_GI_;
 };
 
 void SchurDomainSolver::release() {
-  for (Mat* m : {&A_II_, &A_IG_, &A_GI_, &X_}) MatDestroy(m);
+  for (Mat* m : {&A_II_, &A_IG_, &A_GI_, &X_, &source_}) MatDestroy(m);
   for (Vec* v : {&r_I_, &y_I_, &t_I_, &g_r_, &x_G_r_}) VecDestroy(v);
   F_ = nullptr;  // owned by the interior KSP's PC
+  for (auto* at : {&at_II_, &at_IG_, &at_GI_}) at->clear();
   // A new split may change the interior's size: the KSP forgets the old one.
   if (interior_ksp_) KSPReset(interior_ksp_);
 }
@@ -172,18 +179,92 @@ void sub_matrix(Mat A, const std::vector<PetscInt>& rows, const std::vector<Pets
   PCSIM_PETSC(ISDestroy(&is_cols));
 }
 
+PetscInt stored_values(Mat seq) {
+  PetscInt n;
+  const PetscInt *ia, *ja;
+  PetscBool done;
+  PCSIM_PETSC(MatGetRowIJ(seq, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
+  const PetscInt count = ia[n];
+  PCSIM_PETSC(MatRestoreRowIJ(seq, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
+  return count;
+}
+
+// Position in the diagonal block's values of each stored value of sub =
+// diagonal(rows, cols) (ascending local numbers; both patterns sorted by
+// column), or an empty list if sub stores a value the block does not.
+std::vector<PetscInt> value_positions(Mat diagonal, Mat sub, const std::vector<PetscInt>& rows,
+                                      const std::vector<PetscInt>& cols) {
+  PetscInt n, n_sub;
+  const PetscInt *ia, *ja, *sia, *sja;
+  PetscBool done;
+  PCSIM_PETSC(MatGetRowIJ(diagonal, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
+  PCSIM_PETSC(MatGetRowIJ(sub, 0, PETSC_FALSE, PETSC_FALSE, &n_sub, &sia, &sja, &done));
+  std::vector<PetscInt> at(static_cast<std::size_t>(sia[n_sub]));
+  bool found = true;
+  for (PetscInt i = 0; i < n_sub && found; ++i) {
+    const PetscInt r = rows[static_cast<std::size_t>(i)];
+    PetscInt k = ia[r];
+    for (PetscInt s = sia[i]; s < sia[i + 1] && found; ++s) {
+      const PetscInt c = cols[static_cast<std::size_t>(sja[s])];
+      while (k < ia[r + 1] && ja[k] < c) ++k;
+      found = k < ia[r + 1] && ja[k] == c;
+      at[static_cast<std::size_t>(s)] = k;
+    }
+  }
+  PCSIM_PETSC(MatRestoreRowIJ(sub, 0, PETSC_FALSE, PETSC_FALSE, &n_sub, &sia, &sja, &done));
+  PCSIM_PETSC(MatRestoreRowIJ(diagonal, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
+  if (!found) at.clear();
+  return at;
+}
+
+// sub's values from the diagonal block's, one pass over sub's values
+// (MatCreateSubMatrix with MAT_REUSE_MATRIX searches every row: on one rank
+// it was a third of the full path's factorisation time).
+void copy_values(Mat diagonal, Mat sub, const std::vector<PetscInt>& at) {
+  const PetscScalar* from;
+  PetscScalar* to;
+  PCSIM_PETSC(MatSeqAIJGetArrayRead(diagonal, &from));
+  PCSIM_PETSC(MatSeqAIJGetArray(sub, &to));
+  for (std::size_t s = 0; s < at.size(); ++s) to[s] = from[at[s]];
+  PCSIM_PETSC(MatSeqAIJRestoreArray(sub, &to));
+  PCSIM_PETSC(MatSeqAIJRestoreArrayRead(diagonal, &from));
+}
+
 // A_II, A_IG, A_GI from the diagonal block: new matrices after a new split,
 // else the same ones with new values (the interior LU then keeps its
-// ordering and symbolic factorisation: only the numeric one is redone).
+// ordering and symbolic factorisation: only the numeric one is redone). A
+// rank without interface factors the diagonal block itself (no copy).
 void SchurDomainSolver::extract_blocks(Mat diagonal, MatReuse reuse) {
-  sub_matrix(diagonal, interior_, interior_, reuse, &A_II_);
-  sub_matrix(diagonal, interior_, interface_, reuse, &A_IG_);
-  sub_matrix(diagonal, interface_, interior_, reuse, &A_GI_);
-  if (reuse == MAT_REUSE_MATRIX) return;
+  if (reuse == MAT_REUSE_MATRIX) return refill_blocks(diagonal);
+  if (interface_.empty()) {
+    PCSIM_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(diagonal)));
+    A_II_ = diagonal;
+  } else {
+    sub_matrix(diagonal, interior_, interior_, reuse, &A_II_);
+    sub_matrix(diagonal, interior_, interface_, reuse, &A_IG_);
+    sub_matrix(diagonal, interface_, interior_, reuse, &A_GI_);
+    at_II_ = value_positions(diagonal, A_II_, interior_, interior_);
+    at_IG_ = value_positions(diagonal, A_IG_, interior_, interface_);
+    at_GI_ = value_positions(diagonal, A_GI_, interface_, interior_);
+  }
   PCSIM_PETSC(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(interior_.size()), &r_I_));
   for (Vec* v : {&y_I_, &t_I_}) PCSIM_PETSC(VecDuplicate(r_I_, v));
   PCSIM_PETSC(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(interface_.size()), &g_r_));
   PCSIM_PETSC(VecDuplicate(g_r_, &x_G_r_));
+}
+
+void SchurDomainSolver::refill_blocks(Mat diagonal) {
+  if (interface_.empty()) return;  // A_II_ is the diagonal block
+  const std::pair<Mat*, std::vector<PetscInt>*> blocks[] = {
+      {&A_II_, &at_II_}, {&A_IG_, &at_IG_}, {&A_GI_, &at_GI_}};
+  const std::vector<PetscInt>* rows[] = {&interior_, &interior_, &interface_};
+  const std::vector<PetscInt>* cols[] = {&interior_, &interface_, &interior_};
+  for (int b = 0; b < 3; ++b) {
+    if (!blocks[b].second->empty() || stored_values(*blocks[b].first) == 0)
+      copy_values(diagonal, *blocks[b].first, *blocks[b].second);
+    else
+      sub_matrix(diagonal, *rows[b], *cols[b], MAT_REUSE_MATRIX, blocks[b].first);
+  }
 }
 
 // A_II = L U (sequential), X = A_II^-1 A_IG (dense, |I_r| x |G_r|).
@@ -191,9 +272,11 @@ void SchurDomainSolver::factor_interior() {
   const PetscInt n_I = static_cast<PetscInt>(interior_.size());
   const PetscInt m = static_cast<PetscInt>(interface_.size());
   PCSIM_PETSC(MatDestroy(&X_));
-  Mat B;
-  PCSIM_PETSC(MatConvert(A_IG_, MATSEQDENSE, MAT_INITIAL_MATRIX, &B));
-  PCSIM_PETSC(MatDuplicate(B, MAT_DO_NOT_COPY_VALUES, &X_));
+  Mat B = nullptr;
+  if (m > 0) {
+    PCSIM_PETSC(MatConvert(A_IG_, MATSEQDENSE, MAT_INITIAL_MATRIX, &B));
+    PCSIM_PETSC(MatDuplicate(B, MAT_DO_NOT_COPY_VALUES, &X_));
+  }
   if (n_I > 0) {
     PCSIM_PETSC(KSPSetOperators(interior_ksp_, A_II_, A_II_));
     PCSIM_PETSC(KSPSetUp(interior_ksp_));
@@ -253,8 +336,18 @@ void SchurDomainSolver::assemble_schur(const LocalBlocks& blocks) {
 void SchurDomainSolver::set_up(Mat A) {
   const ScopedEvent timed(log_events().dd_setup);
   const LocalBlocks blocks = local_blocks(A);
-  const bool new_split = split_unknowns(A, blocks);
-  if (new_split) release();
+  bool new_split = split_unknowns(A, blocks);
+  const PetscInt nonzeros = stored_values(blocks.diagonal);
+  // Another matrix (its pattern may differ) or a pattern grown since: new blocks.
+  int new_pattern = blocks.diagonal != source_ || nonzeros != diagonal_nonzeros_;
+  MPI_Allreduce(MPI_IN_PLACE, &new_pattern, 1, MPI_INT, MPI_MAX, comm_);
+  new_split = new_split || new_pattern;
+  if (new_split) {
+    release();
+    PCSIM_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(blocks.diagonal)));
+    source_ = blocks.diagonal;
+    diagonal_nonzeros_ = nonzeros;
+  }
   info_ = {};
   extract_blocks(blocks.diagonal, new_split ? MAT_INITIAL_MATRIX : MAT_REUSE_MATRIX);
   factor_interior();
