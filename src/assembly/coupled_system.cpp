@@ -37,8 +37,11 @@ CoupledSystem::CoupledSystem(std::unique_ptr<CatenaryModel> catenary,
       terms_.push_back(std::move(contact));
     }
   }
-  pattern_ = build_pattern(catenary_->has_reference_pattern());
-  auto catenary_terms = catenary_->make_terms(effects, pattern_);
+  Mat pattern = build_pattern(catenary_->has_reference_pattern());
+  auto catenary_terms = catenary_->make_terms(effects, pattern);
+  // Not kept: all zeros and as large as a Jacobian (1000 spans: ~0.25 GB per
+  // rank, docs/scaling.md); create_matrix() builds each copy afresh.
+  PCSIM_PETSC(MatDestroy(&pattern));
   terms_.insert(terms_.begin(), std::make_move_iterator(catenary_terms.begin()),
                 std::make_move_iterator(catenary_terms.end()));
   // Merge the linear parts that share a matrix.
@@ -59,7 +62,6 @@ CoupledSystem::CoupledSystem(std::unique_ptr<CatenaryModel> catenary,
 
 CoupledSystem::~CoupledSystem() {
   terms_.clear();
-  MatDestroy(&pattern_);
   VecDestroy(&reference_);
   VecDestroy(&work_);
 }
@@ -88,16 +90,11 @@ Mat CoupledSystem::build_pattern(bool reference) const {
 }
 
 Mat CoupledSystem::create_matrix() const {
-  if (catenary_->has_reference_pattern()) return build_pattern(false);
-  Mat J;
-  PCSIM_PETSC(MatDuplicate(pattern_, MAT_DO_NOT_COPY_VALUES, &J));
-  return J;
+  return build_pattern(false);
 }
 
 Mat CoupledSystem::create_reference_matrix() const {
-  Mat J;
-  PCSIM_PETSC(MatDuplicate(pattern_, MAT_DO_NOT_COPY_VALUES, &J));
-  return J;
+  return build_pattern(catenary_->has_reference_pattern());
 }
 
 void CoupledSystem::load(double t, Vec U, Vec V, Vec A) {

@@ -30,7 +30,6 @@ FECatenary::FECatenary(MPI_Comm comm, catenary::CatenaryMesh mesh,
 }
 
 FECatenary::~FECatenary() {
-  MatDestroy(&pattern_);
   MatDestroy(&mass_);
   for (auto& [mask, K] : tangents_) MatDestroy(&K);
   for (auto& [mask, b] : forces_) VecDestroy(&b);
@@ -167,10 +166,7 @@ std::vector<double> FECatenary::dropper_forces() const {
 }
 
 std::vector<std::unique_ptr<Term>> FECatenary::make_terms(const contact::InteractionEffects& e,
-                                                          Mat pattern) {
-  PCSIM_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(pattern)));
-  PCSIM_PETSC(MatDestroy(&pattern_));
-  pattern_ = pattern;
+                                                          Mat /*pattern*/) {
   if (!e.dropper_slack)
     for (auto& bar : system_->mutable_mesh().bars) bar.slack = catenary::SlackCriterion::none;
   std::vector<std::unique_ptr<Term>> terms;

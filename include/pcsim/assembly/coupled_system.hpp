@@ -87,7 +87,6 @@ class CoupledSystem {
   std::vector<MergedPart> parts_;
   std::vector<SubsetAxpy> part_axpy_;  // J += c A_k for the parts with a pattern of their own
   double contact_stiffness_;
-  Mat pattern_ = nullptr;  // the reference pattern (the full one if the model has no other)
   std::vector<bool> wire_coupled_;
   Vec reference_ = nullptr, work_ = nullptr;
   bool record_dropper_forces_ = true;

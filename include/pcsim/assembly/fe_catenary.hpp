@@ -73,7 +73,7 @@ class FECatenary : public CatenaryModel {
   std::vector<std::unique_ptr<contact::ContactWireLocator>> locators_;
   mutable std::vector<WirePoint> points_;  // the last wire_point() of each wire
   std::vector<int> droppers_;              // dropper bars in mesh order (records)
-  Mat pattern_ = nullptr, mass_ = nullptr;
+  Mat mass_ = nullptr;
   std::map<unsigned, Mat> tangents_;
   std::map<unsigned, Vec> forces_;
   Vec U0_ = nullptr;
