@@ -153,8 +153,9 @@ PetscInt solve_coupled_static(assembly::CoupledSystem& system, Vec U0) {
   PCSIM_PETSC(SNESLineSearchSetType(line_search, SNESLINESEARCHBASIC));
   KSP ksp;
   PCSIM_PETSC(SNESGetKSP(snes, &ksp));
-  use_step_lu(
-      ksp);  // exact, as -pcsim_step_solver chooses (dd: no fill from the stored zero couplings)
+  // Exact, as -pcsim_step_solver chooses (dd: no fill from the stored zero
+  // couplings of the pantographs with the whole contact wire).
+  use_step_lu(ksp);
   PCSIM_PETSC(SNESSetFromOptions(snes));
   PCSIM_PETSC(SNESSolve(snes, nullptr, U0));
   SNESConvergedReason reason;
