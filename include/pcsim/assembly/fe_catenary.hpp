@@ -53,6 +53,13 @@ class FECatenary : public CatenaryModel {
   PetscInt extra_global(PetscInt k) const override { return system_->layout().extra_global(k); }
   Vec create_vector() const override { return system_->create_vector(); }
   Mat create_matrix(const std::vector<bool>& wire_coupled) const override;
+  // J0 of the cheap path without the pantographs' couplings with the whole
+  // contact wire: contact enters J0 only as rank-one terms (1000 spans, 2
+  // ranks: a smaller J0, interior copy and factor; docs/scaling.md).
+  bool has_reference_pattern() const override { return true; }
+  Mat create_reference_matrix(const std::vector<bool>& wire_coupled) const override {
+    return create_matrix(std::vector<bool>(wire_coupled.size(), false));
+  }
   void reference_state(Vec U) const override;
   void load_state(Vec U) override { system_->load_state(U); }
   int contact_wire_count() const override { return static_cast<int>(locators_.size()); }
