@@ -14,6 +14,7 @@
 #include "pcsim/output/run_stream.hpp"
 #include "pcsim/solvers/dynamics.hpp"
 #include "run_checkpoint.hpp"
+#include "run_window.hpp"
 
 namespace pcsim::app {
 
@@ -26,6 +27,7 @@ class RunSession {
     bool energy = false;            // E(t) and the powers every step (output.energy)
     std::string checkpoint_file;    // in the partial output folder
     std::vector<InputFile> inputs;  // fingerprint stored in checkpoints
+    MovingWindow* window = nullptr;  // scene key 'window': shifts after steps, line records
   };
   // stream: rank 0's results.h5 (null on the other ranks). restart: the
   // checkpoint the run continues from (null for a new run).

@@ -9,7 +9,7 @@ namespace pcsim::catenary {
 
 void check_scene_sections(const InputNode& scene) {
   scene.allow_only({"name", "description", "catenary", "modes", "pantographs", "simulation",
-                    "effects", "contact", "analysis", "output", "elasticity"});
+                    "effects", "contact", "analysis", "output", "elasticity", "window"});
 }
 
 namespace {

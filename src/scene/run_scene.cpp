@@ -184,6 +184,7 @@ RunScene load_run_scene(const InputNode& scene, const RunSceneOptions& options) 
         catenary::kModalCutoffMargin * catenary::doppler_frequency(run.cutoff_hz, run.speed, c);
   }
   check_time_step(scene, run, options.command_line_dt ? "-ts_dt" : "simulation.dt");
+  if (scene.has("window")) read_window(scene, run);
   return run;
 }
 

@@ -116,4 +116,22 @@ class RayleighDamping : public Term {
   std::vector<LinearPart> parts_;
 };
 
+// Linear dashpots from nodes to the ground (mesh.dashpots: the matched ends
+// of a moving window, catenary/window.hpp): F += C V, C diagonal with each
+// dashpot's coefficient on its DOF; tangent v C. Dissipates V.C V.
+class NodeDashpots : public Term {
+ public:
+  explicit NodeDashpots(FECatenary& catenary);
+  ~NodeDashpots() override;
+  std::string name() const override { return "node dashpots"; }
+  TangentKind tangent_kind() const override { return TangentKind::constant; }
+  std::vector<LinearPart> linear_parts() const override {
+    return {{C_, 0.0, 1.0, 0.0, SUBSET_NONZERO_PATTERN}};
+  }
+  TermPower power(const CoupledState& state) const override;  // -V.C V
+
+ private:
+  Mat C_ = nullptr;
+};
+
 }  // namespace pcsim::assembly
