@@ -35,6 +35,7 @@ MovingWindow::MovingWindow(const scene::RunWindow& window, assembly::CoupledSyst
     : system_(system), span_length_(window.span_length), line_support_x_(std::move(line_support_x)) {
   auto* fe = dynamic_cast<assembly::FECatenary*>(&system.catenary());
   if (!fe) throw SolverError("moving window: needs the finite-element catenary");
+  fe_ = fe;
   const auto& mesh = fe->mesh();
   const auto& layout = fe->system().layout();
   shift_at_x_ = mesh.support_x.front() + (window.spans_behind + 2) * span_length_;
@@ -54,6 +55,9 @@ MovingWindow::MovingWindow(const scene::RunWindow& window, assembly::CoupledSyst
   system.catenary().reference_state(U0);
   static_U_ = gather_to_root(U0);
   PCSIM_PETSC(VecDestroy(&U0));
+  line_spans_ = window.line_spans;
+  window_spans_ = window.spans();
+  set_pins(*fe);
   if (layout.rank() != 0) return;
   const auto partner = catenary::shifted_nodes(mesh, 2.0 * span_length_);
   source_.assign(static_cast<std::size_t>(layout.catenary_dofs()), -1);
@@ -86,6 +90,17 @@ void MovingWindow::shift(solvers::DynamicSolver& solver) {
   solver.replace_state(s.U, s.V, s.A);
   system_.pantographs().front().run.start_x -= 2.0 * span_length_;
   ++shifts_;
+  set_pins(*fe_);  // J0 is rebuilt at the next step (replace_state)
+}
+
+// The window's ends that are the line's anchored ends are pinned: the rear
+// before the first shift, the front once it has reached the line's end.
+void MovingWindow::set_pins(assembly::FECatenary& fe) {
+  auto& mesh = fe.system().mutable_mesh();
+  const double rear = mesh.support_x.front();
+  const bool front_at_line_end = 2 * shifts_ + window_spans_ == line_spans_;
+  for (auto& pin : mesh.pins)
+    pin.active = mesh.nodes[pin.node].position.x() < rear + 1e-6 ? shifts_ == 0 : front_at_line_end;
 }
 
 void MovingWindow::to_line(contact::StepRecord& record) const {

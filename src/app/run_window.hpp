@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "pcsim/assembly/coupled_system.hpp"
+#include "pcsim/assembly/fe_catenary.hpp"
 #include "pcsim/contact/records.hpp"
 #include "pcsim/output/run_stream.hpp"
 #include "pcsim/scene/run_scene.hpp"
@@ -35,8 +36,11 @@ class MovingWindow {
 
  private:
   void shift(solvers::DynamicSolver& solver);
+  void set_pins(assembly::FECatenary& fe);
 
   assembly::CoupledSystem& system_;
+  assembly::FECatenary* fe_ = nullptr;
+  int line_spans_ = 0, window_spans_ = 0;
   double span_length_ = 0;
   double shift_at_x_ = 0;  // window station where the pantograph leaves the middle spans
   int max_shifts_ = 0, shifts_ = 0;

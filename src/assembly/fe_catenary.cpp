@@ -182,6 +182,7 @@ std::vector<std::unique_ptr<Term>> FECatenary::make_terms(const contact::Interac
   terms.push_back(std::make_unique<Inertia>(*this));
   if (e.rayleigh_damping) terms.push_back(std::make_unique<RayleighDamping>(*this, e));
   if (!mesh().dashpots.empty()) terms.push_back(std::make_unique<NodeDashpots>(*this));
+  if (!mesh().pins.empty()) terms.push_back(std::make_unique<NodePins>(*this));
   return terms;
 }
 

@@ -49,6 +49,7 @@ std::vector<int> release_window_ends(CatenaryMesh& mesh, const std::vector<doubl
     mesh.node_forces.push_back(
         {ends[i], Eigen::Vector3d(0.0, 0.0, reactions[i].z()), "window_end"});
     mesh.dashpots.push_back({ends[i], 2, impedance_factor * wave_impedance(*of_end[i])});
+    mesh.pins.push_back({ends[i], 2, kPinStiffness, false});
   }
   return ends;
 }

@@ -14,6 +14,11 @@ namespace pcsim::catenary {
 // Wave impedance of a tensioned wire, sqrt(T rho_T) = T / c [N s/m]: a
 // dashpot of this coefficient at a string's end absorbs every transverse
 // wave (reflection coefficient (Z - c_d) / (Z + c_d) = 0).
+// Stiffness of a pinned window end [N/m]: the dynamic forces there (~100 N)
+// move it by ~0.1 um, and it is ~500 x the step matrix's M / (beta dt^2) at
+// dt = 1 ms (an exact LU solves it).
+constexpr double kPinStiffness = 1e9;
+
 inline double wave_impedance(const Wire& wire) { return wire.tension / wave_speed(wire); }
 
 // The window's ends as the line continues beyond them: every wire end held
@@ -22,8 +27,10 @@ inline double wave_impedance(const Wire& wire) { return wire.tension / wave_spee
 // supports is held there in the line too and stays held) gets its vertical
 // position freed, the force the anchor held it with as a NodeForce (so
 // 'node_values' stays an equilibrium), and a vertical dashpot of
-// impedance_factor x the wire's impedance. Needs a parametric mesh of at
-// least 3 supports. Returns the released nodes.
+// impedance_factor x the wire's impedance, and an inactive pin (NodePin,
+// kPinStiffness) that holds it where the window's end is the line's anchored
+// end. Needs a parametric mesh of at least 3 supports. Returns the released
+// nodes.
 std::vector<int> release_window_ends(CatenaryMesh& mesh, const std::vector<double>& node_values,
                                      double impedance_factor = 1.0);
 
