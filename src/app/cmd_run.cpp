@@ -272,13 +272,40 @@ int finish_complete(const app::CommandContext& ctx, OutputDir& out, app::RunSess
 // The window's mesh (static configuration) with its ends released
 // (catenary/window.hpp), on the console.
 void prepare_window(const app::CommandContext& ctx, const scene::RunWindow& window,
-                  solvers::StaticConfiguration& statics) {
+                    solvers::StaticConfiguration& statics) {
   const auto ends = catenary::release_window_ends(statics.mesh, statics.result.node_values);
   app::print0(ctx,
               "  moving window: %d of the line's %d spans (%d behind, 2 with the pantograph, %d "
               "ahead), %zu wire ends with matched dashpots\n",
               window.spans(), window.line_spans, window.spans_behind, window.spans_ahead,
               ends.size());
+}
+
+// The checkpoint of --restart DIR, or null.
+std::unique_ptr<app::RunCheckpoint> load_restart(const app::CommandContext& ctx,
+                                                 const scene::RunScene& run,
+                                                 const OutputRequest& request,
+                                                 const std::vector<app::InputFile>& inputs) {
+  if (app::restart_dir(ctx).empty()) return nullptr;
+  if (run.window)
+    throw InputError("command line", "--restart",
+                     "a run with a moving window (scene key 'window') cannot be restarted");
+  app::check_restart_target(ctx, request.dir);
+  return std::make_unique<app::RunCheckpoint>(app::load_run_checkpoint(ctx, inputs));
+}
+
+// The static configuration of the line, or of the window with its ends released.
+solvers::StaticConfiguration run_statics(const app::CommandContext& ctx,
+                                         const scene::RunScene& run) {
+  auto statics =
+      solvers::static_configuration(ctx.comm, run.window ? run.window->mesh : run.catenary.mesh,
+                                    run.catenary.form_finding, "static_");
+  if (run.window) prepare_window(ctx, *run.window, statics);
+  app::print0(ctx, "  static: %d Newton iterations, height error %.2e m, tension error %.2e\n",
+              statics.result.snes_iterations, statics.result.max_height_error_m,
+              statics.result.max_tension_error_rel);
+  app::print_warnings(ctx, statics.result.warnings);
+  return statics;
 }
 
 app::RunSession::Options session_options(const scene::RunScene& run, const OutputDir& out,
@@ -302,14 +329,7 @@ int run_dynamic(const app::CommandContext& ctx) {
   const double c = catenary::wave_speed(design.wires[design.contact_wire]);
   const auto inputs = app::run_input_files(ctx.scene_path, scene);
   const OutputRequest request = ctx.output_request(scene);
-  std::unique_ptr<app::RunCheckpoint> restart;
-  if (!app::restart_dir(ctx).empty() && run.window)
-    throw InputError("command line", "--restart",
-                     "a run with a moving window (scene key 'window') cannot be restarted");
-  if (!app::restart_dir(ctx).empty()) {
-    app::check_restart_target(ctx, request.dir);
-    restart = std::make_unique<app::RunCheckpoint>(app::load_run_checkpoint(ctx, inputs));
-  }
+  const auto restart = load_restart(ctx, run, request, inputs);
   OutputDir out(ctx.comm, request);
   app::print0(ctx, "pcsim run: scene '%s', design %s\n", ctx.scene_name(scene).c_str(),
               run.catenary.design_path.c_str());
@@ -318,13 +338,7 @@ int run_dynamic(const app::CommandContext& ctx) {
     app::print0(ctx, "  warning: speed %.0f km/h is above 70%% of the wave speed (%.0f km/h)\n",
                 run.speed * 3.6, c * 3.6);
   LogStage stage("Form-finding");  // -log_view: the phases of a run
-  auto statics = solvers::static_configuration(ctx.comm, run.window ? run.window->mesh : design,
-                                              run.catenary.form_finding, "static_");
-  if (run.window) prepare_window(ctx, *run.window, statics);
-  app::print0(ctx, "  static: %d Newton iterations, height error %.2e m, tension error %.2e\n",
-              statics.result.snes_iterations, statics.result.max_height_error_m,
-              statics.result.max_tension_error_rel);
-  app::print_warnings(ctx, statics.result.warnings);
+  const auto statics = run_statics(ctx, run);
   stage.next("Static start");
   const auto settings = app::run_settings(run, ctx.scene_name(scene));
   app::CatenarySetup setup;
@@ -401,6 +415,7 @@ PCSIM_COMMAND_HELP(
     "  contact      stiffness [N/m]\n"
     "  analysis     from_span, to_span, cutoff_hz\n"
     "  output       dropper_forces, snapshot_every, energy, checkpoint_every\n"
+    "  window       spans_behind, spans_ahead: a moving window (docs/scaling.md)\n"
     "  base, set    composition: a base scene, keys set by path\n"
     "results: results.h5, summary.json (EN 50318 figures, provenance), report.html;\n"
     "an interrupted run (SIGINT, SIGTERM) keeps <dir>.partial with its data and a\n"

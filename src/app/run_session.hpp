@@ -24,9 +24,9 @@ class RunSession {
     double duration = 0;  // [s]
     long snapshot_every = 0, checkpoint_every = 0;
     bool keep_dropper_forces = true;
-    bool energy = false;            // E(t) and the powers every step (output.energy)
-    std::string checkpoint_file;    // in the partial output folder
-    std::vector<InputFile> inputs;  // fingerprint stored in checkpoints
+    bool energy = false;             // E(t) and the powers every step (output.energy)
+    std::string checkpoint_file;     // in the partial output folder
+    std::vector<InputFile> inputs;   // fingerprint stored in checkpoints
     MovingWindow* window = nullptr;  // scene key 'window': shifts after steps, line records
   };
   // stream: rank 0's results.h5 (null on the other ranks). restart: the

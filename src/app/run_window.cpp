@@ -32,7 +32,9 @@ std::vector<double> gather_to_root(Vec x) {
 
 MovingWindow::MovingWindow(const scene::RunWindow& window, assembly::CoupledSystem& system,
                            std::vector<double> line_support_x)
-    : system_(system), span_length_(window.span_length), line_support_x_(std::move(line_support_x)) {
+    : system_(system),
+      span_length_(window.span_length),
+      line_support_x_(std::move(line_support_x)) {
   auto* fe = dynamic_cast<assembly::FECatenary*>(&system.catenary());
   if (!fe) throw SolverError("moving window: needs the finite-element catenary");
   fe_ = fe;

@@ -20,7 +20,9 @@ NodeDashpots::NodeDashpots(FECatenary& catenary) {
   PCSIM_PETSC(MatAssemblyEnd(C_, MAT_FINAL_ASSEMBLY));
 }
 
-NodeDashpots::~NodeDashpots() { MatDestroy(&C_); }
+NodeDashpots::~NodeDashpots() {
+  MatDestroy(&C_);
+}
 
 TermPower NodeDashpots::power(const CoupledState& state) const {
   TermPower p;
@@ -52,9 +54,8 @@ void NodePins::add_residual(const CoupledState& state, Vec F) {
   PetscScalar* f;
   PCSIM_PETSC(VecGetArrayRead(state.U, &u));
   PCSIM_PETSC(VecGetArray(F, &f));
-  for_owned_active([&](PetscInt local, PetscInt, double k, double u0) {
-    f[local] += k * (u[local] - u0);
-  });
+  for_owned_active(
+      [&](PetscInt local, PetscInt, double k, double u0) { f[local] += k * (u[local] - u0); });
   PCSIM_PETSC(VecRestoreArray(F, &f));
   PCSIM_PETSC(VecRestoreArrayRead(state.U, &u));
 }

@@ -35,7 +35,8 @@ std::vector<int> release_window_ends(CatenaryMesh& mesh, const std::vector<doubl
   std::vector<int> ends;
   std::vector<const Wire*> of_end;
   for (const auto& wire : mesh.wires) {
-    if (wire.nodes.size() < 2 || (wire.kind != WireKind::contact && wire.kind != WireKind::messenger))
+    if (wire.nodes.size() < 2 ||
+        (wire.kind != WireKind::contact && wire.kind != WireKind::messenger))
       continue;
     // Held vertically at an inner support of the line: the line reflects there too.
     const int inner = wire_node_at(mesh, wire, mesh.support_x[1]);
@@ -65,8 +66,7 @@ std::vector<int> shifted_nodes(const CatenaryMesh& mesh, double shift) {
     const Key self = position_key(mesh.nodes[n].position);
     const std::size_t rank_here = used[self]++;
     const auto it = at.find(position_key(mesh.nodes[n].position + Eigen::Vector3d(shift, 0, 0)));
-    if (it != at.end() && rank_here < it->second.size())
-      partner[n] = it->second[rank_here];
+    if (it != at.end() && rank_here < it->second.size()) partner[n] = it->second[rank_here];
   }
   return partner;
 }

@@ -25,8 +25,7 @@ void check_periodic_line(const InputNode& w, const catenary::ParametricDesign& d
   if (d.stitch_wire) why = "a stitch wire";
   if (!d.support_overrides.empty()) why = "support overrides";
   if (!d.irregularities.empty()) why = "irregularities";
-  if (!why.empty())
-    w.fail("needs a line of identical spans; the design has " + why);
+  if (!why.empty()) w.fail("needs a line of identical spans; the design has " + why);
 }
 
 void check_outputs(const InputNode& scene, const InputNode& w, const RunScene& run) {
@@ -82,9 +81,10 @@ void read_window(const InputNode& scene, RunScene& run) {
   const long shifts = (window.line_spans - window.spans()) / 2;
   const double last_band_end = x0 + 2.0 * L * shifts + (window.spans_behind + 2) * L;
   if (run.end_x > last_band_end)
-    w.fail_key("spans_ahead", "the window's front reaches the line's end before the pantograph "
-                              "reaches simulation.end_x (" +
-                                  fmt(run.end_x) + " m; at most " + fmt(last_band_end) + " m)");
+    w.fail_key("spans_ahead",
+               "the window's front reaches the line's end before the pantograph "
+               "reaches simulation.end_x (" +
+                   fmt(run.end_x) + " m; at most " + fmt(last_band_end) + " m)");
   d.span_count = window.spans();
   try {
     window.mesh = catenary::build_parametric(d);

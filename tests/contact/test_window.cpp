@@ -33,8 +33,8 @@ Wire make_wire(double impedance_factor) {
   Wire w;
   w.ends = catenary::release_window_ends(st.mesh, st.result.node_values, impedance_factor);
   w.mesh = st.mesh;
-  auto fe = std::make_unique<assembly::FECatenary>(PETSC_COMM_WORLD, st.mesh,
-                                                   st.result.node_values, 0, &st.node_owner);
+  auto fe = std::make_unique<assembly::FECatenary>(PETSC_COMM_WORLD, st.mesh, st.result.node_values,
+                                                   0, &st.node_owner);
   contact::InteractionEffects effects;
   effects.dropper_slack = false;
   effects.rayleigh_damping = false;
@@ -43,7 +43,9 @@ Wire make_wire(double impedance_factor) {
   return w;
 }
 
-const catenary::Wire& contact_wire(const Wire& w) { return w.mesh.wires[w.mesh.contact_wire]; }
+const catenary::Wire& contact_wire(const Wire& w) {
+  return w.mesh.wires[w.mesh.contact_wire];
+}
 
 double norm(Vec x) {
   PetscReal n;

@@ -19,7 +19,9 @@ namespace pcsim::catenary {
 // dt = 1 ms (an exact LU solves it).
 constexpr double kPinStiffness = 1e9;
 
-inline double wave_impedance(const Wire& wire) { return wire.tension / wave_speed(wire); }
+inline double wave_impedance(const Wire& wire) {
+  return wire.tension / wave_speed(wire);
+}
 
 // The window's ends as the line continues beyond them: every wire end held
 // vertically at the window's end supports but not at the line's inner

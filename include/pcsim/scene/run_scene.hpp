@@ -44,8 +44,8 @@ namespace pcsim::scene {
 struct RunWindow {
   int spans_behind = 2, spans_ahead = 3;
   int spans() const { return spans_behind + 2 + spans_ahead; }
-  int line_spans = 0;        // the line's (the scene's design's)
-  double span_length = 0;    // [m]
+  int line_spans = 0;           // the line's (the scene's design's)
+  double span_length = 0;       // [m]
   catenary::CatenaryMesh mesh;  // the window's design: the line's with spans() spans
 };
 
