@@ -1,7 +1,7 @@
 // The moving window's matched ends (catenary/window.hpp, NodeDashpots in
 // assembly/catenary_terms.hpp) on a taut wire (data/window-wire.yaml): the
 // released ends and their dashpot, the coupled tangent against finite
-// differences of the residual with the dashpots in, and the energy a pulse
+// differences of the residual with the dashpots and a pin in, and the energy a pulse
 // leaves behind when it runs out through an end: the string's reflection
 // coefficient r = (Z - c_d) / (Z + c_d) for a dashpot c_d on a string of
 // impedance Z = sqrt(T rho), reflected energy r^2.
@@ -144,6 +144,30 @@ TEST(WindowEnds, TangentMatchesFiniteDifferences) {
               e_v);
   EXPECT_LT(e_step, 1e-7);
   EXPECT_LT(e_v, 1e-7);
+  // The pin of the rear end, active: dF/dU along that DOF (the pin's k = 1e9
+  // N/m dominates a random direction, so it is checked alone), and its row
+  // holds k more than without it.
+  auto& mesh = dynamic_cast<assembly::FECatenary&>(sys.catenary()).system().mutable_mesh();
+  ASSERT_EQ(mesh.pins.size(), 2u);
+  PCSIM_PETSC(VecSet(d, 0.0));
+  const auto& rear = mesh.pins.front();
+  const PetscInt g_rear = L.global_dof(rear.node, rear.dof);
+  if (L.owner(rear.node) == L.rank()) PCSIM_PETSC(VecSetValue(d, g_rear, 1.0, INSERT_VALUES));
+  PCSIM_PETSC(VecAssemblyBegin(d));
+  PCSIM_PETSC(VecAssemblyEnd(d));
+  mesh.pins.front().active = true;
+  const double e_pin = fd_error(0.0, 0.0, 1.0, 1e-4);
+  mesh.pins.front().active = false;
+  sys.jacobian(0.0, U, V, A, {0.0, 0.0}, K);
+  PCSIM_PETSC(MatMult(K, d, Fm));  // without the pin
+  mesh.pins.front().active = true;
+  sys.jacobian(0.0, U, V, A, {0.0, 0.0}, K);
+  PCSIM_PETSC(MatMult(K, d, Jd));
+  PCSIM_PETSC(VecAXPY(Jd, -1.0, Fm));  // k on the pinned DOF alone
+  EXPECT_NEAR(norm(Jd), catenary::kPinStiffness, 1e-6 * catenary::kPinStiffness);
+  PetscPrintf(PETSC_COMM_WORLD, "  rel. error dF/dU along the pinned DOF %.2e\n", e_pin);
+  EXPECT_LT(e_pin, 1e-7);
+  mesh.pins.front().active = false;
   for (Vec* v : {&U, &V, &A, &d, &Jd, &Fp, &Fm, &Up, &Vp, &Ap}) VecDestroy(v);
   MatDestroy(&J);
   MatDestroy(&K);
