@@ -8,6 +8,7 @@
 // pcsim-test-ranks: 1 2
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "pcsim/catenary/window.hpp"
@@ -55,6 +56,36 @@ double norm(Vec x) {
 
 const assembly::DofLayout& layout(Wire& w) {
   return dynamic_cast<assembly::FECatenary&>(w.system->catenary()).system().layout();
+}
+
+// The window's shift map on the EN 50318 line (10 spans of 60 m, stagger
+// alternating): every node has a partner two spans ahead at the same
+// lateral and vertical design position, except those of the last two spans.
+TEST(WindowShift, EveryNodeButTheLastTwoSpansHasAPartnerTwoSpansAhead) {
+  const auto mesh = catenary::load_catenary_design(std::string(PCSIM_SOURCE_DIR) +
+                                                   "/meshes/en50318-reference.yaml");
+  const double shift = 120.0, x_last = mesh.support_x.back();
+  const auto partner = catenary::shifted_nodes(mesh, shift);
+  ASSERT_EQ(partner.size(), mesh.nodes.size());
+  std::size_t with = 0;
+  for (std::size_t n = 0; n < mesh.nodes.size(); ++n) {
+    const Eigen::Vector3d& p = mesh.nodes[n].position;
+    const bool expected = p.x() + shift <= x_last + 1e-6;
+    ASSERT_EQ(partner[n] >= 0, expected) << "node " << n << " at x = " << p.x();
+    if (partner[n] < 0) continue;
+    ++with;
+    const Eigen::Vector3d d = mesh.nodes[partner[n]].position - p;
+    EXPECT_NEAR(d.x(), shift, 1e-6);
+    EXPECT_NEAR(d.y(), 0.0, 1e-6);  // the stagger repeats every two spans
+    EXPECT_NEAR(d.z(), 0.0, 1e-6);
+  }
+  // Every partner is used once: the map is one-to-one.
+  std::vector<int> sorted;
+  for (int m : partner)
+    if (m >= 0) sorted.push_back(m);
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(std::unique(sorted.begin(), sorted.end()) - sorted.begin(), static_cast<long>(with));
+  EXPECT_GT(with, mesh.nodes.size() * 7 / 10);  // 8 of 10 spans
 }
 
 TEST(WindowEnds, OnlyTheContactWireEndsAreReleasedWithItsImpedance) {
