@@ -185,7 +185,8 @@ void RunSession::write_checkpoint() {
 bool RunSession::checkpoint_last_step() {
   TSType type;
   PCSIM_PETSC(TSGetType(solver_.ts(), &type));
-  if (std::string(type) != solvers::kTSHHT) return false;
+  // A moving window's state is not the line's: no restart from it.
+  if (std::string(type) != solvers::kTSHHT || options_.window) return false;
   if (last_checkpoint_ != steps_) write_checkpoint();
   return true;
 }

@@ -41,7 +41,8 @@ class RunSession {
   // that stopped the run (0: it ended by itself).
   int integrate();
   // After integrate(): writes a checkpoint at the last step unless there is
-  // one already (collective). False for a TS type that cannot be checkpointed.
+  // one already (collective). False for a TS type that cannot be checkpointed
+  // and with a moving window.
   bool checkpoint_last_step();
   // True if the run stopped before its final time (signal, -ts_max_steps).
   bool stopped_early() const;
