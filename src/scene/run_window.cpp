@@ -47,7 +47,7 @@ void check_outputs(const InputNode& scene, const InputNode& w, const RunScene& r
 
 }  // namespace
 
-void read_window(const InputNode& scene, RunScene& run) {
+RunWindow read_window_keys(const InputNode& scene) {
   const InputNode w = scene["window"];
   w.allow_only({"spans_behind", "spans_ahead"});
   RunWindow window;
@@ -55,23 +55,34 @@ void read_window(const InputNode& scene, RunScene& run) {
   window.spans_ahead = static_cast<int>(w.get_int("spans_ahead", 3));
   if (window.spans_behind < 1) w.fail_key("spans_behind", "must be at least 1 span");
   if (window.spans_ahead < 1) w.fail_key("spans_ahead", "must be at least 1 span");
+  return window;
+}
+
+// The line's design read as it is; the window's mesh built from it with
+// spans() spans (only that is checked against the memory).
+catenary::DesignBuilder window_design_builder(const InputNode& scene, RunWindow& window) {
+  return [w = scene["window"], &window](const InputNode& design,
+                                        const catenary::MeshSizeCheck& size_check) {
+    if (design.get_string("type", "") != "parametric") w.fail("needs a parametric design");
+    catenary::ParametricDesign d = catenary::read_parametric_design(design);
+    check_periodic_line(w, d);
+    window.line_spans = static_cast<int>(d.span_count);
+    window.span_length = d.span_length;
+    if (window.spans() >= window.line_spans)
+      w.fail("a window of " + std::to_string(window.spans()) +
+             " spans (spans_behind + 2 + spans_ahead) is not shorter than the line (" +
+             std::to_string(window.line_spans) + " spans)");
+    d.span_count = window.spans();
+    if (size_check) size_check(catenary::mesh_size(d));
+    return catenary::build_parametric(d);
+  };
+}
+
+void check_window(const InputNode& scene, RunScene& run) {
+  const InputNode w = scene["window"];
+  auto& window = *run.window;
   check_outputs(scene, w, run);
-  const InputNode design = scene["catenary"].load_referenced("design");
-  if (design.get_string("type", "") != "parametric") w.fail("needs a parametric design");
-  catenary::ParametricDesign d;
-  try {
-    d = catenary::read_parametric_design(design);
-  } catch (const InputError& e) {
-    design.rethrow_with_origin(e);
-  }
-  check_periodic_line(w, d);
-  window.line_spans = static_cast<int>(d.span_count);
-  window.span_length = d.span_length;
-  const double L = d.span_length, x0 = run.catenary.mesh.support_x.front();
-  if (window.spans() >= window.line_spans)
-    w.fail("a window of " + std::to_string(window.spans()) +
-           " spans (spans_behind + 2 + spans_ahead) is not shorter than the line (" +
-           std::to_string(window.line_spans) + " spans)");
+  const double L = window.span_length, x0 = run.catenary.mesh.support_x.front();
   const double start = run.pantographs.front().start_x;
   if (start >= x0 + (window.spans_behind + 2) * L)
     w.fail_key("spans_behind", "the pantograph starts at " + fmt(start) +
@@ -85,15 +96,13 @@ void read_window(const InputNode& scene, RunScene& run) {
                "the window's front reaches the line's end before the pantograph "
                "reaches simulation.end_x (" +
                    fmt(run.end_x) + " m; at most " + fmt(last_band_end) + " m)");
-  d.span_count = window.spans();
-  try {
-    window.mesh = catenary::build_parametric(d);
-  } catch (const InputError& e) {
-    design.rethrow_with_origin(e);
-  }
-  window.mesh.source_file = run.catenary.mesh.source_file;
+  // The line as far as the run goes: the supports the window covers before
+  // the pantograph reaches end_x (its records and statistics need no others).
+  long used = 0;
+  while (used < shifts && x0 + (window.spans_behind + 2 + 2.0 * used) * L <= run.end_x + 1e-9)
+    ++used;
+  run.catenary.mesh.support_x.resize(static_cast<std::size_t>(window.spans() + 2 * used + 1));
   run.dropper_forces = false;
-  run.window = std::move(window);
 }
 
 }  // namespace pcsim::scene

@@ -48,6 +48,10 @@ struct RunWindow {
   double span_length = 0;       // [m]
   catenary::CatenaryMesh mesh;  // the window's design: the line's with spans() spans
 };
+// With a window, RunScene::catenary.mesh is the window's mesh with the line's
+// supports (support_x: every span of the line while the scene is checked,
+// then those the window covers before the run ends): the line itself is
+// never built, and the checks, records and statistics see its stations.
 
 struct RunScene {
   catenary::CatenaryScene catenary;
@@ -90,8 +94,12 @@ RunScene load_run_scene(const InputNode& scene, const RunSceneOptions& options =
 // along the line, spacing) and the time step (run_scene_checks.cpp).
 void check_pantograph_positions(const InputNode& scene, RunScene& run);
 void check_time_step(const InputNode& scene, RunScene& run, const std::string& dt_key);
-// The 'window' section (run_window.cpp): its keys, and that the line, the
-// pantographs and the outputs allow a moving window.
-void read_window(const InputNode& scene, RunScene& run);
+// The 'window' section (run_window.cpp): its keys; the builder of the
+// window's mesh from the line's design (a parametric line of identical spans,
+// longer than the window; fills line_spans and span_length); and, once the
+// scene is read, that the pantographs and outputs allow a moving window.
+RunWindow read_window_keys(const InputNode& scene);
+catenary::DesignBuilder window_design_builder(const InputNode& scene, RunWindow& window);
+void check_window(const InputNode& scene, RunScene& run);
 
 }  // namespace pcsim::scene
