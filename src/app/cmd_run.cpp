@@ -13,6 +13,7 @@
 #include "inputs.hpp"
 #include "pcsim/assembly/coupled_system.hpp"
 #include "pcsim/assembly/fe_catenary.hpp"
+#include "pcsim/catenary/window.hpp"
 #include "pcsim/core/profiling.hpp"
 #include "pcsim/output/checkpoint.hpp"
 #include "pcsim/output/en50318.hpp"
@@ -268,6 +269,45 @@ int finish_complete(const app::CommandContext& ctx, OutputDir& out, app::RunSess
   return 0;
 }
 
+// The window's mesh (static configuration) with its ends released
+// (catenary/window.hpp), on the console.
+void prepare_window(const app::CommandContext& ctx, const scene::RunWindow& window,
+                    solvers::StaticConfiguration& statics) {
+  const auto ends = catenary::release_window_ends(statics.mesh, statics.result.node_values);
+  app::print0(ctx,
+              "  moving window: %d of the line's %d spans (%d behind, 2 with the pantograph, %d "
+              "ahead), %zu wire ends with matched dashpots\n",
+              window.spans(), window.line_spans, window.spans_behind, window.spans_ahead,
+              ends.size());
+}
+
+// The checkpoint of --restart DIR, or null.
+std::unique_ptr<app::RunCheckpoint> load_restart(const app::CommandContext& ctx,
+                                                 const scene::RunScene& run,
+                                                 const OutputRequest& request,
+                                                 const std::vector<app::InputFile>& inputs) {
+  if (app::restart_dir(ctx).empty()) return nullptr;
+  if (run.window)
+    throw InputError("command line", "--restart",
+                     "a run with a moving window (scene key 'window') cannot be restarted");
+  app::check_restart_target(ctx, request.dir);
+  return std::make_unique<app::RunCheckpoint>(app::load_run_checkpoint(ctx, inputs));
+}
+
+// The static configuration of the line, or of the window with its ends released.
+solvers::StaticConfiguration run_statics(const app::CommandContext& ctx,
+                                         const scene::RunScene& run) {
+  auto statics =
+      solvers::static_configuration(ctx.comm, run.window ? run.window->mesh : run.catenary.mesh,
+                                    run.catenary.form_finding, "static_");
+  if (run.window) prepare_window(ctx, *run.window, statics);
+  app::print0(ctx, "  static: %d Newton iterations, height error %.2e m, tension error %.2e\n",
+              statics.result.snes_iterations, statics.result.max_height_error_m,
+              statics.result.max_tension_error_rel);
+  app::print_warnings(ctx, statics.result.warnings);
+  return statics;
+}
+
 app::RunSession::Options session_options(const scene::RunScene& run, const OutputDir& out,
                                          const std::vector<app::InputFile>& inputs) {
   app::RunSession::Options options;
@@ -289,11 +329,7 @@ int run_dynamic(const app::CommandContext& ctx) {
   const double c = catenary::wave_speed(design.wires[design.contact_wire]);
   const auto inputs = app::run_input_files(ctx.scene_path, scene);
   const OutputRequest request = ctx.output_request(scene);
-  std::unique_ptr<app::RunCheckpoint> restart;
-  if (!app::restart_dir(ctx).empty()) {
-    app::check_restart_target(ctx, request.dir);
-    restart = std::make_unique<app::RunCheckpoint>(app::load_run_checkpoint(ctx, inputs));
-  }
+  const auto restart = load_restart(ctx, run, request, inputs);
   OutputDir out(ctx.comm, request);
   app::print0(ctx, "pcsim run: scene '%s', design %s\n", ctx.scene_name(scene).c_str(),
               run.catenary.design_path.c_str());
@@ -302,18 +338,16 @@ int run_dynamic(const app::CommandContext& ctx) {
     app::print0(ctx, "  warning: speed %.0f km/h is above 70%% of the wave speed (%.0f km/h)\n",
                 run.speed * 3.6, c * 3.6);
   LogStage stage("Form-finding");  // -log_view: the phases of a run
-  const auto statics =
-      solvers::static_configuration(ctx.comm, design, run.catenary.form_finding, "static_");
-  app::print0(ctx, "  static: %d Newton iterations, height error %.2e m, tension error %.2e\n",
-              statics.result.snes_iterations, statics.result.max_height_error_m,
-              statics.result.max_tension_error_rel);
-  app::print_warnings(ctx, statics.result.warnings);
+  const auto statics = run_statics(ctx, run);
   stage.next("Static start");
   const auto settings = app::run_settings(run, ctx.scene_name(scene));
   app::CatenarySetup setup;
   auto system = app::make_coupled_system(ctx, run, statics, setup);
   app::print_catenary_setup(ctx, run, setup);
   system->set_record_dropper_forces(run.dropper_forces);
+  std::unique_ptr<app::MovingWindow> window;
+  if (run.window)
+    window = std::make_unique<app::MovingWindow>(*run.window, *system, design.support_x);
   Vec U0 = system->create_vector(), V0 = system->create_vector();
   solvers::initial_state(*system, U0, V0);
   solvers::DynamicSolver solver(*system, run.dt, run.duration(), run.hht_alpha);
@@ -334,10 +368,12 @@ int run_dynamic(const app::CommandContext& ctx) {
                 restart->state.t, restart->state.step);
   }
   const app::GracefulStop stop;  // from here SIGINT/SIGTERM stop at the next step, data kept
-  auto stream =
-      open_stream(ctx, out, settings, run_layout(run, *system, statics), statics, restart.get());
-  app::RunSession session(ctx, *system, solver, stream.get(), session_options(run, out, inputs),
-                          restart.get(), stop);
+  auto layout = run_layout(run, *system, statics);
+  if (window) window->set_line_supports(layout);
+  auto stream = open_stream(ctx, out, settings, std::move(layout), statics, restart.get());
+  auto options = session_options(run, out, inputs);
+  options.window = window.get();
+  app::RunSession session(ctx, *system, solver, stream.get(), options, restart.get(), stop);
   PetscReal dt;
   PCSIM_PETSC(TSGetTimeStep(solver.ts(), &dt));
   app::print0(ctx, "  %s at %.0f km/h, %.3f s simulated, dt = %.2e s, TS %s\n",
@@ -354,11 +390,13 @@ int run_dynamic(const app::CommandContext& ctx) {
   fidelity["step_interface_unknowns"] =
       solvers::domain_decomposition_info(solver.step_ksp()).interface_size;
   fidelity.erase("steps");
-  if (signal != 0)
-    return keep_interrupted(ctx, out, session, stream, settings, statics.mesh, signal);
+  if (window) fidelity["window_shifts"] = window->shifts();
+  // The statistics' supports and zones are the line's.
+  const auto& line = run.window ? design : statics.mesh;
+  if (signal != 0) return keep_interrupted(ctx, out, session, stream, settings, line, signal);
   if (session.stopped_early()) session.checkpoint_last_step();  // -ts_max_steps: can go on
-  return finish_complete(ctx, out, session, stream, settings, statics.mesh, run.energy,
-                         restart.get(), fidelity);
+  return finish_complete(ctx, out, session, stream, settings, line, run.energy, restart.get(),
+                         fidelity);
 }
 
 }  // namespace
@@ -377,6 +415,7 @@ PCSIM_COMMAND_HELP(
     "  contact      stiffness [N/m]\n"
     "  analysis     from_span, to_span, cutoff_hz\n"
     "  output       dropper_forces, snapshot_every, energy, checkpoint_every\n"
+    "  window       spans_behind, spans_ahead: a moving window (docs/scaling.md)\n"
     "  base, set    composition: a base scene, keys set by path\n"
     "results: results.h5, summary.json (EN 50318 figures, provenance), report.html;\n"
     "an interrupted run (SIGINT, SIGTERM) keeps <dir>.partial with its data and a\n"

@@ -161,6 +161,10 @@ int study(const app::CommandContext& ctx) {
                      "unknown study '" + ctx.subcommand + "' (pcsim study accuracy SCENE.yaml)");
   const InputNode scene = ctx.load_scene();
   const auto base = scene::load_run_scene(scene);  // checks the scene once
+  if (base.window)
+    throw InputError(scene.file(), "window",
+                     "pcsim study accuracy runs the whole line; the moving window's error is "
+                     "measured by runs/bench_window.sh (docs/scaling.md)");
   const Grid grid = read_grid();
   const bool parametric = app::design_element_length(scene) > 0;
   const auto& wire = base.catenary.mesh.wires[base.catenary.mesh.contact_wire];

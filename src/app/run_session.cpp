@@ -108,6 +108,7 @@ PetscErrorCode RunSession::monitor(TS ts, PetscInt step, PetscReal t, Vec U, voi
 
 void RunSession::record(TS ts, PetscInt step, PetscReal t, Vec U) {
   auto rec = system_.record(t, U);  // collective
+  if (options_.window) options_.window->to_line(rec);
   if (!options_.keep_dropper_forces) rec.dropper_force.clear();
   output::EnergySample energy;
   if (options_.energy) {  // collective
@@ -148,6 +149,11 @@ PetscErrorCode RunSession::post_step(TS ts) {
   if (step == s->debug_signal_step_ &&
       (s->debug_signal_rank_ < 0 || s->debug_signal_rank_ == s->ctx_.rank))
     std::raise(SIGTERM);
+  if (s->options_.window) {
+    PetscReal t;
+    PCSIM_PETSC(TSGetTime(ts, &t));
+    s->options_.window->after_step(t, s->solver_);  // collective
+  }
   s->stop_signal_ = s->stop_.agreed_signal(s->ctx_.comm);
   TSConvergedReason reason;
   PCSIM_PETSC(TSGetConvergedReason(ts, &reason));
@@ -179,7 +185,8 @@ void RunSession::write_checkpoint() {
 bool RunSession::checkpoint_last_step() {
   TSType type;
   PCSIM_PETSC(TSGetType(solver_.ts(), &type));
-  if (std::string(type) != solvers::kTSHHT) return false;
+  // A moving window's state is not the line's: no restart from it.
+  if (std::string(type) != solvers::kTSHHT || options_.window) return false;
   if (last_checkpoint_ != steps_) write_checkpoint();
   return true;
 }

@@ -14,6 +14,7 @@
 #include "pcsim/output/run_stream.hpp"
 #include "pcsim/solvers/dynamics.hpp"
 #include "run_checkpoint.hpp"
+#include "run_window.hpp"
 
 namespace pcsim::app {
 
@@ -23,9 +24,10 @@ class RunSession {
     double duration = 0;  // [s]
     long snapshot_every = 0, checkpoint_every = 0;
     bool keep_dropper_forces = true;
-    bool energy = false;            // E(t) and the powers every step (output.energy)
-    std::string checkpoint_file;    // in the partial output folder
-    std::vector<InputFile> inputs;  // fingerprint stored in checkpoints
+    bool energy = false;             // E(t) and the powers every step (output.energy)
+    std::string checkpoint_file;     // in the partial output folder
+    std::vector<InputFile> inputs;   // fingerprint stored in checkpoints
+    MovingWindow* window = nullptr;  // scene key 'window': shifts after steps, line records
   };
   // stream: rank 0's results.h5 (null on the other ranks). restart: the
   // checkpoint the run continues from (null for a new run).
@@ -39,7 +41,8 @@ class RunSession {
   // that stopped the run (0: it ended by itself).
   int integrate();
   // After integrate(): writes a checkpoint at the last step unless there is
-  // one already (collective). False for a TS type that cannot be checkpointed.
+  // one already (collective). False for a TS type that cannot be checkpointed
+  // and with a moving window.
   bool checkpoint_last_step();
   // True if the run stopped before its final time (signal, -ts_max_steps).
   bool stopped_early() const;

@@ -177,6 +177,8 @@ std::vector<std::unique_ptr<Term>> FECatenary::make_terms(const contact::Interac
   terms.push_back(std::make_unique<BarForces>(*this, e.dropper_slack));
   terms.push_back(std::make_unique<Inertia>(*this));
   if (e.rayleigh_damping) terms.push_back(std::make_unique<RayleighDamping>(*this, e));
+  if (!mesh().dashpots.empty()) terms.push_back(std::make_unique<NodeDashpots>(*this));
+  if (!mesh().pins.empty()) terms.push_back(std::make_unique<NodePins>(*this));
   return terms;
 }
 

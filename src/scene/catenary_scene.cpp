@@ -9,7 +9,7 @@ namespace pcsim::catenary {
 
 void check_scene_sections(const InputNode& scene) {
   scene.allow_only({"name", "description", "catenary", "modes", "pantographs", "simulation",
-                    "effects", "contact", "analysis", "output", "elasticity"});
+                    "effects", "contact", "analysis", "output", "elasticity", "window"});
 }
 
 namespace {
@@ -77,7 +77,8 @@ void read_catenary_model(const InputNode& section, CatenaryScene& out) {
   if (section.has("modal")) read_modal_settings(section["modal"], out.modal);
 }
 
-CatenaryScene load_catenary_scene(const InputNode& scene, const MeshSizeCheck& size_check) {
+CatenaryScene load_catenary_scene(const InputNode& scene, const MeshSizeCheck& size_check,
+                                  const DesignBuilder& build) {
   check_scene_sections(scene);
   const InputNode section = scene["catenary"];
   section.allow_only({"design", "form_finding", "model", "max_frequency_hz", "modal"});
@@ -86,7 +87,7 @@ CatenaryScene load_catenary_scene(const InputNode& scene, const MeshSizeCheck& s
   out.design_path = section.get_file_path("design");
   const InputNode design = section.load_referenced("design");
   try {
-    out.mesh = build_catenary_design(design, size_check);
+    out.mesh = build ? build(design, size_check) : build_catenary_design(design, size_check);
   } catch (const InputError& e) {
     design.rethrow_with_origin(e);
   }

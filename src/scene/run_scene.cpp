@@ -152,7 +152,19 @@ void read_effects_and_output(const InputNode& scene, RunScene& run) {
 
 RunScene load_run_scene(const InputNode& scene, const RunSceneOptions& options) {
   RunScene run;
-  run.catenary = catenary::load_catenary_scene(scene, options.size_check);
+  std::optional<RunWindow> window;
+  if (scene.has("window")) window = read_window_keys(scene);
+  run.catenary = catenary::load_catenary_scene(
+      scene, options.size_check,
+      window ? window_design_builder(scene, *window) : catenary::DesignBuilder());
+  if (window) {  // the window's mesh; the line's supports for everything else
+    window->mesh = run.catenary.mesh;
+    auto& support_x = run.catenary.mesh.support_x;
+    const double x0 = support_x.front();
+    support_x.resize(static_cast<std::size_t>(window->line_spans) + 1);
+    for (std::size_t k = 0; k < support_x.size(); ++k) support_x[k] = x0 + k * window->span_length;
+    run.window = std::move(window);
+  }
   const auto& mesh = run.catenary.mesh;
   if (mesh.contact_wire < 0 || mesh.support_x.size() < 2)
     scene["catenary"].fail_key(
@@ -184,6 +196,7 @@ RunScene load_run_scene(const InputNode& scene, const RunSceneOptions& options) 
         catenary::kModalCutoffMargin * catenary::doppler_frequency(run.cutoff_hz, run.speed, c);
   }
   check_time_step(scene, run, options.command_line_dt ? "-ts_dt" : "simulation.dt");
+  if (run.window) check_window(scene, run);
   return run;
 }
 

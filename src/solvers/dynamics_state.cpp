@@ -140,4 +140,18 @@ void DynamicSolver::restore_state(const DynamicState& s) {
   PCSIM_PETSC(VecDestroy(&A));
 }
 
+void DynamicSolver::replace_state(const std::vector<double>& U, const std::vector<double>& V,
+                                  const std::vector<double>& A) {
+  require_hht(ts_);
+  Vec Ut, Vt, At = system_.create_vector();
+  PCSIM_PETSC(TS2GetSolution(ts_, &Ut, &Vt));
+  scatter_from_root(U, Ut);
+  scatter_from_root(V, Vt);
+  scatter_from_root(A, At);
+  hht_set_initial_acceleration(ts_, At);  // the next step starts from it
+  PCSIM_PETSC(VecDestroy(&At));
+  // A new J0 at the next Jacobian (the bars' frozen switches refer to the old one).
+  cached_shift_v_ = cached_shift_a_ = -1;
+}
+
 }  // namespace pcsim::solvers

@@ -79,7 +79,11 @@ PetscInt catenary_start(assembly::CoupledSystem& system, Vec U0) {
   }
   auto* fe = dynamic_cast<assembly::FECatenary*>(&catenary);
   if (!fe) return 0;
-  assembly::CatenarySystem loaded(system.comm(), fe->mesh(), 0,
+  // Active pins (a moving window's end that is the line's) hold their DOF.
+  catenary::CatenaryMesh held = fe->mesh();
+  for (const auto& pin : held.pins)
+    if (pin.active) held.nodes[pin.node].fixed[pin.dof] = true;
+  assembly::CatenarySystem loaded(system.comm(), std::move(held), 0,
                                   &fe->system().layout().node_owner());
   const auto& pantographs = system.pantographs();
   for (std::size_t p = 0; p < pantographs.size(); ++p) {

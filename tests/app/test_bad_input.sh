@@ -128,6 +128,23 @@ run_scene hht-scene "$one" ", hht_alpha: 0.5"
 catenary_scene reference-static "$S/meshes/en50318-reference.yaml"
 run_scene crawl "$one"
 sed -i 's/speed_kmh: 200/speed_kmh: 0.001/' "$w/crawl.yaml"
+# Moving windows (scene key 'window', docs/scaling.md): the three-span line is
+# shorter than any window; a span count below 1; a typo; an output the window
+# cannot give (on the 10-span EN 50318 line, a 4-span window).
+for c in "window-size:{spans_behind: 1, spans_ahead: 1}" "window-behind:{spans_behind: 0}" \
+  "window-typo:{spans_ahed: 2}"; do
+  run_scene "${c%%:*}" "$one"
+  echo "window: ${c#*:}" >> "$w/${c%%:*}.yaml"
+done
+cat > "$w/window-energy.yaml" << YAML
+name: window-energy
+catenary: {design: $S/meshes/en50318-reference.yaml}
+pantographs: [{name: p, model: $two_mass, start_x: 5}]
+simulation: {speed_kmh: 200, end_x: 200}
+analysis: {from_span: 2, to_span: 3}
+window: {spans_behind: 1, spans_ahead: 1}
+output: {energy: true}
+YAML
 cat > "$w/study-high.yaml" << YAML
 name: study-high
 pantograph: {model: $dsa}
@@ -223,6 +240,10 @@ expect twins 2 "twins.yaml|key 'pantographs[1].name'|already used" yes run twins
 expect past-end 2 "past-end.yaml|key 'pantographs[1].start_x'|past the end of the contact wire" yes run past-end.yaml
 expect before-line 2 "before-line.yaml|key 'pantographs[0].start_x'|got -10" yes run before-line.yaml
 expect end-beyond 2 "end-beyond.yaml|key 'simulation.end_x'|on the line" yes run end-beyond.yaml
+expect window-size 2 "window-size.yaml|key 'window'|4 spans|not shorter than the line (3 spans)" yes run window-size.yaml
+expect window-behind 2 "window-behind.yaml|key 'window.spans_behind'|at least 1" yes run window-behind.yaml
+expect window-typo 2 "window-typo.yaml|key 'window.spans_ahed'|unknown key" yes run window-typo.yaml
+expect window-energy 2 "window-energy.yaml|key 'output.energy'|moving window" yes run window-energy.yaml
 expect too-fast 2 "too-fast.yaml|key 'simulation.speed_kmh'|wave speed" yes run too-fast.yaml
 expect panto-key 2 "panto-key.yaml|key 'pantographs[0].stiffnes'|unknown key" yes run panto-key.yaml
 expect missing-model 2 "missing-model.yaml|key 'pantographs[0].model'|no such file" yes run missing-model.yaml

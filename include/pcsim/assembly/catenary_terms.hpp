@@ -116,4 +116,43 @@ class RayleighDamping : public Term {
   std::vector<LinearPart> parts_;
 };
 
+// Linear dashpots from nodes to the ground (mesh.dashpots: the matched ends
+// of a moving window, catenary/window.hpp): F += C V, C diagonal with each
+// dashpot's coefficient on its DOF; tangent v C. Dissipates V.C V.
+class NodeDashpots : public Term {
+ public:
+  explicit NodeDashpots(FECatenary& catenary);
+  ~NodeDashpots() override;
+  std::string name() const override { return "node dashpots"; }
+  TangentKind tangent_kind() const override { return TangentKind::constant; }
+  std::vector<LinearPart> linear_parts() const override {
+    return {{C_, 0.0, 1.0, 0.0, SUBSET_NONZERO_PATTERN}};
+  }
+  TermPower power(const CoupledState& state) const override;  // -V.C V
+
+ private:
+  Mat C_ = nullptr;
+};
+
+// Penalty pins (mesh.pins) holding released window ends at their static
+// position while the mesh marks them active (the run switches them between
+// steps and rebuilds J0; catenary/window.hpp): F += k (u - u_static), tangent
+// k, energy 1/2 k (u - u_static)^2.
+class NodePins : public Term {
+ public:
+  explicit NodePins(FECatenary& catenary) : catenary_(catenary) {}
+  std::string name() const override { return "node pins"; }
+  TangentKind tangent_kind() const override { return TangentKind::constant; }
+  void add_residual(const CoupledState& state, Vec F) override;
+  void add_tangent(const CoupledState& state, Shifts shifts, Mat J) override;
+  double energy(const CoupledState& state) const override;
+
+ private:
+  // Calls f(local row, global row, stiffness, static value) for every active
+  // pin owned here.
+  template <class F>
+  void for_owned_active(F f) const;
+  FECatenary& catenary_;
+};
+
 }  // namespace pcsim::assembly

@@ -109,6 +109,25 @@ struct NodeForce {
   std::string label;
 };
 
+// A linear viscous damper from a node to the ground along coordinate 'dof'
+// (0..2 = x, y, z): force -coefficient x velocity. The matched ends of a
+// moving window (catenary/window.hpp) use it.
+struct NodeDashpot {
+  int node = -1;
+  int dof = 2;
+  double coefficient = 0;  // [N s/m]
+};
+
+// A penalty spring holding a node's coordinate 'dof' at its static value
+// while 'active' (a moving window's end that is the line's anchored end;
+// catenary/window.hpp): force stiffness x (u - u_static).
+struct NodePin {
+  int node = -1;
+  int dof = 2;
+  double stiffness = 0;  // [N/m]
+  bool active = false;
+};
+
 // A tensioning device at a wire's end (parametric lines). Form-finding holds
 // the end (x, y, z fixed); catenary::release_tensioning_devices() then frees
 // it horizontally along 'direction' and applies the anchor's reaction as a
@@ -199,6 +218,8 @@ struct CatenaryMesh {
   std::vector<PointMass> point_masses;
   std::vector<SupportSpring> springs;
   std::vector<NodeForce> node_forces;
+  std::vector<NodeDashpot> dashpots;
+  std::vector<NodePin> pins;
   std::vector<TensioningDevice> tensioning_devices;
   std::vector<HeightTarget> height_targets;
   std::vector<TensionSegment> tension_segments;

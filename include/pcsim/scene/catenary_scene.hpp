@@ -9,6 +9,7 @@
 //   elasticity: {force: 100, from_x: 240, to_x: 300, step: 1}   # pcsim static
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -41,7 +42,11 @@ struct CatenaryScene {
 };
 
 // 'size_check' sees the design's mesh size before the mesh is built.
-CatenaryScene load_catenary_scene(const InputNode& scene, const MeshSizeCheck& size_check = {});
+// 'build', when given, builds the mesh from the design's node instead of
+// build_catenary_design (a moving window builds part of the line; run_scene.hpp).
+using DesignBuilder = std::function<CatenaryMesh(const InputNode& design, const MeshSizeCheck&)>;
+CatenaryScene load_catenary_scene(const InputNode& scene, const MeshSizeCheck& size_check = {},
+                                  const DesignBuilder& build = {});
 // The fidelity keys of a catenary section (model, max_frequency_hz, modal).
 void read_catenary_model(const InputNode& section, CatenaryScene& out);
 

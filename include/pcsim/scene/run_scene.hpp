@@ -19,6 +19,7 @@
 //   contact: {stiffness: 50000}
 //   analysis: {from_span: 5, to_span: 6, cutoff_hz: 20}   # 1-based spans
 //   output: {dropper_forces: true, snapshot_every: 0, energy: false, checkpoint_every: 0}
+//   window: {spans_behind: 2, spans_ahead: 3}   # optional moving window (docs/scaling.md)
 //     snapshot_every: field snapshots every N steps (0: none)
 //     energy: energy balance in energy.h5
 //     checkpoint_every: checkpoint.h5 every N steps, for --restart (0: only when
@@ -35,6 +36,22 @@
 #include "pcsim/scene/catenary_scene.hpp"
 
 namespace pcsim::scene {
+
+// A moving window over a line of identical spans (catenary/window.hpp): the
+// run integrates spans_behind + 2 + spans_ahead spans, the pantograph within
+// the two middle ones (the window moves back by two spans, the period of the
+// stagger, when it leaves them).
+struct RunWindow {
+  int spans_behind = 2, spans_ahead = 3;
+  int spans() const { return spans_behind + 2 + spans_ahead; }
+  int line_spans = 0;           // the line's (the scene's design's)
+  double span_length = 0;       // [m]
+  catenary::CatenaryMesh mesh;  // the window's design: the line's with spans() spans
+};
+// With a window, RunScene::catenary.mesh is the window's mesh with the line's
+// supports (support_x: every span of the line while the scene is checked,
+// then those the window covers before the run ends): the line itself is
+// never built, and the checks, records and statistics see its stations.
 
 struct RunScene {
   catenary::CatenaryScene catenary;
@@ -54,6 +71,7 @@ struct RunScene {
   long snapshot_every = 0;  // steps between field snapshots (XDMF animation); 0: none
   std::vector<InputWarning> warnings;  // allowed, but probably not meant (printed by the app)
   long checkpoint_every = 0;           // steps between checkpoints (restart); 0: none
+  std::optional<RunWindow> window;     // 'window': only part of the line is integrated
   // Duration of the run: from t = 0 until the first pantograph reaches end_x.
   double duration() const { return (end_x - pantographs.front().start_x) / speed; }
 };
@@ -76,5 +94,12 @@ RunScene load_run_scene(const InputNode& scene, const RunSceneOptions& options =
 // along the line, spacing) and the time step (run_scene_checks.cpp).
 void check_pantograph_positions(const InputNode& scene, RunScene& run);
 void check_time_step(const InputNode& scene, RunScene& run, const std::string& dt_key);
+// The 'window' section (run_window.cpp): its keys; the builder of the
+// window's mesh from the line's design (a parametric line of identical spans,
+// longer than the window; fills line_spans and span_length); and, once the
+// scene is read, that the pantographs and outputs allow a moving window.
+RunWindow read_window_keys(const InputNode& scene);
+catenary::DesignBuilder window_design_builder(const InputNode& scene, RunWindow& window);
+void check_window(const InputNode& scene, RunScene& run);
 
 }  // namespace pcsim::scene

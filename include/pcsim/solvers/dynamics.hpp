@@ -67,6 +67,11 @@ class DynamicSolver {
   // state, before TSSolve (which then continues from state.step).
   DynamicState save_state() const;
   void restore_state(const DynamicState& state);
+  // A moving window's shift (collective; TS type hht; between steps): the
+  // integration goes on from (U, V, A), given on rank 0 in the global order
+  // (ignored elsewhere); on the cheap path J0 is rebuilt at the next step.
+  void replace_state(const std::vector<double>& U, const std::vector<double>& V,
+                     const std::vector<double>& A);
 
  private:
   static PetscErrorCode residual(TS, PetscReal t, Vec U, Vec V, Vec A, Vec F, void* ctx);

@@ -1,0 +1,108 @@
+// The 'window' section of a run scene (run_scene.hpp, RunWindow).
+#include <cmath>
+#include <sstream>
+
+#include "pcsim/catenary/geometry.hpp"
+#include "pcsim/scene/design_reader.hpp"
+#include "pcsim/scene/run_scene.hpp"
+
+namespace pcsim::scene {
+
+namespace {
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+// The line must repeat every two spans: one straight section of identical
+// spans, nothing that changes from span to span.
+void check_periodic_line(const InputNode& w, const catenary::ParametricDesign& d) {
+  std::string why;
+  if (!d.sections.empty()) why = "sections (tension sections, overlaps, curves)";
+  if (d.stitch_wire) why = "a stitch wire";
+  if (!d.support_overrides.empty()) why = "support overrides";
+  if (!d.irregularities.empty()) why = "irregularities";
+  if (!why.empty()) w.fail("needs a line of identical spans; the design has " + why);
+}
+
+void check_outputs(const InputNode& scene, const InputNode& w, const RunScene& run) {
+  if (run.pantographs.size() != 1)
+    w.fail("one pantograph only (the scene has " + std::to_string(run.pantographs.size()) + ")");
+  if (run.catenary.fidelity == catenary::CatenaryFidelity::modal)
+    w.fail("the window shifts finite-element states; catenary.model modal has none");
+  if (!scene.has("output")) return;
+  const InputNode o = scene["output"];
+  const char* per_line[] = {"snapshot_every", "checkpoint_every"};
+  for (const char* key : per_line)
+    if (o.get_int(key, 0) > 0)
+      o.fail_key(key, "not available with a moving window (its state is the window's)");
+  if (o.get_bool("energy", false))
+    o.fail_key("energy", "not available with a moving window (energy leaves through its ends)");
+  if (o.get_bool("dropper_forces", false))
+    o.fail_key("dropper_forces", "not available with a moving window (its droppers move)");
+}
+
+}  // namespace
+
+RunWindow read_window_keys(const InputNode& scene) {
+  const InputNode w = scene["window"];
+  w.allow_only({"spans_behind", "spans_ahead"});
+  RunWindow window;
+  window.spans_behind = static_cast<int>(w.get_int("spans_behind", 2));
+  window.spans_ahead = static_cast<int>(w.get_int("spans_ahead", 3));
+  if (window.spans_behind < 1) w.fail_key("spans_behind", "must be at least 1 span");
+  if (window.spans_ahead < 1) w.fail_key("spans_ahead", "must be at least 1 span");
+  return window;
+}
+
+// The line's design read as it is; the window's mesh built from it with
+// spans() spans (only that is checked against the memory).
+catenary::DesignBuilder window_design_builder(const InputNode& scene, RunWindow& window) {
+  return [w = scene["window"], &window](const InputNode& design,
+                                        const catenary::MeshSizeCheck& size_check) {
+    if (design.get_string("type", "") != "parametric") w.fail("needs a parametric design");
+    catenary::ParametricDesign d = catenary::read_parametric_design(design);
+    check_periodic_line(w, d);
+    window.line_spans = static_cast<int>(d.span_count);
+    window.span_length = d.span_length;
+    if (window.spans() >= window.line_spans)
+      w.fail("a window of " + std::to_string(window.spans()) +
+             " spans (spans_behind + 2 + spans_ahead) is not shorter than the line (" +
+             std::to_string(window.line_spans) + " spans)");
+    d.span_count = window.spans();
+    if (size_check) size_check(catenary::mesh_size(d));
+    return catenary::build_parametric(d);
+  };
+}
+
+void check_window(const InputNode& scene, RunScene& run) {
+  const InputNode w = scene["window"];
+  auto& window = *run.window;
+  check_outputs(scene, w, run);
+  const double L = window.span_length, x0 = run.catenary.mesh.support_x.front();
+  const double start = run.pantographs.front().start_x;
+  if (start >= x0 + (window.spans_behind + 2) * L)
+    w.fail_key("spans_behind", "the pantograph starts at " + fmt(start) +
+                                   " m, beyond the window's first " +
+                                   std::to_string(window.spans_behind + 2) + " spans");
+  // The window moves by two spans while its front stays on the line.
+  const long shifts = (window.line_spans - window.spans()) / 2;
+  const double last_band_end = x0 + 2.0 * L * shifts + (window.spans_behind + 2) * L;
+  if (run.end_x > last_band_end)
+    w.fail_key("spans_ahead",
+               "the window's front reaches the line's end before the pantograph "
+               "reaches simulation.end_x (" +
+                   fmt(run.end_x) + " m; at most " + fmt(last_band_end) + " m)");
+  // The line as far as the run goes: the supports the window covers before
+  // the pantograph reaches end_x (its records and statistics need no others).
+  long used = 0;
+  while (used < shifts && x0 + (window.spans_behind + 2 + 2.0 * used) * L <= run.end_x + 1e-9)
+    ++used;
+  run.catenary.mesh.support_x.resize(static_cast<std::size_t>(window.spans() + 2 * used + 1));
+  run.dropper_forces = false;
+}
+
+}  // namespace pcsim::scene

@@ -1,0 +1,59 @@
+#!/bin/bash
+# Moving window against the full line (docs/scaling.md, "Moving window"):
+# the EN 50318 case at 300 km/h on a 10-span line, statistics over spans 3-4
+# (120-240 m), end at 250 m; the window of 5 spans (1 behind, 2 with the
+# pantograph, 2 ahead) moves once, at 180 m, inside the analysis section.
+# Checks: one shift; the EN 50318 figures within 0.2 % of the full line's
+# (measured: mean, sigma, Fm+3sigma 0.00 %, actual max 0.03 %, uplift 0.02 %;
+# the 40-span table in docs/scaling.md: <= 0.04 %; 0.2 % leaves room for the
+# round-off of other machines and ranks, 1/5 of the issue's 1 % target); the
+# window on 2 ranks equal to 1 rank to
+# round-off (measured 7e-11 of the largest force; bound 1e-8 as in
+# test_run_ranks.sh).
+set -euo pipefail
+: "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:=/usr/bin/python3}"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+S=$PCSIM_SOURCE_DIR
+mpirun=$S/scripts/mpirun.sh
+line=(--set catenary.design.spans.count=10 --set simulation.end_x=250
+  --set analysis.from_span=3 --set analysis.to_span=4 --no-report)
+window=(--set window.spans_behind=1 --set window.spans_ahead=2)
+
+run() {  # run NAME RANKS [options]
+  local name=$1 np=$2
+  shift 2
+  "$mpirun" -n "$np" "$PCSIM_BIN" run "$S/runs/en50318-300.yaml" -o "$tmp/$name" "${line[@]}" "$@" \
+    > "$tmp/$name.log" 2>&1 || { cat "$tmp/$name.log"; exit 1; }
+}
+run full 1
+run window1 1 "${window[@]}"
+run window2 2 "${window[@]}"
+grep -q "moving window: 5 of the line's 10 spans" "$tmp/window1.log"
+
+"$PCSIM_PYTHON" - "$tmp" <<'PY'
+import json, sys
+import h5py
+import numpy as np
+d = sys.argv[1]
+def summary(name):
+    return json.load(open(f"{d}/{name}/summary.json"))
+def figures(name):
+    return {f["key"]: f["value"] for f in summary(name)["en50318"]["pantograph"]["figures"]}
+def force(name):
+    with h5py.File(f"{d}/{name}/results.h5") as f:
+        return f["/pantographs/pantograph/contact_force"][:], f["/pantographs/pantograph/position"][:]
+assert summary("window1")["window_shifts"] == 1, summary("window1").get("window_shifts")
+full, win = figures("full"), figures("window1")
+for key in ("mean_N", "std_N", "stat_max_N", "max_N", "uplift_mm"):
+    err = abs(win[key] - full[key]) / abs(full[key])
+    print(f"{key}: window {win[key]:.3f}, full line {full[key]:.3f}, error {100 * err:.3f} %")
+    assert err < 2e-3, key
+f1, x1 = force("window1")
+f2, x2 = force("window2")
+ff, xf = force("full")
+assert np.array_equal(x1, xf), "the window's positions are not the line's"
+rel = np.max(np.abs(f2 - f1)) / np.max(np.abs(f1))
+print(f"window 2 ranks vs 1: {rel:.1e}")
+assert rel < 1e-8, rel
+PY
