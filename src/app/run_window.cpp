@@ -5,30 +5,9 @@
 #include "pcsim/assembly/fe_catenary.hpp"
 #include "pcsim/catenary/window.hpp"
 #include "pcsim/core/error.hpp"
+#include "pcsim/core/vec_root.hpp"
 
 namespace pcsim::app {
-
-namespace {
-
-// The entries of x in global order on rank 0, empty elsewhere (collective).
-std::vector<double> gather_to_root(Vec x) {
-  VecScatter scatter;
-  Vec all;
-  PCSIM_PETSC(VecScatterCreateToZero(x, &scatter, &all));
-  PCSIM_PETSC(VecScatterBegin(scatter, x, all, INSERT_VALUES, SCATTER_FORWARD));
-  PCSIM_PETSC(VecScatterEnd(scatter, x, all, INSERT_VALUES, SCATTER_FORWARD));
-  PetscInt n;
-  PCSIM_PETSC(VecGetLocalSize(all, &n));
-  const PetscScalar* a;
-  PCSIM_PETSC(VecGetArrayRead(all, &a));
-  std::vector<double> out(a, a + n);
-  PCSIM_PETSC(VecRestoreArrayRead(all, &a));
-  PCSIM_PETSC(VecScatterDestroy(&scatter));
-  PCSIM_PETSC(VecDestroy(&all));
-  return out;
-}
-
-}  // namespace
 
 MovingWindow::MovingWindow(const scene::RunWindow& window, assembly::CoupledSystem& system,
                            std::vector<double> line_support_x)

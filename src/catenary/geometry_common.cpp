@@ -4,23 +4,20 @@
 #include <sstream>
 
 #include "geometry_internal.hpp"
+#include "pcsim/core/format.hpp"
 
 namespace pcsim::catenary {
 
 namespace detail {
 
-std::string fmt(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
 void require_positive(const std::string& file, const std::string& key, double value) {
-  if (!(value > 0)) throw InputError(file, key, "must be positive (got " + fmt(value) + ")");
+  if (!(value > 0))
+    throw InputError(file, key, "must be positive (got " + format_number(value) + ")");
 }
 
 void require_nonnegative(const std::string& file, const std::string& key, double value) {
-  if (!(value >= 0)) throw InputError(file, key, "must not be negative (got " + fmt(value) + ")");
+  if (!(value >= 0))
+    throw InputError(file, key, "must not be negative (got " + format_number(value) + ")");
 }
 
 void set_common(CatenaryMesh& mesh, const std::string& file, const std::string& name,

@@ -4,12 +4,12 @@
 #include <set>
 
 #include "geometry_internal.hpp"
+#include "pcsim/core/format.hpp"
 
 namespace pcsim::catenary {
 
 namespace {
 
-using detail::fmt;
 using detail::require_nonnegative;
 using detail::require_positive;
 
@@ -146,7 +146,8 @@ class ExplicitBuilder {
     if (in.unstressed_ratio) {
       const double r = *in.unstressed_ratio;
       if (!(r > 0))
-        fail(key + ".unstressed", "must be 'taut' or a positive ratio L0/L (got " + fmt(r) + ")");
+        fail(key + ".unstressed",
+             "must be 'taut' or a positive ratio L0/L (got " + format_number(r) + ")");
       ratio = r;
     }
     const int wire_index = static_cast<int>(mesh_.wires.size());

@@ -9,7 +9,6 @@
 namespace pcsim::catenary::detail {
 
 // Number as written in messages ("61", "0.05", "-20000").
-std::string fmt(double v);
 
 // Range checks of a design value: throw InputError(file, key, reason) with
 // the reasons of the design-file reader ("must be positive (got -5)").

@@ -10,12 +10,12 @@
 #include <set>
 
 #include "geometry_line.hpp"
+#include "pcsim/core/format.hpp"
 
 namespace pcsim::catenary {
 
 namespace {
 
-using detail::fmt;
 using detail::require_nonnegative;
 using detail::require_positive;
 
@@ -36,15 +36,15 @@ void check_spans_and_heights(const ParametricDesign& in) {
   require_nonnegative(f, in.presag_key, in.presag);
   if (!(in.system_height > in.presag))
     throw InputError(f, "system_height",
-                     "must exceed the contact-wire presag (" + fmt(in.presag) + " m), got " +
-                         fmt(in.system_height) + " m");
+                     "must exceed the contact-wire presag (" + format_number(in.presag) +
+                         " m), got " + format_number(in.system_height) + " m");
   require_nonnegative(f, "stagger", in.stagger);
   require_nonnegative(f, "messenger_stagger", in.messenger_stagger);
   require_positive(f, "element_length", in.element_length);
   if (in.element_length > in.span_length)
     throw InputError(f, "element_length",
-                     "must not exceed the span length " + fmt(in.span_length) + " m (got " +
-                         fmt(in.element_length) + " m)");
+                     "must not exceed the span length " + format_number(in.span_length) +
+                         " m (got " + format_number(in.element_length) + " m)");
 }
 
 void check_cable(const std::string& file, const std::string& key, const CableDesign& p) {
@@ -64,11 +64,13 @@ void check_positions(const ParametricDesign& in, const std::string& key,
     const double s = positions[i];
     if (!(s > 0 && s < L))
       throw InputError(f, at(key + ".positions", i),
-                       "dropper at " + fmt(s) + " m lies outside the span (0, " + fmt(L) + ") m");
+                       "dropper at " + format_number(s) + " m lies outside the span (0, " +
+                           format_number(L) + ") m");
     if (i > 0 && !(s > positions[i - 1]))
       throw InputError(f, at(key + ".positions", i),
-                       "dropper at " + fmt(s) + " m does not follow the previous one (" +
-                           fmt(positions[i - 1]) + " m): positions must be strictly increasing");
+                       "dropper at " + format_number(s) + " m does not follow the previous one (" +
+                           format_number(positions[i - 1]) +
+                           " m): positions must be strictly increasing");
   }
   if (in.presag_profile == PresagProfile::droppers && positions.size() < 2)
     throw InputError(f, key + ".positions",
@@ -87,7 +89,7 @@ void check_positions(const ParametricDesign& in, const std::string& key,
     if (!std::isfinite(sags[i]) || std::abs(sags[i]) >= in.system_height)
       throw InputError(
           f, at(key + ".sags", i),
-          "must be smaller than system_height in magnitude (got " + fmt(sags[i]) + ")");
+          "must be smaller than system_height in magnitude (got " + format_number(sags[i]) + ")");
 }
 
 void check_droppers(const ParametricDesign& in) {
@@ -121,10 +123,10 @@ void check_stitch_wire(const std::string& file, const StitchWireDesign& st, doub
   require_positive(file, "stitch_wire.length", st.length);
   if (!(st.length < L))
     throw InputError(file, "stitch_wire.length",
-                     "must be shorter than the span (" + fmt(L) +
+                     "must be shorter than the span (" + format_number(L) +
                          " m) so that the stitch wires of neighbouring supports do not "
                          "overlap (got " +
-                         fmt(st.length) + " m)");
+                         format_number(st.length) + " m)");
   require_positive(file, "stitch_wire.tension", st.tension);
   require_positive(file, "stitch_wire.mass_per_length", st.mass_per_length);
   require_positive(file, "stitch_wire.EA", st.EA);
@@ -141,8 +143,9 @@ void check_sections(const ParametricDesign& in) {
     total += s.spans;
     if (!std::isfinite(s.radius) || (s.radius != 0 && std::abs(s.radius) < in.span_length))
       throw InputError(f, at("sections", i) + ".radius",
-                       "must be 0 (straight) or at least the span length " + fmt(in.span_length) +
-                           " m in magnitude (got " + fmt(s.radius) + ")");
+                       "must be 0 (straight) or at least the span length " +
+                           format_number(in.span_length) + " m in magnitude (got " +
+                           format_number(s.radius) + ")");
   }
   if (!in.sections.empty() && total != in.span_count)
     throw InputError(f, "sections",
@@ -154,9 +157,9 @@ void check_sections(const ParametricDesign& in) {
                      "must be at least 1 (got " + std::to_string(o.spans) + ")");
   require_positive(f, "overlap.raise", o.raise);
   if (!(o.anchor_raise >= o.raise))
-    throw InputError(
-        f, "overlap.anchor_raise",
-        "must be at least overlap.raise (" + fmt(o.raise) + " m), got " + fmt(o.anchor_raise));
+    throw InputError(f, "overlap.anchor_raise",
+                     "must be at least overlap.raise (" + format_number(o.raise) + " m), got " +
+                         format_number(o.anchor_raise));
   require_nonnegative(f, "overlap.separation", o.separation);
 }
 
@@ -166,8 +169,9 @@ void check_tensioning(const ParametricDesign& in) {
     require_positive(in.file, "tensioning.stiffness", t.stiffness);
   if (t.device != TensioningDeviceKind::weight) return;
   if (!(t.ratio >= 1))
-    throw InputError(in.file, "tensioning.ratio",
-                     "must be at least 1 (wire tension / weight force), got " + fmt(t.ratio));
+    throw InputError(
+        in.file, "tensioning.ratio",
+        "must be at least 1 (wire tension / weight force), got " + format_number(t.ratio));
   if (t.weight_mass) require_positive(in.file, "tensioning.weight_mass", *t.weight_mass);
   if (!t.weight_mass && !(in.gravity.norm() > 0))
     throw InputError(in.file, "tensioning.weight_mass",
@@ -226,25 +230,26 @@ void check_wear(const ParametricDesign& in) {
     const std::string key = at("irregularities.wear", i);
     const WearStretch& w = wear[i];
     if (!(w.from >= 0 && w.from < length))
-      throw InputError(
-          f, key + ".from",
-          "must lie on the line, in [0, " + fmt(length) + ") m (got " + fmt(w.from) + ")");
+      throw InputError(f, key + ".from",
+                       "must lie on the line, in [0, " + format_number(length) + ") m (got " +
+                           format_number(w.from) + ")");
     if (!(w.to > w.from))
-      throw InputError(f, key + ".to",
-                       "must exceed 'from' (" + fmt(w.from) + " m), got " + fmt(w.to));
-    if (!(w.to <= length))
       throw InputError(
           f, key + ".to",
-          "must lie on the line, at most its length " + fmt(length) + " m (got " + fmt(w.to) + ")");
+          "must exceed 'from' (" + format_number(w.from) + " m), got " + format_number(w.to));
+    if (!(w.to <= length))
+      throw InputError(f, key + ".to",
+                       "must lie on the line, at most its length " + format_number(length) +
+                           " m (got " + format_number(w.to) + ")");
     if (!(w.section_loss >= 0 && w.section_loss < 1))
       throw InputError(f, key + ".section_loss",
-                       "must lie in [0, 1) (got " + fmt(w.section_loss) + ")");
+                       "must lie in [0, 1) (got " + format_number(w.section_loss) + ")");
     for (std::size_t j = 0; j < i; ++j)
       if (w.from < wear[j].to && wear[j].from < w.to)
         throw InputError(f, key,
-                         "the stretch " + fmt(w.from) + ".." + fmt(w.to) +
+                         "the stretch " + format_number(w.from) + ".." + format_number(w.to) +
                              " m overlaps irregularities.wear[" + std::to_string(j) + "] (" +
-                             fmt(wear[j].from) + ".." + fmt(wear[j].to) +
+                             format_number(wear[j].from) + ".." + format_number(wear[j].to) +
                              " m): give each part of the wire one section_loss");
   }
 }
@@ -259,23 +264,24 @@ void check_irregularities(const ParametricDesign& in) {
     if (i > 0 && !(x[i] > x[i - 1]))
       throw InputError(f, ir.profile_key,
                        "x must increase strictly (point " + std::to_string(i + 1) + ": " +
-                           fmt(x[i]) + " m after " + fmt(x[i - 1]) + " m)");
+                           format_number(x[i]) + " m after " + format_number(x[i - 1]) + " m)");
     if (!std::isfinite(ir.profile_dz[i]) || std::abs(ir.profile_dz[i]) >= 0.5 * in.system_height)
       throw InputError(f, ir.profile_key,
                        "dz must be smaller than half the system height (point " +
-                           std::to_string(i + 1) + ": " + fmt(ir.profile_dz[i]) + " m)");
+                           std::to_string(i + 1) + ": " + format_number(ir.profile_dz[i]) + " m)");
   }
   if (ir.random) {
     const RandomIrregularity& r = *ir.random;
     require_nonnegative(f, "irregularities.random.rms", r.rms);
     if (!(r.rms < 0.1 * in.system_height))
-      throw InputError(f, "irregularities.random.rms",
-                       "must be below a tenth of the system height (got " + fmt(r.rms) + " m)");
+      throw InputError(
+          f, "irregularities.random.rms",
+          "must be below a tenth of the system height (got " + format_number(r.rms) + " m)");
     require_positive(f, "irregularities.random.wavelength_min", r.wavelength_min);
     if (!(r.wavelength_max > r.wavelength_min))
       throw InputError(f, "irregularities.random.wavelength_max",
-                       "must exceed wavelength_min (" + fmt(r.wavelength_min) + " m), got " +
-                           fmt(r.wavelength_max));
+                       "must exceed wavelength_min (" + format_number(r.wavelength_min) +
+                           " m), got " + format_number(r.wavelength_max));
     if (in.span_count * in.span_length / r.wavelength_min > 1e6)
       throw InputError(f, "irregularities.random.wavelength_min",
                        "too short for the line: more than a million components");

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "geometry_line.hpp"
+#include "pcsim/core/format.hpp"
 
 namespace pcsim::catenary::detail {
 
@@ -55,9 +56,10 @@ std::vector<double> SectionBuilder::held_stations() const {
 }
 
 std::string SectionBuilder::describe(const KeyPoint& k) const {
-  if (k.kind == KeyKind::dropper) return "the dropper at " + fmt(k.s) + " m";
-  if (k.kind == KeyKind::stitch_clamp) return "the stitch-wire clamp at " + fmt(k.s) + " m";
-  return "the support at " + fmt(k.s) + " m";
+  if (k.kind == KeyKind::dropper) return "the dropper at " + format_number(k.s) + " m";
+  if (k.kind == KeyKind::stitch_clamp)
+    return "the stitch-wire clamp at " + format_number(k.s) + " m";
+  return "the support at " + format_number(k.s) + " m";
 }
 
 // Key points of span j, sorted; coincident points merged (a stitch clamp on
@@ -85,8 +87,9 @@ std::vector<SectionBuilder::KeyPoint> SectionBuilder::span_key_points(int j) con
     }
     if (!merged.empty() && p.s - merged.back().s < kMinKeyPointGap) {
       const KeyPoint& a = merged.back();
-      const std::string reason = describe(p) + " lies only " + fmt(p.s - a.s) + " m from " +
-                                 describe(a) + " (minimum spacing " + fmt(kMinKeyPointGap) + " m)";
+      const std::string reason = describe(p) + " lies only " + format_number(p.s - a.s) +
+                                 " m from " + describe(a) + " (minimum spacing " +
+                                 format_number(kMinKeyPointGap) + " m)";
       if (p.kind == KeyKind::stitch_clamp || a.kind == KeyKind::stitch_clamp)
         throw InputError(in_.file, "stitch_wire.length", reason);
       const int d = p.kind == KeyKind::dropper ? p.index : a.index;
@@ -281,14 +284,14 @@ void SectionBuilder::add_stitch_wire(int k) {
 
 void SectionBuilder::fail_dropper_below_upper_wire(const Station& st, int i, bool on_stitch) const {
   const std::string where = "dropper " + std::to_string(st.dropper) + " of span " +
-                            std::to_string(st.span) + " (x = " + fmt(mesh_.nodes[i].position.x()) +
-                            " m)";
+                            std::to_string(st.span) +
+                            " (x = " + format_number(mesh_.nodes[i].position.x()) + " m)";
   if (on_stitch)
     throw InputError(in_.file, "stitch_wire.length",
                      "the stitch wire passes below the contact wire at " + where +
                          "; increase system_height or shorten it");
   throw InputError(in_.file, "system_height",
-                   "the messenger (sag " + fmt(geo_.messenger_sag) +
+                   "the messenger (sag " + format_number(geo_.messenger_sag) +
                        " m) reaches the contact wire at " + where + "; increase system_height");
 }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "pcsim/core/format.hpp"
 #include "pcsim/scene/design_reader.hpp"
 
 namespace pcsim::catenary {
@@ -13,12 +14,6 @@ void check_scene_sections(const InputNode& scene) {
 }
 
 namespace {
-
-std::string fmt(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 ElasticityRequest read_elasticity(const InputNode& e, const CatenaryMesh& mesh) {
   e.allow_only({"force", "from_x", "to_x", "step"});
@@ -31,9 +26,10 @@ ElasticityRequest read_elasticity(const InputNode& e, const CatenaryMesh& mesh) 
   r.step = e.get_positive("step", 1.0);
   const double lo = mesh.support_x.front(), hi = mesh.support_x.back();
   if (!(r.from_x > lo && r.from_x < hi))
-    e.fail_key("from_x", "must lie inside the line (" + fmt(lo) + ", " + fmt(hi) + ") m");
+    e.fail_key("from_x",
+               "must lie inside the line (" + format_number(lo) + ", " + format_number(hi) + ") m");
   if (!(r.to_x >= r.from_x && r.to_x < hi))
-    e.fail_key("to_x", "must lie between from_x and the line's end (" + fmt(hi) + " m)");
+    e.fail_key("to_x", "must lie between from_x and the line's end (" + format_number(hi) + " m)");
   if ((r.to_x - r.from_x) / r.step > 10000)
     e.fail_key("step", "gives more than 10000 points: one static solution each");
   return r;

@@ -3,19 +3,13 @@
 
 #include <sstream>
 
+#include "pcsim/core/format.hpp"
 #include "pcsim/scene/composition.hpp"
 #include "pcsim/scene/flexible_dsa380_reader.hpp"
 
 namespace pcsim::scene {
 
 namespace {
-
-std::string format_number(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
 
 std::unique_ptr<pantograph::PantographModel> read_lumped(const InputNode& model,
                                                          const InputNode* effects,

@@ -4,16 +4,10 @@
 #include <cmath>
 #include <sstream>
 
+#include "pcsim/core/format.hpp"
 #include "pcsim/scene/pantograph_reader.hpp"
 
 namespace pcsim::scene {
-
-static std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
 
 namespace {
 
@@ -26,19 +20,20 @@ void read_simulation(const InputNode& scene, RunScene& run, std::optional<double
   if (run.speed >= c)
     sim.fail_key(
         "speed_kmh",
-        "speed " + fmt(run.speed * 3.6) +
+        "speed " + format_number(run.speed * 3.6) +
             " km/h is not below the contact wire's wave speed sqrt(T (1 + T/EA) / rho) = " +
-            fmt(c * 3.6) + " km/h");
+            format_number(c * 3.6) + " km/h");
   run.dt = sim.get_positive("dt", 1e-3);
   if (dt) run.dt = *dt;
   run.hht_alpha = sim.get_nonnegative("hht_alpha", 0.1);
   if (run.hht_alpha > 1.0 / 3.0)
     sim.fail_key("hht_alpha",
-                 "must lie in [0, 1/3] (HHT-alpha stability), got " + fmt(run.hht_alpha));
+                 "must lie in [0, 1/3] (HHT-alpha stability), got " + format_number(run.hht_alpha));
   const double x_first = mesh.support_x.front(), x_last = mesh.support_x.back();
   run.end_x = sim.get_double("end_x", x_last - 5.0);
   if (run.end_x <= x_first || run.end_x > x_last)
-    sim.fail_key("end_x", "must lie on the line (" + fmt(x_first) + ", " + fmt(x_last) + "] m");
+    sim.fail_key("end_x", "must lie on the line (" + format_number(x_first) + ", " +
+                              format_number(x_last) + "] m");
 }
 
 // Entry i of the scene's pantographs: how it travels and starts, and its model.
@@ -53,8 +48,8 @@ void read_pantograph(const InputNode& p, std::size_t i, RunScene& run) {
                                      p.has("effects") ? &effects : nullptr, run.speed);
   pr.start_x = p.get_double("start_x", x_first + 5.0);
   if (pr.start_x < x_first || pr.start_x >= run.end_x)
-    p.fail_key("start_x", "must lie on the line before simulation.end_x (" + fmt(run.end_x) +
-                              " m), got " + fmt(pr.start_x));
+    p.fail_key("start_x", "must lie on the line before simulation.end_x (" +
+                              format_number(run.end_x) + " m), got " + format_number(pr.start_x));
   pr.static_force = p.get_positive("static_force", 120.0);
   pr.speed = run.speed;
   if (p.has("start") && p["start"].is_map()) {
@@ -63,8 +58,8 @@ void read_pantograph(const InputNode& p, std::size_t i, RunScene& run) {
     start.allow_only({"gap"});
     pr.start_gap = start.get_positive("gap");
     if (pr.start_gap > 0.5)
-      start.fail_key("gap", "must be at most 0.5 m (a pantograph that starts " + fmt(pr.start_gap) +
-                                " m below the wire)");
+      start.fail_key("gap", "must be at most 0.5 m (a pantograph that starts " +
+                                format_number(pr.start_gap) + " m below the wire)");
   } else {
     const std::string start = p.get_choice("start", {"static", "ramp"}, i == 0 ? "static" : "ramp");
     pr.static_start = start == "static";
@@ -101,10 +96,11 @@ void read_analysis(const InputNode& scene, RunScene& run) {
     const auto& p = run.pantographs[i];
     const double x_end = p.start_x + (run.end_x - run.pantographs.front().start_x);
     if (p.start_x > run.analysis_from_x || x_end < run.analysis_to_x)
-      list.at(i).fail_key("start_x",
-                          "pantograph '" + p.name + "' runs from " + fmt(p.start_x) + " to " +
-                              fmt(x_end) + " m and does not cross the whole analysis section (" +
-                              fmt(run.analysis_from_x) + ", " + fmt(run.analysis_to_x) + ") m");
+      list.at(i).fail_key("start_x", "pantograph '" + p.name + "' runs from " +
+                                         format_number(p.start_x) + " to " + format_number(x_end) +
+                                         " m and does not cross the whole analysis section (" +
+                                         format_number(run.analysis_from_x) + ", " +
+                                         format_number(run.analysis_to_x) + ") m");
   }
 }
 

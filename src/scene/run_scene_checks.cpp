@@ -3,18 +3,12 @@
 #include <cmath>
 #include <sstream>
 
+#include "pcsim/core/format.hpp"
 #include "pcsim/scene/run_scene.hpp"
 
 namespace pcsim::scene {
 
 namespace {
-
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
 
 std::string entry_key(std::size_t i, const std::string& key) {
   return "pantographs[" + std::to_string(i) + "]." + key;
@@ -53,31 +47,32 @@ void check_pantograph_positions(const InputNode& scene, RunScene& run) {
     const double x_end = p.start_x + travel;
     if (x_end > x_last)
       throw InputError(origin(scene, entry_key(i, "start_x")), entry_key(i, "start_x"),
-                       "pantograph '" + p.name + "' would run from " + fmt(p.start_x) + " to " +
-                           fmt(x_end) + " m, past the end of the contact wire at " + fmt(x_last) +
+                       "pantograph '" + p.name + "' would run from " + format_number(p.start_x) +
+                           " to " + format_number(x_end) +
+                           " m, past the end of the contact wire at " + format_number(x_last) +
                            " m (the run ends when the first pantograph reaches "
                            "simulation.end_x = " +
-                           fmt(run.end_x) + " m)");
+                           format_number(run.end_x) + " m)");
   }
   for (std::size_t i = 0; i < run.pantographs.size(); ++i)
     for (std::size_t j = 0; j < i; ++j) {
       const double gap = std::abs(run.pantographs[i].start_x - run.pantographs[j].start_x);
       if (gap < kMinPantographSpacing)
         run.warnings.push_back({origin(scene, entry_key(i, "start_x")), entry_key(i, "start_x"),
-                                "pantograph '" + run.pantographs[i].name + "' starts " + fmt(gap) +
-                                    " m from '" + run.pantographs[j].name + "' (less than " +
-                                    fmt(kMinPantographSpacing) +
+                                "pantograph '" + run.pantographs[i].name + "' starts " +
+                                    format_number(gap) + " m from '" + run.pantographs[j].name +
+                                    "' (less than " + format_number(kMinPantographSpacing) +
                                     " m: are both meant to be there?)"});
     }
 }
 
 void check_time_step(const InputNode& scene, RunScene& run, const std::string& dt_key) {
-  const std::string dt_text = dt_key + " = " + fmt(run.dt) + " s";
+  const std::string dt_text = dt_key + " = " + format_number(run.dt) + " s";
   const double nyquist = 0.5 / run.dt;
   if (!(run.cutoff_hz < nyquist))
     throw InputError(origin(scene, "analysis.cutoff_hz"), "analysis.cutoff_hz",
-                     "the contact-force filter's cut-off " + fmt(run.cutoff_hz) +
-                         " Hz is not below the Nyquist frequency " + fmt(nyquist) +
+                     "the contact-force filter's cut-off " + format_number(run.cutoff_hz) +
+                         " Hz is not below the Nyquist frequency " + format_number(nyquist) +
                          " Hz of the time step (" + dt_text + "); use a smaller time step");
   const double duration = run.duration();
   const double steps = duration / run.dt;
@@ -86,23 +81,25 @@ void check_time_step(const InputNode& scene, RunScene& run, const std::string& d
   const std::string too_few = "the contact-force filter needs more than ";
   if (steps <= kFilterPadding)
     throw InputError(dt_file, dt_key,
-                     "the run of " + fmt(duration) + " s takes only " + fmt(std::floor(steps)) +
-                         " steps of " + fmt(run.dt) + " s; " + too_few +
-                         std::to_string(kFilterPadding));
+                     "the run of " + format_number(duration) + " s takes only " +
+                         format_number(std::floor(steps)) + " steps of " + format_number(run.dt) +
+                         " s; " + too_few + std::to_string(kFilterPadding));
   const double section_samples = (run.analysis_to_x - run.analysis_from_x) / (run.speed * run.dt);
   if (section_samples < kMinSectionSamples)
-    throw InputError(dt_file, dt_key,
-                     "the analysis section (" + fmt(run.analysis_to_x - run.analysis_from_x) +
-                         " m) holds only " + fmt(std::floor(section_samples)) + " samples at " +
-                         fmt(run.speed * run.dt) + " m per step (" + dt_text +
-                         "); the statistics need at least " + std::to_string(kMinSectionSamples));
+    throw InputError(
+        dt_file, dt_key,
+        "the analysis section (" + format_number(run.analysis_to_x - run.analysis_from_x) +
+            " m) holds only " + format_number(std::floor(section_samples)) + " samples at " +
+            format_number(run.speed * run.dt) + " m per step (" + dt_text +
+            "); the statistics need at least " + std::to_string(kMinSectionSamples));
   if (steps > kManySteps)
     run.warnings.push_back({scene.file(), "simulation",
-                            "the run takes " + fmt(steps) + " time steps (" + fmt(duration) +
+                            "the run takes " + format_number(steps) + " time steps (" +
+                                format_number(duration) +
                                 " s simulated: the first pantograph runs " +
-                                fmt(run.end_x - run.pantographs.front().start_x) +
-                                " m at speed_kmh " + fmt(run.speed * 3.6) + ", " + dt_text +
-                                "), more than 1e7: check speed_kmh, end_x and dt"});
+                                format_number(run.end_x - run.pantographs.front().start_x) +
+                                " m at speed_kmh " + format_number(run.speed * 3.6) + ", " +
+                                dt_text + "), more than 1e7: check speed_kmh, end_x and dt"});
 }
 
 }  // namespace pcsim::scene

@@ -3,19 +3,13 @@
 #include <sstream>
 
 #include "pcsim/catenary/geometry.hpp"
+#include "pcsim/core/format.hpp"
 #include "pcsim/scene/design_reader.hpp"
 #include "pcsim/scene/run_scene.hpp"
 
 namespace pcsim::scene {
 
 namespace {
-
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
 
 // The line must repeat every two spans: one straight section of identical
 // spans, nothing that changes from span to span.
@@ -85,7 +79,7 @@ void check_window(const InputNode& scene, RunScene& run) {
   const double L = window.span_length, x0 = run.catenary.mesh.support_x.front();
   const double start = run.pantographs.front().start_x;
   if (start >= x0 + (window.spans_behind + 2) * L)
-    w.fail_key("spans_behind", "the pantograph starts at " + fmt(start) +
+    w.fail_key("spans_behind", "the pantograph starts at " + format_number(start) +
                                    " m, beyond the window's first " +
                                    std::to_string(window.spans_behind + 2) + " spans");
   // The window moves by two spans while its front stays on the line.
@@ -95,7 +89,8 @@ void check_window(const InputNode& scene, RunScene& run) {
     w.fail_key("spans_ahead",
                "the window's front reaches the line's end before the pantograph "
                "reaches simulation.end_x (" +
-                   fmt(run.end_x) + " m; at most " + fmt(last_band_end) + " m)");
+                   format_number(run.end_x) + " m; at most " + format_number(last_band_end) +
+                   " m)");
   // The line as far as the run goes: the supports the window covers before
   // the pantograph reaches end_x (its records and statistics need no others).
   long used = 0;
