@@ -39,20 +39,23 @@ void print_static_summary(const CommandContext& ctx, const catenary::CatenaryMes
     for (const auto& w : r.warnings) std::fprintf(stderr, "pcsim: warning: %s\n", w.c_str());
 }
 
-double peak_memory_mb(MPI_Comm comm) {
+namespace {
+// This process's peak resident memory, reduced over the ranks by op.
+double reduced_peak_memory_mb(MPI_Comm comm, MPI_Op op) {
   struct rusage usage;
   getrusage(RUSAGE_SELF, &usage);
-  double mb = usage.ru_maxrss / 1024.0, max_mb = 0;
-  MPI_Allreduce(&mb, &max_mb, 1, MPI_DOUBLE, MPI_MAX, comm);
-  return max_mb;
+  double mb = usage.ru_maxrss / 1024.0, reduced = 0;
+  MPI_Allreduce(&mb, &reduced, 1, MPI_DOUBLE, op, comm);
+  return reduced;
+}
+}  // namespace
+
+double peak_memory_mb(MPI_Comm comm) {
+  return reduced_peak_memory_mb(comm, MPI_MAX);
 }
 
 double total_peak_memory_mb(MPI_Comm comm) {
-  struct rusage usage;
-  getrusage(RUSAGE_SELF, &usage);
-  double mb = usage.ru_maxrss / 1024.0, total = 0;
-  MPI_Allreduce(&mb, &total, 1, MPI_DOUBLE, MPI_SUM, comm);
-  return total;
+  return reduced_peak_memory_mb(comm, MPI_SUM);
 }
 
 }  // namespace pcsim::app

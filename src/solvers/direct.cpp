@@ -3,6 +3,7 @@
 #include <cstring>
 #include <string>
 
+#include "choice_option.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/solvers/schur_dd.hpp"
 
@@ -16,29 +17,17 @@ void use_direct_lu(KSP ksp, MatSolverType package) {
   PCSIM_PETSC(PCFactorSetMatSolverType(pc, package));
 }
 
-namespace {
-PetscErrorCode read_step_solver_option(MPI_Comm comm, char* value, std::size_t size) {
-  PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, nullptr, "pcsim step solver", "pcsim");
-  PetscCall(PetscOptionsString(
-      "-pcsim_step_solver",
-      "exact solver of the step matrices: dd (LU of each rank's interior + Schur complement of "
-      "the interface, docs/scaling.md), lu (PETSc's LU with QMD ordering, one rank), mumps",
-      "pcsim run", value, value, size, nullptr));
-  PetscOptionsEnd();
-  PetscFunctionReturn(0);
-}
-}  // namespace
-
 std::string step_solver_choice(MPI_Comm comm) {
   PetscMPIInt size;
   MPI_Comm_size(comm, &size);
-  char value[32] = "dd";
-  PCSIM_PETSC(read_step_solver_option(comm, value, sizeof(value)));
-  const std::string choice = value;
-  if (choice != "lu" && choice != "dd" && choice != "mumps")
-    throw InputError("command line", "-pcsim_step_solver",
-                     "must be lu, dd or mumps (got '" + choice + "')");
+  const std::string choice = read_choice_option(
+      comm, {"-pcsim_step_solver",
+             "pcsim step solver",
+             "exact solver of the step matrices: dd (LU of each rank's interior + Schur "
+             "complement of the interface, docs/scaling.md), lu (PETSc's LU with QMD ordering, "
+             "one rank), mumps",
+             "dd",
+             {"lu", "dd", "mumps"}});
   if (choice == "lu" && size > 1)
     throw InputError("command line", "-pcsim_step_solver",
                      "lu is PETSc's sequential LU: on several ranks use dd or mumps");

@@ -3,6 +3,7 @@
 #include <cstring>
 #include <string>
 
+#include "choice_option.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/solvers/direct.hpp"
 #include "pcsim/solvers/hht.hpp"
@@ -10,27 +11,14 @@
 
 namespace pcsim::solvers {
 
-namespace {
-PetscErrorCode read_path_option(MPI_Comm comm, char* value, std::size_t size) {
-  PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, nullptr, "pcsim dynamic run", "pcsim");
-  PetscCall(PetscOptionsString(
-      "-pcsim_path",
-      "Jacobian path: auto (cheap when every term allows it), full (exact Newton at every "
-      "iteration), cheap (J0 factored once + exact low-rank terms)",
-      "pcsim run", value, value, size, nullptr));
-  PetscOptionsEnd();
-  PetscFunctionReturn(0);
-}
-}  // namespace
-
 bool choose_cheap_path(MPI_Comm comm, bool possible) {
-  char value[32] = "auto";
-  PCSIM_PETSC(read_path_option(comm, value, sizeof(value)));
-  const std::string path = value;
-  if (path != "auto" && path != "full" && path != "cheap")
-    throw InputError("command line", "-pcsim_path",
-                     "must be auto, full or cheap (got '" + path + "')");
+  const std::string path = read_choice_option(
+      comm, {"-pcsim_path",
+             "pcsim dynamic run",
+             "Jacobian path: auto (cheap when every term allows it), full (exact Newton at every "
+             "iteration), cheap (J0 factored once + exact low-rank terms)",
+             "auto",
+             {"auto", "full", "cheap"}});
   if (path == "cheap" && !possible)
     throw InputError("command line", "-pcsim_path",
                      "the cheap path needs a linearised catenary and linear pantographs (a term of "
