@@ -39,12 +39,12 @@ std::string why(const app::CommandContext& ctx, const std::string& command) {
   return "the scene has no 'pantographs', 'pantograph' or 'modes'";
 }
 
-std::string memory_text(const solvers::MemoryEstimate& m, int ranks) {
+std::string memory_text(const simulation::MemoryEstimate& m, int ranks) {
   char text[200];
   std::snprintf(text, sizeof text,
                 "%ld nodes, %ld unknowns, estimated memory %.2f GB on %d rank(s) (machine %.1f GB)",
                 m.nodes, m.dofs, m.total_bytes(ranks) / 1e9, ranks,
-                solvers::machine_memory_bytes() / 1e9);
+                simulation::machine_memory_bytes() / 1e9);
   return text;
 }
 

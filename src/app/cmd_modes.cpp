@@ -4,11 +4,9 @@
 #include "command.hpp"
 #include "exit_status.hpp"
 #include "inputs.hpp"
-#include "pcsim/assembly/static_problem.hpp"
 #include "pcsim/output/catenary_results.hpp"
 #include "pcsim/scene/catenary_scene.hpp"
-#include "pcsim/solvers/modes.hpp"
-#include "pcsim/solvers/statics.hpp"
+#include "pcsim/simulation/statics.hpp"
 
 namespace {
 
@@ -23,15 +21,11 @@ int run_modes(const app::CommandContext& ctx) {
   app::print0(ctx, "pcsim modes: scene '%s', design %s\n", ctx.scene_name(scene).c_str(),
               cat.design_path.c_str());
   // 1. Static configuration (with form-finding if the scene asks for it).
-  const auto statics = solvers::static_configuration(ctx.comm, cat.mesh, cat.form_finding);
+  const auto statics = simulation::static_configuration(ctx.comm, cat.mesh, cat.form_finding);
   app::print_static_summary(ctx, statics.mesh, statics.result);
   // 2. Modes on the catenary DOFs alone, with the found unstressed lengths.
-  assembly::CatenarySystem system(ctx.comm, statics.mesh, 0, &statics.node_owner);
-  Vec x = system.create_vector();
-  assembly::set_state_from_node_values(system, statics.result.node_values, x);
   const auto modes =
-      solvers::compute_modes(system, x, request.count, request.max_frequency_hz, true);
-  PCSIM_PETSC(VecDestroy(&x));
+      simulation::catenary_modes(ctx.comm, statics, request.count, request.max_frequency_hz, true);
   app::print0(ctx, "  %zu modes (SLEPc, %d converged, max relative residual %.1e) in %.3f s\n",
               modes.frequencies_hz.size(), modes.converged, modes.max_relative_residual,
               modes.wall_time_s);

@@ -1,5 +1,5 @@
 // `pcsim pantograph SCENE.yaml`: studies of the pantograph alone (thesis chapter 2).
-// Scene: pcsim/scene/pantograph_scene.hpp; studies: pcsim/solvers/pantograph_study.hpp;
+// Scene: pcsim/scene/pantograph_scene.hpp; studies: pcsim/simulation/pantograph_study.hpp;
 // output (summary.json, HDF5 histories/curves): pcsim/output/pantograph_results.hpp.
 #include <exception>
 
@@ -9,7 +9,7 @@
 #include "pcsim/output/output_dir.hpp"
 #include "pcsim/output/pantograph_results.hpp"
 #include "pcsim/scene/pantograph_scene.hpp"
-#include "pcsim/solvers/pantograph_study.hpp"
+#include "pcsim/simulation/pantograph_study.hpp"
 
 namespace {
 
@@ -26,7 +26,7 @@ int run_pantograph(const CommandContext& ctx) {
               study.model->kind().c_str(), study.study_type.c_str());
   // The pantograph alone is tiny: rank 0 does the work; the others wait for its outcome.
   app::on_rank0(ctx, [&] {
-    const auto result = solvers::run_pantograph_study(study);
+    const auto result = simulation::run_pantograph_study(study);
     app::print0(ctx, "%s", output::write_pantograph_study(out, name, study, result).c_str());
   });
   out.commit();

@@ -6,8 +6,8 @@
 #include "exit_status.hpp"
 #include "inputs.hpp"
 #include "pcsim/output/catenary_results.hpp"
-#include "pcsim/solvers/elasticity.hpp"
-#include "pcsim/solvers/statics.hpp"
+#include "pcsim/simulation/elasticity.hpp"
+#include "pcsim/simulation/statics.hpp"
 
 namespace {
 
@@ -20,7 +20,7 @@ int run_static(const app::CommandContext& ctx) {
   OutputDir out(ctx.comm, ctx.output_request(scene));
   app::print0(ctx, "pcsim static: scene '%s', design %s\n", ctx.scene_name(scene).c_str(),
               cat.design_path.c_str());
-  const auto statics = solvers::static_configuration(ctx.comm, cat.mesh, cat.form_finding);
+  const auto statics = simulation::static_configuration(ctx.comm, cat.mesh, cat.form_finding);
   app::print0(ctx, "  %d catenary DOFs on %d rank(s); form-finding %s\n",
               static_cast<int>(statics.catenary_dofs), ctx.size, cat.form_finding ? "on" : "off");
   app::print_static_summary(ctx, statics.mesh, statics.result);
@@ -29,8 +29,8 @@ int run_static(const app::CommandContext& ctx) {
                                  {ctx.scene_name(scene), static_cast<long>(statics.catenary_dofs),
                                   ctx.size, cat.form_finding});
   if (cat.elasticity) {
-    const auto e = solvers::static_elasticity(ctx.comm, statics, cat.elasticity->stations(),
-                                              cat.elasticity->force);
+    const auto e = simulation::static_elasticity(ctx.comm, statics, cat.elasticity->stations(),
+                                                 cat.elasticity->force);
     const auto [lo, hi] = std::minmax_element(e.uplift.begin(), e.uplift.end());
     app::print0(ctx,
                 "  elasticity (%g N at %zu points): uplift %.2f .. %.2f mm per 100 N, "

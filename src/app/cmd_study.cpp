@@ -25,7 +25,7 @@
 #include "pcsim/output/accuracy_study.hpp"
 #include "pcsim/output/output_dir.hpp"
 #include "pcsim/scene/run_scene.hpp"
-#include "study_run.hpp"
+#include "pcsim/simulation/study_run.hpp"
 
 namespace {
 
@@ -89,8 +89,9 @@ Grid read_grid() {
 // with the highest cut-off first (later ones reuse its modes). scene_cutoff:
 // the scene's modal cut-off as a factor (a cut-off factor equal to it is the
 // base run, not run twice).
-std::vector<app::StudyVariant> variants(const Grid& g, bool parametric, double scene_cutoff) {
-  std::vector<app::StudyVariant> list;
+std::vector<simulation::StudyVariant> variants(const Grid& g, bool parametric,
+                                               double scene_cutoff) {
+  std::vector<simulation::StudyVariant> list;
   const std::vector<double> hs = parametric ? g.h : std::vector<double>{1.0};
   for (CatenaryFidelity m : g.models) {
     const bool modal = m == CatenaryFidelity::modal;
@@ -120,18 +121,19 @@ std::vector<app::StudyVariant> variants(const Grid& g, bool parametric, double s
   const bool linear =
       std::find(g.models.begin(), g.models.end(), CatenaryFidelity::linear) != g.models.end();
   if (!g.full && fe != g.models.end()) {
-    const app::StudyVariant finest{linear ? CatenaryFidelity::linear : *fe, dt_min, h_min, 0,
-                                   false};
-    const bool listed = std::any_of(list.begin(), list.end(), [&](const app::StudyVariant& v) {
-      return v.model == finest.model && v.dt_factor == dt_min && v.h_factor == h_min;
-    });
+    const simulation::StudyVariant finest{linear ? CatenaryFidelity::linear : *fe, dt_min, h_min, 0,
+                                          false};
+    const bool listed =
+        std::any_of(list.begin(), list.end(), [&](const simulation::StudyVariant& v) {
+          return v.model == finest.model && v.dt_factor == dt_min && v.h_factor == h_min;
+        });
     if (!listed) list.push_back(finest);
   }
   // Modal runs per mesh by decreasing cut-off (later ones reuse the first one's modes).
-  const auto effective = [](const app::StudyVariant& v) {
+  const auto effective = [](const simulation::StudyVariant& v) {
     return v.cutoff_factor > 0 ? v.cutoff_factor : catenary::kModalCutoffMargin;
   };
-  std::vector<app::StudyVariant> modal, others;
+  std::vector<simulation::StudyVariant> modal, others;
   for (const auto& v : list) (v.model == CatenaryFidelity::modal ? modal : others).push_back(v);
   std::stable_sort(modal.begin(), modal.end(), [&](const auto& a, const auto& b) {
     return a.h_factor != b.h_factor ? a.h_factor < b.h_factor : effective(a) > effective(b);
@@ -140,7 +142,7 @@ std::vector<app::StudyVariant> variants(const Grid& g, bool parametric, double s
   return others;
 }
 
-std::string cutoff_note(const app::StudyVariant& v) {
+std::string cutoff_note(const simulation::StudyVariant& v) {
   if (v.model != CatenaryFidelity::modal || v.cutoff_factor <= 0) return "";
   char text[64];
   std::snprintf(text, sizeof(text), ", cut-off x %g", v.cutoff_factor);
@@ -166,7 +168,7 @@ int study(const app::CommandContext& ctx) {
                      "pcsim study accuracy runs the whole line; the moving window's error is "
                      "measured by runs/bench_window.sh (docs/scaling.md)");
   const Grid grid = read_grid();
-  const bool parametric = app::design_element_length(scene) > 0;
+  const bool parametric = simulation::design_element_length(scene) > 0;
   const auto& wire = base.catenary.mesh.wires[base.catenary.mesh.contact_wire];
   const double scene_cutoff =
       base.catenary.modal.max_frequency_hz /
@@ -186,6 +188,7 @@ int study(const app::CommandContext& ctx) {
   table.ranks = ctx.size;
   table.load_before = load_average();
   std::filesystem::create_directories(out.file("runs"));
+  const simulation::SceneSource source{ctx.scene_path, ctx.overrides, scene, ctx.provenance(scene)};
   for (std::size_t i = 0; i < list.size(); ++i) {
     output::StudyRun probe;
     probe.model = catenary::fidelity_name(list[i].model);
@@ -193,7 +196,7 @@ int study(const app::CommandContext& ctx) {
                 probe.model.c_str(), list[i].dt_factor, list[i].h_factor,
                 cutoff_note(list[i]).c_str(), list[i].vertical_only ? ", vertical modes" : "");
     const std::string dir = out.file("runs/" + std::to_string(i + 1));
-    auto run = app::run_variant(ctx, scene, list[i], dir);
+    auto run = simulation::run_variant(ctx, source, list[i], dir);
     if (run.ok)
       app::print0(ctx, " %.3f ms/step, RTF %.2f\n", run.ms_per_step, run.real_time_factor);
     else

@@ -15,17 +15,16 @@
 #include "pcsim/catenary/results.hpp"
 #include "pcsim/output/output_dir.hpp"
 #include "pcsim/scene/yaml_input.hpp"
+#include "pcsim/simulation/context.hpp"
 
 namespace pcsim::app {
 
-struct CommandContext {
-  MPI_Comm comm = MPI_COMM_WORLD;
-  int rank = 0;
-  int size = 1;
-  std::string command;                         // the command being run ("run", "static", ...)
-  std::string scene_path;                      // SCENE.yaml as given
-  std::string output_dir;                      // from -o, or "" for the default out/<scene name>
-  std::string cache_dir = "out/.pcsim-cache";  // --cache DIR (output/modal_cache.hpp)
+// The command line of one command; comm, rank, size, cache_dir (--cache DIR)
+// and quiet come from the simulation part's context.
+struct CommandContext : simulation::Context {
+  std::string command;                 // the command being run ("run", "static", ...)
+  std::string scene_path;              // SCENE.yaml as given
+  std::string output_dir;              // from -o, or "" for the default out/<scene name>
   std::string subcommand;              // commands with a subcommand: `pcsim study accuracy SCENE`
   std::vector<std::string> arguments;  // the whole command line (argv)
   std::vector<std::string> overrides;  // --set KEY=VALUE, in order
@@ -78,17 +77,15 @@ struct CommandHelpRegistrar {
   }
 };
 
-// Prints on rank 0 only.
-void print0(const CommandContext& ctx, const char* format, ...);
+using simulation::on_rank0;
+using simulation::peak_memory_mb;
+using simulation::print0;
+using simulation::print_warnings;
+using simulation::total_peak_memory_mb;
 
 // Newton history, form-finding errors and dropper forces of a static solution.
 void print_static_summary(const CommandContext& ctx, const catenary::CatenaryMesh& mesh,
                           const catenary::StaticResult& result);
-
-// Largest peak resident memory of any rank [MB] (collective).
-double peak_memory_mb(MPI_Comm comm);
-// The sum over the ranks of their peak resident memory [MB] (collective).
-double total_peak_memory_mb(MPI_Comm comm);
 
 }  // namespace pcsim::app
 

@@ -1,6 +1,4 @@
 // Console output shared by the commands.
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <cstdio>
 
@@ -37,25 +35,6 @@ void print_static_summary(const CommandContext& ctx, const catenary::CatenaryMes
   print0(ctx, "  wall time %.3f s\n", r.wall_time_s);
   if (ctx.rank == 0)
     for (const auto& w : r.warnings) std::fprintf(stderr, "pcsim: warning: %s\n", w.c_str());
-}
-
-namespace {
-// This process's peak resident memory, reduced over the ranks by op.
-double reduced_peak_memory_mb(MPI_Comm comm, MPI_Op op) {
-  struct rusage usage;
-  getrusage(RUSAGE_SELF, &usage);
-  double mb = usage.ru_maxrss / 1024.0, reduced = 0;
-  MPI_Allreduce(&mb, &reduced, 1, MPI_DOUBLE, op, comm);
-  return reduced;
-}
-}  // namespace
-
-double peak_memory_mb(MPI_Comm comm) {
-  return reduced_peak_memory_mb(comm, MPI_MAX);
-}
-
-double total_peak_memory_mb(MPI_Comm comm) {
-  return reduced_peak_memory_mb(comm, MPI_SUM);
 }
 
 }  // namespace pcsim::app

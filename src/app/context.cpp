@@ -1,6 +1,5 @@
 // What every command gets from the command line: the scene (composed, with
 // the --set overrides), its name, the output folder and the provenance.
-#include <cstdarg>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -14,15 +13,6 @@ namespace pcsim::app {
 std::map<std::string, Command>& command_registry() {
   static std::map<std::string, Command> registry;
   return registry;
-}
-
-void print0(const CommandContext& ctx, const char* format, ...) {
-  if (ctx.rank != 0) return;
-  va_list args;
-  va_start(args, format);
-  std::vfprintf(stdout, format, args);
-  va_end(args);
-  std::fflush(stdout);
 }
 
 InputNode CommandContext::load_scene() const {

@@ -31,24 +31,6 @@ int exit_status_of(std::exception_ptr error, const CommandContext& ctx, std::str
   }
 }
 
-void on_rank0(const CommandContext& ctx, const std::function<void()>& work) {
-  std::exception_ptr error;
-  int status = 0;
-  if (ctx.rank == 0) {
-    try {
-      work();
-    } catch (...) {
-      error = std::current_exception();
-      std::string unused;
-      status = exit_status_of(error, ctx, unused);
-    }
-  }
-  MPI_Bcast(&status, 1, MPI_INT, 0, ctx.comm);
-  if (status == 0) return;
-  if (ctx.rank == 0) std::rethrow_exception(error);
-  throw FailedOnOtherRank(status);
-}
-
 int agree_exit_status(MPI_Comm comm, int status, const std::string& message, bool failed_here,
                       double timeout_s) {
   int rank = 0;

@@ -18,29 +18,14 @@
 
 namespace pcsim::app {
 
-constexpr int kExitInput = 2;
-constexpr int kExitSolver = 3;
-constexpr int kExitInternal = 4;
+using simulation::FailedOnOtherRank;
+using simulation::kExitInput;
+using simulation::kExitInternal;
+using simulation::kExitSolver;
 
-// Thrown on the ranks that stop because another rank failed; that rank
-// prints the message, this one only carries the exit status.
-class FailedOnOtherRank : public std::runtime_error {
- public:
-  explicit FailedOnOtherRank(int status)
-      : std::runtime_error("failed on another rank"), status_(status) {}
-  int status() const { return status_; }
-
- private:
-  int status_;
-};
-
-// Exit status of an exception, and the line to print for it ("" for
-// FailedOnOtherRank).
+// Exit status of an exception (simulation::exit_status_of), and the line to
+// print for it ("" for FailedOnOtherRank).
 int exit_status_of(std::exception_ptr error, const CommandContext& ctx, std::string& message);
-
-// Runs 'work' on rank 0 only (output files, rank-0 studies); if it throws,
-// rank 0 rethrows and the other ranks throw FailedOnOtherRank with its status.
-void on_rank0(const CommandContext& ctx, const std::function<void()>& work);
 
 // Collective on 'comm' (a communicator used for nothing else): returns the
 // status all ranks exit with, the highest one, after printing its message once.

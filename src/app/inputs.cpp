@@ -4,8 +4,9 @@
 
 #include "pcsim/scene/design_reader.hpp"
 #include "pcsim/scene/pantograph_scene.hpp"
+#include "pcsim/simulation/run.hpp"
+#include "pcsim/simulation/run_checkpoint.hpp"
 #include "pcsim/solvers/dynamics.hpp"
-#include "run_checkpoint.hpp"
 
 namespace pcsim::app {
 
@@ -13,11 +14,11 @@ namespace {
 
 // Refuses, before it is built, a mesh that would not fit in this machine's
 // memory; keeps the estimate for the reports.
-catenary::MeshSizeCheck memory_check(const CommandContext& ctx, solvers::MemoryUse use,
-                                     solvers::MemoryEstimate& estimate, int modes = 20) {
+catenary::MeshSizeCheck memory_check(const CommandContext& ctx, simulation::MemoryUse use,
+                                     simulation::MemoryEstimate& estimate, int modes = 20) {
   return [&ctx, use, &estimate, modes](const catenary::MeshSize& size) {
-    solvers::check_memory(size, use, ctx.size, solvers::machine_memory_bytes(), modes);
-    estimate = solvers::estimate_memory(size, use, modes);
+    simulation::check_memory(size, use, ctx.size, simulation::machine_memory_bytes(), modes);
+    estimate = simulation::estimate_memory(size, use, modes);
   };
 }
 
@@ -29,14 +30,6 @@ solvers::ModesRequest scene_modes(const InputNode& scene) {
   return r;
 }
 
-// The cheap path needs every term's tangent constant or low rank: a
-// linearised catenary and linear pantograph models (assembly::CoupledSystem).
-bool cheap_path_possible(const scene::RunScene& run) {
-  if (run.effects.catenary_nonlinear) return false;
-  for (const auto& model : run.models)
-    if (!model->is_linear()) return false;
-  return true;
-}
 
 }  // namespace
 
@@ -44,7 +37,7 @@ StaticInputs read_static_inputs(const CommandContext& ctx) {
   StaticInputs in{ctx.load_scene(), "", {}, {}};
   in.name = ctx.scene_name(in.scene);
   in.catenary = catenary::load_catenary_scene(
-      in.scene, memory_check(ctx, solvers::MemoryUse::statics, in.memory));
+      in.scene, memory_check(ctx, simulation::MemoryUse::statics, in.memory));
   return in;
 }
 
@@ -55,7 +48,7 @@ ModesInputs read_modes_inputs(const CommandContext& ctx) {
   ModesInputs in{{scene, ctx.scene_name(scene), {}, {}}, request};
   const int modes = request.max_frequency_hz > 0 ? 20 : request.count;
   in.statics.catenary = catenary::load_catenary_scene(
-      scene, memory_check(ctx, solvers::MemoryUse::modes, in.statics.memory, modes));
+      scene, memory_check(ctx, simulation::MemoryUse::modes, in.statics.memory, modes));
   return in;
 }
 
@@ -68,13 +61,13 @@ RunInputs read_run_inputs(const CommandContext& ctx, const InputNode& scene) {
   in.name = ctx.scene_name(in.scene);
   in.numerics = solvers::read_time_integration_options(ctx.comm);
   scene::RunSceneOptions options;
-  options.size_check = memory_check(ctx, solvers::MemoryUse::run, in.memory);
+  options.size_check = memory_check(ctx, simulation::MemoryUse::run, in.memory);
   options.command_line_dt = in.numerics.dt;
   in.run = scene::load_run_scene(in.scene, options);
   if ((in.run.checkpoint_every > 0 || !restart_dir(ctx).empty()) && in.numerics.ts_type != "hht")
     throw InputError("command line", "-ts_type",
                      "checkpoints and restarts need the TS type hht, not " + in.numerics.ts_type);
-  in.cheap_path = solvers::choose_cheap_path(ctx.comm, cheap_path_possible(in.run));
+  in.cheap_path = solvers::choose_cheap_path(ctx.comm, simulation::cheap_path_possible(in.run));
   return in;
 }
 
@@ -90,7 +83,7 @@ DesignInputs read_design_inputs(const CommandContext& ctx) {
   const InputNode design = ctx.load_scene();
   try {
     in.mesh = catenary::build_catenary_design(
-        design, memory_check(ctx, solvers::MemoryUse::statics, in.memory));
+        design, memory_check(ctx, simulation::MemoryUse::statics, in.memory));
   } catch (const InputError& e) {
     design.rethrow_with_origin(e);
   }
@@ -98,16 +91,9 @@ DesignInputs read_design_inputs(const CommandContext& ctx) {
   return in;
 }
 
-void print_warnings(const CommandContext& ctx, const std::vector<InputWarning>& warnings) {
-  std::vector<std::string> texts;
-  for (const auto& w : warnings) texts.push_back(w.message());
-  print_warnings(ctx, texts);
-}
-
-void print_warnings(const CommandContext& ctx, const std::vector<std::string>& warnings) {
-  if (ctx.rank != 0) return;
-  for (const auto& w : warnings) std::fprintf(stderr, "pcsim: warning: %s\n", w.c_str());
-  std::fflush(stderr);
+std::string restart_dir(const CommandContext& ctx) {
+  const auto it = ctx.options.find("--restart");
+  return it == ctx.options.end() ? "" : it->second;
 }
 
 }  // namespace pcsim::app

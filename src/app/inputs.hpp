@@ -13,8 +13,8 @@
 #include "pcsim/pantograph/study.hpp"
 #include "pcsim/scene/catenary_scene.hpp"
 #include "pcsim/scene/run_scene.hpp"
+#include "pcsim/simulation/memory_estimate.hpp"
 #include "pcsim/solvers/command_line.hpp"
-#include "pcsim/solvers/memory_estimate.hpp"
 #include "pcsim/solvers/modes.hpp"
 
 namespace pcsim::app {
@@ -24,7 +24,7 @@ struct StaticInputs {
   InputNode scene;
   std::string name;  // the scene's name (output folder)
   catenary::CatenaryScene catenary;
-  solvers::MemoryEstimate memory;
+  simulation::MemoryEstimate memory;
 };
 StaticInputs read_static_inputs(const CommandContext& ctx);
 
@@ -40,11 +40,14 @@ struct RunInputs {
   scene::RunScene run;
   solvers::TimeIntegrationOptions numerics;  // -ts_dt, -ts_type, -ts_hht_alpha
   bool cheap_path = false;                   // -pcsim_path and the scene's terms
-  solvers::MemoryEstimate memory;
+  simulation::MemoryEstimate memory;
 };
 RunInputs read_run_inputs(const CommandContext& ctx);
 // The same for a scene composed by the caller (the cases of `pcsim sweep`).
 RunInputs read_run_inputs(const CommandContext& ctx, const InputNode& scene);
+
+// The folder given with `pcsim run --restart DIR`, or "".
+std::string restart_dir(const CommandContext& ctx);
 
 struct PantographInputs {
   InputNode scene;
@@ -56,12 +59,8 @@ PantographInputs read_pantograph_inputs(const CommandContext& ctx);
 // A catenary design file alone (`pcsim check DESIGN.yaml`, composed, with --set).
 struct DesignInputs {
   catenary::CatenaryMesh mesh;
-  solvers::MemoryEstimate memory;
+  simulation::MemoryEstimate memory;
 };
 DesignInputs read_design_inputs(const CommandContext& ctx);
-
-// "pcsim: warning: file: key 'k': reason" on stderr, rank 0.
-void print_warnings(const CommandContext& ctx, const std::vector<InputWarning>& warnings);
-void print_warnings(const CommandContext& ctx, const std::vector<std::string>& warnings);
 
 }  // namespace pcsim::app

@@ -4,10 +4,10 @@
 #include <string>
 
 #include "choice_option.hpp"
+#include "pcsim/assembly/initial_acceleration.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/solvers/direct.hpp"
 #include "pcsim/solvers/hht.hpp"
-#include "pcsim/solvers/static_start.hpp"
 
 namespace pcsim::solvers {
 
@@ -151,7 +151,7 @@ void DynamicSolver::set_initial_state(Vec U0, Vec V0) {
   if (std::string(ts_type) != kTSHHT) return;
   // Static and ramp starts are equilibria (A0 = 0); a gap start is not.
   Vec A0 = system_.create_vector();
-  initial_acceleration(system_, U0, V0, A0);
+  assembly::initial_acceleration(system_, U0, V0, A0);
   hht_set_initial_acceleration(ts_, A0);
   PCSIM_PETSC(VecDestroy(&A0));
 }

@@ -8,9 +8,9 @@
 #include <cstdio>
 #include <numeric>
 
-#include "modes_internal.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/solvers/command_line.hpp"
+#include "pcsim/solvers/spectrum.hpp"
 
 namespace pcsim::solvers {
 

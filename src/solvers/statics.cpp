@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "pcsim/assembly/static_problem.hpp"
-#include "pcsim/catenary/reactions.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/solvers/direct.hpp"
 
@@ -225,31 +224,6 @@ catenary::StaticResult solve_static(assembly::CatenarySystem& system, Vec x, boo
   PetscTime(&t1);
   result.wall_time_s = t1 - t0;
   return result;
-}
-
-StaticConfiguration static_configuration(MPI_Comm comm, const catenary::CatenaryMesh& design,
-                                         bool form_finding, const char* options_prefix) {
-  const PetscInt extra = form_finding ? assembly::form_finding_unknowns(design) : 0;
-  assembly::CatenarySystem system(comm, design, extra);
-  Vec x = system.create_vector();
-  system.design_state(x);
-  StaticConfiguration config;
-  try {
-    config.result = solve_static(system, x, form_finding, options_prefix);
-  } catch (...) {
-    VecDestroy(&x);
-    throw;
-  }
-  PCSIM_PETSC(VecDestroy(&x));
-  config.mesh = system.mesh();
-  // Pull-off forces, and the tensioning devices released with the anchors'
-  // forces: later systems (modes, dynamics) see the devices.
-  config.result.registration_forces =
-      catenary::registration_forces(config.mesh, config.result.node_values);
-  catenary::release_tensioning_devices(config.mesh, config.result.node_values);
-  config.node_owner = system.layout().node_owner();
-  config.catenary_dofs = system.layout().catenary_dofs();
-  return config;
 }
 
 }  // namespace pcsim::solvers

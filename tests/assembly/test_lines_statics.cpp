@@ -18,7 +18,8 @@
 #include "pcsim/catenary/geometry.hpp"
 #include "pcsim/catenary/reactions.hpp"
 #include "pcsim/scene/design_reader.hpp"
-#include "pcsim/solvers/elasticity.hpp"
+#include "pcsim/simulation/elasticity.hpp"
+#include "pcsim/simulation/statics.hpp"
 #include "pcsim/solvers/statics.hpp"
 
 using namespace pcsim;
@@ -78,7 +79,7 @@ double non_uniformity(const std::vector<double>& u) {
 TEST(LineStatics, OverlapWiresAtDesignHeightsAndDevicesInEquilibrium) {
   const auto design =
       catenary::load_catenary_design(PCSIM_SOURCE_DIR "/meshes/lines/three-sections-short.yaml");
-  const auto st = solvers::static_configuration(PETSC_COMM_WORLD, design, true);
+  const auto st = simulation::static_configuration(PETSC_COMM_WORLD, design, true);
   const auto& v = st.result.node_values;
   // Both wires over both overlaps: every target of every contact wire
   // (independently of StaticResult), and at least 5 of each wire inside
@@ -131,15 +132,15 @@ TEST(LineStatics, StitchedFormFindingAndMoreUniformElasticity) {
   for (double x = 60.0; x <= 120.0 + 1e-9; x += 5.0) xs.push_back(x);  // span 2, supports included
   std::vector<double> nonuniform;
   for (const auto* d : {&stitched, &plain}) {
-    const auto st = solvers::static_configuration(PETSC_COMM_WORLD, catenary::build_parametric(*d),
-                                                  true, "lines_");
+    const auto st = simulation::static_configuration(
+        PETSC_COMM_WORLD, catenary::build_parametric(*d), true, "lines_");
     // Form-finding errors as for the simple catenary (the stitch wires'
     // tension segments included). Newton stops once ||R||_2 < 1e-8 of the
     // loads (solvers/statics.hpp): here at 2.6e-5 N, which leaves tension
     // errors of 1.3e-9 (stitched; 2e-12 after one more, rounding-bound step).
     EXPECT_LE(st.result.max_height_error_m, 1e-9);
     EXPECT_LE(st.result.max_tension_error_rel, 1e-8);
-    const auto e = solvers::static_elasticity(PETSC_COMM_WORLD, st, xs, 100.0);
+    const auto e = simulation::static_elasticity(PETSC_COMM_WORLD, st, xs, 100.0);
     nonuniform.push_back(non_uniformity(e.uplift));
     if (rank() == 0) {
       std::printf("  %s: uplift per 100 N [mm]:", d == &stitched ? "stitched" : "simple");
@@ -165,15 +166,15 @@ TEST(LineStatics, StitchedFormFindingAndMoreUniformElasticity) {
 TEST(LineStatics, PrescribedProfileAtTheDroppersAndBetween) {
   auto d = design_fixtures::reference_design(4);
   d.element_length = 1.0;
-  const auto plain = solvers::static_configuration(PETSC_COMM_WORLD, catenary::build_parametric(d),
-                                                   true, "lines_");
+  const auto plain = simulation::static_configuration(
+      PETSC_COMM_WORLD, catenary::build_parametric(d), true, "lines_");
   // A 30 m wave of 2 mm over spans 2-3, sampled every 0.25 m.
   for (double x = 60.0; x <= 180.0 + 1e-9; x += 0.25) {
     d.irregularities.profile_x.push_back(x);
     d.irregularities.profile_dz.push_back(0.002 * std::sin(2 * M_PI * (x - 60.0) / 30.0));
   }
   const auto mesh = catenary::build_parametric(d);
-  const auto st = solvers::static_configuration(PETSC_COMM_WORLD, mesh, true, "lines_");
+  const auto st = simulation::static_configuration(PETSC_COMM_WORLD, mesh, true, "lines_");
   auto dz = [](double x) {
     return x < 60.0 || x > 180.0 ? 0.0 : 0.002 * std::sin(2 * M_PI * (x - 60.0) / 30.0);
   };
@@ -240,7 +241,7 @@ TEST(LineStatics, WornStretchIsSofterAndLighter) {
   double left_L0 = 0;  // unstressed length of the unworn half
   for (const auto& el : m.cables)
     if (el.section_factor == 1.0) left_L0 += el.unstressed_length;
-  const auto st = solvers::static_configuration(PETSC_COMM_WORLD, m, false, "lines_");
+  const auto st = simulation::static_configuration(PETSC_COMM_WORLD, m, false, "lines_");
   const auto& v = st.result.node_values;
   int middle = -1;
   for (int n : m.wires[0].nodes)
@@ -262,7 +263,7 @@ TEST(LineStatics, WornStretchIsSofterAndLighter) {
   EXPECT_LT(T, 0.8 * 2e4);
   // Under gravity: the vertical reactions.
   m.gravity = {0.0, 0.0, -g};
-  const auto heavy = solvers::static_configuration(PETSC_COMM_WORLD, m, false, "lines_");
+  const auto heavy = simulation::static_configuration(PETSC_COMM_WORLD, m, false, "lines_");
   const int a = m.wires[0].nodes.front(), b = m.wires[0].nodes.back();
   const auto R = catenary::support_forces(heavy.mesh, heavy.result.node_values, {a, b});
   // Mass per unstressed length (the wire as bought): each half weighs
@@ -296,8 +297,8 @@ TEST(LineStatics, PullOffForcesOnStraightAndCurvedTrack) {
     d.element_length = 1.0;
     d.messenger_stagger = d.stagger;
     if (radius != 0) d.sections = {{5, radius}};
-    const auto st = solvers::static_configuration(PETSC_COMM_WORLD, catenary::build_parametric(d),
-                                                  true, "lines_");
+    const auto st = simulation::static_configuration(PETSC_COMM_WORLD,
+                                                     catenary::build_parametric(d), true, "lines_");
     const auto& m = st.mesh;
     const auto& f = st.result.registration_forces;
     ASSERT_EQ(f.size(), 4u);
@@ -337,8 +338,8 @@ TEST(LineStatics, TangentsOfSpringsNodeForcesArmsAndDevices) {
   o.steady_arm = catenary::SteadyArmDesign{catenary::SteadyArmModel::spring, 1.0, 1.0, 1e7, 3000.0};
   d.support_overrides = {o};
   d.tensioning = {catenary::TensioningDeviceKind::spring, 1.0, std::nullopt, 2.0e5};
-  const auto st = solvers::static_configuration(PETSC_COMM_WORLD, catenary::build_parametric(d),
-                                                true, "lines_");
+  const auto st = simulation::static_configuration(PETSC_COMM_WORLD, catenary::build_parametric(d),
+                                                   true, "lines_");
   assembly::CatenarySystem system(PETSC_COMM_WORLD, st.mesh);
   Vec x = system.create_vector(), dir = system.create_vector(), Rp = system.create_vector(),
       Rm = system.create_vector(), Jd = system.create_vector();

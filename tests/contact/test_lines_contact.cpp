@@ -8,8 +8,8 @@
 
 #include <cmath>
 
+#include "../assembly/interaction_fixtures.hpp"
 #include "pcsim/assembly/interaction_terms.hpp"
-#include "test_interaction_fixtures.hpp"
 
 namespace {
 
@@ -105,7 +105,7 @@ TEST_F(TwoWires, BothWiresPressedAndTangentMatchesFiniteDifferences) {
   PCSIM_PETSC(VecAXPY(Fp, -1.0, Jd));
   const double err = norm(Fp) / jd;
   PetscPrintf(PETSC_COMM_WORLD, "  two wires: tangent vs finite differences %.2e\n", err);
-  // Project standard 1e-6 (as tests/contact/test_interaction_jacobian.cpp).
+  // Project standard 1e-6 (as tests/assembly/test_interaction_jacobian.cpp).
   EXPECT_LT(err, 1e-6);
   for (Vec* v : {&d, &Jd, &Fp, &Fm, &Up, &Vp, &Ap}) VecDestroy(v);
   MatDestroy(&J);

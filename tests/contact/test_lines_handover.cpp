@@ -8,8 +8,9 @@
 
 #include <cmath>
 
+#include "../assembly/interaction_fixtures.hpp"
+#include "pcsim/assembly/fe_catenary.hpp"
 #include "pcsim/assembly/interaction_terms.hpp"
-#include "test_interaction_fixtures.hpp"
 
 namespace {
 

@@ -11,9 +11,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../assembly/interaction_fixtures.hpp"
+#include "pcsim/assembly/fe_catenary.hpp"
 #include "pcsim/catenary/window.hpp"
 #include "pcsim/scene/design_reader.hpp"
-#include "test_interaction_fixtures.hpp"
+#include "pcsim/simulation/statics.hpp"
 
 namespace {
 
@@ -30,7 +32,7 @@ struct Wire {
 // and dashpots of impedance_factor x Z on them.
 Wire make_wire(double impedance_factor) {
   auto design = catenary::load_catenary_design(contact_data("window-wire.yaml"));
-  auto st = solvers::static_configuration(PETSC_COMM_WORLD, design, true, "static_");
+  auto st = simulation::static_configuration(PETSC_COMM_WORLD, design, true, "static_");
   Wire w;
   w.ends = catenary::release_window_ends(st.mesh, st.result.node_values, impedance_factor);
   w.mesh = st.mesh;

@@ -9,7 +9,7 @@
 
 #include <cmath>
 
-#include "../contact/test_interaction_fixtures.hpp"
+#include "../assembly/interaction_fixtures.hpp"
 
 namespace {
 

@@ -12,11 +12,11 @@
 #include "pcsim/core/error.hpp"
 #include "pcsim/scene/composition.hpp"
 #include "pcsim/scene/design_reader.hpp"
-#include "pcsim/solvers/memory_estimate.hpp"
+#include "pcsim/simulation/memory_estimate.hpp"
 
 using namespace pcsim;
 using catenary::MeshSize;
-using solvers::MemoryUse;
+using simulation::MemoryUse;
 
 namespace {
 
@@ -70,7 +70,7 @@ TEST(MeshSize, CountedEqualsBuiltForLines) {
 TEST(MeshSize, UnknownsAndNonzerosMatchTheSystem) {
   const auto mesh = build_parametric(design_fixtures::reference_design(3));
   const MeshSize size = catenary::mesh_size(mesh);
-  const auto estimate = solvers::estimate_memory(size, MemoryUse::statics);
+  const auto estimate = simulation::estimate_memory(size, MemoryUse::statics);
   assembly::CatenarySystem system(PETSC_COMM_WORLD, mesh, assembly::form_finding_unknowns(mesh));
   EXPECT_EQ(size.dofs(), system.layout().catenary_dofs());
   EXPECT_EQ(estimate.dofs, system.layout().catenary_dofs() + system.layout().extra_dofs());
@@ -111,7 +111,7 @@ TEST(MemoryEstimate, CalibratedAgainstMeasuredPeaks) {
   };
   for (const auto& m : table) {
     const auto size = catenary::mesh_size(design_fixtures::reference_design(m.spans));
-    const double estimate = solvers::estimate_memory(size, m.use).total_bytes(m.ranks) / 1e6;
+    const double estimate = simulation::estimate_memory(size, m.use).total_bytes(m.ranks) / 1e6;
     SCOPED_TRACE(std::to_string(m.spans) + " spans, " + std::to_string(m.ranks) +
                  " rank(s): " + std::to_string(estimate) + " MB estimated, " +
                  std::to_string(m.megabytes) + " MB measured");
@@ -124,11 +124,11 @@ TEST(MemoryEstimate, ThousandSpansFitIn24GiBAndHundredThousandDoNot) {
   const double machine = 24.0 * 1024 * 1024 * 1024;
   const auto line = catenary::mesh_size(design_fixtures::reference_design(1000));
   for (MemoryUse use : {MemoryUse::statics, MemoryUse::modes, MemoryUse::run})
-    for (int ranks : {1, 2}) EXPECT_NO_THROW(solvers::check_memory(line, use, ranks, machine));
+    for (int ranks : {1, 2}) EXPECT_NO_THROW(simulation::check_memory(line, use, ranks, machine));
   auto design = design_fixtures::reference_design(100000);
   design.file = "huge.yaml";
   try {
-    solvers::check_memory(catenary::mesh_size(design), MemoryUse::statics, 1, machine);
+    simulation::check_memory(catenary::mesh_size(design), MemoryUse::statics, 1, machine);
     FAIL() << "100000 spans accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(e.file(), "huge.yaml");
@@ -138,6 +138,6 @@ TEST(MemoryEstimate, ThousandSpansFitIn24GiBAndHundredThousandDoNot) {
 }
 
 TEST(MemoryEstimate, MachineMemoryFromProcMeminfo) {
-  const double bytes = solvers::machine_memory_bytes();
+  const double bytes = simulation::machine_memory_bytes();
   EXPECT_GT(bytes, 1e8);  // any machine that runs the tests has more than 100 MB
 }

@@ -11,6 +11,7 @@
 #include "pcsim/assembly/static_problem.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/scene/design_reader.hpp"
+#include "pcsim/simulation/statics.hpp"
 #include "pcsim/solvers/statics.hpp"
 
 using namespace pcsim;
@@ -23,7 +24,7 @@ bool contains(const std::string& text, const std::string& part) {
 
 catenary::StaticResult solve(const catenary::CatenaryMesh& mesh, bool form_finding,
                              const char* prefix = nullptr) {
-  return solvers::static_configuration(PETSC_COMM_WORLD, mesh, form_finding, prefix).result;
+  return simulation::static_configuration(PETSC_COMM_WORLD, mesh, form_finding, prefix).result;
 }
 
 // Two spans of the EN 50318 line (1 m elements) with EA 1e9 in both wires.

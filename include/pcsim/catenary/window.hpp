@@ -2,7 +2,7 @@
 // window"): only W spans are integrated; when the pantograph has run on by
 // one period of the line (two spans: the stagger alternates), the dynamic
 // state moves back by that period and the new front spans start static.
-// Plain functions of the mesh; the run drives them (src/app/run_window.*).
+// Plain functions of the mesh; the run drives them (src/simulation/moving_window.*).
 #pragma once
 
 #include <vector>

@@ -56,7 +56,7 @@ class DynamicSolver {
 
   TS ts() const { return ts_; }
   // Starts the TS at (U0, V0) (copied): with HHT also at the acceleration of
-  // that state (solvers::initial_acceleration; zero for equilibrium starts).
+  // that state (assembly::initial_acceleration; zero for equilibrium starts).
   void set_initial_state(Vec U0, Vec V0);
   bool cheap_path() const { return low_rank_ != nullptr; }
   // The KSP that factors the step matrix (J0's on the cheap path).

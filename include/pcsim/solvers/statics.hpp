@@ -27,16 +27,4 @@ catenary::StaticResult solve_static(assembly::CatenarySystem& system, Vec x, boo
                                     const char* options_prefix = nullptr, double abs_tolerance = 0,
                                     bool equilibrium_checks = true);
 
-// The step every command starts with: the design -> static configuration
-// (with form-finding when asked). The returned mesh has its tensioning
-// devices released (catenary/reactions.hpp), the result the pull-off forces.
-struct StaticConfiguration {
-  catenary::CatenaryMesh mesh;    // with the found unstressed lengths, bar equilibria
-  catenary::StaticResult result;  // node values etc.
-  std::vector<int> node_owner;    // the partition used (reusable by later systems)
-  PetscInt catenary_dofs = 0;
-};
-StaticConfiguration static_configuration(MPI_Comm comm, const catenary::CatenaryMesh& design,
-                                         bool form_finding, const char* options_prefix = nullptr);
-
 }  // namespace pcsim::solvers

@@ -1,0 +1,47 @@
+// The catenary model of a run scene at its fidelity (catenary.model):
+// FECatenary (nonlinear or linearised cables) or ModalCatenary, whose reduced
+// basis comes from the cache folder (output/modal_cache.hpp) or is computed
+// (solvers/modal_basis.hpp) and stored there. Shared by `pcsim run` and
+// `pcsim study accuracy`.
+#pragma once
+
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "pcsim/assembly/catenary_model.hpp"
+#include "pcsim/assembly/coupled_system.hpp"
+#include "pcsim/scene/run_scene.hpp"
+#include "pcsim/simulation/context.hpp"
+#include "pcsim/simulation/statics.hpp"
+#include "pcsim/solvers/statics.hpp"
+
+namespace pcsim::simulation {
+
+struct CatenarySetup {
+  std::unique_ptr<assembly::CatenaryModel> model;
+  bool modal = false;
+  bool cache_hit = false;
+  std::string cache_file;
+  double basis_seconds = 0;  // computing the basis (0 when read from the cache)
+  double setup_seconds = 0;  // reading or computing it
+  int basis_size = 0, eigenmodes = 0, dropped_modes = 0;
+  double cutoff_hz = 0;
+  // For summary.json and the console.
+  nlohmann::json facts() const;
+};
+
+// extra_dofs: the pantographs' unknowns. Snapshots need a modal model's full
+// shapes (run.snapshot_every > 0).
+CatenarySetup make_catenary_model(const Context& ctx, const scene::RunScene& run,
+                                  const simulation::StaticConfiguration& statics,
+                                  PetscInt extra_dofs);
+
+// The coupled system of the scene on the static configuration (moves the
+// scene's pantograph models in), its catenary from make_catenary_model
+// (setup keeps the facts; its model is moved into the system).
+std::unique_ptr<assembly::CoupledSystem> make_coupled_system(
+    const Context& ctx, scene::RunScene& run, const simulation::StaticConfiguration& statics,
+    CatenarySetup& setup);
+
+}  // namespace pcsim::simulation

@@ -1,0 +1,55 @@
+// The moving window of `pcsim run` (scene key 'window'; catenary/window.hpp,
+// docs/scaling.md): after every accepted step, when the pantograph has left
+// the window's two middle spans, the catenary's dynamic state (displacement
+// from the static configuration, velocity, acceleration) moves back by two
+// spans, the two new front spans start static, and the pantograph's contact
+// point moves back with it. Records are turned into line coordinates.
+#pragma once
+
+#include <petscvec.h>
+
+#include <vector>
+
+#include "pcsim/assembly/coupled_system.hpp"
+#include "pcsim/assembly/fe_catenary.hpp"
+#include "pcsim/contact/records.hpp"
+#include "pcsim/output/run_stream.hpp"
+#include "pcsim/scene/run_scene.hpp"
+#include "pcsim/solvers/dynamics.hpp"
+
+namespace pcsim::simulation {
+
+class MovingWindow {
+ public:
+  // system: built on the window's mesh (ends released). line_support_x: the
+  // line's supports. Collective.
+  MovingWindow(const scene::RunWindow& window, assembly::CoupledSystem& system,
+               std::vector<double> line_support_x);
+  // After an accepted step at time t (collective): shifts if due.
+  void after_step(double t, solvers::DynamicSolver& solver);
+  // A record of the window as the line's: contact stations, every line support.
+  void to_line(contact::StepRecord& record) const;
+  // The layout's supports: the line's, with static heights of the window's.
+  void set_line_supports(output::RunLayout& layout) const;
+  int shifts() const { return shifts_; }
+  double offset() const { return 2.0 * span_length_ * shifts_; }
+
+ private:
+  void shift(solvers::DynamicSolver& solver);
+  void set_pins(assembly::FECatenary& fe);
+
+  assembly::CoupledSystem& system_;
+  assembly::FECatenary* fe_ = nullptr;
+  int line_spans_ = 0, window_spans_ = 0;
+  double span_length_ = 0;
+  double shift_at_x_ = 0;  // window station where the pantograph leaves the middle spans
+  int max_shifts_ = 0, shifts_ = 0;
+  int window_supports_ = 0;
+  std::vector<double> line_support_x_, line_static_z_, window_static_z_;
+  // Rank 0: catenary DOF g takes the displacement of source_[g] (-1: static);
+  // static_U_ the static configuration in the global order.
+  std::vector<PetscInt> source_;
+  std::vector<double> static_U_;
+};
+
+}  // namespace pcsim::simulation

@@ -1,0 +1,59 @@
+// Checkpoint/restart of `pcsim run` (README "Interrupted runs and restarts",
+// docs/results-format.md): what a checkpoint holds beyond the solver's state,
+// the fingerprint of the input files, and the checks a restart makes.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "pcsim/scene/yaml_input.hpp"
+#include "pcsim/simulation/context.hpp"
+#include "pcsim/solvers/dynamics.hpp"
+
+namespace pcsim::simulation {
+
+// An input file of the run and the SHA-256 (hex) of its content as the run
+// reads it: composed with its base files, 'set' entries and --set overrides
+// (scene/composition.hpp), as YAML.
+struct InputFile {
+  std::string role;  // "scene", "design", "pantograph model <n>"
+  std::string path;
+  std::string sha256;
+};
+
+// The scene (composed), its design and every pantograph's model (every rank).
+std::vector<InputFile> run_input_files(const std::string& scene_path, const InputNode& scene);
+
+// Where the run stands besides the solver's state.
+struct RunProgress {
+  std::size_t records = 0;    // rows of results.h5 (accepted steps + the start)
+  std::size_t snapshots = 0;  // snapshots in results.h5
+  long newton_iterations = 0;
+  long rejected_steps = 0;  // HHT steps rejected and retried with a smaller Δt
+  double wall_time_s = 0;   // of the time integration so far
+};
+
+struct RunCheckpoint {
+  solvers::DynamicState state;  // vectors on rank 0 only
+  RunProgress progress;
+  std::string path;  // Jacobian path: "cheap" or "full"
+  int ranks = 1;
+  std::vector<InputFile> inputs;
+};
+
+// Writes 'file' on rank 0 (atomically); collective, the outcome agreed.
+void write_run_checkpoint(const Context& ctx, const std::string& file,
+                          const RunCheckpoint& checkpoint);
+
+// The checkpoint in folder 'dir' (given with --restart), checked against this
+// run: the same input files and rank count; else InputError("command line",
+// "--restart", why) on every rank. Collective: rank 0 reads, the rest is
+// broadcast (vectors stay on rank 0).
+RunCheckpoint load_run_checkpoint(const Context& ctx, const std::string& dir,
+                                  const std::vector<InputFile>& inputs);
+
+// Refuses (InputError on --restart) a new result folder that is the restart
+// folder or its partial folder: a restart reads DIR and writes a new result.
+void check_restart_target(const std::string& restart_dir, const std::string& final_dir);
+
+}  // namespace pcsim::simulation

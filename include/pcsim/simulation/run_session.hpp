@@ -1,0 +1,85 @@
+// The time integration of `pcsim run` as it goes: every accepted step into
+// results.h5 (rank 0, streamed: output/run_stream.hpp), field snapshots,
+// checkpoints every output.checkpoint_every steps, and the stop on SIGINT or
+// SIGTERM at a step boundary, agreed by every rank (interrupt.hpp).
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "pcsim/assembly/coupled_system.hpp"
+#include "pcsim/output/run_stream.hpp"
+#include "pcsim/simulation/context.hpp"
+#include "pcsim/simulation/interrupt.hpp"
+#include "pcsim/simulation/moving_window.hpp"
+#include "pcsim/simulation/run_checkpoint.hpp"
+#include "pcsim/solvers/dynamics.hpp"
+
+namespace pcsim::simulation {
+
+class RunObserver;  // run.hpp
+
+class RunSession {
+ public:
+  struct Options {
+    double duration = 0;  // [s]
+    long snapshot_every = 0, checkpoint_every = 0;
+    bool keep_dropper_forces = true;
+    bool energy = false;              // E(t) and the powers every step (output.energy)
+    std::string checkpoint_file;      // in the partial output folder
+    std::vector<InputFile> inputs;    // fingerprint stored in checkpoints
+    MovingWindow* window = nullptr;   // scene key 'window': shifts after steps, line records
+    RunObserver* observer = nullptr;  // sees every record
+  };
+  // stream: rank 0's results.h5 (null on the other ranks). restart: the
+  // checkpoint the run continues from (null for a new run).
+  // stop: installed by the caller before results.h5 exists, so that a signal
+  // from then on stops the run at its next step (null: signals are not caught).
+  RunSession(const Context& ctx, assembly::CoupledSystem& system, solvers::DynamicSolver& solver,
+             output::RunStream* stream, Options options, const RunCheckpoint* restart,
+             const GracefulStop* stop);
+
+  // TSSolve with the monitor and the stop check installed. Returns the signal
+  // that stopped the run (0: it ended by itself).
+  int integrate();
+  // After integrate(): writes a checkpoint at the last step unless there is
+  // one already (collective). False for a TS type that cannot be checkpointed
+  // and with a moving window.
+  bool checkpoint_last_step();
+  // True if the run stopped before its final time (signal, -ts_max_steps).
+  bool stopped_early() const;
+
+  // Performance and solver facts for summary.json and the console (collective).
+  nlohmann::json facts() const;
+  long steps() const { return steps_; }
+  output::RunStream* stream() const { return stream_; }
+  double time() const { return time_; }
+
+ private:
+  static PetscErrorCode monitor(TS ts, PetscInt step, PetscReal t, Vec U, void* ptr);
+  static PetscErrorCode post_step(TS ts);
+  void record(TS ts, PetscInt step, PetscReal t, Vec U);
+  long rejected_steps() const;  // earlier runs included
+  void print_progress(PetscInt step, PetscReal t) const;
+  void write_checkpoint();
+  double wall_time() const;  // of the integration, earlier runs included
+
+  const Context& ctx_;
+  assembly::CoupledSystem& system_;
+  solvers::DynamicSolver& solver_;
+  output::RunStream* stream_;
+  Options options_;
+  const GracefulStop* stop_;
+  int stop_signal_ = 0;
+  long first_step_ = 0;             // step the integration starts from
+  bool skip_first_record_ = false;  // a restart's first step is in results.h5 already
+  long steps_ = 0, newton_iterations_ = 0, earlier_rejected_ = 0, last_checkpoint_ = -1;
+  double time_ = 0, start_time_ = 0, earlier_wall_ = 0, wall_start_ = 0;
+  mutable double last_print_ = 0;
+  long debug_signal_step_ = -1;  // -pcsim_debug_signal_step: raise SIGTERM there (tests)
+  int debug_signal_rank_ = -1;   // on this rank only (-1: every rank)
+  std::string path_;             // "cheap" or "full"
+};
+
+}  // namespace pcsim::simulation

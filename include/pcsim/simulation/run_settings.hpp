@@ -1,0 +1,26 @@
+// The output settings of a run scene, shared by `pcsim run` and the runs of
+// `pcsim study accuracy`.
+#pragma once
+
+#include <string>
+
+#include "pcsim/output/run_results.hpp"
+#include "pcsim/scene/run_scene.hpp"
+
+namespace pcsim::simulation {
+
+inline output::RunSettings run_settings(const scene::RunScene& run, const std::string& scene_name) {
+  output::RunSettings s;
+  s.scene_name = scene_name;
+  s.speed = run.speed;
+  s.analysis_from_x = run.analysis_from_x;
+  s.analysis_to_x = run.analysis_to_x;
+  s.analysis_from_span = run.analysis_from_span;
+  s.analysis_to_span = run.analysis_to_span;
+  s.cutoff_hz = run.cutoff_hz;
+  s.dropper_forces = run.dropper_forces;
+  for (const auto& p : run.pantographs) s.pantograph_names.push_back(p.name);
+  return s;
+}
+
+}  // namespace pcsim::simulation

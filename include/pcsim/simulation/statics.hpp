@@ -1,0 +1,35 @@
+// The static configuration of a catenary design, the start of every command
+// that solves one: the static solution (solvers/statics.hpp: SNES, with
+// form-finding when asked), then the pull-off forces of the steady arms and
+// the tensioning devices released with the anchors' forces
+// (catenary/reactions.hpp), so that later systems (modes, dynamics) see them.
+#pragma once
+
+#include <mpi.h>
+#include <petscsys.h>
+
+#include <vector>
+
+#include "pcsim/catenary/mesh.hpp"
+#include "pcsim/catenary/results.hpp"
+
+namespace pcsim::simulation {
+
+// The design -> static configuration. The returned mesh has its tensioning
+// devices released, the result the pull-off forces.
+struct StaticConfiguration {
+  catenary::CatenaryMesh mesh;    // with the found unstressed lengths, bar equilibria
+  catenary::StaticResult result;  // node values etc.
+  std::vector<int> node_owner;    // the partition used (reusable by later systems)
+  PetscInt catenary_dofs = 0;
+};
+StaticConfiguration static_configuration(MPI_Comm comm, const catenary::CatenaryMesh& design,
+                                         bool form_finding, const char* options_prefix = nullptr);
+
+// The catenary's modes about a static configuration (solvers/modes.hpp: nev
+// modes, or every mode below max_frequency_hz > 0), on its own unknowns with
+// the found unstressed lengths. Collective.
+catenary::ModesResult catenary_modes(MPI_Comm comm, const StaticConfiguration& statics, int nev,
+                                     double max_frequency_hz, bool want_shapes);
+
+}  // namespace pcsim::simulation

@@ -1,0 +1,33 @@
+// SLEPc spectrum slicing over an interval of omega^2, shared by the catenary
+// modes (solvers/modes.cpp) and the reduced basis (simulation/modal_basis*.cpp).
+#pragma once
+
+#include <slepceps.h>
+
+#include <vector>
+
+namespace pcsim::assembly {
+class CatenarySystem;
+}
+
+namespace pcsim::solvers {
+
+// The tangent stiffness K at state x and the mass M of a catenary system,
+// into matrices created by its layout; both flagged symmetric (a conservative
+// system: the flag removes round-off asymmetry).
+void assemble_stiffness_and_mass(assembly::CatenarySystem& system, Vec x, Mat K, Mat M);
+
+// Krylov-Schur spectrum slicing of the GHEP K x = lambda M x over
+// [lambda_lo, lambda_hi], shift-and-invert with MUMPS Cholesky (its inertia);
+// tolerance 1e-12. The caller sets the operators and calls EPSSetFromOptions.
+void configure_slicing(EPS eps, double lambda_lo, double lambda_hi);
+
+// The converged eigenvalues of a solved EPS (real parts) and their indices
+// in ascending order of eigenvalue.
+struct ConvergedSpectrum {
+  std::vector<double> lambdas;  // by EPS index
+  std::vector<PetscInt> order;  // EPS indices, smallest eigenvalue first
+};
+ConvergedSpectrum converged_spectrum(EPS eps);
+
+}  // namespace pcsim::solvers

@@ -1,0 +1,159 @@
+#include "pcsim/simulation/catenary_setup.hpp"
+
+#include <petsctime.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "pcsim/assembly/fe_catenary.hpp"
+#include "pcsim/assembly/modal_catenary.hpp"
+#include "pcsim/assembly/static_problem.hpp"
+#include "pcsim/output/modal_cache.hpp"
+#include "pcsim/simulation/context.hpp"
+#include "pcsim/simulation/modal_basis.hpp"
+#include "pcsim/simulation/statics.hpp"
+
+namespace pcsim::simulation {
+
+namespace {
+
+template <typename T>
+void broadcast(std::vector<T>& v, MPI_Comm comm) {
+  unsigned long n = v.size();
+  MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG, 0, comm);
+  v.resize(n);
+  MPI_Bcast(v.data(), static_cast<int>(n * sizeof(T)), MPI_BYTE, 0, comm);
+}
+
+void broadcast(catenary::ModalData& d, MPI_Comm comm) {
+  for (auto* v : {&d.omega2, &d.mode_rows, &d.shape_rows, &d.mode_shape_mass, &d.shape_mass,
+                  &d.shape_flexibility, &d.contact_compliance})
+    broadcast(*v, comm);
+  broadcast(d.row_keys, comm);
+  double scalars[3] = {d.cutoff_hz, d.max_relative_residual, d.wall_time_s};
+  MPI_Bcast(scalars, 3, MPI_DOUBLE, 0, comm);
+  d.cutoff_hz = scalars[0];
+  d.max_relative_residual = scalars[1];
+  d.wall_time_s = scalars[2];
+}
+
+std::string file_content(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+catenary::ModalData compute_data(const Context& ctx, const simulation::StaticConfiguration& statics,
+                                 double cutoff_hz, bool full_shapes) {
+  assembly::CatenarySystem system(ctx.comm, statics.mesh, 0, &statics.node_owner);
+  Vec x = system.create_vector();
+  assembly::set_state_from_node_values(system, statics.result.node_values, x);
+  auto data = simulation::compute_modal_data(system, x, cutoff_hz, full_shapes);
+  PCSIM_PETSC(VecDestroy(&x));
+  return data;
+}
+
+// The modal data from the cache (rank 0 reads, every rank gets them) or
+// computed and stored (a cache that cannot be written costs a warning, not
+// the run).
+catenary::ModalData cached_data(const Context& ctx, const scene::RunScene& run,
+                                const simulation::StaticConfiguration& statics, double cutoff_hz,
+                                bool full_shapes, CatenarySetup& out) {
+  const std::string key =
+      output::modal_cache_key(file_content(run.catenary.design_path), run.catenary.mesh,
+                              run.catenary.form_finding, full_shapes);
+  catenary::ModalData data;
+  int hit = 0;
+  if (ctx.rank == 0)
+    hit = output::find_modal_data(ctx.cache_dir, key, cutoff_hz, data, out.cache_file) ? 1 : 0;
+  MPI_Bcast(&hit, 1, MPI_INT, 0, ctx.comm);
+  out.cache_hit = hit != 0;
+  if (out.cache_hit) {
+    broadcast(data, ctx.comm);
+    return data;
+  }
+  out.cache_file = output::modal_cache_file(ctx.cache_dir, key, cutoff_hz);
+  print0(ctx, "  computing the catenary's modes below %.1f Hz (cached in %s)\n", cutoff_hz,
+         out.cache_file.c_str());
+  data = compute_data(ctx, statics, cutoff_hz, full_shapes);
+  out.basis_seconds = data.wall_time_s;
+  if (ctx.rank == 0) {
+    try {
+      output::write_modal_data(out.cache_file, key, data);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "pcsim: warning: the modal data are not cached: %s\n", e.what());
+    }
+  }
+  return data;
+}
+
+}  // namespace
+
+nlohmann::json CatenarySetup::facts() const {
+  nlohmann::json j;
+  if (!modal) return j;
+  j["cutoff_hz"] = cutoff_hz;
+  j["basis_size"] = basis_size;
+  j["eigenmodes"] = eigenmodes;
+  j["dropped_modes"] = dropped_modes;
+  j["cache_hit"] = cache_hit;
+  j["cache_file"] = cache_file;
+  j["basis_compute_s"] = basis_seconds;
+  j["basis_setup_s"] = setup_seconds;
+  return j;
+}
+
+CatenarySetup make_catenary_model(const Context& ctx, const scene::RunScene& run,
+                                  const simulation::StaticConfiguration& statics,
+                                  PetscInt extra_dofs) {
+  CatenarySetup out;
+  if (run.catenary.fidelity != catenary::CatenaryFidelity::modal) {
+    out.model = std::make_unique<assembly::FECatenary>(
+        ctx.comm, statics.mesh, statics.result.node_values, extra_dofs, &statics.node_owner);
+    return out;
+  }
+  constexpr PetscInt kMaxAllModes = 4000;
+  catenary::ModalSettings settings = run.catenary.modal;
+  settings.full_shapes = run.snapshot_every > 0;
+  if (settings.max_frequency_hz <= 0 && statics.catenary_dofs > kMaxAllModes)
+    throw InputError(run.catenary.scene_file, "catenary.max_frequency_hz",
+                     "'all' modes is for structures up to " + std::to_string(kMaxAllModes) +
+                         " unknowns (this one has " + std::to_string(statics.catenary_dofs) +
+                         "): give a cut-off frequency");
+  PetscLogDouble t0, t1;
+  PetscTime(&t0);
+  auto basis = catenary::assemble_basis(
+      cached_data(ctx, run, statics, settings.max_frequency_hz, settings.full_shapes, out),
+      statics.mesh, settings);
+  PetscTime(&t1);
+  out.modal = true;
+  out.setup_seconds = t1 - t0;
+  out.basis_size = static_cast<int>(basis.size());
+  out.eigenmodes = basis.eigenmodes;
+  out.dropped_modes = basis.dropped_modes;
+  out.cutoff_hz = settings.max_frequency_hz;
+  out.model = std::make_unique<assembly::ModalCatenary>(
+      ctx.comm, statics.mesh, statics.result.node_values, std::move(basis), settings, extra_dofs);
+  return out;
+}
+
+std::unique_ptr<assembly::CoupledSystem> make_coupled_system(
+    const Context& ctx, scene::RunScene& run, const simulation::StaticConfiguration& statics,
+    CatenarySetup& setup) {
+  std::vector<assembly::PantographSlot> slots;
+  PetscInt panto_dofs = 0;
+  for (std::size_t p = 0; p < run.pantographs.size(); ++p) {
+    assembly::PantographSlot slot;
+    slot.run = run.pantographs[p];
+    slot.model = std::move(run.models[p]);
+    panto_dofs += slot.dof_count();
+    slots.push_back(std::move(slot));
+  }
+  setup = make_catenary_model(ctx, run, statics, panto_dofs);
+  return std::make_unique<assembly::CoupledSystem>(std::move(setup.model), std::move(slots),
+                                                   run.effects, run.contact_stiffness);
+}
+
+}  // namespace pcsim::simulation

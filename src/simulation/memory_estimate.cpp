@@ -1,0 +1,92 @@
+#include "pcsim/simulation/memory_estimate.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "pcsim/core/error.hpp"
+
+namespace pcsim::simulation {
+
+namespace {
+
+// Calibration (docs/catenary.md, "Memory estimate"): peak resident memory of
+// `pcsim static` on EN 50318 lines, 1 and 2 ranks: 10 spans 67 / 60+61 MB,
+// 100 spans 226 / 159+180 MB, 1000 spans 1770 MB on 1 rank.
+constexpr double kRankBase = 52e6;              // libraries, measured on a 240-DOF design
+constexpr double kBytesPerNodePerRank = 2.5e3;  // mesh, node values, MUMPS analysis
+constexpr double kBytesPerMatrixEntry = 12;     // AIJ: value + column index
+constexpr double kFactorFill = 1.61;            // MUMPS INFOG(29) / nonzeros, 10 and 100 spans
+constexpr double kBytesPerFactorEntry = 10;     // value + MUMPS's integer share
+// Vectors a Newton step or an eigensolver holds (SNES work vectors, line search).
+constexpr double kWorkVectors = 12;
+
+// Nonzeros of the static tangent: 6x6 blocks of a cable node with itself and
+// its neighbours, 3x3 blocks of the bars, the dense rows and columns of the
+// tension segments and the height rows of form-finding.
+double matrix_nonzeros(const catenary::MeshSize& s) {
+  const double bar_only_nodes = static_cast<double>(s.nodes - s.cable_nodes);
+  double nnz = 36.0 * s.cable_nodes + 72.0 * s.cables + 18.0 * s.bars + 9.0 * bar_only_nodes;
+  if (s.form_finding_unknowns > 0) nnz += 12.0 * s.cable_nodes + 16.0 * s.form_finding_unknowns;
+  return nnz;
+}
+
+}  // namespace
+
+MemoryEstimate estimate_memory(const catenary::MeshSize& size, MemoryUse use, int modes) {
+  MemoryEstimate e;
+  e.nodes = size.nodes;
+  e.dofs = size.dofs() + size.form_finding_unknowns;
+  e.matrix_nonzeros = matrix_nonzeros(size);
+  e.factor_entries = kFactorFill * e.matrix_nonzeros;
+  const double nnz = e.matrix_nonzeros, dofs = static_cast<double>(e.dofs);
+  e.bytes_per_rank = kRankBase + kBytesPerNodePerRank * size.nodes;
+  // Statics: the Jacobian, MUMPS's copy of it, the factors, Newton's vectors.
+  const double factor = kBytesPerFactorEntry * e.factor_entries;
+  double shared = 2 * kBytesPerMatrixEntry * nnz + factor + 8 * kWorkVectors * dofs;
+  if (use == MemoryUse::modes) {
+    // K, M, MUMPS's copy and factors of K, the Krylov basis (ncv = max(2 nev,
+    // nev + 15) vectors), and the mode shapes every rank keeps (3 per node).
+    const double ncv = std::max(2.0 * modes, modes + 15.0);
+    shared = 3 * kBytesPerMatrixEntry * nnz + factor + 8 * (ncv + kWorkVectors) * dofs;
+    e.bytes_per_rank += 24.0 * modes * size.nodes;
+  } else if (use == MemoryUse::run) {
+    // Step matrix, M, K0 and C, the step matrix's factors (twice MUMPS's fill:
+    // PETSc's LU on one rank), HHT's and the low-rank solver's vectors.
+    shared = 5 * kBytesPerMatrixEntry * nnz + 2 * factor + 8 * 3 * kWorkVectors * dofs;
+  }
+  e.shared_bytes = shared;
+  return e;
+}
+
+double machine_memory_bytes() {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string line;
+  while (std::getline(meminfo, line)) {
+    std::istringstream in(line);
+    std::string key;
+    double kib = 0;
+    if (in >> key >> kib && key == "MemTotal:") return kib * 1024.0;
+  }
+  return 0;
+}
+
+void check_memory(const catenary::MeshSize& size, MemoryUse use, int ranks, double machine_bytes,
+                  int modes) {
+  if (machine_bytes <= 0) return;
+  const MemoryEstimate e = estimate_memory(size, use, modes);
+  const double need = e.total_bytes(ranks), limit = 0.9 * machine_bytes;
+  if (need <= limit) return;
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "the mesh is too large for this machine: %ld nodes, %ld unknowns, %.3g matrix "
+                "nonzeros and %.3g factor entries need an estimated %.1f GB on %d rank(s), more "
+                "than 90%% of the machine's %.1f GB (/proc/meminfo MemTotal); use fewer spans or "
+                "longer elements",
+                e.nodes, e.dofs, e.matrix_nonzeros, e.factor_entries, need / 1e9, ranks,
+                machine_bytes / 1e9);
+  throw InputError(size.file, size.key, text);
+}
+
+}  // namespace pcsim::simulation

@@ -1,0 +1,55 @@
+// Pieces of the reduced-basis computation (modal_basis.cpp drives them):
+// the catenary's operators at the static configuration, the kept rows of a
+// global vector, the eigenpairs of an interval streamed one by one.
+#pragma once
+
+#include <petscksp.h>
+
+#include <functional>
+#include <vector>
+
+#include "pcsim/assembly/catenary_system.hpp"
+#include "pcsim/catenary/reduced_basis.hpp"
+
+namespace pcsim::simulation::modal_detail {
+
+// K_T (every term) and M of the catenary at x; symmetric.
+struct Operators {
+  Mat K = nullptr, M = nullptr;
+  Operators(assembly::CatenarySystem& system, Vec x);
+  ~Operators();
+  Operators(const Operators&) = delete;
+  Operators& operator=(const Operators&) = delete;
+};
+
+// The kept rows (catenary::basis_row_key) of global vectors, on every rank.
+class RowGather {
+ public:
+  RowGather(const assembly::CatenarySystem& system, const std::vector<long>& keys);
+  ~RowGather();
+  RowGather(const RowGather&) = delete;
+  RowGather& operator=(const RowGather&) = delete;
+  // out[keys.size()]: the values of the rows (0 for constrained DOFs).
+  void gather(Vec v, double* out) const;
+  std::size_t size() const { return size_; }
+
+ private:
+  VecScatter scatter_ = nullptr;
+  Vec local_ = nullptr;
+  std::vector<std::size_t> slot_;  // row of each scattered value
+  std::size_t size_ = 0;
+};
+
+// Called with each eigenpair (lambda, phi), phi M-normalised with its largest
+// component positive, in ascending order of lambda.
+using ModeSink = std::function<void(double lambda, Vec phi)>;
+
+// Every eigenpair of K phi = lambda M phi with lambda in [0, lambda_max],
+// computed in chunks of the interval (options prefix -modal_); returns the
+// largest relative residual ||K phi - lambda M phi|| / (lambda ||M phi||).
+double stream_modes(const Operators& op, double lambda_max, const ModeSink& sink);
+
+// Every eigenpair of a small structure by a dense solve on every rank.
+double stream_all_modes_dense(const Operators& op, const ModeSink& sink);
+
+}  // namespace pcsim::simulation::modal_detail

@@ -1,0 +1,206 @@
+// Eigenpairs and rows for the reduced basis (see modal_basis_internal.hpp).
+#include <slepceps.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "modal_basis_internal.hpp"
+#include "pcsim/core/error.hpp"
+#include "pcsim/solvers/spectrum.hpp"
+
+namespace pcsim::simulation::modal_detail {
+
+Operators::Operators(assembly::CatenarySystem& system, Vec x) {
+  const auto& L = system.layout();
+  if (L.extra_dofs() != 0) throw SolverError("reduced basis: the system has extra unknowns");
+  K = L.create_matrix();
+  M = L.create_matrix();
+  solvers::assemble_stiffness_and_mass(system, x, K, M);
+}
+
+Operators::~Operators() {
+  MatDestroy(&K);
+  MatDestroy(&M);
+}
+
+RowGather::RowGather(const assembly::CatenarySystem& system, const std::vector<long>& keys)
+    : size_(keys.size()) {
+  const auto& L = system.layout();
+  std::vector<PetscInt> from;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const PetscInt g = L.global_dof(static_cast<int>(keys[i] / 6), static_cast<int>(keys[i] % 6));
+    if (g < 0) continue;
+    from.push_back(g);
+    slot_.push_back(i);
+  }
+  IS is;
+  PCSIM_PETSC(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(from.size()), from.data(),
+                              PETSC_COPY_VALUES, &is));
+  PCSIM_PETSC(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(from.size()), &local_));
+  Vec global = system.create_vector();
+  PCSIM_PETSC(VecScatterCreate(global, is, local_, nullptr, &scatter_));
+  PCSIM_PETSC(VecDestroy(&global));
+  PCSIM_PETSC(ISDestroy(&is));
+}
+
+RowGather::~RowGather() {
+  VecScatterDestroy(&scatter_);
+  VecDestroy(&local_);
+}
+
+void RowGather::gather(Vec v, double* out) const {
+  PCSIM_PETSC(VecScatterBegin(scatter_, v, local_, INSERT_VALUES, SCATTER_FORWARD));
+  PCSIM_PETSC(VecScatterEnd(scatter_, v, local_, INSERT_VALUES, SCATTER_FORWARD));
+  std::fill(out, out + size_, 0.0);
+  const PetscScalar* a;
+  PCSIM_PETSC(VecGetArrayRead(local_, &a));
+  for (std::size_t k = 0; k < slot_.size(); ++k) out[slot_[k]] = a[k];
+  PCSIM_PETSC(VecRestoreArrayRead(local_, &a));
+}
+
+namespace {
+
+// M-normalises phi (largest component positive); returns its relative residual.
+double normalise(const Operators& op, double lambda, Vec phi, Vec Mphi, Vec Kphi) {
+  PCSIM_PETSC(MatMult(op.M, phi, Mphi));
+  PetscScalar mnorm;
+  PCSIM_PETSC(VecDot(phi, Mphi, &mnorm));
+  PetscReal vmax, vmin;
+  PCSIM_PETSC(VecMax(phi, nullptr, &vmax));
+  PCSIM_PETSC(VecMin(phi, nullptr, &vmin));
+  double scale = 1.0 / std::sqrt(PetscRealPart(mnorm));
+  if (std::abs(vmin) > std::abs(vmax)) scale = -scale;
+  PCSIM_PETSC(VecScale(phi, scale));
+  PCSIM_PETSC(VecScale(Mphi, scale));
+  PCSIM_PETSC(MatMult(op.K, phi, Kphi));
+  PCSIM_PETSC(VecAXPY(Kphi, -lambda, Mphi));
+  PetscReal rn, mn;
+  PCSIM_PETSC(VecNorm(Kphi, NORM_2, &rn));
+  PCSIM_PETSC(VecNorm(Mphi, NORM_2, &mn));
+  return rn / (std::abs(lambda) * mn);
+}
+
+// Number of eigenvalues below lambda: the inertia of K - lambda M (MUMPS LDL^T).
+PetscInt count_below(const Operators& op, double lambda) {
+  Mat A;
+  PCSIM_PETSC(MatDuplicate(op.K, MAT_COPY_VALUES, &A));
+  PCSIM_PETSC(MatAXPY(A, -lambda, op.M, SUBSET_NONZERO_PATTERN));
+  PCSIM_PETSC(MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE));
+  Mat F;
+  PCSIM_PETSC(MatGetFactor(A, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &F));
+  PCSIM_PETSC(MatMumpsSetIcntl(F, 13, 1));  // inertia of a parallel factorisation
+  MatFactorInfo info;
+  PCSIM_PETSC(MatFactorInfoInitialize(&info));
+  PCSIM_PETSC(MatCholeskyFactorSymbolic(F, A, nullptr, &info));
+  PCSIM_PETSC(MatCholeskyFactorNumeric(F, A, &info));
+  PetscInt negative = 0;
+  PCSIM_PETSC(MatGetInertia(F, &negative, nullptr, nullptr));
+  PCSIM_PETSC(MatDestroy(&F));
+  PCSIM_PETSC(MatDestroy(&A));
+  return negative;
+}
+
+// The eigenpairs with lambda in [lo, hi], ascending, into the sink.
+double stream_interval(const Operators& op, double lo, double hi, const ModeSink& sink) {
+  EPS eps;
+  PCSIM_PETSC(EPSCreate(PetscObjectComm(reinterpret_cast<PetscObject>(op.K)), &eps));
+  PCSIM_PETSC(EPSSetOptionsPrefix(eps, "modal_"));
+  PCSIM_PETSC(EPSSetOperators(eps, op.K, op.M));
+  solvers::configure_slicing(eps, lo, hi);
+  PCSIM_PETSC(EPSSetFromOptions(eps));
+  PCSIM_PETSC(EPSSolve(eps));
+  const auto spectrum = solvers::converged_spectrum(eps);
+  const auto& lambdas = spectrum.lambdas;
+  const auto& order = spectrum.order;
+  Vec phi, Mphi, Kphi;
+  PCSIM_PETSC(MatCreateVecs(op.K, &phi, &Mphi));
+  PCSIM_PETSC(VecDuplicate(phi, &Kphi));
+  double max_residual = 0;
+  for (PetscInt i : order) {
+    if (lambdas[i] < lo || lambdas[i] > hi) continue;  // slicing keeps [lo, hi]
+    PCSIM_PETSC(EPSGetEigenvector(eps, i, phi, nullptr));
+    max_residual = std::max(max_residual, normalise(op, lambdas[i], phi, Mphi, Kphi));
+    sink(lambdas[i], phi);
+  }
+  for (Vec* v : {&phi, &Mphi, &Kphi}) PCSIM_PETSC(VecDestroy(v));
+  PCSIM_PETSC(EPSDestroy(&eps));
+  return max_residual;
+}
+
+}  // namespace
+
+// Chunks of about kChunkModes modes (equal widths in frequency: the modal
+// density of a tensioned line is about constant in f), so that SLEPc holds
+// one chunk's eigenvectors at a time.
+double stream_modes(const Operators& op, double lambda_max, const ModeSink& sink) {
+  constexpr double kChunkModes = 800;
+  const PetscInt count = count_below(op, lambda_max);
+  const int chunks = std::max(1, static_cast<int>(std::ceil(count / kChunkModes)));
+  const double omega_max = std::sqrt(lambda_max);
+  double max_residual = 0, lo = 0;
+  for (int c = 1; c <= chunks; ++c) {
+    const double hi = c == chunks ? lambda_max : std::pow(omega_max * c / chunks, 2);
+    max_residual = std::max(max_residual, stream_interval(op, lo, hi, sink));
+    lo = std::nextafter(hi, 2 * hi);  // [lo, hi] intervals do not overlap
+  }
+  return max_residual;
+}
+
+namespace {
+
+// A copy of a distributed matrix as a dense matrix on every rank.
+Eigen::MatrixXd dense_copy(Mat A) {
+  PetscInt n;
+  PCSIM_PETSC(MatGetSize(A, &n, nullptr));
+  IS all;
+  PCSIM_PETSC(ISCreateStride(PETSC_COMM_SELF, n, 0, 1, &all));
+  Mat* sub;
+  PCSIM_PETSC(MatCreateSubMatrices(A, 1, &all, &all, MAT_INITIAL_MATRIX, &sub));
+  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(n, n);
+  for (PetscInt i = 0; i < n; ++i) {
+    PetscInt ncols;
+    const PetscInt* cols;
+    const PetscScalar* vals;
+    PCSIM_PETSC(MatGetRow(sub[0], i, &ncols, &cols, &vals));
+    for (PetscInt k = 0; k < ncols; ++k) D(i, cols[k]) = vals[k];
+    PCSIM_PETSC(MatRestoreRow(sub[0], i, &ncols, &cols, &vals));
+  }
+  PCSIM_PETSC(MatDestroySubMatrices(1, &sub));
+  PCSIM_PETSC(ISDestroy(&all));
+  return 0.5 * (D + D.transpose());
+}
+
+}  // namespace
+
+double stream_all_modes_dense(const Operators& op, const ModeSink& sink) {
+  constexpr PetscInt kMaxDense = 4000;
+  PetscInt n;
+  PCSIM_PETSC(MatGetSize(op.K, &n, nullptr));
+  if (n > kMaxDense)
+    throw SolverError("reduced basis: every mode (no cut-off) is for structures up to " +
+                      std::to_string(kMaxDense) + " unknowns; this one has " + std::to_string(n));
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(dense_copy(op.K),
+                                                                         dense_copy(op.M));
+  if (solver.info() != Eigen::Success) throw SolverError("reduced basis: dense eigensolve failed");
+  Vec phi, Mphi, Kphi;
+  PCSIM_PETSC(MatCreateVecs(op.K, &phi, &Mphi));
+  PCSIM_PETSC(VecDuplicate(phi, &Kphi));
+  PetscInt lo, hi;
+  PCSIM_PETSC(VecGetOwnershipRange(phi, &lo, &hi));
+  double max_residual = 0;
+  for (PetscInt k = 0; k < n; ++k) {
+    PetscScalar* a;
+    PCSIM_PETSC(VecGetArray(phi, &a));
+    for (PetscInt i = lo; i < hi; ++i) a[i - lo] = solver.eigenvectors()(i, k);
+    PCSIM_PETSC(VecRestoreArray(phi, &a));
+    const double lambda = solver.eigenvalues()[k];
+    max_residual = std::max(max_residual, normalise(op, lambda, phi, Mphi, Kphi));
+    sink(lambda, phi);
+  }
+  for (Vec* v : {&phi, &Mphi, &Kphi}) PCSIM_PETSC(VecDestroy(v));
+  return max_residual;
+}
+
+}  // namespace pcsim::simulation::modal_detail

@@ -1,0 +1,104 @@
+#include "pcsim/simulation/moving_window.hpp"
+
+#include <algorithm>
+
+#include "pcsim/assembly/fe_catenary.hpp"
+#include "pcsim/catenary/window.hpp"
+#include "pcsim/core/error.hpp"
+#include "pcsim/core/vec_root.hpp"
+
+namespace pcsim::simulation {
+
+MovingWindow::MovingWindow(const scene::RunWindow& window, assembly::CoupledSystem& system,
+                           std::vector<double> line_support_x)
+    : system_(system),
+      span_length_(window.span_length),
+      line_support_x_(std::move(line_support_x)) {
+  auto* fe = dynamic_cast<assembly::FECatenary*>(&system.catenary());
+  if (!fe) throw SolverError("moving window: needs the finite-element catenary");
+  fe_ = fe;
+  const auto& mesh = fe->mesh();
+  const auto& layout = fe->system().layout();
+  shift_at_x_ = mesh.support_x.front() + (window.spans_behind + 2) * span_length_;
+  max_shifts_ = (window.line_spans - window.spans()) / 2;
+  window_supports_ = static_cast<int>(mesh.support_x.size());
+  for (int node : mesh.support_nodes)
+    window_static_z_.push_back(fe->static_node_values()[catenary::kNodeDofs * node + 2]);
+  // A line support's static height: the window's support of the same parity
+  // in the middle (the window's end supports are the line's only at its ends).
+  const int mid = window_supports_ / 2;
+  for (std::size_t k = 0; k < line_support_x_.size(); ++k) {
+    const int kk = static_cast<int>(k);
+    const int j = kk < mid ? kk : mid - (kk - mid) % 2;
+    line_static_z_.push_back(window_static_z_[j]);
+  }
+  Vec U0 = system.create_vector();
+  system.catenary().reference_state(U0);
+  static_U_ = gather_to_root(U0);
+  PCSIM_PETSC(VecDestroy(&U0));
+  line_spans_ = window.line_spans;
+  window_spans_ = window.spans();
+  set_pins(*fe);
+  if (layout.rank() != 0) return;
+  const auto partner = catenary::shifted_nodes(mesh, 2.0 * span_length_);
+  source_.assign(static_cast<std::size_t>(layout.catenary_dofs()), -1);
+  for (std::size_t n = 0; n < mesh.nodes.size(); ++n)
+    for (int c = 0; c < catenary::kNodeDofs; ++c) {
+      const PetscInt g = layout.global_dof(static_cast<int>(n), c);
+      if (g >= 0 && partner[n] >= 0) source_[g] = layout.global_dof(partner[n], c);
+    }
+}
+
+void MovingWindow::after_step(double t, solvers::DynamicSolver& solver) {
+  auto& run = system_.pantographs().front().run;
+  if (shifts_ < max_shifts_ && run.contact_x(t) >= shift_at_x_) shift(solver);
+}
+
+// new(g) = U0(g) + (old(s) - U0(s)) for s = source(g): the displacement two
+// spans ahead; static where there is none (the new front spans). Pantograph
+// unknowns (after the catenary's) keep theirs.
+void MovingWindow::shift(solvers::DynamicSolver& solver) {
+  solvers::DynamicState s = solver.save_state();  // rank 0: U, V, A in the global order
+  if (!s.U.empty()) {
+    const auto U = s.U, V = s.V, A = s.A;
+    for (std::size_t g = 0; g < source_.size(); ++g) {
+      const PetscInt from = source_[g];
+      s.U[g] = static_U_[g] + (from >= 0 ? U[from] - static_U_[from] : 0.0);
+      s.V[g] = from >= 0 ? V[from] : 0.0;
+      s.A[g] = from >= 0 ? A[from] : 0.0;
+    }
+  }
+  solver.replace_state(s.U, s.V, s.A);
+  system_.pantographs().front().run.start_x -= 2.0 * span_length_;
+  ++shifts_;
+  set_pins(*fe_);  // J0 is rebuilt at the next step (replace_state)
+}
+
+// The window's ends that are the line's anchored ends are pinned: the rear
+// before the first shift, the front once it has reached the line's end.
+void MovingWindow::set_pins(assembly::FECatenary& fe) {
+  auto& mesh = fe.system().mutable_mesh();
+  const double rear = mesh.support_x.front();
+  const bool front_at_line_end = 2 * shifts_ + window_spans_ == line_spans_;
+  for (auto& pin : mesh.pins)
+    pin.active = mesh.nodes[pin.node].position.x() < rear + 1e-6 ? shifts_ == 0 : front_at_line_end;
+}
+
+void MovingWindow::to_line(contact::StepRecord& record) const {
+  for (double& x : record.contact_x) x += offset();
+  // Supports outside the window are at rest (uplift 0); inside, the line's
+  // static height plus the window support's displacement.
+  std::vector<double> z = line_static_z_;
+  for (int j = 0; j < window_supports_ && j < static_cast<int>(record.support_z.size()); ++j) {
+    const std::size_t k = static_cast<std::size_t>(j + 2 * shifts_);
+    if (k < z.size()) z[k] += record.support_z[j] - window_static_z_[j];
+  }
+  record.support_z = std::move(z);
+}
+
+void MovingWindow::set_line_supports(output::RunLayout& layout) const {
+  layout.support_x = line_support_x_;
+  layout.support_static_z = line_static_z_;
+}
+
+}  // namespace pcsim::simulation

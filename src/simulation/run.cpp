@@ -1,0 +1,294 @@
+// The run pipeline (run.hpp): one dynamic run of a scene.
+#include "pcsim/simulation/run.hpp"
+
+#include <petsctime.h>
+#include <petscts.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <memory>
+
+#include "pcsim/assembly/coupled_system.hpp"
+#include "pcsim/catenary/window.hpp"
+#include "pcsim/core/profiling.hpp"
+#include "pcsim/output/checkpoint.hpp"
+#include "pcsim/output/en50318.hpp"
+#include "pcsim/output/line_results.hpp"
+#include "pcsim/output/run_stream.hpp"
+#include "pcsim/simulation/catenary_setup.hpp"
+#include "pcsim/simulation/interrupt.hpp"
+#include "pcsim/simulation/moving_window.hpp"
+#include "pcsim/simulation/run_session.hpp"
+#include "pcsim/simulation/run_settings.hpp"
+#include "pcsim/simulation/static_start.hpp"
+#include "pcsim/simulation/statics.hpp"
+#include "pcsim/solvers/direct.hpp"
+#include "pcsim/solvers/dynamics.hpp"
+#include "pcsim/solvers/schur_dd.hpp"
+#include "pcsim/solvers/statics.hpp"
+
+namespace pcsim::simulation {
+
+namespace {
+
+double now_s() {
+  PetscLogDouble t;
+  PetscTime(&t);
+  return t;
+}
+
+// The window's mesh (static configuration) with its ends released
+// (catenary/window.hpp), on the console.
+void prepare_window(const Context& ctx, const scene::RunWindow& window,
+                    simulation::StaticConfiguration& statics) {
+  const auto ends = catenary::release_window_ends(statics.mesh, statics.result.node_values);
+  print0(ctx,
+         "  moving window: %d of the line's %d spans (%d behind, 2 with the pantograph, %d "
+         "ahead), %zu wire ends with matched dashpots\n",
+         window.spans(), window.line_spans, window.spans_behind, window.spans_ahead, ends.size());
+}
+
+// The static configuration of the line, or of the window with its ends released.
+simulation::StaticConfiguration run_statics(const Context& ctx, const scene::RunScene& run) {
+  auto statics =
+      simulation::static_configuration(ctx.comm, run.window ? run.window->mesh : run.catenary.mesh,
+                                       run.catenary.form_finding, "static_");
+  if (run.window) prepare_window(ctx, *run.window, statics);
+  print0(ctx, "  static: %d Newton iterations, height error %.2e m, tension error %.2e\n",
+         statics.result.snes_iterations, statics.result.max_height_error_m,
+         statics.result.max_tension_error_rel);
+  print_warnings(ctx, statics.result.warnings);
+  return statics;
+}
+
+void warn_if_start_differs(const Context& ctx, assembly::CoupledSystem& system,
+                           const solvers::DynamicState& checkpointed) {
+  const auto& slots = system.pantographs();
+  for (std::size_t p = 0; p < slots.size() && p < checkpointed.head_offsets.size(); ++p)
+    if (slots[p].head_offset != checkpointed.head_offsets[p])
+      print_warnings(ctx, {"pantograph '" + slots[p].run.name + "' starts " +
+                           std::to_string(slots[p].head_offset - checkpointed.head_offsets[p]) +
+                           " m from where the checkpointed run started it; the restart will "
+                           "not equal an uninterrupted run"});
+}
+
+output::RunLayout run_layout(const scene::RunScene& run, assembly::CoupledSystem& system,
+                             const simulation::StaticConfiguration& statics) {
+  const auto& mesh = statics.mesh;
+  const auto& values = statics.result.node_values;
+  output::RunLayout layout;
+  for (const auto& slot : system.pantographs()) {
+    layout.q_sizes.push_back(slot.dof_count());
+    layout.q_labels.push_back(slot.model->dof_names());
+  }
+  layout.support_x = mesh.support_x;
+  for (int node : mesh.support_nodes) layout.support_static_z.push_back(values[6 * node + 2]);
+  if (run.dropper_forces)
+    layout.droppers = static_cast<std::size_t>(
+        std::count_if(mesh.bars.begin(), mesh.bars.end(),
+                      [](const auto& b) { return b.kind == catenary::BarKind::dropper; }));
+  if (mesh.zones.size() >= 2) layout.contact_wires = mesh.contact_wire_list().size();
+  layout.energy = run.energy;
+  layout.snapshots = run.snapshot_every > 0;
+  if (layout.snapshots) layout.static_positions = catenary::positions_from_node_values(values);
+  return layout;
+}
+
+// results.h5 on rank 0: new, or a copy of the restart folder's records up to
+// its checkpoint; the static mesh for the snapshots.
+std::unique_ptr<output::RunStream> open_stream(const Context& ctx, const OutputDir& out,
+                                               const RunRequest& request,
+                                               const output::RunSettings& settings,
+                                               output::RunLayout layout,
+                                               const simulation::StaticConfiguration& statics) {
+  std::unique_ptr<output::RunStream> stream;
+  on_rank0(ctx, [&] {
+    const bool snapshots = layout.snapshots;
+    const std::string path = out.file("results.h5");
+    if (const auto* restart = request.restart) {
+      std::filesystem::copy_file(request.restart_dir + "/results.h5", path);
+      stream = std::make_unique<output::RunStream>(path, settings, std::move(layout),
+                                                   restart->progress.records,
+                                                   restart->progress.snapshots, out.provenance());
+    } else {
+      stream =
+          std::make_unique<output::RunStream>(path, settings, std::move(layout), out.provenance());
+    }
+    if (snapshots) output::write_static_mesh(out, statics.mesh, statics.result.node_values);
+  });
+  return stream;
+}
+
+RunSession::Options session_options(const scene::RunScene& run, const OutputDir& out,
+                                    const RunRequest& request) {
+  RunSession::Options options;
+  options.duration = run.duration();
+  options.snapshot_every = run.snapshot_every;
+  options.checkpoint_every = run.checkpoint_every;
+  options.keep_dropper_forces = run.dropper_forces;
+  options.energy = run.energy;
+  options.checkpoint_file = out.file(output::kCheckpointName);
+  options.inputs = request.inputs;
+  return options;
+}
+
+// The modal counters per step of this process (a restart's earlier steps are
+// not in them), the step solver's size, the window's shifts.
+nlohmann::json fidelity_facts(const scene::RunScene& run, const RunRequest& request,
+                              const CatenarySetup& setup, const assembly::CoupledSystem& system,
+                              solvers::DynamicSolver& solver, const RunSession& session,
+                              const AccuracyEstimate& estimate, const MovingWindow* window) {
+  nlohmann::json fidelity = {
+      {"steps", session.steps() - (request.restart ? request.restart->state.step : 0)}};
+  add_fidelity_facts(run, setup, system, estimate, fidelity);
+  fidelity["step_factor_nonzeros"] = solvers::step_factor_nonzeros(solver.step_ksp());
+  fidelity["step_interface_unknowns"] =
+      solvers::domain_decomposition_info(solver.step_ksp()).interface_size;
+  fidelity.erase("steps");
+  if (window) fidelity["window_shifts"] = window->shifts();
+  return fidelity;
+}
+
+// The EN 50318 figures of every pantograph that crossed the analysis section.
+nlohmann::json assessed_figures(const output::RunSettings& s, const output::RunStatistics& stats) {
+  const nlohmann::json run = {{"max_uplift_at_support_m", stats.max_uplift_m}};
+  nlohmann::json assessed = nlohmann::json::object();
+  for (const auto& p : stats.pantographs)
+    if (p.complete)
+      assessed[p.name] = output::en50318_json(
+          output::assess_en50318(run, output::force_statistics_json(p.force), s.speed * 3.6),
+          s.speed * 3.6);
+  return assessed;
+}
+
+// Rank 0: the statistics, line and energy results of a complete run and its
+// summary, read back from results.h5.
+void write_complete_results(const OutputDir& out, const catenary::CatenaryMesh& line, bool energy,
+                            RunOutcome& outcome) {
+  const auto& s = outcome.settings;
+  outcome.stats = output::finish_run_results(out, line, s);
+  outcome.facts["en50318"] = assessed_figures(s, outcome.stats);
+  outcome.facts["provenance"] = out.provenance();
+  if (line.zones.size() >= 2)
+    outcome.facts["line_zones"] =
+        output::write_line_results(out, line, output::read_contact_histories(out, s), s.cutoff_hz);
+  if (energy) {
+    const auto history = output::read_energy_history(out);
+    outcome.energy = output::energy_balance(history);
+    outcome.facts["energy"] =
+        output::write_energy_results(out.file("energy.h5"), history, outcome.energy);
+  }
+  output::write_run_summary(out, s, &outcome.stats, outcome.facts);
+}
+
+// Rank 0: an interrupted run's summary and snapshot view; the folder stays partial.
+void write_interrupted_results(const OutputDir& out, const catenary::CatenaryMesh& line,
+                               RunOutcome& outcome) {
+  outcome.facts["interrupted_by"] = signal_name(outcome.signal);
+  outcome.facts["provenance"] = out.provenance();
+  output::write_run_summary(out, outcome.settings, nullptr, outcome.facts);
+  output::write_snapshots_view(out, line);
+}
+
+// After the time loop: the facts, a checkpoint where the run can go on, the
+// results (complete, or the partial folder of an interrupted run).
+void finish(const Context& ctx, const scene::RunScene& scene, const RunRequest& request,
+            const CatenarySetup& setup, const assembly::CoupledSystem& system,
+            solvers::DynamicSolver& solver, RunSession& session, const MovingWindow* window,
+            const simulation::StaticConfiguration& statics, OutputDir& out, RunOutcome& outcome) {
+  outcome.steps = session.steps();
+  outcome.time = session.time();
+  outcome.facts = session.facts();
+  outcome.facts.update(
+      fidelity_facts(scene, request, setup, system, solver, session, outcome.estimate, window));
+  outcome.facts["setup_s"] = outcome.setup_s;
+  if (request.restart) {
+    outcome.facts["restarted_from"] = request.restart_dir;
+    outcome.facts["restart_step"] = request.restart->state.step;
+  }
+  if (outcome.signal != 0 || session.stopped_early())  // -ts_max_steps: can go on
+    outcome.checkpointed = session.checkpoint_last_step();
+  outcome.complete = outcome.signal == 0;
+  // The statistics' supports and zones are the line's.
+  const auto& line = scene.window ? scene.catenary.mesh : statics.mesh;
+  on_rank0(ctx, [&] {
+    if (session.stream()) session.stream()->close();
+    if (outcome.complete)
+      write_complete_results(out, line, scene.energy, outcome);
+    else
+      write_interrupted_results(out, line, outcome);
+  });
+  if (!outcome.complete) out.keep_partial();
+}
+
+}  // namespace
+
+bool cheap_path_possible(const scene::RunScene& scene) {
+  if (scene.effects.catenary_nonlinear) return false;
+  for (const auto& model : scene.models)
+    if (!model->is_linear()) return false;
+  return true;
+}
+
+RunOutcome run(const Context& ctx, scene::RunScene& scene, const RunRequest& request,
+               OutputDir& out, RunObserver* observer) {
+  const double start = now_s();
+  RunOutcome outcome;
+  const auto& design = scene.catenary.mesh;
+  LogStage stage("Form-finding");  // -log_view: the phases of a run
+  const auto statics = run_statics(ctx, scene);
+  stage.next("Static start");
+  outcome.settings = run_settings(scene, request.name);
+  CatenarySetup setup;
+  auto system = make_coupled_system(ctx, scene, statics, setup);
+  print_catenary_setup(ctx, scene, setup);
+  system->set_record_dropper_forces(scene.dropper_forces);
+  std::unique_ptr<MovingWindow> window;
+  if (scene.window)
+    window = std::make_unique<MovingWindow>(*scene.window, *system, design.support_x);
+  Vec U0 = system->create_vector(), V0 = system->create_vector();
+  initial_state(*system, U0, V0);
+  solvers::DynamicSolver solver(*system, scene.dt, scene.duration(), scene.hht_alpha);
+  if (request.scene_dt) PCSIM_PETSC(TSSetTimeStep(solver.ts(), scene.dt));
+  outcome.estimate = estimate_accuracy(ctx, scene, *system, solver, U0);
+  print0(ctx, "  %d catenary DOFs + %d pantograph DOFs on %d rank(s); %s path\n",
+         static_cast<int>(system->catenary().catenary_dofs()),
+         static_cast<int>(system->global_size() - system->catenary().catenary_dofs()), ctx.size,
+         solver.cheap_path() ? "cheap (Jacobian reused)" : "full Newton");
+  // A restart starts as a new run (the models keep parameters of their static
+  // equilibrium), then takes the checkpoint's state.
+  solver.set_initial_state(U0, V0);
+  PCSIM_PETSC(VecDestroy(&U0));
+  PCSIM_PETSC(VecDestroy(&V0));
+  if (request.restart) {
+    warn_if_start_differs(ctx, *system, request.restart->state);
+    solver.restore_state(request.restart->state);
+    print0(ctx, "  restarted from %s at t = %.4f s, step %ld\n", request.restart_dir.c_str(),
+           request.restart->state.t, request.restart->state.step);
+  }
+  // From here SIGINT/SIGTERM stop at the next step, data kept.
+  std::unique_ptr<GracefulStop> stop;
+  if (request.stop_on_signal) stop = std::make_unique<GracefulStop>();
+  auto layout = run_layout(scene, *system, statics);
+  if (window) window->set_line_supports(layout);
+  auto stream = open_stream(ctx, out, request, outcome.settings, std::move(layout), statics);
+  auto options = session_options(scene, out, request);
+  options.window = window.get();
+  options.observer = observer;
+  RunSession session(ctx, *system, solver, stream.get(), options, request.restart, stop.get());
+  PetscReal dt;
+  TSType ts_type;
+  PCSIM_PETSC(TSGetTimeStep(solver.ts(), &dt));
+  PCSIM_PETSC(TSGetType(solver.ts(), &ts_type));
+  print0(ctx, "  %s at %.0f km/h, %.3f s simulated, dt = %.2e s, TS %s\n",
+         system->pantographs().size() > 1 ? "pantographs" : "pantograph",
+         system->pantographs().front().run.speed * 3.6, scene.duration(), dt, ts_type);
+  outcome.setup_s = now_s() - start;
+  stage.next("Time loop");
+  outcome.signal = session.integrate();
+  stage.next("Output");
+  finish(ctx, scene, request, setup, *system, solver, session, window.get(), statics, out, outcome);
+  return outcome;
+}
+
+}  // namespace pcsim::simulation

@@ -1,0 +1,246 @@
+#include "pcsim/simulation/run_checkpoint.hpp"
+
+#include <openssl/evp.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "pcsim/core/error.hpp"
+#include "pcsim/output/checkpoint.hpp"
+#include "pcsim/scene/composition.hpp"
+#include "pcsim/simulation/context.hpp"
+
+namespace fs = std::filesystem;
+
+namespace pcsim::simulation {
+
+namespace {
+
+std::string sha256_hex(const std::string& text) {
+  std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> md(EVP_MD_CTX_new(), EVP_MD_CTX_free);
+  EVP_DigestInit_ex(md.get(), EVP_sha256(), nullptr);
+  EVP_DigestUpdate(md.get(), text.data(), text.size());
+  unsigned char digest[EVP_MAX_MD_SIZE];
+  unsigned int length = 0;
+  EVP_DigestFinal_ex(md.get(), digest, &length);
+  std::string hex;
+  char byte[3];
+  for (unsigned int i = 0; i < length; ++i) {
+    std::snprintf(byte, sizeof byte, "%02x", digest[i]);
+    hex += byte;
+  }
+  return hex;
+}
+
+std::string broadcast_text(MPI_Comm comm, std::string text) {
+  int size = static_cast<int>(text.size());
+  MPI_Bcast(&size, 1, MPI_INT, 0, comm);
+  text.resize(static_cast<std::size_t>(size));
+  MPI_Bcast(text.data(), size, MPI_CHAR, 0, comm);
+  return text;
+}
+
+nlohmann::json inputs_json(const std::vector<InputFile>& inputs) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const auto& f : inputs)
+    j.push_back({{"role", f.role}, {"path", f.path}, {"sha256", f.sha256}});
+  return j;
+}
+
+std::vector<InputFile> inputs_from(const nlohmann::json& j) {
+  std::vector<InputFile> inputs;
+  for (const auto& f : j) inputs.push_back({f.at("role"), f.at("path"), f.at("sha256")});
+  return inputs;
+}
+
+std::string term_array(std::size_t k) {
+  return "/terms/" + std::to_string(k);
+}
+
+// Everything but the state vectors, as JSON (doubles round-trip exactly).
+nlohmann::json scalars_json(const RunCheckpoint& c) {
+  const auto& s = c.state;
+  return {{"t", s.t},
+          {"step", s.step},
+          {"time_step", s.time_step},
+          {"user_time_step", s.user_time_step},
+          {"accepted_since_cut", s.accepted_since_cut},
+          {"has_reference", s.has_reference},
+          {"reference_t", s.reference_t},
+          {"shift_v", s.shift_v},
+          {"shift_a", s.shift_a},
+          {"terms", s.terms},
+          {"head_offsets", s.head_offsets},
+          {"records", c.progress.records},
+          {"snapshots", c.progress.snapshots},
+          {"newton_iterations", c.progress.newton_iterations},
+          {"rejected_steps", c.progress.rejected_steps},
+          {"wall_time_s", c.progress.wall_time_s},
+          {"path", c.path},
+          {"ranks", c.ranks},
+          {"inputs", inputs_json(c.inputs)}};
+}
+
+void from_scalars_json(const nlohmann::json& j, RunCheckpoint& c) {
+  auto& s = c.state;
+  s.t = j.at("t");
+  s.step = j.at("step");
+  s.time_step = j.at("time_step");
+  s.user_time_step = j.at("user_time_step");
+  s.accepted_since_cut = j.at("accepted_since_cut");
+  s.has_reference = j.at("has_reference");
+  s.reference_t = j.at("reference_t");
+  s.shift_v = j.at("shift_v");
+  s.shift_a = j.at("shift_a");
+  s.terms = j.at("terms").get<std::vector<std::vector<double>>>();
+  s.head_offsets = j.at("head_offsets").get<std::vector<double>>();
+  c.progress.records = j.at("records");
+  c.progress.snapshots = j.at("snapshots");
+  c.progress.newton_iterations = j.at("newton_iterations");
+  c.progress.rejected_steps = j.at("rejected_steps");
+  c.progress.wall_time_s = j.at("wall_time_s");
+  c.path = j.at("path");
+  c.ranks = j.at("ranks");
+  c.inputs = inputs_from(j.at("inputs"));
+}
+
+output::CheckpointData to_data(const RunCheckpoint& c) {
+  output::CheckpointData d;
+  const auto& s = c.state;
+  d.arrays = {{"/state/U", s.U}, {"/state/V", s.V}, {"/state/A", s.A}};
+  if (s.has_reference) {
+    d.arrays["/reference/U"] = s.reference_U;
+    d.arrays["/reference/V"] = s.reference_V;
+    d.arrays["/reference/A"] = s.reference_A;
+  }
+  for (std::size_t k = 0; k < s.terms.size(); ++k) d.arrays[term_array(k)] = s.terms[k];
+  d.arrays["/pantographs/head_offset"] = s.head_offsets;
+  nlohmann::json j = scalars_json(c);
+  j.erase("terms");
+  j.erase("head_offsets");
+  j.erase("inputs");
+  for (const auto& [key, value] : j.items()) {
+    if (value.is_string())
+      d.texts[key] = value.get<std::string>();
+    else
+      d.numbers[key] = value.is_boolean() ? (value.get<bool>() ? 1.0 : 0.0) : value.get<double>();
+  }
+  d.numbers["term_count"] = static_cast<double>(s.terms.size());
+  d.texts["inputs"] = inputs_json(c.inputs).dump();
+  return d;
+}
+
+RunCheckpoint from_data(output::CheckpointData& d) {
+  nlohmann::json j;
+  for (const auto& [key, value] : d.numbers) j[key] = value;
+  for (const auto& [key, value] : d.texts) j[key] = value;
+  j["has_reference"] = d.numbers.at("has_reference") != 0;
+  for (const char* key : {"step", "accepted_since_cut", "records", "snapshots", "newton_iterations",
+                          "rejected_steps", "ranks"})
+    j[key] = static_cast<long>(d.numbers.at(key));
+  j["inputs"] = nlohmann::json::parse(d.texts.at("inputs"));
+  j["head_offsets"] = d.arrays.at("/pantographs/head_offset");
+  j["terms"] = nlohmann::json::array();
+  for (std::size_t k = 0; k < static_cast<std::size_t>(d.numbers.at("term_count")); ++k)
+    j["terms"].push_back(d.arrays.at(term_array(k)));
+  RunCheckpoint c;
+  from_scalars_json(j, c);
+  c.state.U = std::move(d.arrays.at("/state/U"));
+  c.state.V = std::move(d.arrays.at("/state/V"));
+  c.state.A = std::move(d.arrays.at("/state/A"));
+  if (c.state.has_reference) {
+    c.state.reference_U = std::move(d.arrays.at("/reference/U"));
+    c.state.reference_V = std::move(d.arrays.at("/reference/V"));
+    c.state.reference_A = std::move(d.arrays.at("/reference/A"));
+  }
+  return c;
+}
+
+// Why this run cannot continue checkpoint c ("" if it can).
+std::string mismatch(const Context& ctx, const RunCheckpoint& c,
+                     const std::vector<InputFile>& inputs) {
+  if (c.ranks != ctx.size)
+    return "the checkpoint was written on " + std::to_string(c.ranks) +
+           " rank(s) and this run has " + std::to_string(ctx.size) +
+           "; restart on the same number of ranks (mpirun -n " + std::to_string(c.ranks) + ")";
+  for (const auto& was : c.inputs) {
+    const InputFile* now = nullptr;
+    for (const auto& f : inputs)
+      if (f.role == was.role) now = &f;
+    if (!now || now->sha256 != was.sha256)
+      return "the " + was.role + " file " + (now ? "'" + now->path + "' " : "") +
+             "(with its base files and overrides) differs from the one the checkpoint was "
+             "written with ('" +
+             was.path + "', SHA-256 " + was.sha256.substr(0, 12) +
+             "...); a restart needs the same scene, design and pantograph models";
+  }
+  if (c.inputs.size() != inputs.size())
+    return "the scene has other input files than the checkpointed run";
+  return "";
+}
+
+}  // namespace
+
+std::vector<InputFile> run_input_files(const std::string& scene_path, const InputNode& scene) {
+  const InputNode catenary = scene["catenary"];
+  std::vector<InputFile> files = {{"scene", scene_path, sha256_hex(to_yaml(scene))},
+                                  {"design", catenary.path_value("design"),
+                                   sha256_hex(to_yaml(catenary.load_referenced("design")))}};
+  const InputNode list = scene["pantographs"];
+  for (std::size_t i = 0; i < list.size(); ++i)
+    files.push_back({"pantograph model " + std::to_string(i + 1), list.at(i).path_value("model"),
+                     sha256_hex(to_yaml(list.at(i).load_referenced("model")))});
+  return files;
+}
+
+void write_run_checkpoint(const Context& ctx, const std::string& file,
+                          const RunCheckpoint& checkpoint) {
+  on_rank0(ctx, [&] { output::write_checkpoint(file, to_data(checkpoint)); });
+}
+
+RunCheckpoint load_run_checkpoint(const Context& ctx, const std::string& dir,
+                                  const std::vector<InputFile>& inputs) {
+  const std::string file = dir + "/" + output::kCheckpointName;
+  RunCheckpoint c;
+  std::string why;
+  if (ctx.rank == 0) {
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec))
+      why = "'" + dir + "' is not a folder";
+    else if (!fs::exists(file, ec))
+      why = "'" + dir + "' holds no checkpoint (" + output::kCheckpointName +
+            "): runs write one when interrupted (SIGINT/SIGTERM), when stopped early "
+            "(-ts_max_steps) and every output.checkpoint_every steps";
+    else if (!fs::exists(dir + "/results.h5", ec))
+      why = "'" + dir + "' holds a checkpoint but no results.h5";
+    if (why.empty()) {
+      try {
+        auto data = output::read_checkpoint(file);
+        c = from_data(data);
+        why = mismatch(ctx, c, inputs);
+      } catch (const std::exception& e) {
+        why = std::string("cannot read the checkpoint: ") + e.what();
+      }
+    }
+  }
+  why = broadcast_text(ctx.comm, why);
+  if (!why.empty()) throw InputError("command line", "--restart", why);
+  const std::string scalars = broadcast_text(ctx.comm, ctx.rank == 0 ? scalars_json(c).dump() : "");
+  if (ctx.rank != 0) from_scalars_json(nlohmann::json::parse(scalars), c);
+  return c;
+}
+
+void check_restart_target(const std::string& dir, const std::string& final_dir) {
+  const auto restart = fs::weakly_canonical(fs::absolute(dir));
+  const auto target = fs::weakly_canonical(fs::absolute(final_dir));
+  const auto partial = fs::weakly_canonical(fs::absolute(final_dir + ".partial"));
+  if (restart == target || restart == partial)
+    throw InputError("command line", "--restart",
+                     "'" + dir + "' would become the new result's folder ('" + final_dir +
+                         "'); a restart reads it and writes a new result: give that "
+                         "one another folder with -o");
+}
+
+}  // namespace pcsim::simulation

@@ -1,0 +1,223 @@
+#include "pcsim/simulation/run_session.hpp"
+
+#include <petsctime.h>
+
+#include <csignal>
+
+#include "pcsim/core/error.hpp"
+#include "pcsim/simulation/run.hpp"
+#include "pcsim/solvers/hht.hpp"
+
+namespace pcsim::simulation {
+
+namespace {
+
+double now_s() {
+  PetscLogDouble t;
+  PetscTime(&t);
+  return t;
+}
+
+PetscErrorCode read_debug_options(MPI_Comm comm, PetscInt* step, PetscInt* rank) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "pcsim run (tests)", "pcsim");
+  PetscCall(PetscOptionsInt("-pcsim_debug_signal_step",
+                            "Tests: raise SIGTERM after this step (as an interruption would)", "",
+                            *step, step, nullptr));
+  PetscCall(PetscOptionsInt("-pcsim_debug_signal_rank", "Tests: on this rank only (-1: every rank)",
+                            "", *rank, rank, nullptr));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
+}  // namespace
+
+RunSession::RunSession(const Context& ctx, assembly::CoupledSystem& system,
+                       solvers::DynamicSolver& solver, output::RunStream* stream, Options options,
+                       const RunCheckpoint* restart, const GracefulStop* stop)
+    : ctx_(ctx),
+      system_(system),
+      solver_(solver),
+      stream_(stream),
+      options_(std::move(options)),
+      stop_(stop),
+      path_(solver.cheap_path() ? "cheap" : "full") {
+  if (restart) {
+    first_step_ = restart->state.step;
+    skip_first_record_ = true;
+    newton_iterations_ = restart->progress.newton_iterations;
+    earlier_rejected_ = restart->progress.rejected_steps;
+    earlier_wall_ = restart->progress.wall_time_s;
+    last_checkpoint_ = first_step_;
+    steps_ = first_step_;
+    time_ = start_time_ = restart->state.t;
+  }
+  PetscInt step = -1, rank = -1;
+  PCSIM_PETSC(read_debug_options(ctx.comm, &step, &rank));
+  debug_signal_step_ = step;
+  debug_signal_rank_ = static_cast<int>(rank);
+}
+
+double RunSession::wall_time() const {
+  return earlier_wall_ + (now_s() - wall_start_);
+}
+
+int RunSession::integrate() {
+  TS ts = solver_.ts();
+  wall_start_ = last_print_ = now_s();
+  PCSIM_PETSC(TSSetApplicationContext(ts, this));
+  PCSIM_PETSC(TSMonitorSet(ts, monitor, this, nullptr));
+  PCSIM_PETSC(TSSetPostStep(ts, post_step));
+  PCSIM_PETSC(TSSolve(ts, nullptr));
+  TSConvergedReason reason;
+  PCSIM_PETSC(TSGetConvergedReason(ts, &reason));
+  if (reason < 0)
+    throw SolverError(std::string("time integration failed: ") + TSConvergedReasons[reason]);
+  if (stream_) stream_->flush();
+  return stop_signal_;
+}
+
+bool RunSession::stopped_early() const {
+  return stop_signal_ != 0 || time_ < options_.duration * (1 - 1e-12);
+}
+
+// Every accepted step (and the start): a record, perhaps a snapshot, a
+// checkpoint when due, the progress line.
+PetscErrorCode RunSession::monitor(TS ts, PetscInt step, PetscReal t, Vec U, void* ptr) {
+  PCSIM_CALLBACK_BEGIN
+  auto& s = *static_cast<RunSession*>(ptr);
+  s.time_ = t;
+  if (s.skip_first_record_) {
+    s.skip_first_record_ = false;
+  } else {
+    s.record(ts, step, t, U);
+    if (step > s.first_step_) {
+      SNES snes;
+      PetscInt its;
+      PCSIM_PETSC(TSGetSNES(ts, &snes));
+      PCSIM_PETSC(SNESGetIterationNumber(snes, &its));
+      s.newton_iterations_ += its;
+      s.steps_ = step;
+    }
+    if (s.options_.checkpoint_every > 0 && step > s.first_step_ &&
+        step % s.options_.checkpoint_every == 0)
+      s.write_checkpoint();
+  }
+  s.print_progress(step, t);
+  PCSIM_CALLBACK_END
+}
+
+void RunSession::record(TS ts, PetscInt step, PetscReal t, Vec U) {
+  auto rec = system_.record(t, U);  // collective
+  if (options_.window) options_.window->to_line(rec);
+  if (!options_.keep_dropper_forces) rec.dropper_force.clear();
+  output::EnergySample energy;
+  if (options_.energy) {  // collective
+    Vec Ut, V;
+    PCSIM_PETSC(TS2GetSolution(ts, &Ut, &V));
+    energy.energy = system_.energy(t, Ut, V);
+    const auto power = system_.power(t, Ut, V);
+    energy.power_external = power.external;
+    energy.power_dissipative = power.dissipative;
+  }
+  if (options_.observer) options_.observer->on_record(rec);
+  if (stream_) stream_->append(rec, energy);
+  if (options_.snapshot_every > 0 && step % options_.snapshot_every == 0) {
+    auto positions = system_.catenary().node_positions_to_root(U);  // collective
+    if (stream_) stream_->append_snapshot(positions, rec);
+  }
+  if (stream_ && stream_->flush_due()) stream_->flush();
+}
+
+void RunSession::print_progress(PetscInt step, PetscReal t) const {
+  const double now = now_s();
+  if (now - last_print_ <= 5.0 && !(step > first_step_ && t >= options_.duration - 1e-12)) return;
+  last_print_ = now;
+  const double done = t / options_.duration, done_at_start = start_time_ / options_.duration;
+  const double eta =
+      done > done_at_start ? (now - wall_start_) * (1 - done) / (done - done_at_start) : 0;
+  print0(ctx_, "  t = %7.3f s of %.3f s (%5.1f%%), step %ld, ETA %.0f s\n", t, options_.duration,
+         100 * done, static_cast<long>(step), eta);
+}
+
+// Tests raise SIGTERM themselves here; then every rank learns whether any
+// rank was signalled, and the run stops there if one was.
+PetscErrorCode RunSession::post_step(TS ts) {
+  PCSIM_CALLBACK_BEGIN
+  RunSession* s;
+  PCSIM_PETSC(TSGetApplicationContext(ts, &s));
+  PetscInt step;
+  PCSIM_PETSC(TSGetStepNumber(ts, &step));
+  if (step == s->debug_signal_step_ &&
+      (s->debug_signal_rank_ < 0 || s->debug_signal_rank_ == s->ctx_.rank))
+    std::raise(SIGTERM);
+  if (s->options_.window) {
+    PetscReal t;
+    PCSIM_PETSC(TSGetTime(ts, &t));
+    s->options_.window->after_step(t, s->solver_);  // collective
+  }
+  s->stop_signal_ = s->stop_ ? s->stop_->agreed_signal(s->ctx_.comm) : 0;
+  TSConvergedReason reason;
+  PCSIM_PETSC(TSGetConvergedReason(ts, &reason));
+  if (reason != TS_CONVERGED_ITERATING)
+    s->stop_signal_ = 0;  // the last step: the run is complete anyway
+  else if (s->stop_signal_)
+    PCSIM_PETSC(TSSetConvergedReason(ts, TS_CONVERGED_USER));
+  PCSIM_CALLBACK_END
+}
+
+void RunSession::write_checkpoint() {
+  RunCheckpoint c;
+  c.state = solver_.save_state();  // collective
+  if (stream_) {
+    stream_->flush();  // the records up to this step are on disk
+    c.progress.records = stream_->records();
+    c.progress.snapshots = stream_->snapshots();
+  }
+  c.progress.newton_iterations = newton_iterations_;
+  c.progress.rejected_steps = rejected_steps();
+  c.progress.wall_time_s = wall_time();
+  c.path = path_;
+  c.ranks = ctx_.size;
+  c.inputs = options_.inputs;
+  write_run_checkpoint(ctx_, options_.checkpoint_file, c);
+  last_checkpoint_ = c.state.step;
+}
+
+bool RunSession::checkpoint_last_step() {
+  TSType type;
+  PCSIM_PETSC(TSGetType(solver_.ts(), &type));
+  // A moving window's state is not the line's: no restart from it.
+  if (std::string(type) != solvers::kTSHHT || options_.window) return false;
+  if (last_checkpoint_ != steps_) write_checkpoint();
+  return true;
+}
+
+long RunSession::rejected_steps() const {
+  return earlier_rejected_ + solvers::hht_get_info(solver_.ts()).rejected_steps;
+}
+
+nlohmann::json RunSession::facts() const {
+  const double wall = wall_time();
+  const double simulated = time_;
+  nlohmann::json j;
+  j["steps"] = steps_;
+  j["newton_iterations"] = newton_iterations_;
+  j["newton_iterations_per_step"] =
+      steps_ > 0 ? static_cast<double>(newton_iterations_) / steps_ : 0.0;
+  j["wall_time_s"] = wall;
+  j["time_per_step_ms"] = steps_ > 0 ? 1e3 * wall / steps_ : 0.0;
+  j["simulated_time_s"] = simulated;
+  j["real_time_factor"] = simulated / wall;
+  j["peak_memory_mb"] = peak_memory_mb(ctx_.comm);
+  j["peak_memory_total_mb"] = total_peak_memory_mb(ctx_.comm);
+  j["ranks"] = ctx_.size;
+  j["dofs"] = system_.global_size();
+  j["path"] = path_;
+  TSType type;
+  PCSIM_PETSC(TSGetType(solver_.ts(), &type));
+  j["rejected_steps"] = std::string(type) == solvers::kTSHHT ? rejected_steps() : 0;
+  return j;
+}
+
+}  // namespace pcsim::simulation

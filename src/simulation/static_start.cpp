@@ -1,0 +1,220 @@
+#include "pcsim/simulation/static_start.hpp"
+
+#include <mpi.h>
+#include <petscsnes.h>
+
+#include <Eigen/Dense>
+#include <utility>
+
+#include "pcsim/assembly/fe_catenary.hpp"
+#include "pcsim/assembly/static_problem.hpp"
+#include "pcsim/core/error.hpp"
+#include "pcsim/solvers/direct.hpp"
+#include "pcsim/solvers/statics.hpp"
+
+namespace pcsim::simulation {
+
+namespace {
+
+std::string start_key(std::size_t p) {
+  return "pantographs[" + std::to_string(p) + "].start_x";
+}
+
+// The lowest contact wire at station x for the catenary state in U (its
+// number and height, on every rank; -1 if x lies on no contact wire), and the
+// residual flexibility there (a reduced catenary's, in series with the
+// contact spring; 0 for FE).
+std::pair<int, double> lowest_wire(assembly::CatenaryModel& catenary, Vec U, double x,
+                                   double* flexibility = nullptr) {
+  catenary.load_state(U);
+  const int n = catenary.contact_wire_count();
+  std::vector<char> on(n, 0);  // the same on every rank
+  std::vector<double> z(n, 0.0), r(n, 0.0);
+  for (int w = 0; w < n; ++w) {
+    const auto point = catenary.wire_point(x, w);
+    on[w] = point.on_wire;
+    r[w] = point.residual_flexibility;  // every rank
+    if (point.owned) z[w] = point.z;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, z.data(), n, MPI_DOUBLE, MPI_SUM, catenary.comm());
+  std::pair<int, double> lowest{-1, 0.0};
+  for (int w = 0; w < n; ++w)
+    if (on[w] && (lowest.first < 0 || z[w] < lowest.second)) lowest = {w, z[w]};
+  if (flexibility) *flexibility = lowest.first < 0 ? 0.0 : r[lowest.first];
+  return lowest;
+}
+
+// Contact-wire height at x for the catenary state in U0 (the lowest wire
+// there) and its residual flexibility, on every rank.
+double wire_height(assembly::CatenaryModel& catenary, Vec U0, double x, std::size_t p,
+                   double& flexibility) {
+  const auto lowest = lowest_wire(catenary, U0, x, &flexibility);
+  if (lowest.first < 0)
+    throw InputError("", start_key(p), "the pantograph starts outside the contact wire");
+  return lowest.second;
+}
+
+bool any_static_start(assembly::CoupledSystem& system) {
+  for (const auto& slot : system.pantographs())
+    if (slot.run.static_start) return true;
+  return false;
+}
+
+// The catenary part of U0: the static configuration, or with static starts the
+// FE catenary under every such pantograph's static force F0 at its start point
+// on the lowest contact wire there (a guess for the coupled equilibrium).
+PetscInt catenary_start(assembly::CoupledSystem& system, Vec U0) {
+  auto& catenary = system.catenary();
+  catenary.reference_state(U0);
+  if (!any_static_start(system)) return 0;
+  const auto& first = system.pantographs().front();
+  std::size_t static_count = 0;
+  for (const auto& slot : system.pantographs()) static_count += slot.run.static_start ? 1 : 0;
+  if (static_count == 1 && first.run.static_start) {
+    const int wire = lowest_wire(catenary, U0, first.run.start_x).first;
+    if (wire < 0)
+      throw InputError("", start_key(0), "the pantograph starts outside the contact wire");
+    if (catenary.closed_form_point_load(first.run.start_x, wire, first.run.static_force, U0))
+      return 0;  // a modal catenary: exact, no guess needed
+  }
+  auto* fe = dynamic_cast<assembly::FECatenary*>(&catenary);
+  if (!fe) return 0;
+  // Active pins (a moving window's end that is the line's) hold their DOF.
+  catenary::CatenaryMesh held = fe->mesh();
+  for (const auto& pin : held.pins)
+    if (pin.active) held.nodes[pin.node].fixed[pin.dof] = true;
+  assembly::CatenarySystem loaded(system.comm(), std::move(held), 0,
+                                  &fe->system().layout().node_owner());
+  const auto& pantographs = system.pantographs();
+  for (std::size_t p = 0; p < pantographs.size(); ++p) {
+    const auto& run = pantographs[p].run;
+    if (!run.static_start) continue;
+    const int wire = lowest_wire(catenary, U0, run.start_x).first;
+    int element;
+    double chi;
+    if (wire < 0 || !fe->locator(wire).locate(run.start_x, element, chi))
+      throw InputError("", start_key(p), "the pantograph starts outside the contact wire");
+    loaded.point_loads().push_back({element, chi, Eigen::Vector3d(0, 0, run.static_force)});
+  }
+  Vec x = loaded.create_vector();
+  assembly::set_state_from_node_values(loaded, fe->static_node_values(), x);
+  const auto result = solvers::solve_static(loaded, x, false, "start_load_");
+  PCSIM_PETSC(VecDestroy(&x));
+  assembly::set_state_from_node_values(fe->system(), result.node_values, U0);
+  return result.snes_iterations;
+}
+
+// The start is an equilibrium to round-off: 1e-6 N on small meshes, ~6e-5 N
+// on the EN 50318 one, where Newton then stops on its step (stol).
+constexpr double kStartTolerance = 1e-5;
+
+struct CoupledStatic {
+  assembly::CoupledSystem* system;
+  Vec zero;
+};
+
+PetscErrorCode coupled_residual(SNES, Vec U, Vec F, void* ptr) {
+  PCSIM_CALLBACK_BEGIN
+  auto* c = static_cast<CoupledStatic*>(ptr);
+  c->system->residual(0.0, U, c->zero, c->zero, F);
+  PCSIM_CALLBACK_END
+}
+
+PetscErrorCode coupled_jacobian(SNES, Vec U, Mat J, Mat P, void* ptr) {
+  PCSIM_CALLBACK_BEGIN
+  auto* c = static_cast<CoupledStatic*>(ptr);
+  c->system->jacobian(0.0, U, c->zero, c->zero, {0.0, 0.0}, P);
+  if (J != P) {
+    PCSIM_PETSC(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+    PCSIM_PETSC(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  }
+  PCSIM_CALLBACK_END
+}
+
+PetscInt solve_coupled_static(assembly::CoupledSystem& system, Vec U0) {
+  CoupledStatic ctx{&system, system.create_vector()};
+  PCSIM_PETSC(VecSet(ctx.zero, 0.0));
+  Vec F = system.create_vector();
+  // A start already in equilibrium (a modal catenary's closed form) needs no
+  // Newton matrix (a modal one is dense).
+  system.residual(0.0, U0, ctx.zero, ctx.zero, F);
+  PetscReal norm;
+  PCSIM_PETSC(VecNorm(F, NORM_2, &norm));
+  if (norm < kStartTolerance) {
+    PCSIM_PETSC(VecDestroy(&F));
+    PCSIM_PETSC(VecDestroy(&ctx.zero));
+    return 0;
+  }
+  Mat J = system.create_matrix();
+  SNES snes;
+  PCSIM_PETSC(SNESCreate(system.comm(), &snes));
+  PCSIM_PETSC(SNESSetOptionsPrefix(snes, "start_"));
+  PCSIM_PETSC(SNESSetFunction(snes, F, coupled_residual, &ctx));
+  PCSIM_PETSC(SNESSetJacobian(snes, J, J, coupled_jacobian, &ctx));
+  PCSIM_PETSC(SNESSetTolerances(snes, kStartTolerance, 1e-12, 1e-12, 50, 100000));
+  SNESLineSearch line_search;
+  PCSIM_PETSC(SNESGetLineSearch(snes, &line_search));
+  PCSIM_PETSC(SNESLineSearchSetType(line_search, SNESLINESEARCHBASIC));
+  KSP ksp;
+  PCSIM_PETSC(SNESGetKSP(snes, &ksp));
+  // Exact, as -pcsim_step_solver chooses (dd: no fill from the stored zero
+  // couplings of the pantographs with the whole contact wire).
+  solvers::use_step_lu(ksp);
+  PCSIM_PETSC(SNESSetFromOptions(snes));
+  PCSIM_PETSC(SNESSolve(snes, nullptr, U0));
+  SNESConvergedReason reason;
+  PetscInt iterations = 0;
+  PCSIM_PETSC(SNESGetConvergedReason(snes, &reason));
+  PCSIM_PETSC(SNESGetIterationNumber(snes, &iterations));
+  PCSIM_PETSC(SNESDestroy(&snes));
+  PCSIM_PETSC(MatDestroy(&J));
+  PCSIM_PETSC(VecDestroy(&F));
+  PCSIM_PETSC(VecDestroy(&ctx.zero));
+  if (reason <= 0)
+    throw SolverError(std::string("static start (coupled equilibrium) did not converge: ") +
+                      SNESConvergedReasons[reason]);
+  return iterations;
+}
+
+}  // namespace
+
+StartInfo initial_state(assembly::CoupledSystem& system, Vec U0, Vec V0) {
+  StartInfo info;
+  auto& pantographs = system.pantographs();
+  PCSIM_PETSC(VecSet(V0, 0.0));
+  PCSIM_PETSC(VecSet(U0, 0.0));
+  if (pantographs.empty()) return info;
+  info.guess_iterations = catenary_start(system, U0);
+  // Pantographs in static equilibrium: touching the wire (ramp, zero contact
+  // force at t = 0) or pressing it with F0 (static start).
+  for (std::size_t p = 0; p < pantographs.size(); ++p) {
+    auto& slot = pantographs[p];
+    double flexibility = 0;
+    const double wire_z = wire_height(system.catenary(), U0, slot.run.start_x, p, flexibility);
+    // Static start: pressed by F0 on the contact spring in series with the
+    // wire's residual flexibility (a reduced catenary's); gap start: below
+    // the wire (an initial state out of equilibrium).
+    const double penetration =
+        slot.run.static_start
+            ? slot.run.static_force * (1.0 / system.contact_stiffness() + flexibility)
+            : -slot.run.start_gap;
+    const double contact_height = wire_z + penetration;
+    const Eigen::VectorXd q0 = slot.model->static_equilibrium(
+        slot.run.static_force,
+        slot.run.working_height > 0 ? slot.run.working_height : contact_height);
+    // Base of the pantograph: its contact point sits at the wire (thesis 3.3.1).
+    slot.head_offset =
+        contact_height - (q0[slot.model->contact_dof()] + slot.model->contact_offset());
+    PetscInt lo, hi;
+    PCSIM_PETSC(VecGetOwnershipRange(U0, &lo, &hi));
+    for (int i = 0; i < slot.dof_count(); ++i)
+      if (slot.first_dof + i >= lo && slot.first_dof + i < hi)
+        PCSIM_PETSC(VecSetValue(U0, slot.first_dof + i, q0[i], INSERT_VALUES));
+  }
+  PCSIM_PETSC(VecAssemblyBegin(U0));
+  PCSIM_PETSC(VecAssemblyEnd(U0));
+  if (any_static_start(system)) info.coupled_iterations = solve_coupled_static(system, U0);
+  return info;
+}
+
+}  // namespace pcsim::simulation

@@ -1,0 +1,137 @@
+// The static start is an equilibrium of the dynamic model (thesis 3.3.1), also with
+// several pantographs all starting static: the residual F(0, U0, 0, 0) vanishes,
+// every pantograph presses with its F0, and with (nearly) standing pantographs the
+// HHT integration leaves the state where it is.
+// pcsim-test-ranks: 1 2
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "interaction_fixtures.hpp"
+#include "pcsim/scene/composition.hpp"
+
+namespace {
+
+using pcsim::testing::contact_data;
+using pcsim::testing::integrate;
+using pcsim::testing::make_problem;
+
+class StaticStart : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(StaticStart, IsAnEquilibriumOfTheDynamicModel) {
+  auto run = pcsim::scene::load_run_scene(
+      pcsim::InputNode::load_file(contact_data(std::string(GetParam()) + ".yaml")));
+  const double vanishing_speed = 1e-6;  // [m/s]: 50 ms move the contact point by 50 nm
+  std::vector<double> static_force;
+  for (auto& p : run.pantographs) {
+    p.speed = vanishing_speed;
+    static_force.push_back(p.static_force);
+  }
+  const std::size_t count = run.pantographs.size();
+  auto problem = make_problem(run);
+  Vec U0 = problem->create_vector(), V0 = problem->create_vector(), F = problem->create_vector(),
+      zero = problem->create_vector();
+  PCSIM_PETSC(VecSet(zero, 0.0));
+  problem->initial_state(U0, V0);
+
+  // 1. F(0, U0, 0, 0) below 1e-3 N (the coupled start's SNES tolerance; the
+  // wire tensions are ~2e4 N, so this is 5e-8 relative).
+  problem->residual(0.0, U0, zero, zero, F);
+  PetscReal start_residual;
+  PCSIM_PETSC(VecNorm(F, NORM_2, &start_residual));
+  EXPECT_LT(start_residual, 1e-3);
+  PetscReal v0_norm;
+  PCSIM_PETSC(VecNorm(V0, NORM_INFINITY, &v0_norm));
+  EXPECT_EQ(v0_norm, 0.0);
+  int rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  const auto start_record = problem->record(0.0, U0);  // collective; filled on rank 0
+  std::vector<double> f_start(count, 0.0);
+  // Every pantograph presses with the scene's static force F0, up to its frame's static
+  // response to the difference between the catenary of the dynamic model and that of
+  // the start's first guess (the FE catenary under the point loads F0): the lumped
+  // frame spring k2 = 50 N/m (measured 7.2e-3 N on the linearised catenary), the
+  // DSA-380's fixed bellows torque 2555 N/m on the nonlinear one (where the guess is
+  // the same model), none with its uplift characteristic (the static force is F0 at any
+  // height).
+  for (std::size_t p = 0; p < count && rank == 0; ++p) {
+    f_start[p] = start_record.contact_force[p];
+    EXPECT_NEAR(f_start[p], static_force[p], 0.05) << p;
+  }
+
+  // 2. 50 HHT steps (dt = 1 ms, default alpha) from (U0, 0, 0).
+  //  a) SNES tolerances of solvers::DynamicSolver (|R| <= 1e-3 N), as in `pcsim run`: U
+  //     stays within 1e-9 m (and 1e-9 in slopes) of U0, the contact force within
+  //     1e-6 relative of its start value. (The step residual at U0 is below the
+  //     tolerance, so Newton leaves U0 as it is: this checks that it is.)
+  //  b) Newton forced to act (|R| <= 1e-5 N; the round-off floor of the step
+  //     residual is ~1e-6 N): the start's remaining residual (<= 1e-3 N, the
+  //     start SNES tolerance) now moves the system by |K^-1 F(0, U0, 0, 0)|:
+  //     U within 1e-8 m (measured 1.0e-9 m, lumped), force within 1e-6
+  //     (measured 6.5e-8).
+  for (const bool forced_newton : {false, true}) {
+    double max_du = 0, max_df = 0;
+    Vec dU = problem->create_vector();
+    auto configure = [&](TS ts) {
+      if (!forced_newton) return;
+      SNES snes;
+      PCSIM_PETSC(TSGetSNES(ts, &snes));
+      PCSIM_PETSC(SNESSetTolerances(snes, 1e-5, 1e-14, 0.0, 25, 100000));
+    };
+    const PetscInt steps =
+        integrate(*problem, U0, V0, 1e-3, 1.0, 50, configure, [&](double t, Vec U, Vec) {
+          PCSIM_PETSC(VecWAXPY(dU, -1.0, U0, U));
+          PetscReal du;
+          PCSIM_PETSC(VecNorm(dU, NORM_INFINITY, &du));
+          max_du = std::max(max_du, static_cast<double>(du));
+          const auto rec = problem->record(t, U);
+          for (std::size_t p = 0; p < count && rank == 0; ++p)
+            max_df = std::max(max_df, std::abs(rec.contact_force[p] / f_start[p] - 1));
+        });
+    EXPECT_EQ(steps, 50);
+    PetscPrintf(PETSC_COMM_WORLD,
+                "  %s: ||F(0,U0,0,0)|| = %.2e N, 50 steps (%s): max |U - U0| = %.2e, "
+                "max |Fc/Fc0 - 1| = %.2e\n",
+                GetParam(), static_cast<double>(start_residual),
+                forced_newton ? "|R| <= 1e-5 N" : "default SNES", max_du, max_df);
+    EXPECT_LT(max_du, forced_newton ? 1e-8 : 1e-9);
+    if (rank == 0) EXPECT_LT(max_df, 1e-6);
+    VecDestroy(&dU);
+  }
+  for (Vec* v : {&U0, &V0, &F, &zero}) VecDestroy(v);
+}
+
+// Lumped pantograph on the linearised catenary (cheap path), DSA-380 with
+// damper on the nonlinear catenary (full Newton path), and three pantographs all
+// starting static (two lumped and a DSA-380 following its uplift characteristic).
+INSTANTIATE_TEST_SUITE_P(Interaction, StaticStart,
+                         ::testing::Values("three-span-lumped", "three-span-dsa380",
+                                           "three-span-three-pantographs"),
+                         [](const ::testing::TestParamInfo<const char*>& info) {
+                           std::string name = info.param;
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
+
+// A gap start next to static starts is rejected (the coupled static equilibrium would
+// close the gap), naming the file and the key.
+TEST(StaticStartInput, GapStartBesideStaticStartsIsRejected) {
+  // A scene text placed beside the test data (not on disk): the three static pantographs,
+  // the third one now with a gap start.
+  const std::string file = contact_data("three-span-gap-beside-static.yaml");
+  const auto scene = pcsim::load_composed_text(
+      "base: three-span-three-pantographs.yaml\nset: {pantographs.2.start: {gap: 0.02}}\n", file);
+  std::string message;
+  try {
+    pcsim::scene::load_run_scene(scene);
+  } catch (const pcsim::InputError& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("pantographs[2].start"), std::string::npos) << message;
+  EXPECT_NE(message.find("gap start cannot be combined with static starts"), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("three-span-gap-beside-static.yaml"), std::string::npos) << message;
+}
+
+}  // namespace
