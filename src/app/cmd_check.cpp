@@ -39,12 +39,15 @@ std::string why(const app::CommandContext& ctx, const std::string& command) {
   return "the scene has no 'pantographs', 'pantograph' or 'modes'";
 }
 
+// The catenary's unknowns as `pcsim run` and `pcsim static` count them (the
+// form-finding unknowns of the static solution apart).
 std::string memory_text(const simulation::MemoryEstimate& m, int ranks) {
-  char text[200];
+  char text[240];
   std::snprintf(text, sizeof text,
-                "%ld nodes, %ld unknowns, estimated memory %.2f GB on %d rank(s) (machine %.1f GB)",
-                m.nodes, m.dofs, m.total_bytes(ranks) / 1e9, ranks,
-                simulation::machine_memory_bytes() / 1e9);
+                "%ld nodes, %ld catenary unknowns (+%ld form-finding unknowns in the static "
+                "solution), estimated memory %.2f GB on %d rank(s) (machine %.1f GB)",
+                m.nodes, m.dofs - m.form_finding_unknowns, m.form_finding_unknowns,
+                m.total_bytes(ranks) / 1e9, ranks, simulation::machine_memory_bytes() / 1e9);
   return text;
 }
 

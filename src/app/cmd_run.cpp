@@ -6,7 +6,6 @@
 #include "command.hpp"
 #include "exit_status.hpp"
 #include "inputs.hpp"
-#include "pcsim/catenary/geometry.hpp"
 #include "pcsim/output/en50318.hpp"
 #include "pcsim/output/output_dir.hpp"
 #include "pcsim/output/run_results.hpp"
@@ -14,6 +13,7 @@
 #include "pcsim/simulation/interrupt.hpp"
 #include "pcsim/simulation/run.hpp"
 #include "processes.hpp"
+#include "rerun.hpp"
 
 namespace {
 
@@ -160,9 +160,8 @@ std::unique_ptr<simulation::RunCheckpoint> load_restart(
 int run_dynamic(const app::CommandContext& ctx) {
   app::RunInputs run_inputs = app::read_run_inputs(ctx);  // every input checked: exit 2 before work
   const InputNode& scene = run_inputs.scene;
+  if (ctx.has_option("--rerun")) app::check_rerun(ctx, scene);
   auto& run = run_inputs.run;
-  const auto& design = run.catenary.mesh;
-  const double c = catenary::wave_speed(design.wires[design.contact_wire]);
   simulation::RunRequest request;
   request.name = ctx.scene_name(scene);
   request.scene_path = ctx.scene_path;
@@ -175,9 +174,6 @@ int run_dynamic(const app::CommandContext& ctx) {
   app::print0(ctx, "pcsim run: scene '%s', design %s\n", request.name.c_str(),
               run.catenary.design_path.c_str());
   app::print_warnings(ctx, run.warnings);
-  if (run.speed > 0.7 * c)
-    app::print0(ctx, "  warning: speed %.0f km/h is above 70%% of the wave speed (%.0f km/h)\n",
-                run.speed * 3.6, c * 3.6);
   const auto outcome = simulation::run(ctx, run, request, out);
   if (!outcome.complete) return report_interrupted(ctx, out, outcome);
   return report_complete(ctx, out, outcome, run.energy);
@@ -205,5 +201,8 @@ PCSIM_COMMAND_HELP(
     "an interrupted run (SIGINT, SIGTERM) keeps <dir>.partial with its data and a\n"
     "checkpoint (README \"Interrupted runs and restarts\")\n",
     {"--no-report", "", "no report.html (postproc/report.py)"},
-    {"--restart", "DIR", "continue the run whose checkpoint is in DIR, into a new folder"});
+    {"--restart", "DIR", "continue the run whose checkpoint is in DIR, into a new folder"},
+    {"--rerun", "DIR",
+     "run the record of the result in DIR again (its scene, overrides and "
+     "PETSc options; default -o DIR-rerun)"});
 PCSIM_COMMAND("run", "dynamic pantograph-catenary interaction (HHT, penalty contact)", run_dynamic);

@@ -17,6 +17,7 @@
 #include "pcsim/output/sweep_results.hpp"
 #include "pcsim/scene/composition.hpp"
 #include "pcsim/scene/run_scene.hpp"
+#include "pcsim/simulation/run_checkpoint.hpp"
 #include "processes.hpp"
 
 namespace {
@@ -241,6 +242,10 @@ int run_sweep(const CommandContext& ctx) {
   const InputNode scene = shared.load_scene();
   OutputRequest request = shared.output_request(scene);
   request.provenance["overrides"] = ctx.overrides;
+  std::string definition = "sweep";  // the fingerprint covers the swept values too
+  for (const auto& o : ctx.overrides) definition += " --set " + o;
+  request.provenance["inputs_fingerprint"] = simulation::inputs_fingerprint(
+      definition, simulation::recorded_inputs(ctx.scene_path, scene));
   if (ctx.output_dir.empty()) request.dir += "-sweep";
   OutputDir out(ctx.comm, request);
   app::print0(ctx, "pcsim sweep: scene '%s', %zu cases, %d at a time\n",

@@ -28,6 +28,7 @@ struct CommandContext : simulation::Context {
   std::string subcommand;              // commands with a subcommand: `pcsim study accuracy SCENE`
   std::vector<std::string> arguments;  // the whole command line (argv)
   std::vector<std::string> overrides;  // --set KEY=VALUE, in order
+  bool overwrite = false;              // --overwrite: replace a result of other inputs
   std::vector<std::string> petsc_arguments;    // what went to PETSc's options database
   std::map<std::string, std::string> options;  // the command's own options ("" for a flag)
   bool has_option(const std::string& name) const { return options.count(name) > 0; }

@@ -7,6 +7,7 @@
 #include "command.hpp"
 #include "pcsim/output/provenance.hpp"
 #include "pcsim/scene/composition.hpp"
+#include "pcsim/simulation/run_checkpoint.hpp"
 
 namespace pcsim::app {
 
@@ -48,6 +49,11 @@ nlohmann::json CommandContext::provenance(const InputNode& scene) const {
   in.resolved_scene = to_yaml(scene);
   in.overrides = overrides;
   in.ranks = size;
+  const auto inputs = simulation::recorded_inputs(scene_path, scene);
+  for (const auto& f : inputs)
+    in.inputs.push_back(
+        {{"role", f.role}, {"path", f.path}, {"sha256", f.sha256}, {"content", f.content}});
+  in.inputs_fingerprint = simulation::inputs_fingerprint(command + " " + subcommand, inputs);
   return output::make_provenance(in);
 }
 
@@ -61,6 +67,7 @@ OutputRequest CommandContext::output_request(const InputNode& scene) const {
   request.scene_file = scene_path;
   request.scene_name = name;
   request.provenance = provenance(scene);
+  request.overwrite = overwrite;
   return request;
 }
 

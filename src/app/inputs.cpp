@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "pcsim/catenary/geometry.hpp"
+#include "pcsim/core/format.hpp"
 #include "pcsim/scene/design_reader.hpp"
 #include "pcsim/scene/pantograph_scene.hpp"
 #include "pcsim/simulation/run.hpp"
@@ -29,7 +31,6 @@ solvers::ModesRequest scene_modes(const InputNode& scene) {
   r.max_frequency_hz = section.max_frequency_hz;
   return r;
 }
-
 
 }  // namespace
 
@@ -68,6 +69,17 @@ RunInputs read_run_inputs(const CommandContext& ctx, const InputNode& scene) {
     throw InputError("command line", "-ts_type",
                      "checkpoints and restarts need the TS type hht, not " + in.numerics.ts_type);
   in.cheap_path = solvers::choose_cheap_path(ctx.comm, simulation::cheap_path_possible(in.run));
+  const auto& design = in.run.catenary.mesh;
+  const double c = catenary::wave_speed(design.wires[design.contact_wire]);
+  if (in.run.speed > 0.7 * c)
+    in.run.warnings.push_back(
+        {in.scene.file(), "simulation.speed_kmh",
+         "speed " + format_number(in.run.speed * 3.6) +
+             " km/h is above 70% of the contact "
+             "wire's wave speed (" +
+             format_number(c * 3.6) +
+             " km/h): the contact force rises "
+             "steeply towards the wave speed (design practice stays below 70%)"});
   return in;
 }
 

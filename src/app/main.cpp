@@ -15,14 +15,17 @@
 #include "exit_status.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/core/version.hpp"
+#include "rerun.hpp"
 
 namespace {
 
 using pcsim::app::Command;
 using pcsim::app::CommandContext;
 
+// The common options; %s: the command's default output folder.
 const char* const kCommonOptions =
-    "  -o DIR           output folder (default out/<scene name>/)\n"
+    "  -o DIR           output folder (default %s)\n"
+    "  --overwrite      replace an earlier result made from other inputs in that folder\n"
     "  --set KEY=VALUE  sets a scene key by its path, e.g. simulation.speed_kmh=320 or\n"
     "                   pantographs[0].static_force=100; a path through a key that names a\n"
     "                   file sets a key of that file, e.g. catenary.design.spans.count=20\n"
@@ -40,15 +43,23 @@ void print_usage() {
       pcsim::version());
   for (const auto& [name, command] : pcsim::app::command_registry())
     std::printf("  %-12s %s\n", name.c_str(), command.summary.c_str());
+  std::printf("\noptions:\n");
+  std::printf(kCommonOptions, "out/<scene name>/");
   std::printf(
-      "\noptions:\n%s"
-      "Any other option goes to PETSc's options database, e.g. -snes_monitor,\n"
+      "Options with a single dash go to PETSc's options database, e.g. -snes_monitor,\n"
       "-snes_test_jacobian, -ksp_type, -ts_dt, -eps_nev, -log_view, -options_left;\n"
       "-help lists every option a command reads. pcsim's own, checked before any work:\n"
       "  -ts_dt, -ts_type hht|alpha2, -ts_hht_alpha [0, 1/3], -pcsim_path auto|full|cheap (run);\n"
       "  -eps_nev N, -modes_fmax F (modes); -pcsim_debug_* (tests).\n"
-      "Scene files: docs/scene-format.md; catenary designs: docs/design-format.md.\n",
-      kCommonOptions);
+      "Scene files: docs/scene-format.md; catenary designs: docs/design-format.md.\n");
+}
+
+// Where a command's results go without -o.
+std::string default_output(const std::string& command) {
+  if (command == "sweep") return "out/<scene name>-sweep/";
+  if (command == "study") return "out/<scene name>-accuracy/";
+  if (command == "check") return "none: check writes nothing";
+  return "out/<scene name>/";
 }
 
 void print_command_help(const std::string& name, const Command& command) {
@@ -60,7 +71,8 @@ void print_command_help(const std::string& name, const Command& command) {
       name.c_str(), command.has_subcommand ? " SUBCOMMAND" : "", own.c_str(),
       command.summary.c_str());
   if (!command.help.empty()) std::printf("\n%s", command.help.c_str());
-  std::printf("\noptions:\n%s", kCommonOptions);
+  std::printf("\noptions:\n");
+  std::printf(kCommonOptions, default_output(name).c_str());
   for (const auto& o : command.options) {
     const std::string left = o.name + (o.value.empty() ? "" : " " + o.value);
     std::printf("  %-16s %s\n", left.c_str(), o.help.c_str());
@@ -80,11 +92,11 @@ const pcsim::app::CommandOption* own_option(const Command& command, const char* 
 
 // Splits the arguments after the command into pcsim's and PETSc's; returns
 // -1 to go on, else the exit status (help printed, or a usage error).
-int parse_arguments(int argc, char** argv, const Command& command, CommandContext& ctx,
-                    std::vector<char*>& petsc_argv) {
+int parse_arguments(int argc, char** argv, const Command& command, CommandContext& ctx) {
   auto needs = [&](int i, const char* what) {
-    if (i + 1 < argc) return true;
-    std::fprintf(stderr, "pcsim: error: option %s needs %s\n", argv[i], what);
+    if (i + 1 < argc && argv[i + 1][0] != '-') return true;
+    std::fprintf(stderr, "pcsim: error: option %s needs %s%s\n", argv[i], what,
+                 i + 1 < argc ? (std::string(", not the option ") + argv[i + 1]).c_str() : "");
     return false;
   };
   for (int i = 2; i < argc; ++i) {
@@ -109,12 +121,31 @@ int parse_arguments(int argc, char** argv, const Command& command, CommandContex
     } else if (const auto* o = own_option(command, arg)) {
       if (!o->value.empty() && !needs(i, o->value.c_str())) return 2;
       ctx.options[o->name] = o->value.empty() ? "" : argv[++i];
+    } else if (!std::strcmp(arg, "--overwrite")) {
+      ctx.overwrite = true;
     } else if (ctx.scene_path.empty() && arg[0] != '-') {
       ctx.scene_path = arg;
+    } else if (arg[0] != '-' && !(i > 2 && ctx.petsc_arguments.size() &&
+                                  ctx.petsc_arguments.back() == argv[i - 1])) {
+      std::fprintf(stderr, "pcsim: error: '%s': one scene only (the scene is %s)\n", arg,
+                   ctx.scene_path.c_str());
+      return 2;
+    } else if (arg[1] == '-') {  // PETSc reads no "--" option
+      std::fprintf(stderr, "pcsim: error: unknown option %s (pcsim %s --help lists them)\n", arg,
+                   ctx.command.c_str());
+      return 2;
     } else {
-      petsc_argv.push_back(argv[i]);
       ctx.petsc_arguments.push_back(arg);
     }
+  }
+  if (ctx.options.count("--rerun")) {
+    std::vector<std::string> recorded;
+    const std::string why = pcsim::app::prepare_rerun(ctx.options["--rerun"], ctx, recorded);
+    if (!why.empty()) {
+      std::fprintf(stderr, "pcsim: error: command line: key '--rerun': %s\n", why.c_str());
+      return 2;
+    }
+    ctx.petsc_arguments.insert(ctx.petsc_arguments.begin(), recorded.begin(), recorded.end());
   }
   if (ctx.scene_path.empty()) {
     for (const auto& a : ctx.petsc_arguments)
@@ -133,9 +164,13 @@ int parse_arguments(int argc, char** argv, const Command& command, CommandContex
 
 int main(int argc, char** argv) {
   using namespace pcsim::app;
-  if (argc < 2 || is_help(argv[1])) {
+  if (argc < 2) {
+    std::fprintf(stderr, "pcsim: error: no command (pcsim --help lists them)\n");
+    return 2;
+  }
+  if (is_help(argv[1])) {
     print_usage();
-    return argc < 2 ? 1 : 0;
+    return 0;
   }
   if (!std::strcmp(argv[1], "--version") || !std::strcmp(argv[1], "version")) {
     std::printf("pcsim %s (git %s)\n", pcsim::version(), pcsim::git_commit());
@@ -151,9 +186,10 @@ int main(int argc, char** argv) {
   CommandContext ctx;
   ctx.command = command_name;
   ctx.arguments.assign(argv, argv + argc);
-  std::vector<char*> petsc_argv = {argv[0]};
-  const int early = parse_arguments(argc, argv, it->second, ctx, petsc_argv);
+  const int early = parse_arguments(argc, argv, it->second, ctx);
   if (early >= 0) return early;
+  std::vector<char*> petsc_argv = {argv[0]};
+  for (auto& a : ctx.petsc_arguments) petsc_argv.push_back(a.data());
   int petsc_argc = static_cast<int>(petsc_argv.size());
   petsc_argv.push_back(nullptr);
   char** petsc_args = petsc_argv.data();

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -39,10 +40,62 @@ std::string in_quotes(const std::string& path) {
   return "'" + path + "'";
 }
 
+// The files below 'dir' (relative paths, the manifest left out).
+std::vector<std::string> files_below(const std::string& dir) {
+  std::vector<std::string> files;
+  std::error_code ec;
+  for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    if (!it->is_directory(ec)) {
+      const std::string rel = fs::relative(it->path(), dir, ec).string();
+      if (rel != OutputDir::kManifestName) files.push_back(rel);
+    }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+// The request's inputs fingerprint ("" when its provenance has none).
+std::string fingerprint(const OutputRequest& request) {
+  return request.provenance.is_object()
+             ? request.provenance.value("inputs_fingerprint", std::string())
+             : std::string();
+}
+
+// Why an earlier pcsim result at 'dir' may not be replaced by this request
+// ("" if it may): it was made from other inputs (unless --overwrite), or it
+// holds files that pcsim did not write (its manifest lists those it wrote).
+std::string replacement_refusal(const std::string& dir, const nlohmann::json& existing,
+                                const OutputRequest& request) {
+  if (existing.contains("files")) {
+    std::vector<std::string> added;
+    for (const auto& f : files_below(dir))
+      if (std::find(existing["files"].begin(), existing["files"].end(), f) ==
+          existing["files"].end())
+        added.push_back(f);
+    if (!added.empty()) {
+      std::string list;
+      for (std::size_t i = 0; i < added.size() && i < 10; ++i) list += (i ? ", " : "") + added[i];
+      if (added.size() > 10) list += ", ... (" + std::to_string(added.size()) + " in all)";
+      return in_quotes(dir) + " holds files that pcsim did not write (" + list +
+             "); pcsim replaces its results as a whole: move them away, or give another "
+             "folder with -o";
+    }
+  }
+  const std::string was = existing.value("inputs_fingerprint", std::string());
+  const std::string now = fingerprint(request);
+  if (request.overwrite || was.empty() || now.empty() || was == now) return "";
+  return in_quotes(dir) + " holds the result of other inputs (pcsim " +
+         existing.value("command", std::string("?")) + " " +
+         existing.value("scene_file", std::string("?")) + ", finished " +
+         existing.value("finished", std::string("?")) +
+         "); give --overwrite to replace it, or another folder with -o";
+}
+
 // Why pcsim may not put its results at 'dir' ("" if it may): the working
 // directory or a folder containing it, a folder holding the scene, a link, a
-// file, or a non-empty folder that is not an earlier pcsim result.
-std::string target_refusal(const std::string& dir, const std::string& scene_file) {
+// file, a non-empty folder that is not an earlier pcsim result, or one that
+// may not be replaced (replacement_refusal).
+std::string target_refusal(const std::string& dir, const OutputRequest& request) {
+  const std::string& scene_file = request.scene_file;
   const std::string whole =
       "pcsim replaces its output folder as a whole, so it must be new, "
       "empty or an earlier pcsim result";
@@ -61,10 +114,11 @@ std::string target_refusal(const std::string& dir, const std::string& scene_file
   if (status.type() != fs::file_type::directory)
     return in_quotes(dir) + " exists and is not a folder";
   nlohmann::json existing;
-  if (!fs::is_empty(dir) && !output_guard::read_manifest(dir, existing))
+  if (fs::is_empty(dir)) return "";
+  if (!output_guard::read_manifest(dir, existing))
     return in_quotes(dir) + " is not empty and was not written by pcsim (it has no " +
            OutputDir::kManifestName + "); " + whole;
-  return "";
+  return replacement_refusal(dir, existing, request);
 }
 
 // A leftover "<dir>.partial" from an interrupted run: removed (if 'remove')
@@ -101,7 +155,9 @@ std::string host_name() {
   return name;
 }
 
-nlohmann::json manifest(const OutputRequest& request, const std::string& started, bool complete) {
+// complete: the results are all in 'dir'; the manifest then lists its files.
+nlohmann::json manifest(const OutputRequest& request, const std::string& started, bool complete,
+                        const std::string& dir) {
   nlohmann::json m = {{"pcsim_result", 1},
                       {"command", request.command},
                       {"scene_file", request.scene_file},
@@ -109,8 +165,12 @@ nlohmann::json manifest(const OutputRequest& request, const std::string& started
                       {"started", started},
                       {"host", host_name()},
                       {"pid", static_cast<long>(getpid())},
-                      {"complete", complete}};
-  if (complete) m["finished"] = output_guard::utc_now();
+                      {"complete", complete},
+                      {"inputs_fingerprint", fingerprint(request)}};
+  if (complete) {
+    m["finished"] = output_guard::utc_now();
+    m["files"] = files_below(dir);
+  }
   return m;
 }
 
@@ -134,8 +194,7 @@ void check_output_request(MPI_Comm comm, const OutputRequest& request) {
   if (rank == 0) {
     try {
       const std::string dir = normal_form(request.dir);
-      why = request.dir.empty() ? "the output folder is empty"
-                                : target_refusal(dir, request.scene_file);
+      why = request.dir.empty() ? "the output folder is empty" : target_refusal(dir, request);
       if (why.empty()) why = leftover_partial_refusal(dir + ".partial", false);
     } catch (const std::exception& e) {
       why = std::string("cannot check the output folder: ") + e.what();
@@ -160,7 +219,7 @@ OutputDir::OutputDir(MPI_Comm comm, OutputRequest request)
 std::string OutputDir::prepare() {
   try {
     if (request_.dir.empty()) return "the output folder is empty";
-    std::string why = target_refusal(final_, request_.scene_file);
+    std::string why = target_refusal(final_, request_);
     if (!why.empty()) return why;
     // Parent folders: made now, removed again if the run fails.
     std::vector<fs::path> missing;
@@ -175,13 +234,13 @@ std::string OutputDir::prepare() {
                               output_guard::utc_now();
     lock_fd_ = output_guard::acquire_lock(lock_path_, owner, why);
     // Under the lock: the folder may have changed since the check above.
-    if (why.empty()) why = target_refusal(final_, request_.scene_file);
+    if (why.empty()) why = target_refusal(final_, request_);
     if (why.empty()) why = leftover_partial_refusal(partial_);
     if (why.empty()) {
       fs::create_directory(partial_);
       owns_partial_ = true;
       started_ = output_guard::utc_now();
-      why = output_guard::write_manifest(partial_, manifest(request_, started_, false));
+      why = output_guard::write_manifest(partial_, manifest(request_, started_, false, partial_));
     }
     if (why.empty()) output_guard::arm_interrupt_cleanup(partial_, lock_path_);
     if (!why.empty()) undo();
@@ -250,9 +309,10 @@ void OutputDir::keep_partial() {
 
 std::string OutputDir::swap_into_place() {
   const std::string kept = "; the new results are kept in " + partial_;
-  std::string why = output_guard::write_manifest(partial_, manifest(request_, started_, true));
+  std::string why =
+      output_guard::write_manifest(partial_, manifest(request_, started_, true, partial_));
   // The folder may have been changed by hand during the run.
-  if (why.empty()) why = target_refusal(final_, request_.scene_file);
+  if (why.empty()) why = target_refusal(final_, request_);
   if (!why.empty()) {
     keep_partial_ = true;
     return why + kept;

@@ -38,6 +38,7 @@ MemoryEstimate estimate_memory(const catenary::MeshSize& size, MemoryUse use, in
   MemoryEstimate e;
   e.nodes = size.nodes;
   e.dofs = size.dofs() + size.form_finding_unknowns;
+  e.form_finding_unknowns = size.form_finding_unknowns;
   e.matrix_nonzeros = matrix_nonzeros(size);
   e.factor_entries = kFactorFill * e.matrix_nonzeros;
   const double nnz = e.matrix_nonzeros, dofs = static_cast<double>(e.dofs);

@@ -195,6 +195,49 @@ std::vector<InputFile> run_input_files(const std::string& scene_path, const Inpu
   return files;
 }
 
+namespace {
+
+// Files named by the reference keys below 'node' (key path 'path'), recursively.
+void add_referenced(const InputNode& node, const std::string& path,
+                    std::vector<RecordedInput>& out) {
+  if (node.is_sequence()) {
+    for (std::size_t i = 0; i < node.size(); ++i)
+      add_referenced(node.at(i), path + "[" + std::to_string(i) + "]", out);
+    return;
+  }
+  if (!node.is_map()) return;
+  for (const auto& key : node.keys()) {
+    const std::string child = path.empty() ? key : path + "." + key;
+    const bool reference = key == "design" || key == "model" || key == "rigid_model";
+    if (reference && node[key].is_scalar()) {
+      std::error_code ec;
+      if (!fs::is_regular_file(node.path_value(key), ec)) continue;  // a kind name, not a file
+      const InputNode file = node.load_referenced(key);
+      const std::string content = to_yaml(file);
+      out.push_back({child, node.path_value(key), sha256_hex(content), content});
+      add_referenced(file, child, out);
+    } else {
+      add_referenced(node[key], child, out);
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<RecordedInput> recorded_inputs(const std::string& scene_path, const InputNode& scene) {
+  const std::string content = to_yaml(scene);
+  std::vector<RecordedInput> out = {{"scene", scene_path, sha256_hex(content), content}};
+  add_referenced(scene, "", out);
+  return out;
+}
+
+std::string inputs_fingerprint(const std::string& command,
+                               const std::vector<RecordedInput>& inputs) {
+  std::string all = command;
+  for (const auto& f : inputs) all += "\n" + f.role + " " + f.sha256;
+  return sha256_hex(all);
+}
+
 void write_run_checkpoint(const Context& ctx, const std::string& file,
                           const RunCheckpoint& checkpoint) {
   on_rank0(ctx, [&] { output::write_checkpoint(file, to_data(checkpoint)); });

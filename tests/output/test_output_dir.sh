@@ -119,7 +119,6 @@ done
 # (Newton limited to 1 iteration: exit 3): the earlier result stays intact.
 (cd "$work" && "$PCSIM_BIN" static quick.yaml -o result > /dev/null)
 grep -q '"complete": true' "$work/result/.pcsim-result" || fail "result: manifest not complete"
-echo "plot" > "$work/result/plot.png"  # a post-processing file beside the results
 before=$(snapshot "$work/result")
 status=0
 (cd "$work" && "$PCSIM_BIN" static quick.yaml -o result -snes_max_it 1 > /dev/null 2>&1) ||
@@ -160,7 +159,7 @@ for signal in TERM INT; do
   /usr/bin/python3 -c 'import os, signal, sys
 signal.signal(signal.SIGINT, signal.SIG_DFL)
 os.execv(sys.argv[1], sys.argv[1:])' "$PCSIM_BIN" run "$PCSIM_SOURCE_DIR/runs/en50318-300.yaml" \
-    -o "$work/result" > "$logs/first.log" 2>&1 &
+    -o "$work/result" --overwrite > "$logs/first.log" 2>&1 &
   first_pid=$!
   for _ in $(seq 300); do
     [ -e "$work/result.partial/.pcsim-result" ] && break
@@ -191,12 +190,20 @@ old_pid=$(sed -n 's/.*"pid": \([0-9]*\).*/\1/p' "$work/result/.pcsim-result")
 (cd "$work" && "$PCSIM_BIN" static quick.yaml -o result > /dev/null)
 new_pid=$(sed -n 's/.*"pid": \([0-9]*\).*/\1/p' "$work/result/.pcsim-result")
 leftovers=$(cd "$work" && ls -d result.* 2> /dev/null || true)
-if [ "$old_pid" = "$new_pid" ] || [ -e "$work/result/plot.png" ] || [ -n "$leftovers" ] ||
-  [ ! -f "$work/result/static.h5" ]; then
+if [ "$old_pid" = "$new_pid" ] || [ -n "$leftovers" ] || [ ! -f "$work/result/static.h5" ]; then
   fail "re-run: manifest pid $old_pid -> $new_pid, leftovers '$leftovers'"
 else
   echo "ok   re-run replaced the earlier result (manifest pid $old_pid -> $new_pid)"
 fi
+
+# A file the user put into a result (a post-processing plot) is never deleted:
+# the re-run is refused and names it, even with --overwrite.
+echo "plot" > "$work/result/plot.png"
+before=$(snapshot "$work/result")
+expect_refused "re-run over a user's file" "$work" "plot.png" -- static quick.yaml -o result \
+  --overwrite
+[ "$before" = "$(snapshot "$work/result")" ] || fail "the result with the user's file changed"
+rm "$work/result/plot.png"
 
 # The default folder out/<name>, twice (the second run replaces the first).
 (cd "$work" && "$PCSIM_BIN" static quick.yaml > /dev/null && "$PCSIM_BIN" static quick.yaml > /dev/null)

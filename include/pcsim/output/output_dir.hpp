@@ -3,7 +3,10 @@
 //    (JSON: command, scene, dates) marking it as pcsim's own;
 //  - pcsim writes into, replaces or deletes only folders that it created (that
 //    carry the manifest); "<dir>" must be new, empty or an earlier pcsim result,
-//    and neither the working directory nor a folder containing it;
+//    and neither the working directory nor a folder containing it; an earlier
+//    result is replaced only if it holds no file that pcsim did not write (the
+//    manifest lists them) and was made from the same inputs (the manifest's
+//    inputs_fingerprint), or with OutputRequest::overwrite (--overwrite);
 //  - a lock "<dir>.pcsim-lock" (flock, released when the process ends) keeps a
 //    second run from writing the same folder;
 //  - commit() swaps: the old result is moved aside, the new one renamed into
@@ -32,6 +35,9 @@ struct OutputRequest {
   std::string scene_file;  // the scene, as given
   std::string scene_name;
   nlohmann::json provenance;  // output/provenance.hpp; written into every result file
+  // An earlier result made from other inputs (provenance's inputs_fingerprint)
+  // is replaced only when this is set (--overwrite).
+  bool overwrite = false;
 };
 
 class OutputDir {

@@ -23,10 +23,20 @@ struct ProvenanceInputs {
   std::string resolved_scene;          // the composed scene (base, set, --set) as YAML
   std::vector<std::string> overrides;  // --set KEY=VALUE as given
   int ranks = 1;
+  // Every input file as the command read it: [{role, path, sha256, content}]
+  // (simulation::recorded_inputs), and one fingerprint over them.
+  nlohmann::json inputs = nlohmann::json::array();
+  std::string inputs_fingerprint;
 };
 
-// {pcsim_version, git_commit, command, command_line, scene_file, scene_text,
-//  resolved_scene, overrides, petsc_options, ranks, date, host}
+// The version of this layout of summary.json and the HDF5 files' root
+// attributes and datasets (docs/results-format.md).
+constexpr int kResultsSchemaVersion = 2;
+
+// {pcsim_version, git_commit, results_schema, command, command_line,
+//  working_directory, scene_file, scene_text, resolved_scene, overrides,
+//  inputs, inputs_fingerprint, petsc_options, ranks, date, host, cpu_model,
+//  compiler, petsc_version, slepc_version, hdf5_version, mpi_version}
 nlohmann::json make_provenance(const ProvenanceInputs& inputs);
 
 // The command line as one shell-quoted string.

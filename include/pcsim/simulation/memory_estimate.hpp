@@ -21,11 +21,12 @@ enum class MemoryUse { statics, modes, run };
 
 struct MemoryEstimate {
   long nodes = 0;
-  long dofs = 0;               // catenary unknowns (+ form-finding unknowns)
-  double matrix_nonzeros = 0;  // of the static tangent
-  double factor_entries = 0;   // of its LU factors
-  double bytes_per_rank = 0;   // held by every rank (libraries, per-node data)
-  double shared_bytes = 0;     // divided among the ranks (matrices, factors, vectors)
+  long dofs = 0;                   // catenary unknowns (+ form-finding unknowns)
+  long form_finding_unknowns = 0;  // of these, the form-finding ones (static solution only)
+  double matrix_nonzeros = 0;      // of the static tangent
+  double factor_entries = 0;       // of its LU factors
+  double bytes_per_rank = 0;       // held by every rank (libraries, per-node data)
+  double shared_bytes = 0;         // divided among the ranks (matrices, factors, vectors)
   double total_bytes(int ranks) const { return ranks * bytes_per_rank + shared_bytes; }
 };
 

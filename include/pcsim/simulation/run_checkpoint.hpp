@@ -24,6 +24,23 @@ struct InputFile {
 // The scene (composed), its design and every pantograph's model (every rank).
 std::vector<InputFile> run_input_files(const std::string& scene_path, const InputNode& scene);
 
+// Every input file of a scene as the command reads it, with its content: the
+// scene (composed), and every file it names under a key 'design', 'model' or
+// 'rigid_model' at any depth (designs, pantograph models, the rigid model of
+// a flexible one), each composed with its own base files and 'set' entries.
+// Roles: "scene", then the key path ("catenary.design", "pantographs[0].model",
+// "pantographs[0].model.rigid_model").
+struct RecordedInput {
+  std::string role, path, sha256;
+  std::string content;  // the composed YAML the command read
+};
+std::vector<RecordedInput> recorded_inputs(const std::string& scene_path, const InputNode& scene);
+
+// One SHA-256 (hex) over the command and the contents of its inputs: two
+// results with the same fingerprint were made from the same inputs.
+std::string inputs_fingerprint(const std::string& command,
+                               const std::vector<RecordedInput>& inputs);
+
 // Where the run stands besides the solver's state.
 struct RunProgress {
   std::size_t records = 0;    // rows of results.h5 (accepted steps + the start)
