@@ -134,6 +134,7 @@ int report_complete(const app::CommandContext& ctx, OutputDir& out,
               outcome.steps, facts["newton_iterations_per_step"].get<double>(),
               facts["time_per_step_ms"].get<double>(), facts["real_time_factor"].get<double>(),
               facts["peak_memory_mb"].get<double>());
+  app::print0(ctx, "%s", outcome.step_time_summary.c_str());
   if (facts["rejected_steps"].get<long>() > 0)
     app::print0(ctx, "  %ld steps rejected by Newton and retried with a smaller time step\n",
                 facts["rejected_steps"].get<long>());

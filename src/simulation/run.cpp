@@ -199,6 +199,7 @@ void finish(const Context& ctx, const scene::RunScene& scene, const RunRequest& 
   outcome.steps = session.steps();
   outcome.time = session.time();
   outcome.facts = session.facts();
+  outcome.step_time_summary = session.timing().summary_line();
   outcome.facts.update(
       fidelity_facts(scene, request, setup, system, solver, session, outcome.estimate, window));
   outcome.facts["setup_s"] = outcome.setup_s;

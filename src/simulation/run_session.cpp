@@ -1,6 +1,7 @@
 #include "pcsim/simulation/run_session.hpp"
 
 #include <petsctime.h>
+#include <sys/resource.h>
 
 #include <csignal>
 
@@ -64,7 +65,11 @@ double RunSession::wall_time() const {
 
 int RunSession::integrate() {
   TS ts = solver_.ts();
-  wall_start_ = last_print_ = now_s();
+  wall_start_ = last_print_ = step_end_ = now_s();
+  struct rusage usage;
+  getrusage(RUSAGE_SELF, &usage);
+  involuntary_switches_ = usage.ru_nivcsw;
+  reference_builds_ = solver_.reference_builds();
   PCSIM_PETSC(TSSetApplicationContext(ts, this));
   PCSIM_PETSC(TSMonitorSet(ts, monitor, this, nullptr));
   PCSIM_PETSC(TSSetPostStep(ts, post_step));
@@ -86,28 +91,49 @@ bool RunSession::stopped_early() const {
 PetscErrorCode RunSession::monitor(TS ts, PetscInt step, PetscReal t, Vec U, void* ptr) {
   PCSIM_CALLBACK_BEGIN
   auto& s = *static_cast<RunSession*>(ptr);
+  const double start = now_s();
   s.time_ = t;
   if (s.skip_first_record_) {
     s.skip_first_record_ = false;
   } else {
-    s.record(ts, step, t, U);
+    PetscInt its = 0;
     if (step > s.first_step_) {
       SNES snes;
-      PetscInt its;
       PCSIM_PETSC(TSGetSNES(ts, &snes));
       PCSIM_PETSC(SNESGetIterationNumber(snes, &its));
       s.newton_iterations_ += its;
       s.steps_ = step;
+      s.time_step(step, start, its);
     }
+    s.flushed_ = s.record(ts, step, t, U);
     if (s.options_.checkpoint_every > 0 && step > s.first_step_ &&
         step % s.options_.checkpoint_every == 0)
       s.write_checkpoint();
   }
   s.print_progress(step, t);
+  s.timing_.add_output(now_s() - start);
+  s.step_end_ = now_s();
   PCSIM_CALLBACK_END
 }
 
-void RunSession::record(TS ts, PetscInt step, PetscReal t, Vec U) {
+// The step that ended at 'start': its wall time since the previous record and
+// what happened in it (step_timing.hpp).
+void RunSession::time_step(long step, double start, long newton_iterations) {
+  struct rusage usage;
+  getrusage(RUSAGE_SELF, &usage);
+  StepEvents events;
+  events.newton_iterations = newton_iterations;
+  events.reference_builds = solver_.reference_builds() - reference_builds_;
+  events.involuntary_switches = usage.ru_nivcsw - involuntary_switches_;
+  events.window_shift = options_.window && options_.window->shifts() != window_shifts_;
+  events.output_flush_before = flushed_;
+  reference_builds_ = solver_.reference_builds();
+  involuntary_switches_ = usage.ru_nivcsw;
+  if (options_.window) window_shifts_ = options_.window->shifts();
+  if (step_end_ > 0) timing_.add(step, start - step_end_, events);
+}
+
+bool RunSession::record(TS ts, PetscInt step, PetscReal t, Vec U) {
   auto rec = system_.record(t, U);  // collective
   if (options_.window) options_.window->to_line(rec);
   if (!options_.keep_dropper_forces) rec.dropper_force.clear();
@@ -126,7 +152,9 @@ void RunSession::record(TS ts, PetscInt step, PetscReal t, Vec U) {
     auto positions = system_.catenary().node_positions_to_root(U);  // collective
     if (stream_) stream_->append_snapshot(positions, rec);
   }
-  if (stream_ && stream_->flush_due()) stream_->flush();
+  if (!stream_ || !stream_->flush_due()) return false;
+  stream_->flush();
+  return true;
 }
 
 void RunSession::print_progress(PetscInt step, PetscReal t) const {
@@ -217,6 +245,7 @@ nlohmann::json RunSession::facts() const {
   TSType type;
   PCSIM_PETSC(TSGetType(solver_.ts(), &type));
   j["rejected_steps"] = std::string(type) == solvers::kTSHHT ? rejected_steps() : 0;
+  j["step_time"] = timing_.json();
   return j;
 }
 

@@ -130,6 +130,7 @@ void DynamicSolver::cheap_jacobian(PetscReal t, Vec U, Vec V, Vec A, assembly::S
     return;
   }
   system_.reference_jacobian(t, U, V, A, shifts, P);
+  ++reference_builds_;
   cached_shift_v_ = shifts.v;
   cached_shift_a_ = shifts.a;
   reference_t_ = t;

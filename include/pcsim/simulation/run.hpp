@@ -58,6 +58,7 @@ struct RunOutcome {
   output::RunStatistics stats;   // complete runs, rank 0
   output::EnergyBalance energy;  // output.energy, complete runs, rank 0
   AccuracyEstimate estimate;
+  std::string step_time_summary;  // the step-time distribution (step_timing.hpp), console lines
 };
 
 // Whether the scene's terms allow the cheap Jacobian path (every tangent

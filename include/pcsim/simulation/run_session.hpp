@@ -14,6 +14,7 @@
 #include "pcsim/simulation/interrupt.hpp"
 #include "pcsim/simulation/moving_window.hpp"
 #include "pcsim/simulation/run_checkpoint.hpp"
+#include "pcsim/simulation/step_timing.hpp"
 #include "pcsim/solvers/dynamics.hpp"
 
 namespace pcsim::simulation {
@@ -53,13 +54,15 @@ class RunSession {
   // Performance and solver facts for summary.json and the console (collective).
   nlohmann::json facts() const;
   long steps() const { return steps_; }
+  const StepTiming& timing() const { return timing_; }
   output::RunStream* stream() const { return stream_; }
   double time() const { return time_; }
 
  private:
   static PetscErrorCode monitor(TS ts, PetscInt step, PetscReal t, Vec U, void* ptr);
   static PetscErrorCode post_step(TS ts);
-  void record(TS ts, PetscInt step, PetscReal t, Vec U);
+  bool record(TS ts, PetscInt step, PetscReal t, Vec U);  // true: results.h5 was flushed
+  void time_step(long step, double start, long newton_iterations);
   long rejected_steps() const;  // earlier runs included
   void print_progress(PetscInt step, PetscReal t) const;
   void write_checkpoint();
@@ -80,6 +83,11 @@ class RunSession {
   long debug_signal_step_ = -1;  // -pcsim_debug_signal_step: raise SIGTERM there (tests)
   int debug_signal_rank_ = -1;   // on this rank only (-1: every rank)
   std::string path_;             // "cheap" or "full"
+  StepTiming timing_;            // this process's steps (a restart's earlier ones are not in it)
+  double step_end_ = -1;         // when the previous step's record ended [s]
+  long reference_builds_ = 0, involuntary_switches_ = 0;
+  int window_shifts_ = 0;
+  bool flushed_ = false;  // the previous record flushed results.h5
 };
 
 }  // namespace pcsim::simulation

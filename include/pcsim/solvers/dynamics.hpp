@@ -59,6 +59,9 @@ class DynamicSolver {
   // that state (assembly::initial_acceleration; zero for equilibrium starts).
   void set_initial_state(Vec U0, Vec V0);
   bool cheap_path() const { return low_rank_ != nullptr; }
+  // Times the cheap path's J0 was assembled and factored (a new time step, or a
+  // term that asked for it); 0 on the full path, which factors every iteration.
+  long reference_builds() const { return reference_builds_; }
   // The KSP that factors the step matrix (J0's on the cheap path).
   KSP step_ksp() const;
 
@@ -83,6 +86,7 @@ class DynamicSolver {
   assembly::CoupledSystem& system_;
   TS ts_ = nullptr;
   Mat P_ = nullptr;  // the assembled Jacobian (full) or J0 (cheap)
+  long reference_builds_ = 0;
   std::unique_ptr<LowRankStepSolver> low_rank_;
   std::vector<assembly::RankOne> terms_;
   double cached_shift_v_ = -1, cached_shift_a_ = -1;

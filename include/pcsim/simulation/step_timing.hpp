@@ -1,0 +1,54 @@
+// The distribution of the time steps' wall times, for hardware-in-the-loop
+// use (a step must finish within its real-time slot): percentiles, the first
+// step apart (it factors J0 and warms the caches), and the slowest steps with
+// what happened in them. A step's time runs from the end of the previous
+// step's output to the start of its own: the TS step (Newton, assembly,
+// solves) and what follows it before the record (a moving window's shift, the
+// stop-signal check); the record and the output flush are timed apart.
+// Rank 0's clock (each rank runs the same steps).
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace pcsim::simulation {
+
+// What a step did besides its plain Newton iteration.
+struct StepEvents {
+  long newton_iterations = 0;
+  long reference_builds = 0;         // J0 assembled and factored (cheap path)
+  long involuntary_switches = 0;     // the OS took the core away (getrusage)
+  bool window_shift = false;         // a moving window moved
+  bool output_flush_before = false;  // the previous record flushed results.h5
+};
+
+class StepTiming {
+ public:
+  // A step's wall time [s] and events.
+  void add(long step, double seconds, const StepEvents& events);
+  // The record and output of a step [s] (not in the step's time).
+  void add_output(double seconds);
+  // {steps, first_step_ms, median_ms, p99_ms, p99_9_ms, p99_99_ms, max_ms,
+  //  max_without_context_switch_ms, steps_with_context_switch, output_max_ms,
+  //  output_mean_ms, slowest: [{step, ms, causes}]}; percentiles over the steps
+  //  after the first (nearest rank).
+  nlohmann::json json() const;
+  // One console line: the percentiles and the slowest steps' causes.
+  std::string summary_line() const;
+
+ private:
+  struct Slow {
+    long step;
+    double seconds;
+    StepEvents events;
+  };
+  static std::string causes(const StepEvents& e);
+  std::vector<double> seconds_;  // after the first step
+  double first_ = -1, max_quiet_ = 0, output_max_ = 0, output_total_ = 0;
+  long output_count_ = 0, switched_steps_ = 0;
+  std::vector<Slow> slowest_;  // the kSlowest largest, largest first
+  static constexpr std::size_t kSlowest = 5;
+};
+
+}  // namespace pcsim::simulation

@@ -1,0 +1,91 @@
+#include "pcsim/simulation/step_timing.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace pcsim::simulation {
+
+void StepTiming::add(long step, double seconds, const StepEvents& events) {
+  if (first_ < 0) {
+    first_ = seconds;
+    return;
+  }
+  seconds_.push_back(seconds);
+  if (events.involuntary_switches > 0)
+    ++switched_steps_;
+  else
+    max_quiet_ = std::max(max_quiet_, seconds);
+  if (slowest_.size() < kSlowest || seconds > slowest_.back().seconds) {
+    slowest_.push_back({step, seconds, events});
+    std::sort(slowest_.begin(), slowest_.end(),
+              [](const Slow& a, const Slow& b) { return a.seconds > b.seconds; });
+    if (slowest_.size() > kSlowest) slowest_.pop_back();
+  }
+}
+
+void StepTiming::add_output(double seconds) {
+  output_max_ = std::max(output_max_, seconds);
+  output_total_ += seconds;
+  ++output_count_;
+}
+
+std::string StepTiming::causes(const StepEvents& e) {
+  std::string out;
+  auto add = [&](const std::string& what) { out += (out.empty() ? "" : ", ") + what; };
+  if (e.reference_builds > 0) add("J0 refactored");
+  if (e.newton_iterations > 1) add(std::to_string(e.newton_iterations) + " Newton iterations");
+  if (e.window_shift) add("window shift");
+  if (e.output_flush_before) add("after an output flush");
+  if (e.involuntary_switches > 0)
+    add(std::to_string(e.involuntary_switches) + " involuntary context switch(es)");
+  return out.empty() ? "none found" : out;
+}
+
+nlohmann::json StepTiming::json() const {
+  std::vector<double> sorted = seconds_;
+  std::sort(sorted.begin(), sorted.end());
+  auto percentile = [&](double p) {  // nearest rank
+    if (sorted.empty()) return 0.0;
+    const auto rank = static_cast<std::size_t>(std::ceil(p / 100.0 * sorted.size()));
+    return 1e3 * sorted[std::min(sorted.size(), std::max<std::size_t>(rank, 1)) - 1];
+  };
+  nlohmann::json slowest = nlohmann::json::array();
+  for (const auto& s : slowest_)
+    slowest.push_back({{"step", s.step}, {"ms", 1e3 * s.seconds}, {"causes", causes(s.events)}});
+  return {{"steps", seconds_.size() + (first_ >= 0 ? 1 : 0)},
+          {"first_step_ms", 1e3 * std::max(first_, 0.0)},
+          {"median_ms", percentile(50)},
+          {"p99_ms", percentile(99)},
+          {"p99_9_ms", percentile(99.9)},
+          {"p99_99_ms", percentile(99.99)},
+          {"max_ms", sorted.empty() ? 0.0 : 1e3 * sorted.back()},
+          {"max_without_context_switch_ms", 1e3 * max_quiet_},
+          {"steps_with_context_switch", switched_steps_},
+          {"output_max_ms", 1e3 * output_max_},
+          {"output_mean_ms", output_count_ > 0 ? 1e3 * output_total_ / output_count_ : 0.0},
+          {"slowest", slowest}};
+}
+
+std::string StepTiming::summary_line() const {
+  const auto j = json();
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "  step time: median %.3f ms, 99%% %.3f, 99.9%% %.3f, 99.99%% %.3f, max %.3f "
+                "(%.3f without a context switch; %ld steps had one), first step %.2f ms; "
+                "output %.3f ms at most, apart\n",
+                j["median_ms"].get<double>(), j["p99_ms"].get<double>(),
+                j["p99_9_ms"].get<double>(), j["p99_99_ms"].get<double>(),
+                j["max_ms"].get<double>(), j["max_without_context_switch_ms"].get<double>(),
+                j["steps_with_context_switch"].get<long>(), j["first_step_ms"].get<double>(),
+                j["output_max_ms"].get<double>());
+  std::string line = text;
+  for (std::size_t i = 0; i < slowest_.size() && i < 3; ++i) {
+    std::snprintf(text, sizeof text, "    slowest: step %ld, %.3f ms (%s)\n", slowest_[i].step,
+                  1e3 * slowest_[i].seconds, causes(slowest_[i].events).c_str());
+    line += text;
+  }
+  return line;
+}
+
+}  // namespace pcsim::simulation
