@@ -259,6 +259,7 @@ contact::StepRecord CoupledSystem::record(double t, Vec U) {
     rec.contact_force.push_back(total);
     rec.contact_x.push_back(b[0]);
     rec.wire_z.push_back(z);
+    rec.head_z.push_back(state_.head_height(p));
     const Eigen::VectorXd q = state_.q(p);
     rec.q.emplace_back(q.data(), q.data() + q.size());
   }

@@ -122,6 +122,27 @@ void write_elasticity(const OutputDir& out, const catenary::ElasticityResult& r)
       << r.wire[i] << "\n";
 }
 
+std::vector<long> modes_vertical(const catenary::CatenaryMesh& mesh,
+                                 const std::vector<std::vector<double>>& shapes) {
+  std::vector<int> nodes;
+  for (const auto& w : mesh.wires)
+    if (w.kind == catenary::WireKind::contact)
+      nodes.insert(nodes.end(), w.nodes.begin(), w.nodes.end());
+  if (nodes.empty())
+    for (std::size_t i = 0; i < mesh.nodes.size(); ++i) nodes.push_back(static_cast<int>(i));
+  std::vector<long> vertical;
+  for (const auto& shape : shapes) {
+    double y2 = 0, z2 = 0;
+    for (int i : nodes) {
+      if (3 * static_cast<std::size_t>(i) + 2 >= shape.size()) continue;
+      y2 += shape[3 * i + 1] * shape[3 * i + 1];
+      z2 += shape[3 * i + 2] * shape[3 * i + 2];
+    }
+    vertical.push_back(z2 >= y2 ? 1 : 0);
+  }
+  return vertical;
+}
+
 void write_modes_results(const OutputDir& out, const catenary::CatenaryMesh& mesh,
                          const catenary::StaticResult& statics, const catenary::ModesResult& modes,
                          const CatenaryRunInfo& info) {
@@ -129,6 +150,7 @@ void write_modes_results(const OutputDir& out, const catenary::CatenaryMesh& mes
   const auto positions = catenary::positions_from_node_values(statics.node_values);
   write_mesh_h5_xdmf(mesh, positions, out.file("static_mesh.h5"), out.file("static.xdmf"), {},
                      out.provenance());
+  const auto vertical = modes_vertical(mesh, modes.shapes);
   {
     H5File h5(out.file("modes.h5"));
     stamp_provenance(h5, out.provenance());
@@ -136,15 +158,23 @@ void write_modes_results(const OutputDir& out, const catenary::CatenaryMesh& mes
              {"Hz", "natural frequencies of the catenary about the static configuration"});
     h5.write("/geometry", positions, mesh.nodes.size(), 3,
              {"m", "node positions of the static configuration"});
+    h5.write_int("/vertical", vertical,
+                 {"1",
+                  "1: vertical mode, 0: lateral (which of z and y dominates the contact "
+                  "wires' motion: sum of z^2 >= sum of y^2 over their nodes)"});
+    std::vector<std::string> direction;
+    for (long v : vertical) direction.push_back(v ? "vertical" : "lateral");
+    h5.write_strings("/direction", direction, {"none", "'vertical' or 'lateral' (/vertical)"});
     for (std::size_t m = 0; m < modes.shapes.size(); ++m)
       h5.write("/shapes/mode_" + std::to_string(m), modes.shapes[m], mesh.nodes.size(), 3,
                {"kg^-1/2", "mode shape " + std::to_string(m) +
                                ": x, y, z of each node, mass-normalised (phi^T M phi = 1)"});
   }
-  write_modes_xdmf(mesh, "modes.h5", "static_mesh.h5", modes.frequencies_hz,
-                   out.file("modes.xdmf"));
+  write_modes_xdmf(mesh, "modes.h5", "static_mesh.h5", modes.frequencies_hz, out.file("modes.xdmf"),
+                   vertical);
   nlohmann::json j = static_json(mesh, statics, info, out.provenance());
   j["catenary_frequencies_hz"] = modes.frequencies_hz;
+  j["catenary_mode_vertical"] = vertical;
   j["modes_converged"] = modes.converged;
   j["modes_max_relative_residual"] = modes.max_relative_residual;
   j["modes_wall_time_s"] = modes.wall_time_s;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "pcsim/output/h5_file.hpp"
+#include "pcsim/output/provenance.hpp"
 
 namespace pcsim::output {
 
@@ -31,8 +32,9 @@ EnergyBalance energy_balance(const EnergyHistory& h) {
 }
 
 nlohmann::json write_energy_results(const std::string& path, const EnergyHistory& h,
-                                    const EnergyBalance& b) {
+                                    const EnergyBalance& b, const nlohmann::json& provenance) {
   H5File h5(path);
+  stamp_provenance(h5, provenance);
   h5.write("/time", h.time, {"s", "time of each step"});
   h5.write("/energy", h.energy,
            {"J", "energy of the system E(t): kinetic, strain, gravity, contact, pantograph"});

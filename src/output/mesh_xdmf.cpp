@@ -2,45 +2,20 @@
 #include "pcsim/output/mesh_xdmf.hpp"
 
 #include <cctype>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 #include "pcsim/core/error.hpp"
 #include "pcsim/output/h5_file.hpp"
 #include "pcsim/output/provenance.hpp"
+#include "xdmf_xml.hpp"
 
 namespace pcsim::output {
 
 using namespace pcsim::catenary;
 
 namespace {
-
-std::string xml_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
 
 std::string base_name(const std::string& path) {
   auto slash = path.find_last_of('/');
@@ -52,61 +27,6 @@ bool valid_field_name(const std::string& name) {
   for (char c : name)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
   return true;
-}
-
-// One HDF5 data item of the XDMF file (XDMF3 names the format "HDF", not "HDF5").
-std::string data_item(const std::string& h5_name, const std::string& dataset, bool is_int,
-                      std::size_t rows, std::size_t cols) {
-  std::ostringstream s;
-  s << "<DataItem Format=\"HDF\" NumberType=\"" << (is_int ? "Int" : "Float")
-    << "\" Precision=\"8\" Dimensions=\"" << rows;
-  if (cols > 1) s << " " << cols;
-  s << "\">" << xml_escape(h5_name) << ":" << dataset << "</DataItem>";
-  return s.str();
-}
-
-struct XdmfAttribute {
-  std::string name, dataset;
-  bool is_int;
-  bool on_cells;
-  std::size_t rows, cols;
-  std::string file = "";  // HDF5 file name when not the grid's
-};
-
-std::string directory_of(const std::string& path) {
-  auto slash = path.find_last_of('/');
-  return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
-}
-
-void write_xdmf_file(const std::string& path, const std::string& text) {
-  std::ofstream out(path);
-  if (!out) throw SolverError("cannot create XDMF file " + path);
-  out << text;
-  out.close();
-  if (!out) throw SolverError("cannot write XDMF file " + path);
-}
-
-void write_grid(std::ostream& x, const std::string& h5_name, const std::string& grid_name,
-                const std::string& topology, std::size_t cells, const std::string& connectivity,
-                std::size_t nodes_per_cell, std::size_t n_nodes,
-                const std::vector<XdmfAttribute>& attributes) {
-  x << "    <Grid Name=\"" << xml_escape(grid_name) << "\" GridType=\"Uniform\">\n";
-  x << "      <Topology TopologyType=\"" << topology << "\" NumberOfElements=\"" << cells
-    << "\" NodesPerElement=\"" << nodes_per_cell << "\">\n";
-  x << "        " << data_item(h5_name, connectivity, true, cells, nodes_per_cell) << "\n";
-  x << "      </Topology>\n";
-  x << "      <Geometry GeometryType=\"XYZ\">\n";
-  x << "        " << data_item(h5_name, "/nodes/position", false, n_nodes, 3) << "\n";
-  x << "      </Geometry>\n";
-  for (const auto& a : attributes) {
-    x << "      <Attribute Name=\"" << xml_escape(a.name) << "\" AttributeType=\""
-      << (a.cols == 3 ? "Vector" : "Scalar") << "\" Center=\"" << (a.on_cells ? "Cell" : "Node")
-      << "\">\n";
-    x << "        "
-      << data_item(a.file.empty() ? h5_name : a.file, a.dataset, a.is_int, a.rows, a.cols) << "\n";
-    x << "      </Attribute>\n";
-  }
-  x << "    </Grid>\n";
 }
 
 }  // namespace
@@ -217,47 +137,63 @@ void write_elements_h5(H5File& h5, const CatenaryMesh& mesh) {
   h5.write_int("/wires/kind", wire_kind, {"1", "messenger 0, contact 1, stitch 2, other 3"});
 }
 
-// XDMF: one grid per kind of cell; empty grids are left out (ParaView
-// does not accept zero-cell grids).
+// XDMF: one grid per kind of cell, each with the same node attributes (a
+// block without them would leave ParaView's colouring partial); empty grids
+// are left out (ParaView does not accept zero-cell grids).
 std::string mesh_xdmf(const CatenaryMesh& mesh, const std::string& h5_name,
                       const std::vector<NodeField>& node_fields) {
   const std::size_t n = mesh.nodes.size(), ne = mesh.cables.size(), nb = mesh.bars.size(),
                     np = mesh.point_masses.size();
-  std::vector<XdmfAttribute> node_attributes = {
-      {"displacement", "/nodes/displacement", false, false, n, 3},
-      {"node_wire", "/nodes/wire", true, false, n, 1},
-      {"fixed_mask", "/nodes/fixed_mask", true, false, n, 1},
-      {"point_mass", "/nodes/point_mass", false, false, n, 1},
+  std::vector<xdmf::Attribute> node_attributes = {
+      {"displacement", "/nodes/displacement", false, "Node", n, 3},
+      {"node_wire", "/nodes/wire", true, "Node", n, 1},
+      {"fixed_mask", "/nodes/fixed_mask", true, "Node", n, 1},
+      {"point_mass", "/nodes/point_mass", false, "Node", n, 1},
   };
   for (const auto& f : node_fields)
     node_attributes.push_back(
-        {f.name, "/fields/" + f.name, false, false, n, static_cast<std::size_t>(f.components)});
+        {f.name, "/fields/" + f.name, false, "Node", n, static_cast<std::size_t>(f.components)});
+  auto cell = [](const char* name, const char* dataset, bool is_int, std::size_t rows) {
+    return xdmf::Attribute{name, dataset, is_int, "Cell", rows, 1};
+  };
   std::ostringstream x;
-  x << "<?xml version=\"1.0\" ?>\n";
-  x << "<Xdmf Version=\"3.0\">\n";
-  x << "  <Domain Name=\"" << xml_escape(mesh.name) << "\">\n";
+  x << xdmf::header(mesh.name);
   if (ne > 0) {
-    auto attrs = node_attributes;
-    attrs.push_back({"wire", "/cables/wire", true, true, ne, 1});
-    attrs.push_back({"wire_kind", "/cables/wire_kind", true, true, ne, 1});
-    attrs.push_back({"tension_segment", "/cables/tension_segment", true, true, ne, 1});
-    attrs.push_back({"unstressed_length", "/cables/unstressed_length", false, true, ne, 1});
-    write_grid(x, h5_name, "wires", "Polyline", ne, "/cables/connectivity", 2, n, attrs);
+    xdmf::Grid g{
+        "wires", "Polyline",     ne, 2, n, h5_name, "/cables/connectivity", "/nodes/position",
+        "",      node_attributes};
+    for (auto [name, dataset, is_int] : {std::tuple{"wire", "/cables/wire", true},
+                                         {"wire_kind", "/cables/wire_kind", true},
+                                         {"tension_segment", "/cables/tension_segment", true},
+                                         {"unstressed_length", "/cables/unstressed_length", false}})
+      g.attributes.push_back(cell(name, dataset, is_int, ne));
+    xdmf::write_grid(x, g);
   }
   if (nb > 0) {
-    auto attrs = node_attributes;
-    attrs.push_back({"bar_kind", "/bars/kind", true, true, nb, 1});
-    attrs.push_back({"span", "/bars/span", true, true, nb, 1});
-    attrs.push_back({"index_in_span", "/bars/index_in_span", true, true, nb, 1});
-    attrs.push_back({"unstressed_length", "/bars/unstressed_length", false, true, nb, 1});
-    write_grid(x, h5_name, "bars", "Polyline", nb, "/bars/connectivity", 2, n, attrs);
+    xdmf::Grid g{"bars", "Polyline",     nb, 2, n, h5_name, "/bars/connectivity", "/nodes/position",
+                 "",     node_attributes};
+    for (auto [name, dataset, is_int] : {std::tuple{"bar_kind", "/bars/kind", true},
+                                         {"span", "/bars/span", true},
+                                         {"index_in_span", "/bars/index_in_span", true},
+                                         {"unstressed_length", "/bars/unstressed_length", false}})
+      g.attributes.push_back(cell(name, dataset, is_int, nb));
+    xdmf::write_grid(x, g);
   }
   if (np > 0) {
-    std::vector<XdmfAttribute> attrs = {{"mass", "/point_masses/mass", false, true, np, 1}};
-    write_grid(x, h5_name, "point_masses", "Polyvertex", np, "/point_masses/node", 1, n, attrs);
+    xdmf::Grid g{"point_masses",
+                 "Polyvertex",
+                 np,
+                 1,
+                 n,
+                 h5_name,
+                 "/point_masses/node",
+                 "/nodes/position",
+                 "",
+                 node_attributes};
+    g.attributes.push_back(cell("mass", "/point_masses/mass", false, np));
+    xdmf::write_grid(x, g);
   }
-  x << "  </Domain>\n";
-  x << "</Xdmf>\n";
+  x << xdmf::footer();
   return x.str();
 }
 
@@ -279,92 +215,7 @@ void write_mesh_h5_xdmf(const CatenaryMesh& mesh, const std::vector<double>& nod
     stamp_provenance(h5, provenance);
     h5.attribute("/", "source_file", mesh.source_file);
   }
-  write_xdmf_file(xdmf_path, mesh_xdmf(mesh, base_name(h5_path), node_fields));
-}
-
-void write_modes_xdmf(const CatenaryMesh& mesh, const std::string& modes_h5_name,
-                      const std::string& mesh_h5_name, const std::vector<double>& frequencies_hz,
-                      const std::string& xdmf_path) {
-  if (modes_h5_name.find('/') != std::string::npos || mesh_h5_name.find('/') != std::string::npos)
-    throw std::invalid_argument("write_modes_xdmf: give bare file names, not paths");
-  const std::size_t n = mesh.nodes.size(), ne = mesh.cables.size(), nb = mesh.bars.size();
-
-  // Modes whose shape is in the modes file.
-  const std::string modes_path = directory_of(xdmf_path) + modes_h5_name;
-  hid_t file = H5Fopen(modes_path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (file < 0) throw SolverError("cannot open HDF5 file " + modes_path);
-  std::vector<std::size_t> modes;
-  for (std::size_t m = 0; m < frequencies_hz.size(); ++m) {
-    const std::string set = "/shapes/mode_" + std::to_string(m);
-    if (H5Lexists(file, "/shapes", H5P_DEFAULT) > 0 &&
-        H5Lexists(file, set.c_str(), H5P_DEFAULT) > 0)
-      modes.push_back(m);
-  }
-  H5Fclose(file);
-
-  std::ostringstream x;
-  x << "<?xml version=\"1.0\" ?>\n";
-  x << "<Xdmf Version=\"3.0\">\n";
-  x << "  <Domain Name=\"" << xml_escape(mesh.name) << " modes\">\n";
-  x << "    <Grid Name=\"modes\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-  for (std::size_t m : modes) {
-    std::ostringstream freq;
-    freq.precision(10);
-    freq << frequencies_hz[m];
-    // Mesh from the mesh file, mode shape from the modes file.
-    const std::vector<XdmfAttribute> attrs = {
-        {"mode_shape", "/shapes/mode_" + std::to_string(m), false, false, n, 3, modes_h5_name}};
-    std::ostringstream grids;
-    if (ne > 0)
-      write_grid(grids, mesh_h5_name, "wires", "Polyline", ne, "/cables/connectivity", 2, n, attrs);
-    if (nb > 0)
-      write_grid(grids, mesh_h5_name, "bars", "Polyline", nb, "/bars/connectivity", 2, n, attrs);
-    x << "      <Grid Name=\"mode_" << m
-      << "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n";
-    x << "        <Time Value=\"" << m << "\"/>\n";
-    x << "        <Information Name=\"frequency_hz\" Value=\"" << freq.str() << "\"/>\n";
-    x << grids.str();
-    x << "      </Grid>\n";
-  }
-  x << "    </Grid>\n";
-  x << "  </Domain>\n";
-  x << "</Xdmf>\n";
-  write_xdmf_file(xdmf_path, x.str());
-}
-
-void write_snapshots_xdmf(const CatenaryMesh& mesh, const std::string& mesh_h5_name,
-                          const std::string& snapshots_h5_name, const std::vector<double>& times,
-                          const std::string& xdmf_path) {
-  if (snapshots_h5_name.find('/') != std::string::npos ||
-      mesh_h5_name.find('/') != std::string::npos)
-    throw std::invalid_argument("write_snapshots_xdmf: give bare file names, not paths");
-  const std::size_t n = mesh.nodes.size(), ne = mesh.cables.size(), nb = mesh.bars.size();
-  std::ostringstream x;
-  x << "<?xml version=\"1.0\" ?>\n";
-  x << "<Xdmf Version=\"3.0\">\n";
-  x << "  <Domain Name=\"" << xml_escape(mesh.name) << " snapshots\">\n";
-  x << "    <Grid Name=\"snapshots\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-  for (std::size_t k = 0; k < times.size(); ++k) {
-    const std::vector<XdmfAttribute> attrs = {{"displacement",
-                                               "/snapshots/xdmf/displacement_" + std::to_string(k),
-                                               false, false, n, 3, snapshots_h5_name}};
-    std::ostringstream grids;
-    if (ne > 0)
-      write_grid(grids, mesh_h5_name, "wires", "Polyline", ne, "/cables/connectivity", 2, n, attrs);
-    if (nb > 0)
-      write_grid(grids, mesh_h5_name, "bars", "Polyline", nb, "/bars/connectivity", 2, n, attrs);
-    std::ostringstream t;
-    t.precision(10);
-    t << times[k];
-    x << "      <Grid Name=\"t_" << k << "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n";
-    x << "        <Time Value=\"" << t.str() << "\"/>\n";
-    x << grids.str();
-    x << "      </Grid>\n";
-  }
-  x << "    </Grid>\n";
-  x << "  </Domain>\n";
-  x << "</Xdmf>\n";
-  write_xdmf_file(xdmf_path, x.str());
+  xdmf::write_file(xdmf_path, mesh_xdmf(mesh, base_name(h5_path), node_fields));
 }
 
 }  // namespace pcsim::output

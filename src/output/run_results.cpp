@@ -113,11 +113,18 @@ void write_static_mesh(const OutputDir& out, const catenary::CatenaryMesh& mesh,
 
 void write_snapshots_view(const OutputDir& out, const catenary::CatenaryMesh& mesh) {
   std::vector<double> times;
+  std::size_t pantographs = 0;
   with_results(out, [&](hid_t file) {
     if (h5::exists(file, "/snapshots/time")) times = h5::read(file, "/snapshots/time");
+    std::vector<hsize_t> dims;
+    if (h5::exists(file, "/snapshots/xdmf/pantograph_cells")) {
+      h5::read(file, "/snapshots/xdmf/pantograph_cells", &dims);
+      pantographs = dims.empty() ? 0 : dims[0];
+    }
   });
   if (!times.empty())
-    write_snapshots_xdmf(mesh, "static_mesh.h5", "results.h5", times, out.file("snapshots.xdmf"));
+    write_snapshots_xdmf(mesh, "static_mesh.h5", "results.h5", times, out.file("snapshots.xdmf"),
+                         pantographs);
 }
 
 RunStatistics finish_run_results(const OutputDir& out, const catenary::CatenaryMesh& mesh,

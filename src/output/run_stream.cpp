@@ -1,6 +1,8 @@
 #include "pcsim/output/run_stream.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "h5_series.hpp"
 #include "pcsim/core/error.hpp"
@@ -11,9 +13,46 @@ namespace pcsim::output {
 
 namespace {
 
-// The XDMF's view of snapshot k (write_snapshots_xdmf, mesh_xdmf.hpp).
-std::string snapshot_view(std::size_t k) {
-  return "/snapshots/xdmf/displacement_" + std::to_string(k);
+// The XDMF's views of snapshot k (write_snapshots_xdmf, mesh_xdmf.hpp): row k
+// of /snapshots/<name>.
+const char* const kSnapshotViews[] = {"displacement", "pantograph_points", "contact_force"};
+
+std::string snapshot_view(const std::string& name, std::size_t k) {
+  return "/snapshots/xdmf/" + name + "_" + std::to_string(k);
+}
+
+// The pantographs' grid of snapshots.xdmf: head p is point 2p, its contact
+// point 2p + 1, one line between them; their displacement is zero (the points
+// are where they are at the snapshot, Warp By Vector leaves them there).
+void write_pantograph_grid(H5File& h5, std::size_t np) {
+  if (np == 0) return;
+  std::vector<long> cells;
+  for (std::size_t p = 0; p < np; ++p)
+    cells.insert(cells.end(), {static_cast<long>(2 * p), static_cast<long>(2 * p + 1)});
+  h5.write_int("/snapshots/xdmf/pantograph_cells", cells, np, 2,
+               {"1",
+                "points of each pantograph's line in /snapshots/pantograph_points: head, "
+                "contact point"});
+  h5.write("/snapshots/xdmf/pantograph_displacement", std::vector<double>(6 * np, 0.0), 2 * np, 3,
+           {"m",
+            "zero: the pantograph points are at their positions of the snapshot (the "
+            "node field every grid of snapshots.xdmf has)"});
+}
+
+// y of the contact wire at (x, z): on the element over x whose height there
+// is closest to z; 0 if no element is over x.
+double contact_y(const std::vector<std::array<int, 2>>& segments,
+                 const std::vector<double>& positions, double x, double z) {
+  double y = 0, best = HUGE_VAL;
+  for (const auto& [a, b] : segments) {
+    const double* pa = &positions[3 * static_cast<std::size_t>(a)];
+    const double* pb = &positions[3 * static_cast<std::size_t>(b)];
+    if (x < std::min(pa[0], pb[0]) || x > std::max(pa[0], pb[0])) continue;
+    const double w = pb[0] != pa[0] ? (x - pa[0]) / (pb[0] - pa[0]) : 0.0;
+    const double zs = pa[2] + w * (pb[2] - pa[2]);
+    if (std::abs(zs - z) < best) best = std::abs(zs - z), y = pa[1] + w * (pb[1] - pa[1]);
+  }
+  return y;
 }
 
 double wall_seconds() {
@@ -37,6 +76,7 @@ RunStream::RunStream(const std::string& path, const RunSettings& settings, RunLa
   {
     H5File h5(path);
     stamp_provenance(h5, provenance);
+    if (layout_.snapshots) write_pantograph_grid(h5, settings.pantograph_names.size());
   }
   file_ = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
   if (file_ < 0) throw SolverError("cannot open HDF5 file " + path);
@@ -169,7 +209,11 @@ void RunStream::open_snapshot_series(bool create, std::size_t np) {
       {"/snapshots/displacement", {n, 3}, "m", "node displacement from the static configuration"},
       {"/snapshots/pantograph_position", {np}, "m", "contact point of every pantograph"},
       {"/snapshots/contact_force", {np}, "N", "contact force of every pantograph"},
-      {"/snapshots/wire_height", {np}, "m", "contact-wire height at every contact point"}};
+      {"/snapshots/wire_height", {np}, "m", "contact-wire height at every contact point"},
+      {"/snapshots/pantograph_points",
+       {2 * np, 3},
+       "m",
+       "every pantograph's head (row 2p) and contact point (row 2p + 1): x, y, z"}};
   for (const auto& [path, shape, unit, description] : snapshot_sets)
     snapshot_series_.push_back(
         create ? std::make_unique<h5::Series>(file_, path, shape, unit, description)
@@ -191,8 +235,9 @@ void RunStream::reopen(const std::string& path, std::size_t records, std::size_t
     s->truncate(snapshots);
   }
   if (!snapshot_series_.empty()) snapshot_times_ = h5::read(file_, "/snapshots/time");
-  for (std::size_t k = snapshots; h5::exists(file_, snapshot_view(k)); ++k)
-    H5Ldelete(file_, snapshot_view(k).c_str(), H5P_DEFAULT);
+  for (const char* name : kSnapshotViews)
+    for (std::size_t k = snapshots; h5::exists(file_, snapshot_view(name, k)); ++k)
+      H5Ldelete(file_, snapshot_view(name, k).c_str(), H5P_DEFAULT);
   written_ = records;
   // What the end of the earlier run added.
   for (auto& c : columns_) {
@@ -224,9 +269,27 @@ void RunStream::append_snapshot(const std::vector<double>& positions,
   snapshot_series_[2]->append(r.contact_x.data(), 1);
   snapshot_series_[3]->append(r.contact_force.data(), 1);
   snapshot_series_[4]->append(r.wire_z.data(), 1);
+  snapshot_series_[5]->append(pantograph_points(positions, r).data(), 1);
   const std::size_t k = snapshot_times_.size();
-  h5::add_row_view(file_, snapshot_view(k), "/snapshots/displacement", k, "m");
+  const char* const units[] = {"m", "m", "N"};
+  for (std::size_t v = 0; v < 3; ++v)
+    h5::add_row_view(file_, snapshot_view(kSnapshotViews[v], k),
+                     std::string("/snapshots/") + kSnapshotViews[v], k, units[v]);
   snapshot_times_.push_back(r.t);
+}
+
+// Head p: (x, y, head height), contact point: (x, y, wire height), y that of
+// the contact wire at x (a record without head heights: the wire's).
+std::vector<double> RunStream::pantograph_points(const std::vector<double>& positions,
+                                                 const contact::StepRecord& r) const {
+  std::vector<double> points;
+  for (std::size_t p = 0; p < r.contact_x.size(); ++p) {
+    const double x = r.contact_x[p], z = r.wire_z[p];
+    const double head = p < r.head_z.size() ? r.head_z[p] : z;
+    const double y = contact_y(layout_.contact_segments, positions, x, z);
+    points.insert(points.end(), {x, y, head, x, y, z});
+  }
+  return points;
 }
 
 std::size_t RunStream::snapshots() const {

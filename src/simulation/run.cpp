@@ -90,7 +90,11 @@ output::RunLayout run_layout(const scene::RunScene& run, assembly::CoupledSystem
   if (mesh.zones.size() >= 2) layout.contact_wires = mesh.contact_wire_list().size();
   layout.energy = run.energy;
   layout.snapshots = run.snapshot_every > 0;
-  if (layout.snapshots) layout.static_positions = catenary::positions_from_node_values(values);
+  if (!layout.snapshots) return layout;
+  layout.static_positions = catenary::positions_from_node_values(values);
+  for (const auto& c : mesh.cables)
+    if (mesh.wires[c.wire].kind == catenary::WireKind::contact)
+      layout.contact_segments.push_back({c.nodes[0], c.nodes[1]});
   return layout;
 }
 
@@ -175,8 +179,8 @@ void write_complete_results(const OutputDir& out, const catenary::CatenaryMesh& 
   if (energy) {
     const auto history = output::read_energy_history(out);
     outcome.energy = output::energy_balance(history);
-    outcome.facts["energy"] =
-        output::write_energy_results(out.file("energy.h5"), history, outcome.energy);
+    outcome.facts["energy"] = output::write_energy_results(out.file("energy.h5"), history,
+                                                           outcome.energy, out.provenance());
   }
   output::write_run_summary(out, s, &outcome.stats, outcome.facts);
 }

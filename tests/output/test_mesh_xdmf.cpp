@@ -16,8 +16,9 @@
 
 #include "../catenary/design_fixtures.hpp"
 #include "pcsim/catenary/geometry.hpp"
-#include "pcsim/output/mesh_xdmf.hpp"
+#include "pcsim/output/catenary_results.hpp"
 #include "pcsim/output/h5_file.hpp"
+#include "pcsim/output/mesh_xdmf.hpp"
 
 using namespace pcsim::catenary;
 using namespace pcsim::output;
@@ -215,6 +216,10 @@ void check_xdmf_references(const std::string& folder, const std::string& xdmf_na
   collect(root, "DataItem", items);
   ASSERT_FALSE(items.empty());
   for (const XmlElement* item : items) {
+    if (item->attributes.at("Format") == "XML") {  // a Grid attribute's one number
+      EXPECT_EQ(item->attributes.at("Dimensions"), "1");
+      continue;
+    }
     EXPECT_EQ(item->attributes.at("Format"), "HDF");
     const std::string ref = trim(item->text);
     const auto colon = ref.find(':');
@@ -229,6 +234,15 @@ void check_xdmf_references(const std::string& folder, const std::string& xdmf_na
     for (hsize_t d; want >> d;) wanted.push_back(d);
     EXPECT_EQ(dims, wanted) << dataset;
   }
+}
+
+// Names of the attributes of 'grid' with the given Center.
+std::vector<std::string> attribute_names(const XmlElement& grid, const std::string& center) {
+  std::vector<std::string> names;
+  for (const auto& c : grid.children)
+    if (c.name == "Attribute" && c.attributes.at("Center") == center)
+      names.push_back(c.attributes.at("Name"));
+  return names;
 }
 
 // Writes 'mesh', moves the folder, and checks every HDF5 reference of the XDMF.
@@ -250,7 +264,11 @@ void check_written_mesh(const CatenaryMesh& mesh, std::size_t expected_grids) {
   std::vector<const XmlElement*> grids;
   collect(root, "Grid", grids);
   EXPECT_EQ(grids.size(), expected_grids);
+  // Every grid has the same node attributes (ParaView colours every block).
+  const std::vector<std::string> node_attributes = {"displacement", "node_wire", "fixed_mask",
+                                                    "point_mass", "speed"};
   for (const XmlElement* grid : grids) {
+    EXPECT_EQ(attribute_names(*grid, "Node"), node_attributes) << grid->attributes.at("Name");
     const XmlElement* topology = nullptr;
     for (const auto& c : grid->children)
       if (c.name == "Topology") topology = &c;
@@ -313,7 +331,7 @@ TEST(MeshOutput, ModesXdmfReferencesMeshAndModeFiles) {
       h5.write("/shapes/mode_" + std::to_string(mode), std::vector<double>(positions.size(), 0.1),
                m.nodes.size(), 3);
   }
-  write_modes_xdmf(m, "modes.h5", "mesh.h5", frequencies, (dir / "modes.xdmf").string());
+  write_modes_xdmf(m, "modes.h5", "mesh.h5", frequencies, (dir / "modes.xdmf").string(), {1, 0, 1});
   XmlElement root;
   check_xdmf_references(dir.string(), "modes.xdmf", {"mesh.h5", "modes.h5"}, root);
   if (HasFatalFailure()) return;
@@ -327,8 +345,45 @@ TEST(MeshOutput, ModesXdmfReferencesMeshAndModeFiles) {
   EXPECT_EQ(times[1]->attributes.at("Value"), "1");
   ASSERT_EQ(infos.size(), 2u);
   EXPECT_EQ(infos[1]->attributes.at("Value"), "2.5");
+  // The frequency and the direction as Grid attributes (field data) of every
+  // grid of a mode, written exactly.
+  for (const XmlElement* grid : grids) {
+    if (grid->attributes.at("GridType") != "Uniform") continue;
+    EXPECT_EQ(attribute_names(*grid, "Grid"),
+              (std::vector<std::string>{"frequency_hz", "vertical"}));
+    EXPECT_EQ(attribute_names(*grid, "Node"), std::vector<std::string>{"mode_shape"});
+  }
+  std::vector<const XmlElement*> attributes;
+  collect(root, "Attribute", attributes);
+  std::vector<std::string> values;
+  for (const XmlElement* a : attributes)
+    if (a->attributes.at("Center") == "Grid") values.push_back(trim(a->children.at(0).text));
+  // mode 0 (wires, bars), mode 1 (wires, bars): frequency, vertical.
+  EXPECT_EQ(values, (std::vector<std::string>{"1.5", "1", "1.5", "1", "2.5", "0", "2.5", "0"}));
   EXPECT_THROW(
       write_modes_xdmf(m, "sub/modes.h5", "mesh.h5", frequencies, (dir / "modes.xdmf").string()),
       std::invalid_argument);
   std::filesystem::remove_all(dir);
+}
+
+// A mode is vertical when z dominates the contact wire's motion, lateral
+// when y does; the messenger's motion does not count.
+TEST(MeshOutput, ModeDirectionFromTheContactWire) {
+  const CatenaryMesh m = build_parametric(reference_design(2));
+  const std::size_t n = m.nodes.size();
+  std::vector<bool> on_contact(n, false);
+  for (const auto& w : m.wires)
+    if (w.kind == pcsim::catenary::WireKind::contact)
+      for (int i : w.nodes) on_contact[i] = true;
+  std::vector<double> vertical(3 * n, 0.0), lateral(3 * n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    // Contact wire: z 1 and y 0.5 (vertical), or the reverse; elsewhere the
+    // other direction, ten times larger.
+    vertical[3 * i + 2] = on_contact[i] ? 1.0 : 0.0;
+    vertical[3 * i + 1] = on_contact[i] ? 0.5 : 10.0;
+    lateral[3 * i + 1] = on_contact[i] ? 1.0 : 0.0;
+    lateral[3 * i + 2] = on_contact[i] ? 0.5 : 10.0;
+  }
+  EXPECT_EQ(pcsim::output::modes_vertical(m, {vertical, lateral, vertical}),
+            (std::vector<long>{1, 0, 1}));
 }

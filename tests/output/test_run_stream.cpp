@@ -64,6 +64,7 @@ StepRecord record(std::size_t i) {
   r.contact_force = {100 + t, 200 + t};
   r.contact_x = {5 + 80 * t, 25 + 80 * t};
   r.wire_z = {5.3 + t, 5.4 + t};
+  r.head_z = {5.301 + t, 5.401 + t};
   r.q = {{t, 2 * t}, {3 * t, 4 * t, 5 * t}};
   r.support_z = {5.3 + t, 5.31 + t, 5.32 + t, 5.33 + t};
   for (int d = 0; d < 6; ++d) r.dropper_force.push_back(d + t);
@@ -220,10 +221,48 @@ TEST(RunStream, MemoryDoesNotGrowWithTheRun) {
   EXPECT_EQ(read(file, "/time").size(), steps);
 }
 
+// The pantographs of the snapshots (SnapshotsAreOneDatasetWithViewsForXdmf):
+// head and contact point of each, their views, lines and zero displacement.
+void check_pantograph_points(const std::string& file) {
+  std::vector<hsize_t> dims;
+  const auto points = read(file, "/snapshots/pantograph_points", &dims);
+  ASSERT_EQ(dims, (std::vector<hsize_t>{3, 4, 3}));
+  for (std::size_t k = 0; k < 3; ++k) {
+    const StepRecord r = record(k);
+    const double* row = &points[12 * k];
+    // Pantograph 0 is over the wire (y = x + 0.5 there, to rounding: 1e-12 m
+    // is a few ulps of 10 m); pantograph 1 beyond its end (y = 0).
+    const std::vector<double> expected = {r.contact_x[0],
+                                          r.contact_x[0] + 0.5,
+                                          r.head_z[0],
+                                          r.contact_x[0],
+                                          r.contact_x[0] + 0.5,
+                                          r.wire_z[0],
+                                          r.contact_x[1],
+                                          0.0,
+                                          r.head_z[1],
+                                          r.contact_x[1],
+                                          0.0,
+                                          r.wire_z[1]};
+    for (std::size_t i = 0; i < 12; ++i) EXPECT_NEAR(row[i], expected[i], 1e-12) << k << " " << i;
+    const auto view = read(file, "/snapshots/xdmf/pantograph_points_" + std::to_string(k), &dims);
+    EXPECT_EQ(dims, (std::vector<hsize_t>{4, 3}));
+    EXPECT_EQ(view, std::vector<double>(row, row + 12));
+    EXPECT_EQ(read(file, "/snapshots/xdmf/contact_force_" + std::to_string(k)), r.contact_force);
+  }
+  EXPECT_EQ(read(file, "/snapshots/xdmf/pantograph_cells", &dims),
+            (std::vector<double>{0, 1, 2, 3}));
+  EXPECT_EQ(dims, (std::vector<hsize_t>{2, 2}));
+  EXPECT_EQ(read(file, "/snapshots/xdmf/pantograph_displacement", &dims),
+            std::vector<double>(12, 0.0));
+}
+
 TEST(RunStream, SnapshotsAreOneDatasetWithViewsForXdmf) {
   TempDir dir;
   const std::string file = (dir.path / "results.h5").string();
-  const RunLayout l = layout(true);
+  RunLayout l = layout(true);
+  // The contact wire: nodes 0-4 in a line, where y = x + 0.5.
+  l.contact_segments = {{0, 1}, {1, 2}, {2, 3}, {3, 4}};
   {
     RunStream stream(file, settings(), l, provenance());
     for (std::size_t i = 0; i < 3; ++i) {
@@ -248,6 +287,7 @@ TEST(RunStream, SnapshotsAreOneDatasetWithViewsForXdmf) {
   }
   EXPECT_EQ(read(file, "/snapshots/contact_force", &dims)[2 * 2 + 1], record(2).contact_force[1]);
   EXPECT_EQ(dims, (std::vector<hsize_t>{3, 2}));
+  check_pantograph_points(file);
 }
 
 // A restart continues a copy of the earlier results.h5: what came after the
@@ -287,8 +327,10 @@ TEST(RunStream, RestartKeepsTheCheckpointsRows) {
   ASSERT_EQ(time.size(), 9u);
   for (std::size_t i = 0; i < 9; ++i) EXPECT_EQ(time[i], record(i).t);
   EXPECT_EQ(read(file, "/snapshots/time").size(), 2u);
-  EXPECT_TRUE(exists(file, "/snapshots/xdmf/displacement_1"));
-  EXPECT_FALSE(exists(file, "/snapshots/xdmf/displacement_2"));
+  for (const char* view : {"displacement", "pantograph_points", "contact_force"}) {
+    EXPECT_TRUE(exists(file, std::string("/snapshots/xdmf/") + view + "_1")) << view;
+    EXPECT_FALSE(exists(file, std::string("/snapshots/xdmf/") + view + "_2")) << view;
+  }
   EXPECT_FALSE(exists(file, "/pantographs/front/contact_force_filtered"));
   // Fewer rows than the checkpoint needs: refused.
   EXPECT_THROW(RunStream(file, settings(), l, 20, 2, provenance()), std::exception);

@@ -29,9 +29,10 @@ struct EnergyBalance {
 
 EnergyBalance energy_balance(const EnergyHistory& h);
 
-// energy.h5 (datasets with units) in the file 'path'; returns the summary's
-// "energy" entry.
+// energy.h5 (datasets with units, the provenance as root attributes:
+// provenance.hpp) in the file 'path'; returns the summary's "energy" entry.
 nlohmann::json write_energy_results(const std::string& path, const EnergyHistory& h,
-                                    const EnergyBalance& b);
+                                    const EnergyBalance& b,
+                                    const nlohmann::json& provenance = nlohmann::json());
 
 }  // namespace pcsim::output

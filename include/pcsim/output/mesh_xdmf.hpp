@@ -1,7 +1,9 @@
 // Writes a CatenaryMesh (at given node positions) to HDF5 + XDMF for
 // ParaView: the wires (cable elements) and the bars (droppers, stitch wires,
 // ...) are separate grids of 2-node Polyline cells; the point masses are a
-// Polyvertex grid. The XDMF refers to the .h5 by its file name only, so the
+// Polyvertex grid. Every grid carries the same node attributes (displacement,
+// node_wire, fixed_mask, point_mass, the extra fields), so that ParaView can
+// colour every block by any of them. The XDMF refers to the .h5 by its file name only, so the
 // two files must stay in the same folder (which can then be moved).
 //
 // HDF5 layout (n nodes, e cable elements, b bars; ints are 64-bit):
@@ -54,25 +56,33 @@ void write_mesh_h5_xdmf(const catenary::CatenaryMesh& mesh,
 // XDMF for mode shapes: a Temporal collection (time = mode number 0, 1, ...)
 // whose every step holds the wires and bars grids of the mesh file written by
 // write_mesh_h5_xdmf (mesh_h5_name: topology and /nodes/position) with a node
-// vector attribute 'mode_shape' = modes_h5_name:/shapes/mode_<m> (n x 3) and
-// an Information 'frequency_hz'. Both names are bare file names in the folder
-// of xdmf_path; modes whose shape dataset is absent from the modes file are
-// left out. Throws std::invalid_argument for a name with a '/', and
-// pcsim::SolverError if the files cannot be read or written.
+// vector attribute 'mode_shape' = modes_h5_name:/shapes/mode_<m> (n x 3), and
+// as Grid attributes (VTK field data, which ParaView shows) the scalar
+// 'frequency_hz' and, if 'vertical' has an entry for the mode, the integer
+// 'vertical' (1: vertical mode, 0: lateral; modes_vertical(),
+// catenary_results.hpp); also an Information 'frequency_hz'. Both names are
+// bare file names in the folder of xdmf_path; modes whose shape dataset is
+// absent from the modes file are left out. Throws std::invalid_argument for a
+// name with a '/', and pcsim::SolverError if the files cannot be read or written.
 void write_modes_xdmf(const catenary::CatenaryMesh& mesh, const std::string& modes_h5_name,
                       const std::string& mesh_h5_name, const std::vector<double>& frequencies_hz,
-                      const std::string& xdmf_path);
+                      const std::string& xdmf_path, const std::vector<long>& vertical = {});
 
 // XDMF for a time series of field snapshots: a Temporal collection (time in s)
 // of the wires and bars grids of mesh_h5_name (the static configuration) with
 // a node vector attribute 'displacement' =
 // snapshots_h5_name:/snapshots/xdmf/displacement_<k> (n x 3), the displacement
-// from that configuration (ParaView: Warp By Vector animates the wires). In a
-// run's results.h5 these are HDF5 virtual datasets, views of row k of
-// /snapshots/displacement (VTK's XDMF3 reader reads no HyperSlab items).
+// from that configuration (ParaView: Warp By Vector animates the wires), and,
+// with pantographs > 0, a grid 'pantographs': for each pantograph a line from
+// its head to its contact point (points /snapshots/xdmf/pantograph_points_<k>,
+// cells /snapshots/xdmf/pantograph_cells), the node vector 'displacement'
+// (zero: /snapshots/xdmf/pantograph_displacement) and the cell scalar
+// 'contact_force' (/snapshots/xdmf/contact_force_<k>). In a run's results.h5
+// the per-snapshot datasets are HDF5 virtual datasets, views of row k of
+// /snapshots/<name> (VTK's XDMF3 reader reads no HyperSlab items).
 void write_snapshots_xdmf(const catenary::CatenaryMesh& mesh, const std::string& mesh_h5_name,
                           const std::string& snapshots_h5_name, const std::vector<double>& times,
-                          const std::string& xdmf_path);
+                          const std::string& xdmf_path, std::size_t pantographs = 0);
 
 // Design positions of every node, 3 per node (for write_mesh_h5_xdmf).
 std::vector<double> design_positions(const catenary::CatenaryMesh& mesh);

@@ -10,6 +10,7 @@
 
 #include <hdf5.h>
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -36,6 +37,9 @@ struct RunLayout {
   bool energy = false;                   // E(t) and the powers (output.energy)
   bool snapshots = false;                // field snapshots kept
   std::vector<double> static_positions;  // 3 per node: snapshots store the displacement from it
+  // Node pairs of the contact wires' elements: a snapshot puts each contact
+  // point on them (its y; none: y = 0).
+  std::vector<std::array<int, 2>> contact_segments;
 };
 
 // The energy balance's values at a step (layout.energy; energy_results.hpp).
@@ -62,7 +66,8 @@ class RunStream {
   // One accepted step (buffered); energy: only read with layout.energy.
   void append(const contact::StepRecord& record, const EnergySample& energy = {});
   // A field snapshot at the step appended last: node positions (3 per node)
-  // and that step's pantograph positions and contact forces (written now).
+  // and that step's pantograph positions and contact forces, the points of
+  // every pantograph's head and contact point (written now).
   void append_snapshot(const std::vector<double>& positions, const contact::StepRecord& record);
   // Writes the buffered rows and flushes the file to disk.
   void flush();
@@ -89,6 +94,8 @@ class RunStream {
   void open_snapshot_series(bool create, std::size_t pantographs);
   void reopen(const std::string& path, std::size_t records, std::size_t snapshots);
   void stamp(const RunSettings& settings);
+  std::vector<double> pantograph_points(const std::vector<double>& positions,
+                                        const contact::StepRecord& record) const;
 
   RunLayout layout_;
   hid_t file_ = -1;
