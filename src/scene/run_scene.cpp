@@ -192,6 +192,7 @@ RunScene load_run_scene(const InputNode& scene, const RunSceneOptions& options) 
         catenary::kModalCutoffMargin * catenary::doppler_frequency(run.cutoff_hz, run.speed, c);
   }
   check_time_step(scene, run, options.command_line_dt ? "-ts_dt" : "simulation.dt");
+  check_filter_edges(scene, run);
   if (run.window) check_window(scene, run);
   return run;
 }

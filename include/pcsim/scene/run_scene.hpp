@@ -94,6 +94,10 @@ RunScene load_run_scene(const InputNode& scene, const RunSceneOptions& options =
 // along the line, spacing) and the time step (run_scene_checks.cpp).
 void check_pantograph_positions(const InputNode& scene, RunScene& run);
 void check_time_step(const InputNode& scene, RunScene& run, const std::string& dt_key);
+// Warns when a pantograph starts or ends within the contact-force filter's
+// transient length (3 / cutoff_hz of travel) of the analysis section
+// (run_scene_edges.cpp).
+void check_filter_edges(const InputNode& scene, RunScene& run);
 // The 'window' section (run_window.cpp): its keys; the builder of the
 // window's mesh from the line's design (a parametric line of identical spans,
 // longer than the window; fills line_spans and span_length); and, once the
