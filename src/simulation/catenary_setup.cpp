@@ -2,6 +2,7 @@
 
 #include <petsctime.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -50,7 +51,23 @@ catenary::ModalData compute_data(const Context& ctx, const simulation::StaticCon
   assembly::CatenarySystem system(ctx.comm, statics.mesh, 0, &statics.node_owner);
   Vec x = system.create_vector();
   assembly::set_state_from_node_values(system, statics.result.node_values, x);
-  auto data = simulation::compute_modal_data(system, x, cutoff_hz, full_shapes);
+  PetscLogDouble start;
+  PetscTime(&start);
+  // A line per chunk of modes: how many, the time so far and the ETA (the
+  // chunks are about equal in modes and cost).
+  const auto progress = [&](long done, long total) {
+    PetscLogDouble now;
+    PetscTime(&now);
+    const double elapsed = now - start;
+    if (done == 0)
+      print0(ctx, "  modes: %ld below %.1f Hz to compute (dropper shapes and factor: %.1f s)\n",
+             total, cutoff_hz, elapsed);
+    else
+      print0(ctx, "  modes: %ld of %ld (%.0f%%), %.1f s, ETA %.0f s\n", done, total,
+             100.0 * done / std::max(total, 1L), elapsed,
+             done < total ? elapsed * (total - done) / done : 0.0);
+  };
+  auto data = simulation::compute_modal_data(system, x, cutoff_hz, full_shapes, progress);
   PCSIM_PETSC(VecDestroy(&x));
   return data;
 }

@@ -179,7 +179,7 @@ std::vector<double> row_major(const Matrix& A) {
 }  // namespace
 
 ModalData compute_modal_data(assembly::CatenarySystem& system, Vec x, double max_frequency_hz,
-                             bool full_shapes) {
+                             bool full_shapes, const ModalProgress& progress) {
   PetscLogDouble t0, t1;
   PetscTime(&t0);
   const auto& mesh = system.mesh();
@@ -203,8 +203,8 @@ ModalData compute_modal_data(assembly::CatenarySystem& system, Vec x, double max
     if (shapes) mass_products.push_back(shapes->mass_products(phi));
   };
   const double omega_max = 2 * M_PI * max_frequency_hz;
-  data.max_relative_residual =
-      complete ? stream_all_modes_dense(op, sink) : stream_modes(op, omega_max * omega_max, sink);
+  data.max_relative_residual = complete ? stream_all_modes_dense(op, sink)
+                                        : stream_modes(op, omega_max * omega_max, sink, progress);
   const std::size_t n_rows = data.row_keys.size(), m = data.modes();
   data.mode_rows.resize(n_rows * m);
   for (std::size_t k = 0; k < m; ++k)

@@ -47,7 +47,9 @@ using ModeSink = std::function<void(double lambda, Vec phi)>;
 // Every eigenpair of K phi = lambda M phi with lambda in [0, lambda_max],
 // computed in chunks of the interval (options prefix -modal_); returns the
 // largest relative residual ||K phi - lambda M phi|| / (lambda ||M phi||).
-double stream_modes(const Operators& op, double lambda_max, const ModeSink& sink);
+// progress(done, total) after each chunk (may be empty).
+double stream_modes(const Operators& op, double lambda_max, const ModeSink& sink,
+                    const std::function<void(long, long)>& progress);
 
 // Every eigenpair of a small structure by a dense solve on every rank.
 double stream_all_modes_dense(const Operators& op, const ModeSink& sink);

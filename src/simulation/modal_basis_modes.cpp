@@ -134,16 +134,24 @@ double stream_interval(const Operators& op, double lo, double hi, const ModeSink
 // Chunks of about kChunkModes modes (equal widths in frequency: the modal
 // density of a tensioned line is about constant in f), so that SLEPc holds
 // one chunk's eigenvectors at a time.
-double stream_modes(const Operators& op, double lambda_max, const ModeSink& sink) {
+double stream_modes(const Operators& op, double lambda_max, const ModeSink& sink,
+                    const std::function<void(long, long)>& progress) {
   constexpr double kChunkModes = 800;
   const PetscInt count = count_below(op, lambda_max);
   const int chunks = std::max(1, static_cast<int>(std::ceil(count / kChunkModes)));
   const double omega_max = std::sqrt(lambda_max);
   double max_residual = 0, lo = 0;
+  long done = 0;
+  const ModeSink counting = [&](double lambda, Vec phi) {
+    ++done;
+    sink(lambda, phi);
+  };
+  if (progress) progress(0, count);
   for (int c = 1; c <= chunks; ++c) {
     const double hi = c == chunks ? lambda_max : std::pow(omega_max * c / chunks, 2);
-    max_residual = std::max(max_residual, stream_interval(op, lo, hi, sink));
+    max_residual = std::max(max_residual, stream_interval(op, lo, hi, counting));
     lo = std::nextafter(hi, 2 * hi);  // [lo, hi] intervals do not overlap
+    if (progress) progress(done, count);
   }
   return max_residual;
 }

@@ -14,6 +14,8 @@
 
 #include <petscvec.h>
 
+#include <functional>
+
 #include "pcsim/assembly/catenary_system.hpp"
 #include "pcsim/catenary/reduced_basis.hpp"
 
@@ -21,7 +23,11 @@ namespace pcsim::simulation {
 
 // 'x': the static configuration of 'system' (no extra unknowns). Collective;
 // the result on every rank.
+// progress(done, total): the modes computed so far, after each chunk of the
+// interval (not for 'every mode').
+using ModalProgress = std::function<void(long done, long total)>;
 catenary::ModalData compute_modal_data(assembly::CatenarySystem& system, Vec x,
-                                       double max_frequency_hz, bool full_shapes);
+                                       double max_frequency_hz, bool full_shapes,
+                                       const ModalProgress& progress = nullptr);
 
 }  // namespace pcsim::simulation
