@@ -3,6 +3,8 @@
 
 #include <chrono>
 #include <functional>
+#include <string>
+#include <vector>
 
 #include "pcsim/scene/composition.hpp"
 #include "pcsim/scene/run_scene.hpp"
@@ -124,7 +126,7 @@ TEST(YamlInput, PantographNames) {
   using pcsim::scene::pantograph_name_problem;
   for (const char* good : {"leading", "p 1", "trailing-2", "abs"})
     EXPECT_EQ(pantograph_name_problem(good), "");
-  for (const std::string bad :
-       {"", ".", "..", "a/", "/abs", "a/b", std::string("a\0b", 3), "t\tab"})
-    EXPECT_NE(pantograph_name_problem(bad), "") << bad;
+  const std::vector<std::string> bad = {
+      "", ".", "..", "a/", "/abs", "a/b", std::string("a\0b", 3), "t\tab"};
+  for (const auto& name : bad) EXPECT_NE(pantograph_name_problem(name), "") << name;
 }
