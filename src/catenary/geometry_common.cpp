@@ -1,4 +1,5 @@
 // Helpers shared by the geometry builders, and the mesh consistency check.
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -20,15 +21,33 @@ void require_nonnegative(const std::string& file, const std::string& key, double
     throw InputError(file, key, "must not be negative (got " + format_number(value) + ")");
 }
 
+void require_positive(const std::string& file, const std::string& key, double value,
+                      const Limit& limit) {
+  require_positive(file, key, value);
+  require_within(file, key, value, limit);
+}
+
+void require_nonnegative(const std::string& file, const std::string& key, double value,
+                         const Limit& limit) {
+  require_nonnegative(file, key, value);
+  require_within(file, key, value, limit);
+}
+
 void set_common(CatenaryMesh& mesh, const std::string& file, const std::string& name,
                 const Eigen::Vector3d& gravity, const RayleighDamping& damping) {
-  require_nonnegative(file, "damping.rayleigh_alpha", damping.alpha);
-  require_nonnegative(file, "damping.rayleigh_beta", damping.beta);
+  require_nonnegative(file, "damping.rayleigh_alpha", damping.alpha, limits::rayleigh_alpha);
+  require_nonnegative(file, "damping.rayleigh_beta", damping.beta, limits::rayleigh_beta);
   mesh.name = name;
   mesh.source_file = file;
   mesh.gravity = gravity;
   mesh.rayleigh_alpha = damping.alpha;
   mesh.rayleigh_beta = damping.beta;
+}
+
+long element_count(double length, double element_length) {
+  const double n = std::ceil(length / element_length - 1e-9);
+  if (!(n < 1e12)) return 1000000000000L;  // also NaN
+  return std::max(1L, static_cast<long>(n));
 }
 
 Eigen::Vector3d unit(const Eigen::Vector3d& a) {

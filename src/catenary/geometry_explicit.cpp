@@ -129,10 +129,11 @@ class ExplicitBuilder {
     w.name = in.name;
     if (mesh_.find_wire(w.name) >= 0) fail(key + ".name", "wire '" + w.name + "' is defined twice");
     w.kind = in.kind;
-    require_positive(in_.file, key + ".mass_per_length", in.mass_per_length);
-    require_positive(in_.file, key + ".EA", in.EA);
-    require_nonnegative(in_.file, key + ".EI", in.EI);
-    require_nonnegative(in_.file, key + ".tension", in.tension);
+    require_positive(in_.file, key + ".mass_per_length", in.mass_per_length,
+                     limits::mass_per_length);
+    require_positive(in_.file, key + ".EA", in.EA, limits::axial_stiffness);
+    require_nonnegative(in_.file, key + ".EI", in.EI, limits::bending_stiffness);
+    require_nonnegative(in_.file, key + ".tension", in.tension, limits::tension);
     w.mass_per_length = in.mass_per_length;
     w.EA = in.EA;
     w.EI = in.EI;
@@ -193,10 +194,11 @@ class ExplicitBuilder {
                                std::to_string(b.nodes[1]) +
                                " are at the same position: a bar needs a positive design length");
     b.kind = in.kind;
-    require_positive(in_.file, key + ".stiffness", in.stiffness);
-    require_nonnegative(in_.file, key + ".mass", in.mass);
+    require_positive(in_.file, key + ".stiffness", in.stiffness, limits::stiffness);
+    require_nonnegative(in_.file, key + ".mass", in.mass, limits::mass);
     if (in.unstressed_length)
-      require_positive(in_.file, key + ".unstressed_length", *in.unstressed_length);
+      require_positive(in_.file, key + ".unstressed_length", *in.unstressed_length,
+                       limits::distance);
     b.stiffness = in.stiffness;
     b.mass = in.mass;
     b.unstressed_length = in.unstressed_length.value_or(l);
@@ -226,7 +228,7 @@ class ExplicitBuilder {
       const ExplicitPointMass& p = in_.point_masses[i];
       const std::string key = indexed("point_masses", i);
       const int node = resolve(p.node, key + ".node");
-      require_positive(in_.file, key + ".mass", p.mass);
+      require_positive(in_.file, key + ".mass", p.mass, limits::mass);
       mesh_.point_masses.push_back({node, p.mass, p.label});
     }
     for (std::size_t i = 0; i < in_.springs.size(); ++i) {
@@ -235,7 +237,7 @@ class ExplicitBuilder {
       SupportSpring s;
       s.node = resolve(sp.node, key + ".node");
       if (sp.dof < 0 || sp.dof > 2) fail(key + ".dof", "springs act on a position DOF: x, y or z");
-      require_positive(in_.file, key + ".stiffness", sp.stiffness);
+      require_positive(in_.file, key + ".stiffness", sp.stiffness, limits::stiffness);
       s.dof = sp.dof;
       s.stiffness = sp.stiffness;
       mesh_.springs.push_back(s);
@@ -274,7 +276,7 @@ class ExplicitBuilder {
       for (const auto& seg : mesh_.tension_segments)
         if (seg.wire == w)
           fail(key + ".wire", "wire '" + in.wire + "' already has a tension segment");
-      if (in.tension) require_positive(in_.file, key + ".tension", *in.tension);
+      if (in.tension) require_positive(in_.file, key + ".tension", *in.tension, limits::tension);
       TensionSegment seg;
       seg.wire = w;
       seg.tension = in.tension.value_or(mesh_.wires[w].tension);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "pcsim/catenary/geometry.hpp"
+#include "pcsim/core/limits.hpp"
 
 namespace pcsim::catenary::detail {
 
@@ -14,10 +15,20 @@ namespace pcsim::catenary::detail {
 // the reasons of the design-file reader ("must be positive (got -5)").
 void require_positive(const std::string& file, const std::string& key, double value);
 void require_nonnegative(const std::string& file, const std::string& key, double value);
+// The same, and within the limit's bounds (pcsim/core/limits.hpp).
+void require_positive(const std::string& file, const std::string& key, double value,
+                      const Limit& limit);
+void require_nonnegative(const std::string& file, const std::string& key, double value,
+                         const Limit& limit);
 
 // Gravity, damping and the file name common to both kinds of design.
 void set_common(CatenaryMesh& mesh, const std::string& file, const std::string& name,
                 const Eigen::Vector3d& gravity, const RayleighDamping& damping);
+
+// Elements of length at most 'element_length' on a stretch of 'length'
+// (at least 1), saturated at 1e12 instead of overflowing: the size check
+// refuses such a mesh before anything is built.
+long element_count(double length, double element_length);
 
 // Unit vector of a, or zero for a zero vector.
 Eigen::Vector3d unit(const Eigen::Vector3d& a);

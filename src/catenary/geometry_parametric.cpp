@@ -30,17 +30,17 @@ void check_spans_and_heights(const ParametricDesign& in) {
     throw InputError(f, "spans.count", "must be at least 1 (got " + std::to_string(count) + ")");
   if (count > 100000)
     throw InputError(f, "spans.count", "is unreasonably large (got " + std::to_string(count) + ")");
-  require_positive(f, "spans.length", in.span_length);
-  require_positive(f, "system_height", in.system_height);
-  require_positive(f, "contact_wire_height", in.contact_wire_height);
-  require_nonnegative(f, in.presag_key, in.presag);
+  require_positive(f, "spans.length", in.span_length, limits::span_length);
+  require_positive(f, "system_height", in.system_height, limits::height);
+  require_positive(f, "contact_wire_height", in.contact_wire_height, limits::height);
+  require_nonnegative(f, in.presag_key, in.presag, limits::height);
   if (!(in.system_height > in.presag))
     throw InputError(f, "system_height",
                      "must exceed the contact-wire presag (" + format_number(in.presag) +
                          " m), got " + format_number(in.system_height) + " m");
-  require_nonnegative(f, "stagger", in.stagger);
-  require_nonnegative(f, "messenger_stagger", in.messenger_stagger);
-  require_positive(f, "element_length", in.element_length);
+  require_nonnegative(f, "stagger", in.stagger, limits::height);
+  require_nonnegative(f, "messenger_stagger", in.messenger_stagger, limits::height);
+  require_positive(f, "element_length", in.element_length, limits::element_length);
   if (in.element_length > in.span_length)
     throw InputError(f, "element_length",
                      "must not exceed the span length " + format_number(in.span_length) +
@@ -48,10 +48,10 @@ void check_spans_and_heights(const ParametricDesign& in) {
 }
 
 void check_cable(const std::string& file, const std::string& key, const CableDesign& p) {
-  require_positive(file, key + ".mass_per_length", p.mass_per_length);
-  require_positive(file, key + ".EA", p.EA);
-  require_nonnegative(file, key + ".EI", p.EI);
-  require_positive(file, key + ".tension", p.tension);
+  require_positive(file, key + ".mass_per_length", p.mass_per_length, limits::mass_per_length);
+  require_positive(file, key + ".EA", p.EA, limits::axial_stiffness);
+  require_nonnegative(file, key + ".EI", p.EI, limits::bending_stiffness);
+  require_positive(file, key + ".tension", p.tension, limits::tension);
 }
 
 // Dropper positions (and sags) of every span or of given spans.
@@ -113,10 +113,10 @@ void check_droppers(const ParametricDesign& in) {
     }
     check_positions(in, key, d.spans[i].positions, d.spans[i].sags);
   }
-  require_positive(f, "droppers.stiffness", d.stiffness);
-  require_nonnegative(f, "droppers.mass_per_length", d.mass_per_length);
-  require_nonnegative(f, "droppers.clamp_mass_messenger", d.clamp_mass_messenger);
-  require_nonnegative(f, "droppers.clamp_mass_contact", d.clamp_mass_contact);
+  require_positive(f, "droppers.stiffness", d.stiffness, limits::stiffness);
+  require_nonnegative(f, "droppers.mass_per_length", d.mass_per_length, limits::mass_per_length);
+  require_nonnegative(f, "droppers.clamp_mass_messenger", d.clamp_mass_messenger, limits::mass);
+  require_nonnegative(f, "droppers.clamp_mass_contact", d.clamp_mass_contact, limits::mass);
 }
 
 void check_stitch_wire(const std::string& file, const StitchWireDesign& st, double L) {
@@ -127,9 +127,10 @@ void check_stitch_wire(const std::string& file, const StitchWireDesign& st, doub
                          " m) so that the stitch wires of neighbouring supports do not "
                          "overlap (got " +
                          format_number(st.length) + " m)");
-  require_positive(file, "stitch_wire.tension", st.tension);
-  require_positive(file, "stitch_wire.mass_per_length", st.mass_per_length);
-  require_positive(file, "stitch_wire.EA", st.EA);
+  require_positive(file, "stitch_wire.tension", st.tension, limits::tension);
+  require_positive(file, "stitch_wire.mass_per_length", st.mass_per_length,
+                   limits::mass_per_length);
+  require_positive(file, "stitch_wire.EA", st.EA, limits::axial_stiffness);
 }
 
 void check_sections(const ParametricDesign& in) {
@@ -147,6 +148,8 @@ void check_sections(const ParametricDesign& in) {
                            format_number(in.span_length) + " m in magnitude (got " +
                            format_number(s.radius) + ")");
   }
+  for (std::size_t i = 0; i < in.sections.size(); ++i)
+    require_within(f, at("sections", i) + ".radius", in.sections[i].radius, limits::distance);
   if (!in.sections.empty() && total != in.span_count)
     throw InputError(f, "sections",
                      "the sections' spans add up to " + std::to_string(total) +
@@ -155,24 +158,27 @@ void check_sections(const ParametricDesign& in) {
   if (o.spans < 1)
     throw InputError(f, "overlap.spans",
                      "must be at least 1 (got " + std::to_string(o.spans) + ")");
-  require_positive(f, "overlap.raise", o.raise);
+  require_positive(f, "overlap.raise", o.raise, limits::height);
   if (!(o.anchor_raise >= o.raise))
     throw InputError(f, "overlap.anchor_raise",
                      "must be at least overlap.raise (" + format_number(o.raise) + " m), got " +
                          format_number(o.anchor_raise));
-  require_nonnegative(f, "overlap.separation", o.separation);
+  require_within(f, "overlap.anchor_raise", o.anchor_raise, limits::height);
+  require_nonnegative(f, "overlap.separation", o.separation, limits::height);
 }
 
 void check_tensioning(const ParametricDesign& in) {
   const TensioningDesign& t = in.tensioning;
   if (t.device == TensioningDeviceKind::spring)
-    require_positive(in.file, "tensioning.stiffness", t.stiffness);
+    require_positive(in.file, "tensioning.stiffness", t.stiffness, limits::stiffness);
   if (t.device != TensioningDeviceKind::weight) return;
   if (!(t.ratio >= 1))
     throw InputError(
         in.file, "tensioning.ratio",
         "must be at least 1 (wire tension / weight force), got " + format_number(t.ratio));
-  if (t.weight_mass) require_positive(in.file, "tensioning.weight_mass", *t.weight_mass);
+  require_within(in.file, "tensioning.ratio", t.ratio, Limit{100.0, ""});
+  if (t.weight_mass)
+    require_positive(in.file, "tensioning.weight_mass", *t.weight_mass, limits::mass);
   if (!t.weight_mass && !(in.gravity.norm() > 0))
     throw InputError(in.file, "tensioning.weight_mass",
                      "is required without gravity (the weight's mass cannot follow from it)");
@@ -181,17 +187,19 @@ void check_tensioning(const ParametricDesign& in) {
 void check_messenger_support(const std::string& f, const std::string& key,
                              const MessengerSupportDesign& s) {
   if (s.model == MessengerSupportModel::fixed) return;
-  require_positive(f, key + ".stiffness", s.stiffness);
-  if (s.model == MessengerSupportModel::spring_mass) require_positive(f, key + ".mass", s.mass);
+  require_positive(f, key + ".stiffness", s.stiffness, limits::stiffness);
+  if (s.model == MessengerSupportModel::spring_mass)
+    require_positive(f, key + ".mass", s.mass, limits::mass);
 }
 
 void check_steady_arm(const std::string& f, const std::string& key, const SteadyArmDesign& a) {
-  require_nonnegative(f, key + ".mass", a.mass);
+  require_nonnegative(f, key + ".mass", a.mass, limits::mass);
   if (a.model == SteadyArmModel::hinged) {
-    require_positive(f, key + ".length", a.length);
-    require_positive(f, key + ".axial_stiffness", a.axial_stiffness);
+    require_positive(f, key + ".length", a.length, limits::height);
+    require_positive(f, key + ".axial_stiffness", a.axial_stiffness, limits::stiffness);
   }
-  if (a.model == SteadyArmModel::spring) require_positive(f, key + ".stiffness", a.stiffness);
+  if (a.model == SteadyArmModel::spring)
+    require_positive(f, key + ".stiffness", a.stiffness, limits::stiffness);
 }
 
 void check_supports(const ParametricDesign& in) {
@@ -277,16 +285,16 @@ void check_irregularities(const ParametricDesign& in) {
       throw InputError(
           f, "irregularities.random.rms",
           "must be below a tenth of the system height (got " + format_number(r.rms) + " m)");
-    require_positive(f, "irregularities.random.wavelength_min", r.wavelength_min);
+    require_positive(f, "irregularities.random.wavelength_min", r.wavelength_min, limits::distance);
     if (!(r.wavelength_max > r.wavelength_min))
       throw InputError(f, "irregularities.random.wavelength_max",
                        "must exceed wavelength_min (" + format_number(r.wavelength_min) +
                            " m), got " + format_number(r.wavelength_max));
+    require_within(f, "irregularities.random.wavelength_max", r.wavelength_max, limits::distance);
     if (in.span_count * in.span_length / r.wavelength_min > 1e6)
       throw InputError(f, "irregularities.random.wavelength_min",
                        "too short for the line: more than a million components");
-    if (!std::isfinite(r.exponent))
-      throw InputError(f, "irregularities.random.exponent", "must be a finite number");
+    require_within(f, "irregularities.random.exponent", r.exponent, Limit{100.0, ""});
     if (r.seed < 0) throw InputError(f, "irregularities.random.seed", "must not be negative");
   }
   check_wear(in);

@@ -4,6 +4,7 @@
 // geometry_supports.cpp.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "geometry_line.hpp"
 #include "pcsim/core/format.hpp"
@@ -106,7 +107,8 @@ void SectionBuilder::make_stations() {
     auto keys = span_key_points(j);
     for (std::size_t k = 0; k + 1 < keys.size(); ++k) {
       const double a = keys[k].s, b = keys[k + 1].s;
-      int n = std::max(1, static_cast<int>(std::ceil((b - a) / in_.element_length - 1e-9)));
+      const int n = static_cast<int>(std::min<long>(
+          detail::element_count(b - a, in_.element_length), std::numeric_limits<int>::max()));
       stations_.push_back({j, a, keys[k].kind, keys[k].index});
       for (int i = 1; i < n; ++i)
         stations_.push_back({j, a + (b - a) * i / n, KeyKind::support, -2});

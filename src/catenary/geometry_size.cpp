@@ -27,7 +27,7 @@ void SectionBuilder::add_size(MeshSize& size) const {
     const auto keys = span_key_points(j);
     for (std::size_t k = 0; k + 1 < keys.size(); ++k) {
       const double a = keys[k].s, b = keys[k + 1].s;
-      stations += std::max(1L, static_cast<long>(std::ceil((b - a) / in_.element_length - 1e-9)));
+      stations += element_count(b - a, in_.element_length);
       droppers += keys[k].kind == KeyKind::dropper ? 1 : 0;
     }
   }
@@ -78,7 +78,10 @@ MeshSize mesh_size(const ParametricDesign& in) {
   CatenaryMesh unused;
   MeshSize size;
   size.file = in.file;
-  size.key = "spans.count";
+  // The key that makes the mesh large: the one of the larger factor, the
+  // elements per span or the spans (a memory error names it).
+  const bool fine = in.span_length / in.element_length > static_cast<double>(in.span_count);
+  size.key = fine ? "element_length" : "spans.count";
   for (std::size_t i = 0; i < line.sections.size(); ++i)
     detail::SectionBuilder(in, line, static_cast<int>(i), profile, unused).add_size(size);
   return size;

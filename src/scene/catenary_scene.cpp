@@ -20,10 +20,10 @@ ElasticityRequest read_elasticity(const InputNode& e, const CatenaryMesh& mesh) 
   if (mesh.contact_wire_list().empty() || mesh.support_x.size() < 2)
     e.fail("needs a parametric design (contact wire and supports)");
   ElasticityRequest r;
-  r.force = e.get_positive("force", 100.0);
+  r.force = e.get_positive("force", limits::force, 100.0);
   r.from_x = e.get_double("from_x");
   r.to_x = e.get_double("to_x");
-  r.step = e.get_positive("step", 1.0);
+  r.step = e.get_positive("step", limits::distance, 1.0);
   const double lo = mesh.support_x.front(), hi = mesh.support_x.back();
   if (!(r.from_x > lo && r.from_x < hi))
     e.fail_key("from_x",
@@ -68,7 +68,7 @@ void read_catenary_model(const InputNode& section, CatenaryScene& out) {
     if (f.is_scalar() && f.as_string() == "all")
       out.modal.max_frequency_hz = 0;  // every mode
     else
-      out.modal.max_frequency_hz = section.get_positive("max_frequency_hz");
+      out.modal.max_frequency_hz = section.get_positive("max_frequency_hz", limits::frequency);
   }
   if (section.has("modal")) read_modal_settings(section["modal"], out.modal);
 }
@@ -101,7 +101,7 @@ ModesSection load_modes_section(const InputNode& scene) {
   m.allow_only({"count", "max_frequency_hz"});
   r.count = static_cast<int>(m.get_int("count", 20));
   if (r.count < 1) m.fail_key("count", "must be at least 1");
-  r.max_frequency_hz = m.get_positive("max_frequency_hz", 0.0);
+  r.max_frequency_hz = m.get_positive("max_frequency_hz", limits::frequency, 0.0);
   return r;
 }
 

@@ -3,7 +3,10 @@
 #include "pcsim/scene/composition.hpp"
 
 #include <fstream>
+#include <map>
+#include <set>
 #include <sstream>
+#include <unordered_map>
 
 namespace pcsim {
 
@@ -69,20 +72,32 @@ void set_origin(InputSources& s, const std::string& path, const InputOrigin& ori
 }
 
 // 'layer' merged over 'base' at key path 'path' (maps key by key, anything
-// else replaced), recording the origin of what 'layer' gave.
+// else replaced), recording the origin of what 'layer' gave. Linear in the
+// number of keys (an index of the base's keys; force_insert appends without
+// yaml-cpp's linear search).
 YAML::Node merge(const YAML::Node& base, const YAML::Node& layer, const std::string& path,
                  InputSources& s, const InputOrigin& origin) {
   if (!(base.IsMap() && layer.IsMap())) {
     set_origin(s, path, origin);
     return YAML::Clone(layer);
   }
-  YAML::Node out = YAML::Clone(base);
+  std::unordered_map<std::string, YAML::Node> merged;  // the layer's keys, merged
+  std::unordered_map<std::string, YAML::Node> below;   // the base's keys
+  for (const auto& kv : base) below.emplace(kv.first.Scalar(), kv.second);
   for (const auto& kv : layer) {
-    const std::string key = kv.first.as<std::string>();
-    const YAML::Node below = base[key];
-    out[key] =
-        merge(below.IsDefined() ? below : YAML::Node(), kv.second, child_key(path, key), s, origin);
+    const std::string key = kv.first.Scalar();
+    const auto it = below.find(key);
+    merged[key] = merge(it != below.end() ? it->second : YAML::Node(), kv.second,
+                        child_key(path, key), s, origin);
   }
+  YAML::Node out(YAML::NodeType::Map);
+  for (const auto& kv : base) {
+    const auto it = merged.find(kv.first.Scalar());
+    out.force_insert(kv.first.Scalar(), it != merged.end() ? it->second : YAML::Clone(kv.second));
+  }
+  for (const auto& kv : layer)
+    if (below.find(kv.first.Scalar()) == below.end())
+      out.force_insert(kv.first.Scalar(), merged[kv.first.Scalar()]);
   return out;
 }
 
@@ -103,7 +118,55 @@ void defer(const InputOverride& o, std::size_t next, const YAML::Node& reference
   s.deferred[path].push_back(rest);
 }
 
-void apply_override(YAML::Node& root, const InputOverride& o, InputSources& s) {
+// The nodes of a tree by key path, for overrides: a map's children are
+// indexed when an override first passes through it, so that thousands of
+// overrides of one map cost O(n log n), not yaml-cpp's linear search each.
+struct TreeIndex {
+  std::map<std::string, YAML::Node> nodes;  // key path -> node
+  std::set<std::string> maps;               // key paths of the maps whose keys are indexed
+  // Forgets everything below 'path' (its value was replaced).
+  void forget_below(const std::string& path) {
+    auto below = [&](const std::string& k) {
+      return k.compare(0, path.size(), path) == 0 &&
+             (path.empty() || k[path.size()] == '.' || k[path.size()] == '[');
+    };
+    for (auto it = nodes.upper_bound(path);
+         it != nodes.end() && it->first.compare(0, path.size(), path) == 0;)
+      it = below(it->first) ? nodes.erase(it) : std::next(it);
+    maps.erase(path);
+    for (auto it = maps.upper_bound(path);
+         it != maps.end() && it->compare(0, path.size(), path) == 0;)
+      it = below(*it) ? maps.erase(it) : std::next(it);
+  }
+};
+
+// The child 'part' of the map (or null) 'node' at 'path'; an undefined node if absent.
+YAML::Node map_child(YAML::Node& node, const std::string& path, const std::string& part,
+                     TreeIndex& index) {
+  if (index.maps.insert(path).second && node.IsMap())
+    for (auto kv : node) index.nodes[child_key(path, kv.first.Scalar())] = kv.second;
+  const auto it = index.nodes.find(child_key(path, part));
+  return it == index.nodes.end() ? YAML::Node(YAML::NodeType::Undefined) : it->second;
+}
+
+// Sets the value at 'path' (the child 'part' of map 'node'): replaced in place
+// if present, else appended.
+YAML::Node set_map_child(YAML::Node& node, const std::string& parent, const std::string& part,
+                         const YAML::Node& value, TreeIndex& index) {
+  const std::string path = child_key(parent, part);
+  YAML::Node child = map_child(node, parent, part, index);
+  index.forget_below(path);
+  if (child.IsDefined()) {
+    child = value;
+    return child;
+  }
+  YAML::Node added = value;
+  node.force_insert(part, added);
+  index.nodes[path] = added;
+  return added;
+}
+
+void apply_override(YAML::Node& root, const InputOverride& o, InputSources& s, TreeIndex& index) {
   YAML::Node node(root);
   std::string path;
   for (std::size_t i = 0; i < o.path.size(); ++i) {
@@ -118,14 +181,27 @@ void apply_override(YAML::Node& root, const InputOverride& o, InputSources& s) {
         bad_override(o, "'" + path + "' has " + std::to_string(node.size()) +
                             (node.size() == 1 ? " entry" : " entries") + " (numbered from 0)");
       path += "[" + part + "]";
-      if (last) node[k] = YAML::Clone(o.value);
+      if (last) {
+        index.forget_below(path);
+        node[k] = YAML::Clone(o.value);
+      }
       child.reset(node[k]);
     } else {
       if (!node.IsMap() && !node.IsNull())
         bad_override(o, "'" + path + "' is a value, not a map of keys");
+      const std::string parent = path;
       path = child_key(path, part);
-      if (last) node[part] = YAML::Clone(o.value);
-      child.reset(node[part]);
+      if (last) {
+        set_map_child(node, parent, part, YAML::Clone(o.value), index);
+        set_origin(s, path, o.origin);
+        return;
+      }
+      child.reset(map_child(node, parent, part, index));
+      if (!child.IsMap() && !child.IsSequence() &&
+          !child.IsScalar()) {  // missing or empty: a new map
+        child.reset(set_map_child(node, parent, part, YAML::Node(YAML::NodeType::Map), index));
+        set_origin(s, path, o.origin);
+      }
     }
     if (last) {
       set_origin(s, path, o.origin);
@@ -146,12 +222,7 @@ struct Composed {
 };
 
 YAML::Node parse_root(const std::string& text, const std::string& file) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw InputError(file, "", std::string("malformed YAML: ") + e.what());
-  }
+  const YAML::Node root = parse_yaml_document(text, file);
   if (!root.IsMap()) throw InputError(file, "", "top level must be a map of keys");
   return root;
 }
@@ -189,25 +260,27 @@ Composed compose(const std::string& text, const std::string& file, std::vector<s
   YAML::Node layer(YAML::NodeType::Map);
   for (const auto& kv : root) {
     const std::string key = kv.first.as<std::string>();
-    if (key != "base" && key != "set") layer[key] = kv.second;
+    if (key != "base" && key != "set") layer.force_insert(key, kv.second);
   }
   out.root = merge(out.root, layer, "", out.sources, {file, file});
   out.sources.origins[""] = {file, file};
   if (root["set"].IsDefined()) {
     const YAML::Node set = root["set"];
     if (!set.IsMap()) throw InputError(file, "set", "must be a map of key paths to values");
+    TreeIndex index;
     for (const auto& kv : set) {
       const std::string key = kv.first.as<std::string>();
       InputOverride o = parse_override(key + "=x", {file, file + " (set " + key + ")"});
-      o.value = kv.second;
-      apply_override(out.root, o, out.sources);
+      o.value.reset(kv.second);  // rebinds (assignment would merge the whole file's node memory)
+      apply_override(out.root, o, out.sources, index);
     }
   }
   return out;
 }
 
 InputNode finish(Composed c, const std::vector<InputOverride>& overrides) {
-  for (const auto& o : overrides) apply_override(c.root, o, c.sources);
+  TreeIndex index;
+  for (const auto& o : overrides) apply_override(c.root, o, c.sources, index);
   auto sources = std::make_shared<const InputSources>(std::move(c.sources));
   return InputNode(c.root, "", std::move(sources));
 }
@@ -234,6 +307,8 @@ InputOverride parse_override(const std::string& assignment, const InputOrigin& o
   } catch (const YAML::Exception& e) {
     throw InputError(origin.label, o.key, "value is not valid YAML: " + std::string(e.what()));
   }
+  check_yaml_tree(o.value, origin.label, o.key);
+  if (o.value.IsNull()) throw InputError(origin.label, o.key, "needs a value, got an empty one");
   return o;
 }
 

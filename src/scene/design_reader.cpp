@@ -22,9 +22,11 @@ Eigen::Vector3d read_gravity(const InputNode& root) {
   InputNode g = root["gravity"];
   if (g.is_sequence()) {
     auto v = g.as_vec3();
+    for (double c : v)
+      if (!limit_violation(c, limits::gravity).empty()) g.fail(limit_violation(c, limits::gravity));
     return {v[0], v[1], v[2]};
   }
-  return {0.0, 0.0, -root.get_nonnegative("gravity")};
+  return {0.0, 0.0, -root.get_nonnegative("gravity", limits::gravity)};
 }
 
 RayleighDamping read_damping(const InputNode& root) {

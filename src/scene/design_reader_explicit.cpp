@@ -164,6 +164,9 @@ ExplicitDesign read_explicit_design(const InputNode& root) {
     if (!nodes.is_sequence()) nodes.fail("must be a list of [x, y, z] positions");
     for (std::size_t i = 0; i < nodes.size(); ++i) {
       const auto p = nodes.at(i).as_vec3();
+      for (double c : p)
+        if (!limit_violation(c, limits::distance).empty())
+          nodes.at(i).fail(limit_violation(c, limits::distance));
       d.nodes.emplace_back(p[0], p[1], p[2]);
     }
   }

@@ -17,8 +17,8 @@ pantograph::FlexibleDsa380Parameters read_flexible_dsa380(const InputNode& model
   if (model.has("material")) {
     const auto m = model["material"];
     m.allow_only({"density", "youngs_modulus"});
-    p.density = m.get_positive("density", p.density);
-    p.youngs_modulus = m.get_positive("youngs_modulus", p.youngs_modulus);
+    p.density = m.get_positive("density", limits::density, p.density);
+    p.youngs_modulus = m.get_positive("youngs_modulus", limits::youngs_modulus, p.youngs_modulus);
   }
   const long default_elements = model.get_int("elements_per_bar", 8);
   if (default_elements < 1) model.fail_key("elements_per_bar", "must be at least 1");
@@ -34,7 +34,7 @@ pantograph::FlexibleDsa380Parameters read_flexible_dsa380(const InputNode& model
       b.allow_only({"name", "r_ext"});
     else
       b.allow_only({"name", "r_ext", "r_int"});
-    p.r_ext[i] = b.get_positive("r_ext");
+    p.r_ext[i] = b.get_positive("r_ext", limits::pantograph_length);
     if (i < 7) {  // (2.29) needs r_int² = r_ext² − m/(ρπL) ≥ 0
       const double capacity = p.density * M_PI * p.r_ext[i] * p.r_ext[i] * length[i];
       if (r.m[i] > capacity)
@@ -42,7 +42,7 @@ pantograph::FlexibleDsa380Parameters read_flexible_dsa380(const InputNode& model
                                 " kg, less than the rigid model's " + std::to_string(r.m[i]) +
                                 " kg (2.29)");
     } else {
-      p.massless_r_int[i - 7] = b.get_nonnegative("r_int");
+      p.massless_r_int[i - 7] = b.get_nonnegative("r_int", limits::pantograph_length);
       if (!(p.massless_r_int[i - 7] < p.r_ext[i]))
         b.fail_key("r_int", "must be smaller than r_ext");
     }

@@ -104,15 +104,15 @@ pantograph::LumpedParameters load_lumped_parameters(const InputNode& model) {
     s.allow_only({"name", "mass", "stiffness", "damping"});
     pantograph::LumpedStage st;
     st.name = s.get_string("name", "stage" + std::to_string(i));
-    st.mass = s.get_positive("mass");
-    st.stiffness = s.get_nonnegative("stiffness");
-    st.damping = s.get_nonnegative("damping", 0.0);
+    st.mass = s.get_positive("mass", limits::mass);
+    st.stiffness = s.get_nonnegative("stiffness", limits::stiffness);
+    st.damping = s.get_nonnegative("damping", limits::damping, 0.0);
     p.stages.push_back(st);
   }
   if (model.has("uplift")) {
     const auto u = model["uplift"];
     u.allow_only({"force", "stage"});
-    p.uplift_force = u.get_double("force");
+    p.uplift_force = u.get_real("force", limits::force);
     const std::string stage = u.get_string("stage", p.stages.back().name);
     p.uplift_stage = -1;
     for (std::size_t i = 0; i < p.stages.size(); ++i)
@@ -123,9 +123,9 @@ pantograph::LumpedParameters load_lumped_parameters(const InputNode& model) {
   if (model.has("aerodynamic")) {
     const auto a = model["aerodynamic"];
     a.allow_only({"a", "b", "c"});
-    p.aero_a = a.get_double("a", 0.0);
-    p.aero_b = a.get_double("b", 0.0);
-    p.aero_c = a.get_double("c", 0.0);
+    p.aero_a = a.get_real("a", limits::coefficient, 0.0);
+    p.aero_b = a.get_real("b", limits::coefficient, 0.0);
+    p.aero_c = a.get_real("c", limits::coefficient, 0.0);
   }
   return p;
 }

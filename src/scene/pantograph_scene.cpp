@@ -44,8 +44,8 @@ TimeStudy load_time_study(const InputNode& st) {
   st.allow_only({"type", "schemes", "dt", "t_end", "hht_alpha", "record_every", "force", "linear"});
   TimeStudy s;
   s.force = load_force_history(st["force"]);
-  s.options.dt = st.get_positive("dt", 1e-3);
-  s.options.t_end = st.get_positive("t_end", 1.0);
+  s.options.dt = st.get_positive("dt", limits::time_step, 1e-3);
+  s.options.t_end = st.get_positive("t_end", limits::time, 1.0);
   s.options.hht_alpha = st.get_nonnegative("hht_alpha", 0.05);
   s.options.record_every = static_cast<int>(st.get_int("record_every", 1));
   if (st.has("schemes")) {
@@ -63,7 +63,8 @@ TimeStudy load_time_study(const InputNode& st) {
 
 // Log-spaced frequencies f_min_hz .. f_max_hz.
 std::vector<double> load_frequency_grid(const InputNode& st) {
-  const double f0 = st.get_positive("f_min_hz", 0.1), f1 = st.get_positive("f_max_hz", 20.0);
+  const double f0 = st.get_positive("f_min_hz", limits::frequency, 0.1),
+               f1 = st.get_positive("f_max_hz", limits::frequency, 20.0);
   const long n = st.get_int("points", 400);
   if (n < 2 || f1 <= f0) st.fail("need points >= 2 and f_max_hz > f_min_hz");
   std::vector<double> f(n);
@@ -78,12 +79,12 @@ SweepStudy load_sweep_study(const InputNode& st) {
   SweepStudy s;
   s.frequencies_hz = load_frequency_grid(st);
   s.amplitudes = st["amplitudes"].as_doubles();
-  s.dt = st.get_positive("dt", 1e-3);
+  s.dt = st.get_positive("dt", limits::time_step, 1e-3);
   s.scheme = st.get_choice("scheme", {"rk4", "hht"}, "rk4");
   s.hht_alpha = st.get_nonnegative("hht_alpha", 0.05);
-  s.settle_s = st.get_nonnegative("settle_s", 10.0);
-  s.settle_periods = st.get_nonnegative("settle_periods", 20.0);
-  s.measure_periods = st.get_positive("measure_periods", 5.0);
+  s.settle_s = st.get_nonnegative("settle_s", limits::time, 10.0);
+  s.settle_periods = st.get_nonnegative("settle_periods", Limit{1e6, ""}, 20.0);
+  s.measure_periods = st.get_positive("measure_periods", Limit{1e6, ""}, 5.0);
   s.linear = st.get_bool("linear", false);
   s.start_on_linear_steady_state = st.get_bool("start_on_linear_steady_state", true);
   return s;
@@ -98,10 +99,10 @@ CalibrationStudy load_calibration_study(const InputNode& st, const PantographMod
   if (st.has("start")) {
     const auto a = st["start"];
     a.allow_only({"kr", "kl", "l10", "I7"});
-    p.kr = a.get_positive("kr", p.kr);
-    p.kl = a.get_positive("kl", p.kl);
-    p.l10 = p.l20 = a.get_positive("l10", p.l10);
-    p.I[6] = a.get_positive("I7", p.I[6]);
+    p.kr = a.get_positive("kr", limits::rotational_stiffness, p.kr);
+    p.kl = a.get_positive("kl", limits::stiffness, p.kl);
+    p.l10 = p.l20 = a.get_positive("l10", limits::pantograph_length, p.l10);
+    p.I[6] = a.get_positive("I7", limits::inertia, p.I[6]);
   }
   return s;
 }
@@ -110,7 +111,7 @@ Study load_study(const InputNode& st, const std::string& type, const PantographM
   if (type == "time") return load_time_study(st);
   if (type == "modes") {
     st.allow_only({"type", "f_max_hz"});
-    return ModesStudy{st.get_nonnegative("f_max_hz", 0.0)};
+    return ModesStudy{st.get_nonnegative("f_max_hz", limits::frequency, 0.0)};
   }
   if (type == "frf") {
     st.allow_only({"type", "f_min_hz", "f_max_hz", "points"});
@@ -126,13 +127,13 @@ ForceHistory load_force_history(const InputNode& f) {
   const std::string type = f.get_choice("type", {"constant", "harmonic", "file"}, "constant");
   if (type == "constant") {
     f.allow_only({"type", "value"});
-    const double v = f.get_double("value");
+    const double v = f.get_real("value", limits::force);
     return [v](double) { return v; };
   }
   if (type == "harmonic") {
     f.allow_only({"type", "mean", "amplitude", "frequency_hz"});
-    const double m = f.get_double("mean"), a = f.get_double("amplitude"),
-                 w = 2 * M_PI * f.get_positive("frequency_hz");
+    const double m = f.get_real("mean", limits::force), a = f.get_real("amplitude", limits::force),
+                 w = 2 * M_PI * f.get_positive("frequency_hz", limits::frequency);
     return [m, a, w](double t) { return m + a * std::sin(w * t); };
   }
   f.allow_only({"type", "file"});
@@ -145,15 +146,15 @@ StudyScene load_pantograph_study_scene(const InputNode& scene) {
   StudyScene s;
   s.study_type = st.get_choice("type", {"time", "modes", "frf", "sweep", "calibrate"}, "");
   if (s.study_type.empty()) st.fail_key("type", "required key is missing");
-  s.speed = scene.get_nonnegative("speed_kmh", 0.0) / 3.6;
+  s.speed = scene.get_nonnegative("speed_kmh", limits::speed_kmh, 0.0) / 3.6;
   s.model = load_pantograph(scene["pantograph"], s.speed);
   const InputNode e = scene.has("equilibrium")
                           ? scene["equilibrium"]
                           : InputNode(YAML::Node(), scene.file(), "equilibrium");
   if (scene.has("equilibrium")) {
     e.allow_only({"contact_force", "working_height"});
-    s.contact_force = e.get_double("contact_force", 120.0);
-    s.working_height = e.get_double("working_height", 1.2);
+    s.contact_force = e.get_real("contact_force", limits::force, 120.0);
+    s.working_height = e.get_real("working_height", limits::pantograph_length, 1.2);
   }
   check_working_height(e, *s.model, s.contact_force, s.working_height, e.has("working_height"));
   s.study = load_study(st, s.study_type, *s.model);

@@ -15,7 +15,7 @@ void read_simulation(const InputNode& scene, RunScene& run, std::optional<double
   const auto& mesh = run.catenary.mesh;
   const InputNode sim = scene["simulation"];
   sim.allow_only({"speed_kmh", "end_x", "dt", "hht_alpha"});
-  run.speed = sim.get_positive("speed_kmh") / 3.6;
+  run.speed = sim.get_positive("speed_kmh", limits::speed_kmh) / 3.6;
   const double c = catenary::wave_speed(mesh.wires[mesh.contact_wire]);
   if (run.speed >= c)
     sim.fail_key(
@@ -23,7 +23,7 @@ void read_simulation(const InputNode& scene, RunScene& run, std::optional<double
         "speed " + format_number(run.speed * 3.6) +
             " km/h is not below the contact wire's wave speed sqrt(T (1 + T/EA) / rho) = " +
             format_number(c * 3.6) + " km/h");
-  run.dt = sim.get_positive("dt", 1e-3);
+  run.dt = sim.get_positive("dt", limits::time_step, 1e-3);
   if (dt) run.dt = *dt;
   run.hht_alpha = sim.get_nonnegative("hht_alpha", 0.1);
   if (run.hht_alpha > 1.0 / 3.0)
@@ -50,7 +50,7 @@ void read_pantograph(const InputNode& p, std::size_t i, RunScene& run) {
   if (pr.start_x < x_first || pr.start_x >= run.end_x)
     p.fail_key("start_x", "must lie on the line before simulation.end_x (" +
                               format_number(run.end_x) + " m), got " + format_number(pr.start_x));
-  pr.static_force = p.get_positive("static_force", 120.0);
+  pr.static_force = p.get_positive("static_force", limits::force, 120.0);
   pr.speed = run.speed;
   if (p.has("start") && p["start"].is_map()) {
     // start: {gap: g}: at rest g below the wire, full uplift, no contact force.
@@ -64,9 +64,10 @@ void read_pantograph(const InputNode& p, std::size_t i, RunScene& run) {
     const std::string start = p.get_choice("start", {"static", "ramp"}, i == 0 ? "static" : "ramp");
     pr.static_start = start == "static";
   }
-  pr.ramp_distance = p.get_positive("ramp_distance", 20.0);
+  pr.ramp_distance = p.get_positive("ramp_distance", limits::distance, 20.0);
   // The model states its default: a height above its base, or 0 (absolute heights).
-  pr.working_height = p.get_positive("working_height", model->default_working_height());
+  pr.working_height =
+      p.get_positive("working_height", limits::pantograph_length, model->default_working_height());
   if (pr.working_height > 0)  // else the head meets the wire wherever it is (lumped models)
     check_working_height(p, *model, pr.static_force, pr.working_height, p.has("working_height"));
   run.pantographs.push_back(std::move(pr));
@@ -86,7 +87,7 @@ void read_analysis(const InputNode& scene, RunScene& run) {
     if (run.analysis_from_span < 1 || run.analysis_to_span > n_spans ||
         run.analysis_from_span > run.analysis_to_span)
       a.fail("spans must satisfy 1 <= from_span <= to_span <= " + std::to_string(n_spans));
-    run.cutoff_hz = a.get_positive("cutoff_hz", 20.0);
+    run.cutoff_hz = a.get_positive("cutoff_hz", limits::frequency, 20.0);
   }
   run.analysis_from_x = mesh.support_x[run.analysis_from_span - 1];
   run.analysis_to_x = mesh.support_x[run.analysis_to_span];
@@ -128,7 +129,7 @@ void read_effects_and_output(const InputNode& scene, RunScene& run) {
   if (scene.has("contact")) {
     const InputNode c = scene["contact"];
     c.allow_only({"stiffness"});
-    run.contact_stiffness = c.get_positive("stiffness", 50000.0);
+    run.contact_stiffness = c.get_positive("stiffness", limits::stiffness, 50000.0);
   }
   if (scene.has("output")) {
     const InputNode o = scene["output"];
@@ -169,6 +170,7 @@ RunScene load_run_scene(const InputNode& scene, const RunSceneOptions& options) 
   const InputNode list = scene["pantographs"];
   if (!list.is_sequence() || list.size() == 0) list.fail("must be a non-empty list of pantographs");
   for (std::size_t i = 0; i < list.size(); ++i) read_pantograph(list.at(i), i, run);
+  check_pantograph_names(scene, run);
   check_pantograph_positions(scene, run);
   // A gap start is out of equilibrium on purpose; the coupled static equilibrium that
   // any static start solves would put that pantograph in contact too.

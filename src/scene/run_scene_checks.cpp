@@ -1,7 +1,10 @@
 // Checks of a run scene that need every pantograph or the time step
 // (pcsim/scene/run_scene.hpp): each names the scene file and the key.
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <unordered_map>
+#include <vector>
 
 #include "pcsim/core/format.hpp"
 #include "pcsim/scene/run_scene.hpp"
@@ -33,17 +36,40 @@ constexpr long kMinSectionSamples = 10;
 
 }  // namespace
 
+std::string pantograph_name_problem(const std::string& name) {
+  if (name.empty()) return "must not be empty";
+  if (name == "." || name == "..") return "must not be '" + name + "'";
+  if (name.find('/') != std::string::npos) return "must not contain '/'";
+  for (const char c : name)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      return "must not contain control characters";
+  return "";
+}
+
+void check_pantograph_names(const InputNode& scene, const RunScene& run) {
+  std::unordered_map<std::string, std::size_t> used;  // name -> first entry
+  used.reserve(run.pantographs.size());
+  for (std::size_t i = 0; i < run.pantographs.size(); ++i) {
+    const std::string& name = run.pantographs[i].name;
+    const std::string problem = pantograph_name_problem(name);
+    if (!problem.empty())
+      throw InputError(origin(scene, entry_key(i, "name")), entry_key(i, "name"),
+                       problem + " (got '" + name +
+                           "'; a name is one HDF5 group /pantographs/<name> of the results)");
+    const auto [it, first] = used.emplace(name, i);
+    if (!first)
+      throw InputError(origin(scene, entry_key(i, "name")), entry_key(i, "name"),
+                       "pantograph name '" + name + "' is already used by pantographs[" +
+                           std::to_string(it->second) + "] (names label the results)");
+  }
+}
+
 void check_pantograph_positions(const InputNode& scene, RunScene& run) {
   const auto& mesh = run.catenary.mesh;
   const double x_last = mesh.support_x.back();
   const double travel = run.end_x - run.pantographs.front().start_x;
   for (std::size_t i = 0; i < run.pantographs.size(); ++i) {
     const auto& p = run.pantographs[i];
-    for (std::size_t j = 0; j < i; ++j)
-      if (run.pantographs[j].name == p.name)
-        throw InputError(origin(scene, entry_key(i, "name")), entry_key(i, "name"),
-                         "pantograph name '" + p.name + "' is already used by pantographs[" +
-                             std::to_string(j) + "] (names label the results)");
     const double x_end = p.start_x + travel;
     if (x_end > x_last)
       throw InputError(origin(scene, entry_key(i, "start_x")), entry_key(i, "start_x"),
@@ -54,16 +80,23 @@ void check_pantograph_positions(const InputNode& scene, RunScene& run) {
                            "simulation.end_x = " +
                            format_number(run.end_x) + " m)");
   }
-  for (std::size_t i = 0; i < run.pantographs.size(); ++i)
-    for (std::size_t j = 0; j < i; ++j) {
-      const double gap = std::abs(run.pantographs[i].start_x - run.pantographs[j].start_x);
-      if (gap < kMinPantographSpacing)
-        run.warnings.push_back({origin(scene, entry_key(i, "start_x")), entry_key(i, "start_x"),
-                                "pantograph '" + run.pantographs[i].name + "' starts " +
-                                    format_number(gap) + " m from '" + run.pantographs[j].name +
-                                    "' (less than " + format_number(kMinPantographSpacing) +
-                                    " m: are both meant to be there?)"});
-    }
+  // Close neighbours: sorted by start (ties in list order), each pantograph
+  // against the one before it; one warning per pantograph, O(n log n).
+  std::vector<std::size_t> order(run.pantographs.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return run.pantographs[a].start_x < run.pantographs[b].start_x;
+  });
+  for (std::size_t k = 1; k < order.size(); ++k) {
+    const std::size_t i = std::max(order[k - 1], order[k]), j = std::min(order[k - 1], order[k]);
+    const double gap = std::abs(run.pantographs[i].start_x - run.pantographs[j].start_x);
+    if (gap < kMinPantographSpacing)
+      run.warnings.push_back({origin(scene, entry_key(i, "start_x")), entry_key(i, "start_x"),
+                              "pantograph '" + run.pantographs[i].name + "' starts " +
+                                  format_number(gap) + " m from '" + run.pantographs[j].name +
+                                  "' (less than " + format_number(kMinPantographSpacing) +
+                                  " m: are both meant to be there?)"});
+  }
 }
 
 void check_time_step(const InputNode& scene, RunScene& run, const std::string& dt_key) {

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <regex>
 #include <sstream>
+#include <unordered_map>
 
 #include "pcsim/scene/composition.hpp"
 
@@ -42,6 +43,67 @@ const InputOrigin& InputSources::origin_of(const std::string& key_path) const {
   return unknown;
 }
 
+namespace {
+
+std::string line_of(const YAML::Mark& mark) {
+  return mark.is_null() ? std::string() : "line " + std::to_string(mark.line + 1);
+}
+
+// Walks a parsed tree once: every map key a plain scalar given once, every
+// value present (an empty 'dt:' would otherwise read as "use the default").
+// Linear in the size of the tree (one hash set per map).
+void check_tree(const YAML::Node& node, const std::string& path, const std::string& file) {
+  if (node.IsMap()) {
+    std::unordered_map<std::string, YAML::Mark> seen;
+    seen.reserve(node.size());
+    for (const auto& kv : node) {
+      if (!kv.first.IsScalar())
+        throw InputError(file, path,
+                         "has a key that is not a plain name (" + line_of(kv.first.Mark()) + ")");
+      const std::string key = kv.first.Scalar();
+      const std::string child = path.empty() ? key : path + "." + key;
+      const auto first = seen.emplace(key, kv.first.Mark());
+      if (!first.second)
+        throw InputError(file, child,
+                         "duplicate key (first at " + line_of(first.first->second) + ", again at " +
+                             line_of(kv.first.Mark()) + "): give each key once");
+      check_tree(kv.second, child, file);
+    }
+  } else if (node.IsSequence()) {
+    for (std::size_t i = 0; i < node.size(); ++i)
+      check_tree(node[i], path + "[" + std::to_string(i) + "]", file);
+  } else if (node.IsNull() && !path.empty()) {
+    throw InputError(file, path,
+                     "has no value (an empty value is not the default: give a value or "
+                     "remove the key)");
+  }
+}
+
+}  // namespace
+
+void check_yaml_tree(const YAML::Node& root, const std::string& file, const std::string& key) {
+  check_tree(root, key, file);
+}
+
+YAML::Node parse_yaml_document(const std::string& text, const std::string& file) {
+  std::vector<YAML::Node> documents;
+  try {
+    documents = YAML::LoadAll(text);
+  } catch (const YAML::Exception& e) {
+    throw InputError(file, "", std::string("malformed YAML: ") + e.what());
+  }
+  if (documents.size() > 1) {
+    const std::string where = line_of(documents[1].Mark());
+    throw InputError(file, "",
+                     "holds more than one YAML document (a second one after '---'" +
+                         (where.empty() ? std::string() : ", " + where) +
+                         "): a file is one document");
+  }
+  YAML::Node root = documents.empty() ? YAML::Node() : documents.front();
+  check_tree(root, "", file);
+  return root;
+}
+
 InputNode::InputNode(YAML::Node node, std::string file, std::string path)
     : node_(std::move(node)), path_(std::move(path)) {
   auto sources = std::make_shared<InputSources>();
@@ -53,21 +115,16 @@ InputNode::InputNode(YAML::Node node, std::string file, std::string path)
 InputNode InputNode::load_file(const std::string& path) {
   const std::string why = unreadable_file_reason(path);
   if (!why.empty()) throw InputError(path, "", "cannot open file: " + why);
-  try {
-    YAML::Node root = YAML::LoadFile(path);
-    if (!root.IsMap()) throw InputError(path, "", "top level must be a map of keys");
-    return InputNode(root, path, "");
-  } catch (const YAML::Exception& e) {
-    throw InputError(path, "", std::string("malformed YAML: ") + e.what());
-  }
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  YAML::Node root = parse_yaml_document(text.str(), path);
+  if (!root.IsMap()) throw InputError(path, "", "top level must be a map of keys");
+  return InputNode(root, path, "");
 }
 
 InputNode InputNode::load_string(const std::string& text, const std::string& file) {
-  try {
-    return InputNode(YAML::Load(text), file, "");
-  } catch (const YAML::Exception& e) {
-    throw InputError(file, "", std::string("malformed YAML: ") + e.what());
-  }
+  return InputNode(parse_yaml_document(text, file), file, "");
 }
 
 std::string InputNode::directory() const {
@@ -95,8 +152,13 @@ std::string InputNode::path_value(const std::string& key) const {
 InputNode InputNode::load_referenced(const std::string& key) const {
   const std::string file = get_file_path(key);
   const auto it = sources_->deferred.find(child_path(key));
-  return load_composed(file,
-                       it == sources_->deferred.end() ? std::vector<InputOverride>{} : it->second);
+  if (it != sources_->deferred.end()) return load_composed(file, it->second);
+  const auto cached = sources_->referenced.find(file);
+  if (cached != sources_->referenced.end())
+    return InputNode(cached->second.first, "", cached->second.second);
+  const InputNode loaded = load_composed(file);
+  sources_->referenced[file] = {loaded.raw(), loaded.sources_};
+  return loaded;
 }
 
 std::string InputNode::child_path(const std::string& key) const {
@@ -235,6 +297,35 @@ double InputNode::get_nonnegative(const std::string& key) const {
 }
 double InputNode::get_nonnegative(const std::string& key, double fallback) const {
   return has(key) ? get_nonnegative(key) : fallback;
+}
+
+double InputNode::get_positive(const std::string& key, const Limit& limit) const {
+  const double v = get_positive(key);
+  const std::string why = limit_violation(v, limit);
+  if (!why.empty()) fail_key(key, why);
+  return v;
+}
+double InputNode::get_positive(const std::string& key, const Limit& limit, double fallback) const {
+  return has(key) ? get_positive(key, limit) : fallback;
+}
+double InputNode::get_nonnegative(const std::string& key, const Limit& limit) const {
+  const double v = get_nonnegative(key);
+  const std::string why = limit_violation(v, limit);
+  if (!why.empty()) fail_key(key, why);
+  return v;
+}
+double InputNode::get_nonnegative(const std::string& key, const Limit& limit,
+                                  double fallback) const {
+  return has(key) ? get_nonnegative(key, limit) : fallback;
+}
+double InputNode::get_real(const std::string& key, const Limit& limit) const {
+  const double v = get_double(key);
+  const std::string why = limit_violation(v, limit);
+  if (!why.empty()) fail_key(key, why);
+  return v;
+}
+double InputNode::get_real(const std::string& key, const Limit& limit, double fallback) const {
+  return has(key) ? get_real(key, limit) : fallback;
 }
 
 std::string InputNode::get_choice(const std::string& key,

@@ -145,6 +145,49 @@ analysis: {from_span: 2, to_span: 3}
 window: {spans_behind: 1, spans_ahead: 1}
 output: {energy: true}
 YAML
+# Issue 22 (a fuzzer's inputs): duplicate keys, a second document, empty
+# values; pantograph names that are not one HDF5 link name; magnitudes no
+# line or pantograph has; keys a message must name.
+run_scene dup-key "$one" ", dt: 0.001, dt: 0.002"
+sed 's/^element_length: .*/&\nelement_length: 1.0/' "$three" > "$w/dup-design.yaml"
+sed 's/mass: 7.2, stiffness: 4200/mass: 7.2, mass: 3, stiffness: 4200/' "$two_mass" > "$w/dup-model.yaml"
+run_scene dup-panto "  - {name: p, model: dup-model.yaml, start_x: 13.1}"
+run_scene two-docs "$one"
+printf -- '---\nname: other\n' >> "$w/two-docs.yaml"
+run_scene empty-dt "$one"
+sed -i 's/^simulation: {speed_kmh: 200, end_x: 80}/simulation:\n  speed_kmh: 200\n  end_x: 80\n  dt:/' "$w/empty-dt.yaml"
+sed 's/damping: 10}/damping: }/' "$two_mass" > "$w/empty-model.yaml"
+run_scene empty-panto "  - {name: p, model: empty-model.yaml, start_x: 13.1}"
+run_scene name-slash "  - {name: a, model: $two_mass, start_x: 13.1}
+  - {name: a/, model: $two_mass, start_x: 3.1}"
+run_scene name-abs "  - {name: abs, model: $two_mass, start_x: 13.1}
+  - {name: /abs, model: $two_mass, start_x: 3.1}"
+run_scene name-dot "  - {name: ., model: $two_mass, start_x: 13.1}"
+run_scene name-empty "  - {name: '', model: $two_mass, start_x: 13.1}"
+sed 's/tension: 20000.0/tension: 1.0e300/' "$three" > "$w/tension-design.yaml"
+sed 's/EI: 195.0/EI: 1.0e300/' "$three" > "$w/ei-design.yaml"
+sed 's/^element_length: .*/element_length: 5.0e-19/' "$three" > "$w/tiny-element-design.yaml"
+sed 's/^element_length: .*/element_length: 1.0e-4/' "$S/meshes/en50318-reference.yaml" > "$w/fine-design.yaml"
+sed 's/rayleigh_alpha: 0.0125/rayleigh_alpha: 1.0e300/' "$three" > "$w/alpha-design.yaml"
+sed 's/rayleigh_beta: 1.0e-4/rayleigh_beta: 1.0e300/' "$three" > "$w/beta-design.yaml"
+grep -q "rayleigh_alpha: 1.0e300" "$w/alpha-design.yaml"
+grep -q "rayleigh_beta: 1.0e300" "$w/beta-design.yaml"
+grep -q "tension: 1.0e300" "$w/tension-design.yaml"
+grep -q "EI: 1.0e300" "$w/ei-design.yaml"
+grep -q "element_length: 5.0e-19" "$w/tiny-element-design.yaml"
+grep -q "element_length: 1.0e-4" "$w/fine-design.yaml"
+for d in tension ei tiny-element fine alpha beta; do catenary_scene "$d" "$d-design.yaml"; done
+run_scene big-force "  - {name: p, model: $two_mass, start_x: 13.1, static_force: 18446744073709551616}"
+run_scene tiny-cutoff "$one" "" ", cutoff_hz: 5.0e-324"
+run_scene tiny-dt "$one" ", dt: 1.0e-300"
+run_scene huge-dt "$one" ", dt: 1.0e10"
+sed 's/mass: 7.2,/mass: 1.0e300,/' "$two_mass" > "$w/heavy-model.yaml"
+sed 's/damping: 90}/damping: 1.0e300}/' "$two_mass" > "$w/damped-model.yaml"
+sed 's/^\(  *\)L1: .*/\1L1: 50.0/' "$dsa" > "$w/long-l1-model.yaml"
+grep -q "L1: 50.0" "$w/long-l1-model.yaml"
+run_scene heavy "  - {name: p, model: heavy-model.yaml, start_x: 13.1}"
+run_scene damped "  - {name: p, model: damped-model.yaml, start_x: 13.1}"
+run_scene long-l1 "  - {name: p, model: long-l1-model.yaml, start_x: 13.1}"
 cat > "$w/study-high.yaml" << YAML
 name: study-high
 pantograph: {model: $dsa}
@@ -264,6 +307,33 @@ expect dsa-high 2 "dsa-high.yaml|key 'pantographs[0].working_height'|cannot be a
 expect study-high 2 "study-high.yaml|key 'equilibrium.working_height'|working height 3.5 m" yes \
   pantograph study-high.yaml
 
+# ---- issue 22: strict YAML, pantograph names, bounds, the keys messages name ----
+expect dup-key 2 "dup-key.yaml|key 'simulation.dt'|duplicate key" yes run dup-key.yaml
+expect dup-design 2 "dup-design.yaml|key 'element_length'|duplicate key" yes check dup-design.yaml
+expect dup-model 2 "dup-model.yaml|key 'stages[0].mass'|duplicate key" yes run dup-panto.yaml
+expect two-docs 2 "two-docs.yaml|more than one YAML document" yes run two-docs.yaml
+expect empty-dt 2 "empty-dt.yaml|key 'simulation.dt'|has no value" yes run empty-dt.yaml
+expect empty-model 2 "empty-model.yaml|key 'stages[0].damping'|has no value" yes run empty-panto.yaml
+expect set-empty 2 "command line --set simulation.dt=~|key 'simulation.dt'|has no value" yes \
+  run good-run.yaml --set simulation.dt=~
+expect name-slash 2 "name-slash.yaml|key 'pantographs[1].name'|must not contain '/'" yes run name-slash.yaml
+expect name-abs 2 "name-abs.yaml|key 'pantographs[1].name'|must not contain '/'" yes run name-abs.yaml
+expect name-dot 2 "name-dot.yaml|key 'pantographs[0].name'|must not be '.'" yes run name-dot.yaml
+expect name-empty 2 "name-empty.yaml|key 'pantographs[0].name'|must not be empty" yes run name-empty.yaml
+expect tension 2 "tension-design.yaml|key 'wires.contact.tension'|at most" yes static tension.yaml
+expect ei 2 "ei-design.yaml|key 'wires.contact.EI'|at most" yes modes ei.yaml
+expect tiny-element 2 "tiny-element-design.yaml|key 'element_length'|at least 0.0001 m" yes static tiny-element.yaml
+expect fine 2 "fine-design.yaml|key 'element_length'|too large for this machine" yes static fine.yaml
+expect alpha 2 "alpha-design.yaml|key 'damping.rayleigh_alpha'|at most" yes static alpha.yaml
+expect beta 2 "beta-design.yaml|key 'damping.rayleigh_beta'|at most" yes static beta.yaml
+expect big-force 2 "big-force.yaml|key 'pantographs[0].static_force'|at most" yes run big-force.yaml
+expect tiny-cutoff 2 "tiny-cutoff.yaml|key 'analysis.cutoff_hz'|at least 0.001 Hz" yes run tiny-cutoff.yaml
+expect tiny-dt 2 "tiny-dt.yaml|key 'simulation.dt'|at least" yes run tiny-dt.yaml
+expect huge-dt 2 "huge-dt.yaml|key 'simulation.dt'|at most 1 s" yes run huge-dt.yaml
+expect heavy 2 "heavy-model.yaml|key 'stages[0].mass'|at most" yes run heavy.yaml
+expect damped 2 "damped-model.yaml|key 'stages[1].damping'|at most" yes run damped.yaml
+expect long-l1 2 "long-l1-model.yaml|key 'geometry.L1'|cannot be assembled at any frame angle" yes run long-l1.yaml
+
 # ---- command-line numerics of a run ----
 expect ts-dt-0 2 "command line|key '-ts_dt'|positive" yes run good-run.yaml -ts_dt 0
 expect ts-dt-neg 2 "command line|key '-ts_dt'|positive" yes run good-run.yaml -ts_dt -1e-3
@@ -298,6 +368,50 @@ read -r wall user sys <<< "$times"
 cpu=$(awk -v u="$user" -v s="$sys" 'BEGIN { printf "%.2f", u + s }')
 echo "     spans.count 100000 refused: CPU $cpu s, wall $wall s"
 awk -v c="$cpu" 'BEGIN { exit !(c < 0.5) }' || { echo "FAIL: spans.count 100000 took $cpu s of CPU" >&2; failures=$((failures + 1)); }
+
+# pcsim check on large inputs (issue 22): 5000 pantographs (the spacing
+# warnings compare neighbours in start order, one model file parsed once) and
+# a scene of thousands of keys (composition indexes keys; no linear search
+# per key). Each took more than 60 s; about 1 s now on an idle machine. The
+# 10 s bound is only a sanity limit for a loaded machine (MPI start-up
+# included): the point is the complexity, not the speed.
+{
+  echo "name: many"
+  echo "catenary: {design: $three}"
+  echo "pantographs:"
+  awk -v m="$two_mass" 'BEGIN { for (i = 0; i < 5000; ++i) printf "  - {name: p%d, model: %s, start_x: %.4f}\n", i, m, 13.1 + 0.002 * i }'
+  echo "simulation: {speed_kmh: 200, end_x: 80}"
+  echo "analysis: {from_span: 2, to_span: 2}"
+  echo "set:"
+  awk 'BEGIN { for (i = 0; i < 5000; ++i) printf "  pantographs[%d].ramp_distance: 20\n", i }'
+} > "$tmp/many.yaml"
+{
+  echo "name: keys"
+  echo "catenary: {design: $three}"
+  echo "pantographs: [{name: p, model: $two_mass, start_x: 13.1}]"
+  echo "simulation: {speed_kmh: 200, end_x: 80}"
+  echo "set:"
+  awk 'BEGIN { for (i = 0; i < 5000; ++i) printf "  simulation.k%d: %d\n", i, i }'
+  awk 'BEGIN { for (i = 0; i < 5000; ++i) printf "key%d: %d\n", i, i }'
+} > "$tmp/keys.yaml"
+for c in "many:0:5000 pantograph(s)" "keys:2:key 'key0'|unknown key"; do
+  IFS=: read -r name code needle <<< "$c"
+  cases=$((cases + 1))
+  status=0
+  start=$(date +%s%N)
+  (cd "$w" && timeout 60 "$PCSIM_BIN" check "$tmp/$name.yaml" > "$tmp/out.txt" 2> "$tmp/err.txt") || status=$?
+  ms=$((($(date +%s%N) - start) / 1000000))
+  found=yes
+  IFS='|' read -r -a list <<< "$needle"
+  for n in "${list[@]}"; do grep -qF -- "$n" "$tmp/out.txt" "$tmp/err.txt" || found=no; done
+  if [ "$status" -ne "$code" ] || [ "$found" = no ] || [ "$ms" -gt 10000 ]; then
+    echo "FAIL large $name: exit $status (expected $code), '$needle' found: $found, $ms ms" >&2
+    head -3 "$tmp/err.txt" >&2
+    failures=$((failures + 1))
+  else
+    echo "ok   large input $name: pcsim check in $ms ms"
+  fi
+done
 
 # ---- each error class on 2 ranks: same code, one message, nothing left ----
 # expect2 NAME NEEDLE COMMAND ARGS...

@@ -90,8 +90,15 @@ struct RunSceneOptions {
 // are warnings.
 RunScene load_run_scene(const InputNode& scene, const RunSceneOptions& options = {});
 
-// The checks of load_run_scene that need every pantograph (names, positions
-// along the line, spacing) and the time step (run_scene_checks.cpp).
+// Why 'name' cannot name a pantograph ("" if it can): it must be one HDF5
+// link name (/pantographs/<name>): not empty, '.' or '..', no '/', no
+// control characters.
+std::string pantograph_name_problem(const std::string& name);
+
+// The checks of load_run_scene that need every pantograph (names: valid and
+// each once; positions along the line, spacing) and the time step
+// (run_scene_checks.cpp).
+void check_pantograph_names(const InputNode& scene, const RunScene& run);
 void check_pantograph_positions(const InputNode& scene, RunScene& run);
 void check_time_step(const InputNode& scene, RunScene& run, const std::string& dt_key);
 // Warns when a pantograph starts or ends within the contact-force filter's

@@ -22,12 +22,22 @@
 #include <vector>
 
 #include "pcsim/core/error.hpp"
+#include "pcsim/core/limits.hpp"
 
 namespace pcsim {
 
 // Why 'path' cannot be read as an input file ("" if it can): missing, a
 // folder, not a regular file, or unreadable.
 std::string unreadable_file_reason(const std::string& path);
+
+// Parses the YAML text of one input file: InputError(file, ...) if it is
+// malformed, holds more than one document ('---'), or its tree breaks
+// check_yaml_tree. A file with no document gives a null node.
+YAML::Node parse_yaml_document(const std::string& text, const std::string& file);
+// Checks a parsed tree whose root is at key path 'key': no key given twice
+// in a map, no key that is not a plain name, no empty value ('dt:' with
+// nothing); InputError(file, key path, reason) on the first breach.
+void check_yaml_tree(const YAML::Node& root, const std::string& file, const std::string& key);
 
 // Where a value came from.
 struct InputOrigin {
@@ -49,6 +59,11 @@ struct InputSources {
   std::string root_file;
   std::map<std::string, InputOrigin> origins;  // key path -> origin (the longest prefix applies)
   std::map<std::string, std::vector<InputOverride>> deferred;  // reference key -> overrides
+  // Files named by values of this tree, loaded once (load_referenced without
+  // overrides): path -> composed root and its sources. 5000 pantographs of one
+  // model parse the model file once.
+  mutable std::map<std::string, std::pair<YAML::Node, std::shared_ptr<const InputSources>>>
+      referenced;
   const InputOrigin& origin_of(const std::string& key_path) const;
 };
 
@@ -124,6 +139,14 @@ class InputNode {
   double get_positive(const std::string& key, double fallback) const;
   double get_nonnegative(const std::string& key) const;
   double get_nonnegative(const std::string& key, double fallback) const;
+  // The same, and within the limit's bounds (pcsim/core/limits.hpp); get_real
+  // only bounds the magnitude of a value of either sign.
+  double get_positive(const std::string& key, const Limit& limit) const;
+  double get_positive(const std::string& key, const Limit& limit, double fallback) const;
+  double get_nonnegative(const std::string& key, const Limit& limit) const;
+  double get_nonnegative(const std::string& key, const Limit& limit, double fallback) const;
+  double get_real(const std::string& key, const Limit& limit) const;
+  double get_real(const std::string& key, const Limit& limit, double fallback) const;
   // Enumerated strings.
   std::string get_choice(const std::string& key, std::initializer_list<const char*> choices,
                          const std::string& fallback) const;
