@@ -36,8 +36,9 @@ DIRECT = {
     "output": {"catenary", "pantograph", "contact", "core"},
     "simulation": {"scene", "solvers", "output", "assembly", "core"},
     "app": {"simulation", "scene", "output", "solvers", "catenary", "pantograph", "core"},
+    "python": {"simulation", "scene", "output", "core"},  # the Python API: like app
 }
-NOT_TRANSITIVE = {"app", "solvers"}
+NOT_TRANSITIVE = {"app", "solvers", "python"}
 # What solvers may include of the physics parts: result types and the model
 # interfaces its drivers call back.
 SOLVER_PHYSICS_HEADERS = {

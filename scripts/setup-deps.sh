@@ -6,7 +6,8 @@ PACKAGES=(build-essential cmake pkg-config
   petsc-dev slepc-dev libmetis-dev libhdf5-openmpi-dev libopenmpi-dev openmpi-bin
   libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libgtest-dev libssl-dev
   python3-numpy python3-h5py python3-matplotlib python3-scipy python3-pil time
-  python3-paraview xvfb)  # python3-paraview: ParaView's XDMF3 reader for
+  python3-paraview xvfb
+  python3-dev pybind11-dev python3-mpi4py)  # python3-paraview: ParaView's XDMF3 reader for
 # tests/output; xvfb: a virtual X display for its renders there (ParaView's
 # OpenGL needs one); python3-pil: the GIF writer of postproc/animate.py
 missing=()

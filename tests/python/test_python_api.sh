@@ -1,0 +1,28 @@
+#!/bin/bash
+# The Python API (docs/python.md) on 1 and 2 ranks against `pcsim run` on the
+# same scene (tests/python/python_api_check.py says what is checked), and the
+# worked study of docs/python.md, executed as written.
+set -euo pipefail
+: "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:=/usr/bin/python3}"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+export PYTHONPATH="$(dirname "$PCSIM_BIN")/python${PYTHONPATH:+:$PYTHONPATH}"
+mpirun=$PCSIM_SOURCE_DIR/scripts/mpirun.sh
+scene=$PCSIM_SOURCE_DIR/tests/contact/data/three-span-lumped.yaml
+cd "$tmp"
+for np in 1 2; do
+  "$mpirun" -n $np "$PCSIM_BIN" run "$scene" -o "ref-$np" --no-report > "ref-$np.log" 2>&1 ||
+    { cat "ref-$np.log"; exit 1; }
+  "$mpirun" -n $np "$PCSIM_PYTHON" "$PCSIM_SOURCE_DIR/tests/python/python_api_check.py" \
+    "$PCSIM_SOURCE_DIR" "ref-$np/summary.json"
+done
+# docs/python.md's study, its first ```python block, run from the repository.
+"$PCSIM_PYTHON" - "$PCSIM_SOURCE_DIR/docs/python.md" > study.py <<'PY'
+import re, sys
+text = open(sys.argv[1]).read()
+print(re.findall(r"```python\n(.*?)```", text, re.S)[0])
+PY
+(cd "$PCSIM_SOURCE_DIR" && PCSIM_STUDY_PLOT="$tmp/speeds.png" "$PCSIM_PYTHON" "$tmp/study.py") > study.log
+cat study.log
+[ -s "$tmp/speeds.png" ] || { echo "the study wrote no plot"; exit 1; }
+grep -q "km/h" study.log
