@@ -6,13 +6,13 @@
 #   runs/interaction/run_studies.sh [--reuse] SECTION...   # only these sections:
 #       en50318 dsa380 oneway two-pantographs three-pantographs hard
 #
-# Environment: PCSIM (default build-studies/pcsim), OUT (default out/interaction).
+# Environment: PCSIM (default build/pcsim), OUT (default out/interaction).
 # Results: $OUT/<study>/{results.h5,summary.json} and $OUT/<study>.log; tables (Markdown)
 # in docs/interaction/tables/, figures in docs/interaction/*.png. Runs are serial on
 # purpose (shared 2-core machine).
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
-PCSIM=${PCSIM:-$ROOT/build-studies/pcsim}
+PCSIM=${PCSIM:-$ROOT/build/pcsim}
 OUT=${OUT:-$ROOT/out/interaction}
 DOC=$ROOT/docs/interaction
 TAB=$DOC/tables

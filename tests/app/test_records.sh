@@ -1,5 +1,5 @@
 #!/bin/bash
-# Results a user can reproduce and trust (README "Results describe themselves"):
+# Results a user can reproduce and trust (README "Results"):
 #  1. summary.json records every input file (content and SHA-256), the
 #     toolchain and the machine; `pcsim run --rerun DIR` runs the record again
 #     and reproduces every figure bit for bit (one rank);

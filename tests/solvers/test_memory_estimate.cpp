@@ -92,7 +92,7 @@ TEST(MeshSize, UnknownsAndNonzerosMatchTheSystem) {
 
 // Peak resident memory measured on EN 50318 lines (1 rank, and the sum of both
 // ranks on 2): `pcsim static` here (GNU time) on 10 and 100 spans; 1000 spans and
-// `pcsim modes` from README "Benchmarks"; `pcsim run` on 10 spans from the
+// `pcsim modes` from docs/benchmarks.md; `pcsim run` on 10 spans from the
 // interaction benchmark (79 MB, 7080 steps of history included). The estimate
 // is meant to be above, by at most 25 %.
 TEST(MemoryEstimate, CalibratedAgainstMeasuredPeaks) {
