@@ -158,6 +158,15 @@ std::unique_ptr<simulation::RunCheckpoint> load_restart(
       simulation::load_run_checkpoint(ctx, dir, inputs));
 }
 
+// A result that could not be written (exit 5, on every rank together): the
+// partial folder stays with what was written, not marked complete.
+void keep_partial_if_not_written(const app::CommandContext& ctx, OutputDir& out,
+                                 std::exception_ptr error) {
+  if (simulation::exit_status_of(error) != app::kExitOutput) return;
+  out.keep_partial();
+  app::print0(ctx, "  what was written before is kept in %s/\n", out.partial_dir().c_str());
+}
+
 int run_dynamic(const app::CommandContext& ctx) {
   app::RunInputs run_inputs = app::read_run_inputs(ctx);  // every input checked: exit 2 before work
   const InputNode& scene = run_inputs.scene;
@@ -175,7 +184,13 @@ int run_dynamic(const app::CommandContext& ctx) {
   app::print0(ctx, "pcsim run: scene '%s', design %s\n", request.name.c_str(),
               run.catenary.design_path.c_str());
   app::print_warnings(ctx, run.warnings);
-  const auto outcome = simulation::run(ctx, run, request, out);
+  simulation::RunOutcome outcome;
+  try {
+    outcome = simulation::run(ctx, run, request, out);
+  } catch (...) {
+    keep_partial_if_not_written(ctx, out, std::current_exception());
+    throw;
+  }
   if (!outcome.complete) return report_interrupted(ctx, out, outcome);
   return report_complete(ctx, out, outcome, run.energy);
 }

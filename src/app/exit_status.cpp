@@ -19,6 +19,9 @@ int exit_status_of(std::exception_ptr error, const CommandContext& ctx, std::str
   } catch (const InputError& e) {
     message = std::string("pcsim: error: ") + e.what();
     return kExitInput;
+  } catch (const OutputError& e) {
+    message = std::string("pcsim: error: ") + e.what();
+    return kExitOutput;
   } catch (const SolverError& e) {
     message = "pcsim: solver failure" + where + ": " + e.what();
     return kExitSolver;

@@ -1,5 +1,6 @@
 // Exit codes, the same on every rank, and no hang when only some ranks fail.
-//   0 success, 2 input error, 3 solver failure, 4 internal error (README "Exit codes").
+//   0 success, 2 input error, 3 solver failure, 4 internal error, 5 output
+// not written (README "Exit codes").
 // Errors found identically on every rank (bad input: every rank reads the
 // scene) end the job normally with one message. Work done by rank 0 alone
 // goes through on_rank0(), which broadcasts its outcome. Anything else that
@@ -21,6 +22,7 @@ namespace pcsim::app {
 using simulation::FailedOnOtherRank;
 using simulation::kExitInput;
 using simulation::kExitInternal;
+using simulation::kExitOutput;
 using simulation::kExitSolver;
 
 // Exit status of an exception (simulation::exit_status_of), and the line to

@@ -4,6 +4,7 @@
 //
 // The scene (YAML, docs/scene-format.md) gives the physics; numerics come from
 // PETSc's options database (-snes_*, -ksp_*, -ts_*, -eps_*, -log_view, ...).
+#include <hdf5.h>
 #include <slepcsys.h>
 
 #include <cstdio>
@@ -193,7 +194,16 @@ int main(int argc, char** argv) {
   int petsc_argc = static_cast<int>(petsc_argv.size());
   petsc_argv.push_back(nullptr);
   char** petsc_args = petsc_argv.data();
+  // HDF5 before MPI, and without its own shutdown: HDF5 1.10 crashes when it
+  // ends with a file whose close failed (a full disk); pcsim closes every
+  // file it writes itself (output/h5_file.hpp, run_stream.hpp).
+  H5dont_atexit();
+  H5open();
   if (SlepcInitialize(&petsc_argc, &petsc_args, nullptr, nullptr) != 0) return 4;
+  // Failures become pcsim's own one-line messages (exit_status.hpp): no PETSc
+  // traceback with its configure line, no HDF5 error stack.
+  PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   ctx.comm = PETSC_COMM_WORLD;
   MPI_Comm_rank(ctx.comm, &ctx.rank);
   MPI_Comm_size(ctx.comm, &ctx.size);

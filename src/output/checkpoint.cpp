@@ -2,6 +2,7 @@
 
 #include <hdf5.h>
 
+#include <cerrno>
 #include <cstdio>
 
 #include "h5_series.hpp"
@@ -39,8 +40,11 @@ herr_t collect_attribute(hid_t, const char* name, const H5A_info_t*, void* ptr) 
 
 void write_checkpoint(const std::string& path, const CheckpointData& data) {
   const std::string tmp = path + ".tmp";
+  errno = 0;
   hid_t file = H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  if (file < 0) throw SolverError("cannot create the checkpoint " + tmp);
+  if (file < 0)
+    throw OutputError(tmp, write_failure_reason(tmp, errno, "HDF5 could not create it"));
+  const int fd = h5::descriptor(file);
   try {
     std::string names;
     for (const auto& [name, values] : data.arrays) {
@@ -51,14 +55,18 @@ void write_checkpoint(const std::string& path, const CheckpointData& data) {
     for (const auto& [name, value] : data.numbers) h5::set_attribute(file, "/", name, value);
     for (const auto& [name, value] : data.texts) h5::set_attribute(file, "/", name, value);
     h5::set_attribute(file, "/", kFormatAttribute, kFormatVersion);
-  } catch (...) {
-    H5Fclose(file);
+  } catch (const std::exception& e) {
+    const int saved = errno;
+    h5::discard_close(file, fd);
     std::remove(tmp.c_str());
-    throw;
+    throw OutputError(tmp, write_failure_reason(tmp, saved, e.what()));
   }
+  errno = 0;
   if (H5Fclose(file) < 0 || std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int saved = errno;
+    h5::discard_close(file, fd);
     std::remove(tmp.c_str());
-    throw SolverError("cannot write the checkpoint " + path);
+    throw OutputError(path, write_failure_reason(path, saved, "HDF5 could not close it"));
   }
 }
 

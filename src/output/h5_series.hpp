@@ -53,4 +53,16 @@ void set_attribute(hid_t file, const std::string& object, const std::string& nam
 double number_attribute(hid_t file, const std::string& object, const std::string& name);
 std::string text_attribute(hid_t file, const std::string& object, const std::string& name);
 
+// Closes 'file' after a write to it failed (a full disk): HDF5 1.10 keeps a
+// file whose close failed half-destroyed and crashes when it ends, so the
+// writes still pending go to an anonymous memory file instead and the close
+// succeeds; the file on disk keeps what was written before. Also for a file
+// whose H5Fclose already failed ('fd': its descriptor, from descriptor()).
+void discard_close(hid_t file, int fd = -1);
+// The first half of that: the file's later writes go to memory (close its
+// datasets after this, then the file).
+void discard_writes(hid_t file, int fd = -1);
+// The file's OS descriptor (-1 if unknown).
+int descriptor(hid_t file);
+
 }  // namespace pcsim::output::h5

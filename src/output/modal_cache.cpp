@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -21,7 +22,8 @@ namespace pcsim::output {
 
 namespace {
 
-constexpr int kCacheFormat = 2;  // bump when the basis' content or layout changes (2: wire mass per unstressed length)
+constexpr int kCacheFormat =
+    2;  // bump when the basis' content or layout changes (2: wire mass per unstressed length)
 
 // Bytes of the values the key covers.
 class KeyBuffer {
@@ -252,7 +254,7 @@ void write_modal_data(const std::string& file, const std::string& key,
         "command line", "--cache",
         "cannot create the cache folder '" + path.parent_path().string() + "': " + ec.message());
   const std::string tmp = file + ".tmp-" + std::to_string(getpid());
-  {
+  try {
     H5File h5(tmp);
     h5.write("/omega2", d.omega2);
     h5.write_int("/row_keys", std::vector<long>(d.row_keys.begin(), d.row_keys.end()));
@@ -266,10 +268,15 @@ void write_modal_data(const std::string& file, const std::string& key,
     h5.attribute("/", "cutoff_hz", d.cutoff_hz);
     h5.attribute("/", "max_relative_residual", d.max_relative_residual);
     h5.attribute("/", "computed_in_s", d.wall_time_s);
+    h5.close();
+  } catch (...) {
+    std::remove(tmp.c_str());
+    throw;
   }
   if (std::rename(tmp.c_str(), file.c_str()) != 0) {
+    const int saved = errno;
     std::remove(tmp.c_str());
-    throw InputError("command line", "--cache", "cannot write the cache file '" + file + "'");
+    throw OutputError(file, write_failure_reason(file, saved));
   }
 }
 

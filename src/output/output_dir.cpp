@@ -213,6 +213,7 @@ OutputDir::OutputDir(MPI_Comm comm, OutputRequest request)
   std::string why;
   if (rank_ == 0) why = prepare();
   why = broadcast_text(comm_, why);
+  failed_path_ = broadcast_text(comm_, failed_path_);
   if (!why.empty()) fail(why);
 }
 
@@ -240,11 +241,15 @@ std::string OutputDir::prepare() {
       fs::create_directory(partial_);
       owns_partial_ = true;
       started_ = output_guard::utc_now();
-      why = output_guard::write_manifest(partial_, manifest(request_, started_, false, partial_));
+      output_guard::write_manifest(partial_, manifest(request_, started_, false, partial_));
     }
     if (why.empty()) output_guard::arm_interrupt_cleanup(partial_, lock_path_);
     if (!why.empty()) undo();
     return why;
+  } catch (const OutputError& e) {
+    undo();
+    failed_path_ = e.path();
+    return e.reason();
   } catch (const std::exception& e) {
     undo();
     return std::string("cannot prepare the output folder: ") + e.what();
@@ -278,6 +283,10 @@ void OutputDir::commit() {
   if (rank_ == 0) {
     try {
       why = swap_into_place();
+    } catch (const OutputError& e) {
+      keep_partial_ = true;  // not marked complete: its manifest is the earlier one
+      failed_path_ = e.path();
+      why = e.reason() + "; the results are kept in " + partial_;
     } catch (const std::exception& e) {
       keep_partial_ = true;
       why = std::string("cannot put the results in place: ") + e.what() +
@@ -291,6 +300,7 @@ void OutputDir::commit() {
     }
   }
   why = broadcast_text(comm_, why);
+  failed_path_ = broadcast_text(comm_, failed_path_);
   if (!why.empty()) fail(why);
   committed_ = true;
 }
@@ -309,10 +319,9 @@ void OutputDir::keep_partial() {
 
 std::string OutputDir::swap_into_place() {
   const std::string kept = "; the new results are kept in " + partial_;
-  std::string why =
-      output_guard::write_manifest(partial_, manifest(request_, started_, true, partial_));
+  output_guard::write_manifest(partial_, manifest(request_, started_, true, partial_));
   // The folder may have been changed by hand during the run.
-  if (why.empty()) why = target_refusal(final_, request_);
+  std::string why = target_refusal(final_, request_);
   if (!why.empty()) {
     keep_partial_ = true;
     return why + kept;
@@ -352,6 +361,7 @@ std::string OutputDir::swap_into_place() {
 }
 
 void OutputDir::fail(const std::string& reason) const {
+  if (!failed_path_.empty()) throw OutputError(failed_path_, reason);
   throw InputError(request_.given_in, request_.given_by, reason);
 }
 

@@ -15,6 +15,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "pcsim/core/error.hpp"
 #include "pcsim/output/output_dir.hpp"
 
 namespace pcsim::output_guard {
@@ -36,17 +37,20 @@ bool read_manifest(const std::string& dir, nlohmann::json& manifest) {
   return manifest.is_object() && manifest.contains("pcsim_result");
 }
 
-std::string write_manifest(const std::string& dir, const nlohmann::json& manifest) {
+void write_manifest(const std::string& dir, const nlohmann::json& manifest) {
   const std::string path = manifest_path(dir), tmp = path + ".tmp";
+  errno = 0;
+  bool ok = false;
   {
     std::ofstream out(tmp);
     out << manifest.dump(2) << "\n";
     out.close();
-    if (!out) return "cannot write " + tmp;
+    ok = static_cast<bool>(out);
   }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0)
-    return "cannot rename " + tmp + ": " + std::strerror(errno);
-  return "";
+  if (ok && std::rename(tmp.c_str(), path.c_str()) == 0) return;
+  const int saved = errno;
+  std::remove(tmp.c_str());
+  throw OutputError(path, write_failure_reason(path, saved));
 }
 
 // Async-signal-safe (open, getdents64, close): used by the signal handler.

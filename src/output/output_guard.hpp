@@ -10,8 +10,9 @@ namespace pcsim::output_guard {
 // The manifest of 'dir' (dir/.pcsim-result); false if it is missing or is not
 // a pcsim manifest.
 bool read_manifest(const std::string& dir, nlohmann::json& manifest);
-// Writes dir/.pcsim-result atomically (temporary file + rename); "" or the reason.
-std::string write_manifest(const std::string& dir, const nlohmann::json& manifest);
+// Writes dir/.pcsim-result atomically (temporary file + rename); throws
+// OutputError (the path, the OS error) if it cannot.
+void write_manifest(const std::string& dir, const nlohmann::json& manifest);
 // True if 'dir' is a folder whose only entry is its manifest.
 bool holds_only_manifest(const std::string& dir);
 // Current time, UTC, ISO 8601.

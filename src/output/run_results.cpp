@@ -1,6 +1,7 @@
 #include "pcsim/output/run_results.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -132,18 +133,29 @@ RunStatistics finish_run_results(const OutputDir& out, const catenary::CatenaryM
   const std::string path = out.file("results.h5");
   hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
   if (file < 0) throw SolverError("cannot open " + path);
+  const int fd = h5::descriptor(file);
   RunStatistics stats;
   try {
     const auto time = h5::read(file, "/time");
     stats.max_uplift_m = max_uplift(file, mesh, s);
     for (std::size_t p = 0; p < s.pantograph_names.size(); ++p)
       stats.pantographs.push_back(pantograph_results(file, s, time, p));
-    h5::set_attribute(file, "/", "complete", 1.0);
+    errno = 0;
+    try {
+      h5::set_attribute(file, "/", "complete", 1.0);
+    } catch (const std::exception& e) {
+      throw OutputError(path, write_failure_reason(path, errno, e.what()));
+    }
   } catch (...) {
-    H5Fclose(file);
+    h5::discard_close(file, fd);
     throw;
   }
-  if (H5Fclose(file) < 0) throw SolverError("cannot close " + path);
+  errno = 0;
+  if (H5Fclose(file) < 0) {
+    const int saved = errno;
+    h5::discard_close(file, fd);
+    throw OutputError(path, write_failure_reason(path, saved, "HDF5 could not close it"));
+  }
   write_snapshots_view(out, mesh);
   return stats;
 }
@@ -197,13 +209,22 @@ void write_run_summary(const OutputDir& out, const RunSettings& s, const RunStat
     summary["max_uplift_at_support_m"] = stats->max_uplift_m;
   }
   const std::string path = out.file("summary.json"), tmp = path + ".tmp";
+  errno = 0;
   {
     std::ofstream file(tmp);
     file << summary.dump(2) << "\n";
     file.close();
-    if (!file) throw SolverError("cannot write " + tmp);
+    if (!file) {
+      const int saved = errno;
+      std::remove(tmp.c_str());
+      throw OutputError(path, write_failure_reason(path, saved));
+    }
   }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw SolverError("cannot write " + path);
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int saved = errno;
+    std::remove(tmp.c_str());
+    throw OutputError(path, write_failure_reason(path, saved));
+  }
 }
 
 }  // namespace pcsim::output

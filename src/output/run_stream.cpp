@@ -1,6 +1,7 @@
 #include "pcsim/output/run_stream.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 
@@ -72,25 +73,55 @@ struct RunStream::Column {
 
 RunStream::RunStream(const std::string& path, const RunSettings& settings, RunLayout layout,
                      const nlohmann::json& provenance)
-    : layout_(std::move(layout)) {
+    : path_(path), layout_(std::move(layout)) {
+  guarded([&] { create(settings, provenance); });
+}
+
+void RunStream::create(const RunSettings& settings, const nlohmann::json& provenance) {
   {
-    H5File h5(path);
+    H5File h5(path_);
     stamp_provenance(h5, provenance);
     if (layout_.snapshots) write_pantograph_grid(h5, settings.pantograph_names.size());
+    h5.close();
   }
-  file_ = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
-  if (file_ < 0) throw SolverError("cannot open HDF5 file " + path);
+  file_ = H5Fopen(path_.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  if (file_ < 0) throw SolverError("cannot open HDF5 file " + path_);
+  fd_ = h5::descriptor(file_);
   open_series(true, settings);
   h5::write(file_, "/supports/x", layout_.support_x, {layout_.support_x.size()}, "m",
             "position of every support along the track");
   stamp(settings);
-  H5Fflush(file_, H5F_SCOPE_GLOBAL);
+  if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw SolverError("cannot flush " + path_);
   last_flush_ = wall_seconds();
+}
+
+void RunStream::guarded(const std::function<void()>& write) {
+  errno = 0;
+  try {
+    write();
+  } catch (const OutputError&) {
+    abandon();
+    throw;
+  } catch (const std::exception& e) {
+    const int saved = errno;
+    abandon();
+    throw OutputError(path_, write_failure_reason(path_, saved, e.what()));
+  }
+}
+
+void RunStream::abandon() {
+  if (file_ >= 0) h5::discard_writes(file_, fd_);  // before the datasets close
+  for (auto& c : columns_) c->pending.clear();
+  buffered_ = 0;
+  columns_.clear();
+  snapshot_series_.clear();
+  if (file_ >= 0) H5Fclose(file_);
+  file_ = -1;
 }
 
 RunStream::RunStream(const std::string& path, const RunSettings& settings, RunLayout layout,
                      std::size_t records, std::size_t snapshots, const nlohmann::json& provenance)
-    : layout_(std::move(layout)) {
+    : path_(path), layout_(std::move(layout)) {
   {
     H5File h5(path, H5File::Mode::append);
     stamp_provenance(h5, provenance);
@@ -100,6 +131,7 @@ RunStream::RunStream(const std::string& path, const RunSettings& settings, RunLa
   }
   H5E_END_TRY;
   if (file_ < 0) throw SolverError("cannot open HDF5 file " + path);
+  fd_ = h5::descriptor(file_);
   try {
     open_series(false, settings);
     reopen(path, records, snapshots);
@@ -260,7 +292,13 @@ void RunStream::append(const contact::StepRecord& record, const EnergySample& en
 
 void RunStream::append_snapshot(const std::vector<double>& positions,
                                 const contact::StepRecord& r) {
+  if (file_ < 0) return;
   if (snapshot_series_.empty()) throw SolverError("results.h5: the run keeps no snapshots");
+  guarded([&] { append_snapshot_rows(positions, r); });
+}
+
+void RunStream::append_snapshot_rows(const std::vector<double>& positions,
+                                     const contact::StepRecord& r) {
   std::vector<double> displacement(positions);
   for (std::size_t i = 0; i < displacement.size(); ++i)
     displacement[i] -= layout_.static_positions[i];
@@ -298,13 +336,17 @@ std::size_t RunStream::snapshots() const {
 
 void RunStream::flush() {
   if (file_ < 0) return;
+  guarded([&] { flush_rows(); });
+}
+
+void RunStream::flush_rows() {
   for (auto& c : columns_) {
     c->series->append(c->pending.data(), buffered_);
     c->pending.clear();
   }
   written_ += buffered_;
   buffered_ = 0;
-  if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw SolverError("cannot flush results.h5");
+  if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw SolverError("HDF5 could not flush it");
   last_flush_ = wall_seconds();
 }
 
@@ -315,11 +357,13 @@ bool RunStream::flush_due() const {
 void RunStream::close() {
   if (file_ < 0) return;
   flush();
-  columns_.clear();
-  snapshot_series_.clear();
-  const herr_t status = H5Fclose(file_);
-  file_ = -1;
-  if (status < 0) throw SolverError("cannot close results.h5");
+  guarded([&] {
+    columns_.clear();
+    snapshot_series_.clear();
+    const herr_t status = H5Fclose(file_);
+    file_ = -1;
+    if (status < 0) throw SolverError("HDF5 could not close it");
+  });
 }
 
 }  // namespace pcsim::output

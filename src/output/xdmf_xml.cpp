@@ -1,5 +1,6 @@
 #include "xdmf_xml.hpp"
 
+#include <cerrno>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -89,11 +90,11 @@ std::string footer() {
 }
 
 void write_file(const std::string& path, const std::string& text) {
+  errno = 0;
   std::ofstream out(path);
-  if (!out) throw SolverError("cannot create XDMF file " + path);
-  out << text;
-  out.close();
-  if (!out) throw SolverError("cannot write XDMF file " + path);
+  if (out) out << text;
+  if (out) out.close();
+  if (!out) throw OutputError(path, write_failure_reason(path, errno));
 }
 
 std::string exact(double value) {

@@ -24,6 +24,8 @@ int exit_status_of(std::exception_ptr error) {
     return kExitInput;
   } catch (const SolverError&) {
     return kExitSolver;
+  } catch (const OutputError&) {
+    return kExitOutput;
   } catch (...) {
     return kExitInternal;
   }

@@ -3,6 +3,7 @@
 #include <petsctime.h>
 #include <sys/resource.h>
 
+#include <cmath>
 #include <csignal>
 
 #include "pcsim/core/error.hpp"
@@ -12,6 +13,12 @@
 namespace pcsim::simulation {
 
 namespace {
+
+// The inputs that usually make a time step fail or the state blow up.
+const char* const kLikelyInputs =
+    "check simulation.dt (smaller), the design's damping.rayleigh_alpha and "
+    "damping.rayleigh_beta, contact.stiffness and the pantograph model's masses, "
+    "stiffnesses and damping";
 
 double now_s() {
   PetscLogDouble t;
@@ -74,12 +81,47 @@ int RunSession::integrate() {
   PCSIM_PETSC(TSMonitorSet(ts, monitor, this, nullptr));
   PCSIM_PETSC(TSSetPostStep(ts, post_step));
   PCSIM_PETSC(TSSolve(ts, nullptr));
+  raise_output_failure();
+  if (not_finite_) throw SolverError(not_finite_message(not_finite_time_));
   TSConvergedReason reason;
   PCSIM_PETSC(TSGetConvergedReason(ts, &reason));
   if (reason < 0)
-    throw SolverError(std::string("time integration failed: ") + TSConvergedReasons[reason]);
-  if (stream_) stream_->flush();
+    throw SolverError(std::string("time integration failed: ") + TSConvergedReasons[reason] +
+                      " at t = " + std::to_string(time_) + " s; " + kLikelyInputs);
+  on_rank0(ctx_, [&] {
+    if (stream_) stream_->flush();
+  });
   return stop_signal_;
+}
+
+std::string not_finite_message(double t) {
+  return "the state became NaN or infinite at t = " + std::to_string(t) + " s; " + kLikelyInputs;
+}
+
+bool RunSession::hold_output_failure(std::exception_ptr error) {
+  if (exit_status_of(error) != kExitOutput) return false;
+  if (!output_failure_) output_failure_ = error;
+  return true;
+}
+
+bool RunSession::agreed_output_failure() const {
+  int failed = output_failure_ ? 1 : 0;
+  MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, ctx_.comm);
+  return failed != 0;
+}
+
+void RunSession::raise_output_failure() const {
+  if (!agreed_output_failure()) return;
+  if (output_failure_) std::rethrow_exception(output_failure_);
+  throw FailedOnOtherRank(kExitOutput);
+}
+
+bool RunSession::state_finite(TS ts) const {
+  Vec U;
+  PCSIM_PETSC(TSGetSolution(ts, &U));
+  PetscReal norm = 0;
+  PCSIM_PETSC(VecNorm(U, NORM_INFINITY, &norm));  // collective: NaN on one rank is seen by all
+  return std::isfinite(norm);
 }
 
 bool RunSession::stopped_early() const {
@@ -105,10 +147,14 @@ PetscErrorCode RunSession::monitor(TS ts, PetscInt step, PetscReal t, Vec U, voi
       s.steps_ = step;
       s.time_step(step, start, its);
     }
-    s.flushed_ = s.record(ts, step, t, U);
-    if (s.options_.checkpoint_every > 0 && step > s.first_step_ &&
-        step % s.options_.checkpoint_every == 0)
-      s.write_checkpoint();
+    try {
+      if (!s.output_failure_) s.flushed_ = s.record(ts, step, t, U);
+      if (s.options_.checkpoint_every > 0 && step > s.first_step_ &&
+          step % s.options_.checkpoint_every == 0 && !s.output_failure_)
+        s.write_checkpoint();
+    } catch (...) {  // an output failure stops the run in post_step, on every rank
+      if (!s.hold_output_failure(std::current_exception())) throw;
+    }
   }
   s.print_progress(step, t);
   s.timing_.add_output(now_s() - start);
@@ -185,11 +231,18 @@ PetscErrorCode RunSession::post_step(TS ts) {
     s->options_.window->after_step(t, s->solver_);  // collective
   }
   s->stop_signal_ = s->stop_ ? s->stop_->agreed_signal(s->ctx_.comm) : 0;
+  if (!s->state_finite(ts)) {
+    s->not_finite_ = true;
+    PCSIM_PETSC(TSGetTime(ts, &s->not_finite_time_));
+    PCSIM_PETSC(TSSetConvergedReason(ts, TS_DIVERGED_NONLINEAR_SOLVE));
+    return 0;
+  }
+  const bool output_failed = s->agreed_output_failure();
   TSConvergedReason reason;
   PCSIM_PETSC(TSGetConvergedReason(ts, &reason));
   if (reason != TS_CONVERGED_ITERATING)
     s->stop_signal_ = 0;  // the last step: the run is complete anyway
-  else if (s->stop_signal_)
+  else if (s->stop_signal_ || output_failed)
     PCSIM_PETSC(TSSetConvergedReason(ts, TS_CONVERGED_USER));
   PCSIM_CALLBACK_END
 }
@@ -197,11 +250,12 @@ PetscErrorCode RunSession::post_step(TS ts) {
 void RunSession::write_checkpoint() {
   RunCheckpoint c;
   c.state = solver_.save_state();  // collective
-  if (stream_) {
+  on_rank0(ctx_, [&] {
+    if (!stream_) return;
     stream_->flush();  // the records up to this step are on disk
     c.progress.records = stream_->records();
     c.progress.snapshots = stream_->snapshots();
-  }
+  });
   c.progress.newton_iterations = newton_iterations_;
   c.progress.rejected_steps = rejected_steps();
   c.progress.wall_time_s = wall_time();

@@ -5,6 +5,8 @@
 // InputWarning: input that is allowed but probably not what was meant (same
 // three parts); the app prints it and goes on.
 // SolverError: a numerical failure (PETSc error code, divergence).
+// OutputError: a result file could not be written (full disk, no permission):
+// the path and the OS error; the app exits with 5 and keeps the partial folder.
 #pragma once
 
 #include <petscsys.h>
@@ -46,6 +48,26 @@ class SolverError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+class OutputError : public std::runtime_error {
+ public:
+  // "cannot write PATH: REASON"
+  OutputError(std::string path, const std::string& reason)
+      : std::runtime_error("cannot write " + path + ": " + reason),
+        path_(std::move(path)),
+        reason_(reason) {}
+  const std::string& path() const { return path_; }
+  const std::string& reason() const { return reason_; }
+
+ private:
+  std::string path_, reason_;
+};
+
+// Why a write to 'path' failed: "No space left on device" when its file system
+// is full, else the OS error 'saved_errno' (errno right after the failed
+// call), else 'fallback'.
+std::string write_failure_reason(const std::string& path, int saved_errno,
+                                 const std::string& fallback = "the write failed");
 
 [[noreturn]] void throw_petsc_error(PetscErrorCode code, const char* call, const char* file,
                                     int line);

@@ -27,8 +27,13 @@ class H5File {
  public:
   enum class Mode { create, append };
   // create: creates (truncates) the file; append: opens an existing one.
+  // A failed write (create, dataset, attribute, close) throws OutputError
+  // naming the file and the OS error.
   explicit H5File(const std::string& path, Mode mode = Mode::create);
-  ~H5File();
+  // Closes the file; throws OutputError if that fails (unless another
+  // exception is on its way): call close() to see the failure earlier.
+  ~H5File() noexcept(false);
+  void close();
   H5File(const H5File&) = delete;
   H5File& operator=(const H5File&) = delete;
 
@@ -67,7 +72,12 @@ class H5File {
 
  private:
   void ensure_parent_groups(const std::string& path);
+  [[noreturn]] void fail_write();  // closes the file as it is, throws OutputError
+  void check(bool ok);             // fail_write() unless ok
+  std::string path_;
+  int exceptions_ = 0;  // std::uncaught_exceptions() when made
   hid_t file_ = -1;
+  int fd_ = -1;  // its OS descriptor
 };
 
 }  // namespace pcsim

@@ -43,7 +43,8 @@ struct OutputRequest {
 class OutputDir {
  public:
   // Throws InputError(given_in, given_by, reason) on every rank when the folder
-  // cannot be used; nothing is touched then.
+  // cannot be used (OutputError when its manifest cannot be written); nothing
+  // is touched then.
   OutputDir(MPI_Comm comm, OutputRequest request);
   ~OutputDir();  // removes the partial folder unless committed (or kept by a failed commit)
   OutputDir(const OutputDir&) = delete;
@@ -55,7 +56,9 @@ class OutputDir {
   // What produced the results (output/provenance.hpp), for the writers.
   const nlohmann::json& provenance() const { return request_.provenance; }
   const std::string& partial_dir() const { return partial_; }
-  // Puts the finished results in place of any earlier result (collective).
+  // Puts the finished results in place of any earlier result (collective);
+  // if the manifest cannot be written, throws OutputError and keeps the
+  // results in the partial folder, not marked complete.
   void commit();
   // An interrupted run: leaves "<dir>.partial" with what it holds (its data
   // and checkpoint), releases the lock (collective). No final folder appears.
@@ -73,6 +76,7 @@ class OutputDir {
   int rank_ = 0;
   OutputRequest request_;
   std::string final_, partial_, lock_path_, started_;
+  std::string failed_path_;  // a file that could not be written: fail() throws OutputError
   std::vector<std::string> created_parents_;  // folders made for <dir>, removed on failure
   int lock_fd_ = -1;
   bool owns_partial_ = false;  // this run made partial_ (a leftover is never removed)

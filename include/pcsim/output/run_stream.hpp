@@ -82,6 +82,9 @@ class RunStream {
   std::vector<double> snapshot_times() const { return snapshot_times_; }
   // Flushes and closes the file (also done by the destructor).
   void close();
+  // Creating, appending, flushing and closing throw OutputError (the path and
+  // the OS error) when the file cannot be written; the file is then closed
+  // and the stream writes nothing more (what was flushed before stays).
 
  private:
   struct Column;  // one dataset and its buffered rows
@@ -96,9 +99,17 @@ class RunStream {
   void stamp(const RunSettings& settings);
   std::vector<double> pantograph_points(const std::vector<double>& positions,
                                         const contact::StepRecord& record) const;
+  void create(const RunSettings& settings, const nlohmann::json& provenance);
+  void append_snapshot_rows(const std::vector<double>& positions, const contact::StepRecord& r);
+  void flush_rows();
+  // Runs 'write'; on any failure closes the file as it is and throws OutputError.
+  void guarded(const std::function<void()>& write);
+  void abandon();  // closes every dataset and the file, ignoring errors
 
+  std::string path_;
   RunLayout layout_;
   hid_t file_ = -1;
+  int fd_ = -1;                                   // its OS descriptor (h5::discard_close)
   std::vector<std::unique_ptr<Column>> columns_;  // per-step series, in append order
   std::vector<std::unique_ptr<h5::Series>> snapshot_series_;
   std::vector<double> snapshot_times_;

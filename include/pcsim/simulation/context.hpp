@@ -33,8 +33,10 @@ struct Context {
 constexpr int kExitInput = 2;
 constexpr int kExitSolver = 3;
 constexpr int kExitInternal = 4;
+constexpr int kExitOutput = 5;  // a result file could not be written (OutputError)
 
-// The exit status of an error: 2 InputError, 3 SolverError, 4 anything else.
+// The exit status of an error: 2 InputError, 3 SolverError, 5 OutputError,
+// 4 anything else.
 int exit_status_of(std::exception_ptr error);
 
 // Thrown on the ranks that stop because another rank failed; that rank

@@ -4,6 +4,7 @@
 // SIGTERM at a step boundary, agreed by every rank (interrupt.hpp).
 #pragma once
 
+#include <exception>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -42,7 +43,11 @@ class RunSession {
              const GracefulStop* stop);
 
   // TSSolve with the monitor and the stop check installed. Returns the signal
-  // that stopped the run (0: it ended by itself).
+  // that stopped the run (0: it ended by itself). A result that cannot be
+  // written (results.h5, a checkpoint) stops the run on every rank at the
+  // next step: OutputError on rank 0, FailedOnOtherRank(5) on the others. A
+  // state that is not finite stops it with a SolverError naming the inputs
+  // that usually cause it.
   int integrate();
   // After integrate(): writes a checkpoint at the last step unless there is
   // one already (collective). False for a TS type that cannot be checkpointed
@@ -66,7 +71,11 @@ class RunSession {
   long rejected_steps() const;  // earlier runs included
   void print_progress(PetscInt step, PetscReal t) const;
   void write_checkpoint();
-  double wall_time() const;  // of the integration, earlier runs included
+  bool hold_output_failure(std::exception_ptr error);  // false: not an output failure
+  bool agreed_output_failure() const;                  // collective
+  void raise_output_failure() const;                   // collective: throws if any rank failed
+  bool state_finite(TS ts) const;                      // collective
+  double wall_time() const;                            // of the integration, earlier runs included
 
   const Context& ctx_;
   assembly::CoupledSystem& system_;
@@ -87,7 +96,14 @@ class RunSession {
   double step_end_ = -1;         // when the previous step's record ended [s]
   long reference_builds_ = 0, involuntary_switches_ = 0;
   int window_shifts_ = 0;
-  bool flushed_ = false;  // the previous record flushed results.h5
+  bool flushed_ = false;               // the previous record flushed results.h5
+  std::exception_ptr output_failure_;  // this rank's OutputError (or its FailedOnOtherRank)
+  bool not_finite_ = false;            // the state became NaN or inf
+  double not_finite_time_ = 0;
 };
+
+// The SolverError of a state that is not finite at time t: names the inputs
+// that usually cause it.
+std::string not_finite_message(double t);
 
 }  // namespace pcsim::simulation

@@ -1,0 +1,77 @@
+#!/bin/bash
+# A full file system (README "Exit codes", 5): `pcsim run` into small tmpfs
+# mounts. Each run must end with exit 5 (or 0 where the results fit), one
+# 'pcsim: error' line naming the file and the OS error, no HDF5 error stack,
+# no signal (a crash gave 139), no final folder, and a readable .partial
+# folder (its manifest says incomplete). Then a modal cache on a full file
+# system: a warning, and the run goes on (exit 0).
+# Needs root for mount (CI runs as root); fails (does not skip) without it.
+set -euo pipefail
+: "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}"
+tmp=$(mktemp -d)
+mounts=()
+cleanup() {
+  for m in "${mounts[@]}"; do umount "$m" 2> /dev/null || true; done
+  rm -rf "$tmp"
+}
+trap cleanup EXIT
+scene=$PCSIM_SOURCE_DIR/tests/contact/data/three-span-lumped.yaml
+failures=0
+fail() {
+  echo "FAIL: $*"
+  failures=$((failures + 1))
+}
+
+mount_tmpfs() {  # SIZE -> prints the mount point
+  local dir=$tmp/fs-$1
+  mkdir -p "$dir"
+  if ! mount -t tmpfs -o "size=$1" tmpfs "$dir" 2> "$tmp/mount.err"; then
+    echo "cannot mount a tmpfs (not root?): $(cat "$tmp/mount.err")" >&2
+    exit 1
+  fi
+  echo "$dir"
+}
+
+for size in 20k 60k 150k 400k 4m; do
+  fs=$(mount_tmpfs $size)
+  mounts+=("$fs")
+  status=0
+  (cd "$tmp" && timeout 300 "$PCSIM_BIN" run "$scene" -o "$fs/r" --no-report \
+    > "$tmp/$size.out" 2> "$tmp/$size.err") || status=$?
+  errors=$(grep -c '^pcsim: error' "$tmp/$size.err" || true)
+  if grep -q 'HDF5-DIAG\|PETSc ERROR' "$tmp/$size.err"; then fail "$size: error stack printed"; fi
+  if [ "$status" -eq 0 ]; then
+    [ -f "$fs/r/results.h5" ] || fail "$size: exit 0 without results"
+    [ "$errors" -eq 0 ] || fail "$size: exit 0 with an error message"
+    echo "$size: fits (exit 0)"
+    continue
+  fi
+  [ "$status" -eq 5 ] || fail "$size: exit $status, expected 5 (or 0)"
+  [ "$errors" -eq 1 ] || fail "$size: $errors 'pcsim: error' lines, expected 1"
+  grep -q "^pcsim: error: cannot write $fs/r.partial/[a-z0-9._-]*: No space left on device" \
+    "$tmp/$size.err" || fail "$size: the message does not name the file and the OS error"
+  [ ! -e "$fs/r" ] || fail "$size: a final folder appeared"
+  [ -d "$fs/r.partial" ] || fail "$size: no partial folder kept"
+  grep -q '"complete": false' "$fs/r.partial/.pcsim-result" ||
+    fail "$size: the partial folder's manifest is missing or says complete"
+  [ ! -e "$fs/r.pcsim-lock" ] || fail "$size: lock left"
+  echo "$size: exit $status: $(grep '^pcsim: error' "$tmp/$size.err")"
+done
+[ "$failures" -gt 0 ] && cat "$tmp"/*.err | head -40
+
+# The modal cache on a full file system: a warning, the run completes.
+fs=$(mount_tmpfs 8k)
+mounts+=("$fs")
+head -c 4096 /dev/zero > "$fs/filler" 2> /dev/null || true
+status=0
+(cd "$tmp" && timeout 300 "$PCSIM_BIN" run "$PCSIM_SOURCE_DIR/tests/assembly/data/three-span-modal.yaml" \
+  -o "$tmp/modal" --cache "$fs/cache" --no-report -ts_max_steps 5 \
+  > "$tmp/modal.out" 2> "$tmp/modal.err") || status=$?
+[ "$status" -eq 0 ] || fail "modal cache on a full disk: exit $status (expected 0)"
+grep -q '^pcsim: warning: the modal data are not cached' "$tmp/modal.err" ||
+  fail "modal cache on a full disk: no warning"
+if grep -q 'HDF5-DIAG' "$tmp/modal.err"; then fail "modal cache: HDF5 error stack"; fi
+if ls "$fs/cache" 2> /dev/null | grep -q tmp; then fail "modal cache: temporary file left"; fi
+[ "$failures" -gt 0 ] && cat "$tmp/modal.err"
+echo "$failures failure(s)"
+[ "$failures" -eq 0 ]
