@@ -10,21 +10,13 @@
 
 #include "output_guard.hpp"
 #include "pcsim/core/error.hpp"
+#include "pcsim/core/vec_root.hpp"
 
 namespace fs = std::filesystem;
 
 namespace pcsim {
 
 namespace {
-
-// Rank 0's text, on every rank.
-std::string broadcast_text(MPI_Comm comm, std::string text) {
-  int size = static_cast<int>(text.size());
-  MPI_Bcast(&size, 1, MPI_INT, 0, comm);
-  text.resize(static_cast<std::size_t>(size));
-  MPI_Bcast(text.data(), size, MPI_CHAR, 0, comm);
-  return text;
-}
 
 // True if 'inner' is 'outer' or lies inside it (both absolute and normal).
 bool is_inside(const fs::path& inner, const fs::path& outer) {

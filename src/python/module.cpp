@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "pcsim/core/error.hpp"
+#include "pcsim/core/vec_root.hpp"
 #include "pcsim/core/version.hpp"
 #include "pcsim/output/output_dir.hpp"
 #include "pcsim/output/provenance.hpp"
@@ -145,11 +146,7 @@ std::string scratch_folder(const simulation::Context& ctx) {
     std::random_device rd;
     dir = (fs::temp_directory_path() / ("pcsim-py-" + std::to_string(rd()))).string();
   }
-  unsigned long n = dir.size();
-  MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG, 0, ctx.comm);
-  dir.resize(n);
-  MPI_Bcast(dir.data(), static_cast<int>(n), MPI_CHAR, 0, ctx.comm);
-  return dir;
+  return broadcast_text(ctx.comm, dir);
 }
 
 py::dict run(const Scene& s, const std::string& output, const std::string& options, bool quiet,

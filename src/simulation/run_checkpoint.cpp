@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "pcsim/core/error.hpp"
+#include "pcsim/core/vec_root.hpp"
 #include "pcsim/output/checkpoint.hpp"
 #include "pcsim/scene/composition.hpp"
 #include "pcsim/simulation/context.hpp"
@@ -32,14 +33,6 @@ std::string sha256_hex(const std::string& text) {
     hex += byte;
   }
   return hex;
-}
-
-std::string broadcast_text(MPI_Comm comm, std::string text) {
-  int size = static_cast<int>(text.size());
-  MPI_Bcast(&size, 1, MPI_INT, 0, comm);
-  text.resize(static_cast<std::size_t>(size));
-  MPI_Bcast(text.data(), size, MPI_CHAR, 0, comm);
-  return text;
 }
 
 nlohmann::json inputs_json(const std::vector<InputFile>& inputs) {
