@@ -2,6 +2,8 @@
 
 #include <openssl/evp.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -151,6 +153,34 @@ RunCheckpoint from_data(output::CheckpointData& d) {
   return c;
 }
 
+// What is damaged in checkpoint c ("" if nothing): values a run cannot have
+// written (non-finite numbers, negative steps or times, vectors of unequal
+// lengths), so that a damaged file is bad input (exit 2), not a solver failure.
+std::string damage(const RunCheckpoint& c) {
+  const auto& s = c.state;
+  auto finite = [](const std::vector<double>& v) {
+    return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+  };
+  if (!std::isfinite(s.t) || s.t < 0)
+    return "its time 't' is not a time (" + std::to_string(s.t) + ")";
+  if (s.step < 0 || s.accepted_since_cut < 0) return "its step counts are negative";
+  if (!(std::isfinite(s.time_step) && s.time_step > 0) ||
+      !(std::isfinite(s.user_time_step) && s.user_time_step > 0))
+    return "its time step is not positive and finite";
+  if (s.U.empty() || s.V.size() != s.U.size() || s.A.size() != s.U.size())
+    return "its state vectors U, V, A differ in length";
+  if (!finite(s.U) || !finite(s.V) || !finite(s.A)) return "its state holds non-finite values";
+  if (s.has_reference &&
+      (!std::isfinite(s.reference_t) || !std::isfinite(s.shift_v) || !std::isfinite(s.shift_a) ||
+       s.reference_U.size() != s.U.size() || !finite(s.reference_U) || !finite(s.reference_V) ||
+       !finite(s.reference_A)))
+    return "its reference state (the cheap path's J0) is not finite or not of the state's length";
+  if (!finite(s.head_offsets)) return "its pantograph head offsets are not finite";
+  for (const auto& t : s.terms)
+    if (!finite(t)) return "a term's saved state is not finite";
+  return "";
+}
+
 // Why this run cannot continue checkpoint c ("" if it can).
 std::string mismatch(const Context& ctx, const RunCheckpoint& c,
                      const std::vector<InputFile>& inputs) {
@@ -255,7 +285,9 @@ RunCheckpoint load_run_checkpoint(const Context& ctx, const std::string& dir,
       try {
         auto data = output::read_checkpoint(file);
         c = from_data(data);
-        why = mismatch(ctx, c, inputs);
+        why = damage(c);
+        if (!why.empty()) why = file + " is damaged: " + why;
+        if (why.empty()) why = mismatch(ctx, c, inputs);
       } catch (const std::exception& e) {
         why = std::string("cannot read the checkpoint: ") + e.what();
       }
