@@ -46,14 +46,9 @@ nlohmann::json CommandContext::provenance(const InputNode& scene) const {
   std::ostringstream text;
   text << std::ifstream(scene_path).rdbuf();
   in.scene_text = text.str();
-  in.resolved_scene = to_yaml(scene);
   in.overrides = overrides;
   in.ranks = size;
-  const auto inputs = simulation::recorded_inputs(scene_path, scene);
-  for (const auto& f : inputs)
-    in.inputs.push_back(
-        {{"role", f.role}, {"path", f.path}, {"sha256", f.sha256}, {"content", f.content}});
-  in.inputs_fingerprint = simulation::inputs_fingerprint(command + " " + subcommand, inputs);
+  simulation::record_inputs(in, command + " " + subcommand, scene_path, scene);
   return output::make_provenance(in);
 }
 

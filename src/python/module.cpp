@@ -71,14 +71,9 @@ nlohmann::json provenance(const Scene& s, int ranks) {
   in.command = "run";
   in.arguments = {"python", "pcsim.run"};
   in.scene_file = s.path;
-  in.resolved_scene = to_yaml(s.composed);
   in.overrides = s.overrides;
   in.ranks = ranks;
-  const auto inputs = simulation::recorded_inputs(s.path, s.composed);
-  for (const auto& f : inputs)
-    in.inputs.push_back(
-        {{"role", f.role}, {"path", f.path}, {"sha256", f.sha256}, {"content", f.content}});
-  in.inputs_fingerprint = simulation::inputs_fingerprint("run ", inputs);
+  simulation::record_inputs(in, "run ", s.path, s.composed);  // as `pcsim run` records them
   return output::make_provenance(in);
 }
 

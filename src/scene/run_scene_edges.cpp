@@ -23,19 +23,18 @@ void check_filter_edges(const InputNode& scene, RunScene& run) {
                  after = p.start_x + travel - run.analysis_to_x;
     const std::string section = "the analysis section (" + format_number(run.analysis_from_x) +
                                 ", " + format_number(run.analysis_to_x) + ") m";
-    const std::string why = " m, less than the filter's transient length " + format_number(margin) +
+    const std::string why = "less than the filter's transient length " + format_number(margin) +
                             " m (3 / analysis.cutoff_hz at speed_kmh " +
                             format_number(run.speed * 3.6) +
                             "): the filtered statistics are biased near the record's ";
     if (before < margin)
       run.warnings.push_back({scene.file(), key,
                               "pantograph '" + p.name + "' starts " + format_number(before) +
-                                  " m before " + section + ", " + why.substr(3) +
-                                  "start; start it earlier"});
+                                  " m before " + section + ", " + why + "start; start it earlier"});
     if (after < margin)
       run.warnings.push_back({scene.file(), "simulation.end_x",
                               "pantograph '" + p.name + "' leaves " + section + " only " +
-                                  format_number(after) + why + "end; end the run later"});
+                                  format_number(after) + " m, " + why + "end; end the run later"});
   }
 }
 

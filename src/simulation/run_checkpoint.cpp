@@ -261,6 +261,16 @@ std::string inputs_fingerprint(const std::string& command,
   return sha256_hex(all);
 }
 
+void record_inputs(output::ProvenanceInputs& in, const std::string& command,
+                   const std::string& scene_path, const InputNode& scene) {
+  in.resolved_scene = to_yaml(scene);
+  const auto inputs = recorded_inputs(scene_path, scene);
+  for (const auto& f : inputs)
+    in.inputs.push_back(
+        {{"role", f.role}, {"path", f.path}, {"sha256", f.sha256}, {"content", f.content}});
+  in.inputs_fingerprint = inputs_fingerprint(command, inputs);
+}
+
 void write_run_checkpoint(const Context& ctx, const std::string& file,
                           const RunCheckpoint& checkpoint) {
   on_rank0(ctx, [&] { output::write_checkpoint(file, to_data(checkpoint)); });

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "pcsim/output/provenance.hpp"
 #include "pcsim/scene/yaml_input.hpp"
 #include "pcsim/simulation/context.hpp"
 #include "pcsim/solvers/dynamics.hpp"
@@ -40,6 +41,12 @@ std::vector<RecordedInput> recorded_inputs(const std::string& scene_path, const 
 // results with the same fingerprint were made from the same inputs.
 std::string inputs_fingerprint(const std::string& command,
                                const std::vector<RecordedInput>& inputs);
+
+// The provenance's record of the inputs (output/provenance.hpp): the scene as
+// composed, every input file [{role, path, sha256, content}] and the
+// fingerprint over 'command' and them.
+void record_inputs(output::ProvenanceInputs& in, const std::string& command,
+                   const std::string& scene_path, const InputNode& scene);
 
 // Where the run stands besides the solver's state.
 struct RunProgress {
