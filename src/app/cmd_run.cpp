@@ -1,11 +1,14 @@
 // `pcsim run SCENE.yaml [--restart DIR]`: dynamic pantograph-catenary interaction
 // through the run pipeline (simulation/run.hpp); this file reads the command
 // line and prints.
+#include <petscsys.h>
+
 #include <memory>
 
 #include "command.hpp"
 #include "exit_status.hpp"
 #include "inputs.hpp"
+#include "pcsim/core/error.hpp"
 #include "pcsim/output/en50318.hpp"
 #include "pcsim/output/output_dir.hpp"
 #include "pcsim/output/run_results.hpp"
@@ -180,6 +183,9 @@ int run_dynamic(const app::CommandContext& ctx) {
   const auto restart = load_restart(ctx, run, output, request.inputs);
   request.restart = restart.get();
   request.restart_dir = app::restart_dir(ctx);
+  PetscBool help = PETSC_FALSE;
+  PCSIM_PETSC(PetscOptionsHasHelp(nullptr, &help));
+  request.stop_before_stepping = help == PETSC_TRUE;
   OutputDir out(ctx.comm, output);
   app::print0(ctx, "pcsim run: scene '%s', design %s\n", request.name.c_str(),
               run.catenary.design_path.c_str());
@@ -191,6 +197,7 @@ int run_dynamic(const app::CommandContext& ctx) {
     keep_partial_if_not_written(ctx, out, std::current_exception());
     throw;
   }
+  if (request.stop_before_stepping) return 0;  // -help: options listed, nothing written
   if (!outcome.complete) return report_interrupted(ctx, out, outcome);
   return report_complete(ctx, out, outcome, run.energy);
 }

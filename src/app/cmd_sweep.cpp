@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -17,6 +18,7 @@
 #include "pcsim/output/sweep_results.hpp"
 #include "pcsim/scene/composition.hpp"
 #include "pcsim/scene/run_scene.hpp"
+#include "pcsim/simulation/interrupt.hpp"
 #include "pcsim/simulation/run_checkpoint.hpp"
 #include "processes.hpp"
 
@@ -179,32 +181,60 @@ std::string case_line(const output::SweepCase& c) {
   return line;
 }
 
-void run_cases(const CommandContext& ctx, Plan& plan, const OutputDir& out, int jobs) {
-  const std::string cases = out.file("cases");
-  std::map<pid_t, std::size_t> running;
-  std::size_t next = 0, done = 0;
-  const auto start = std::chrono::steady_clock::now();
-  while (done < plan.cases.size()) {
-    while (next < plan.cases.size() && static_cast<int>(running.size()) < jobs) {
-      const std::string folder = cases + "/" + plan.cases[next].name;
-      std::filesystem::create_directories(cases);
-      running[app::start_process(case_command(ctx, plan, next, folder), folder + ".log",
-                                 kLauncherVariables)] = next;
-      ++next;
-    }
+// SIGINT/SIGTERM during a sweep: no new case starts, the running ones get
+// the signal (each stops at its next step, its data and checkpoint kept in
+// its .partial folder) and are waited for. Returns the signal, 0 if none.
+int stop_running_cases(const CommandContext& ctx, Plan& plan, std::map<pid_t, std::size_t>& running,
+                       int signal_number) {
+  app::print0(ctx, "  %s: stopping %zu running case(s)\n", simulation::signal_name(signal_number),
+              running.size());
+  for (const auto& [pid, index] : running) kill(pid, signal_number);
+  while (!running.empty()) {
     int status = 0;
     const pid_t pid = app::wait_any_process(status);
+    if (pid < 0) break;
+    if (running.count(pid)) plan.cases[running[pid]].status = status;
+    running.erase(pid);
+  }
+  return signal_number;
+}
+
+// Runs the cases, jobs at a time; returns the signal that stopped the sweep (0: none).
+int run_cases(const CommandContext& ctx, Plan& plan, const OutputDir& out, int jobs) {
+  const std::string cases = out.file("cases");
+  std::map<pid_t, std::size_t> running;
+  std::map<pid_t, std::chrono::steady_clock::time_point> started;
+  std::size_t next = 0, done = 0;
+  const auto start = std::chrono::steady_clock::now();
+  simulation::GracefulStop stop;
+  const auto stop_asked = [&] { return stop.agreed_signal(MPI_COMM_SELF) != 0; };
+  while (done < plan.cases.size()) {
+    while (next < plan.cases.size() && static_cast<int>(running.size()) < jobs && !stop_asked()) {
+      const std::string folder = cases + "/" + plan.cases[next].name;
+      std::filesystem::create_directories(cases);
+      const pid_t pid = app::start_process(case_command(ctx, plan, next, folder), folder + ".log",
+                                           kLauncherVariables);
+      running[pid] = next++;
+      started[pid] = std::chrono::steady_clock::now();
+    }
+    int status = 0;
+    const pid_t pid =
+        running.empty() ? app::kWaitStopped : app::wait_any_process(status, stop_asked);
+    if (pid == app::kWaitStopped)
+      return stop_running_cases(ctx, plan, running, stop.agreed_signal(MPI_COMM_SELF));
     if (!running.count(pid)) continue;
     auto& c = plan.cases[running[pid]];
     running.erase(pid);
     c.status = status;
     std::ifstream summary(cases + "/" + c.name + "/summary.json");
     if (status == 0 && summary) c.summary = nlohmann::json::parse(summary, nullptr, false);
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    app::print0(ctx, "  [%zu/%zu] %s: %s (%.0f s)\n", ++done, plan.cases.size(), c.name.c_str(),
-                case_line(c).c_str(), elapsed);
+    const auto now = std::chrono::steady_clock::now();
+    const double took = std::chrono::duration<double>(now - started[pid]).count();
+    const double elapsed = std::chrono::duration<double>(now - start).count();
+    app::print0(ctx, "  [%zu/%zu] %s: %s (%.1f s; %.0f s since the sweep began)\n", ++done,
+                plan.cases.size(), c.name.c_str(), case_line(c).c_str(), took, elapsed);
   }
+  return 0;
 }
 
 // Plots of the figures against the swept values and report.html (warnings only).
@@ -250,7 +280,14 @@ int run_sweep(const CommandContext& ctx) {
   OutputDir out(ctx.comm, request);
   app::print0(ctx, "pcsim sweep: scene '%s', %zu cases, %d at a time\n",
               ctx.scene_name(scene).c_str(), plan.cases.size(), jobs);
-  run_cases(ctx, plan, out, jobs);
+  if (const int signal_number = run_cases(ctx, plan, out, jobs)) {
+    out.keep_partial();
+    app::print0(ctx,
+                "\n  interrupted (%s): the finished cases and the stopped ones (with their "
+                "checkpoints) are in %s/cases/\n",
+                simulation::signal_name(signal_number), out.partial_dir().c_str());
+    return 128 + signal_number;
+  }
   std::vector<std::pair<std::string, std::vector<std::string>>> swept;
   for (const auto& s : plan.swept) swept.emplace_back(s.key, s.values);
   const std::string table = output::write_sweep_results(out, swept, plan.cases);

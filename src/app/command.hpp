@@ -84,6 +84,12 @@ using simulation::print0;
 using simulation::print_warnings;
 using simulation::total_peak_memory_mb;
 
+// Single-dash options (option_check.cpp): an option no PETSc, SLEPc or pcsim
+// object can read is an input error before any work; after the command, the
+// options no solver read are warned about.
+void refuse_unknown_options(const CommandContext& ctx);
+void warn_unread_options(const CommandContext& ctx);
+
 // Newton history, form-finding errors and dropper forces of a static solution.
 void print_static_summary(const CommandContext& ctx, const catenary::CatenaryMesh& mesh,
                           const catenary::StaticResult& result);

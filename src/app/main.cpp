@@ -49,7 +49,9 @@ void print_usage() {
   std::printf(
       "Options with a single dash go to PETSc's options database, e.g. -snes_monitor,\n"
       "-snes_test_jacobian, -ksp_type, -ts_dt, -eps_nev, -log_view, -options_left;\n"
-      "-help lists every option a command reads. pcsim's own, checked before any work:\n"
+      "-help lists every option a run reads (and stops before the time loop); an option\n"
+      "no PETSc or pcsim object can read is an error, one no solver read a warning.\n"
+      "pcsim's own, checked before any work:\n"
       "  -ts_dt, -ts_type hht|alpha2, -ts_hht_alpha [0, 1/3], -pcsim_path auto|full|cheap (run);\n"
       "  -eps_nev N, -modes_fmax F (modes); -pcsim_debug_* (tests).\n"
       "Scene files: docs/scene-format.md; catenary designs: docs/design-format.md.\n");
@@ -215,8 +217,10 @@ int main(int argc, char** argv) {
   std::string message;
   bool failed = false;
   try {
+    refuse_unknown_options(ctx);
     debug_fail_if_asked(ctx);
     status = it->second.run(ctx);
+    if (status == 0) warn_unread_options(ctx);
   } catch (...) {
     failed = true;
     status = exit_status_of(std::current_exception(), ctx, message);

@@ -75,11 +75,13 @@ int wait_process(pid_t pid) {
   return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : 4;
 }
 
-pid_t wait_any_process(int& status) {
+pid_t wait_any_process(int& status, const std::function<bool()>& stop) {
   int raw = 0;
   pid_t pid;
-  while ((pid = waitpid(-1, &raw, 0)) < 0)
+  while ((pid = waitpid(-1, &raw, 0)) < 0) {
     if (errno != EINTR) return -1;
+    if (stop && stop()) return kWaitStopped;
+  }
   status = WIFEXITED(raw) ? WEXITSTATUS(raw) : WIFSIGNALED(raw) ? 128 + WTERMSIG(raw) : 4;
   return pid;
 }

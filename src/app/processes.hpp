@@ -4,6 +4,7 @@
 
 #include <sys/types.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -17,8 +18,10 @@ pid_t start_process(const std::vector<std::string>& argv, const std::string& log
                     const std::vector<std::string>& environment_drop = {});
 // Waits for the process; its exit status, or 128 + signal if a signal ended it.
 int wait_process(pid_t pid);
-// Waits for any child; its pid, and its status in 'status'.
-pid_t wait_any_process(int& status);
+// Waits for any child; its pid, and its status in 'status'. A signal that
+// interrupts the wait and for which 'stop' says true returns kWaitStopped.
+constexpr pid_t kWaitStopped = -2;
+pid_t wait_any_process(int& status, const std::function<bool()>& stop = {});
 
 // This executable (/proc/self/exe).
 std::string own_executable();

@@ -24,7 +24,11 @@ void throw_petsc_error(PetscErrorCode code, const char* call, const char* file, 
   std::string message =
       std::string("PETSc error ") + std::to_string(code) + " (" + (text ? text : "unknown") + ")";
   if (specific && *specific) message += ": " + std::string(specific);
-  throw SolverError(message + " in " + call + " at " + file + ":" + std::to_string(line));
+  // The source file relative to the repository (no machine's path).
+  std::string where = file;
+  const auto src = where.rfind("/src/");
+  if (src != std::string::npos) where = where.substr(src + 1);
+  throw SolverError(message + " in " + call + " at " + where + ":" + std::to_string(line));
 }
 
 }  // namespace pcsim

@@ -260,6 +260,12 @@ RunOutcome run(const Context& ctx, scene::RunScene& scene, const RunRequest& req
          static_cast<int>(system->catenary().catenary_dofs()),
          static_cast<int>(system->global_size() - system->catenary().catenary_dofs()), ctx.size,
          solver.cheap_path() ? "cheap (Jacobian reused)" : "full Newton");
+  if (request.stop_before_stepping) {
+    print0(ctx,
+           "  -help: the options above are those this run reads; stopped before the "
+           "time loop, nothing written\n");
+    return outcome;
+  }
   // A restart starts as a new run (the models keep parameters of their static
   // equilibrium), then takes the checkpoint's state.
   solver.set_initial_state(U0, V0);

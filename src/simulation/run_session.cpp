@@ -80,14 +80,22 @@ int RunSession::integrate() {
   PCSIM_PETSC(TSSetApplicationContext(ts, this));
   PCSIM_PETSC(TSMonitorSet(ts, monitor, this, nullptr));
   PCSIM_PETSC(TSSetPostStep(ts, post_step));
-  PCSIM_PETSC(TSSolve(ts, nullptr));
+  // A failed step ends TSSolve with an error and a negative reason: the
+  // reason, the time and the likely inputs make the message, not PETSc's.
+  const PetscErrorCode solved = TSSolve(ts, nullptr);
   raise_output_failure();
   if (not_finite_) throw SolverError(not_finite_message(not_finite_time_));
   TSConvergedReason reason;
   PCSIM_PETSC(TSGetConvergedReason(ts, &reason));
-  if (reason < 0)
-    throw SolverError(std::string("time integration failed: ") + TSConvergedReasons[reason] +
-                      " at t = " + std::to_string(time_) + " s; " + kLikelyInputs);
+  if (reason < 0) {
+    PetscInt step = 0;
+    TSGetStepNumber(ts, &step);
+    throw SolverError(std::string("the time step did not converge (") + TSConvergedReasons[reason] +
+                      ") at step " + std::to_string(step + 1) +
+                      ", after t = " + std::to_string(time_) + " s; " + kLikelyInputs +
+                      ", and any -snes_*/-ksp_* options given");
+  }
+  if (solved) throw_petsc_error(solved, "TSSolve", __FILE__, __LINE__);
   on_rank0(ctx_, [&] {
     if (stream_) stream_->flush();
   });

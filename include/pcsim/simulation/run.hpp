@@ -36,6 +36,9 @@ struct RunRequest {
   std::string restart_dir;                 // the folder it came from
   bool stop_on_signal = true;  // SIGINT/SIGTERM stop the run at its next step, data kept
   bool scene_dt = false;       // the scene's dt over -ts_dt (the variants of a study)
+  // -help: set up every solver (each lists the options it reads), then stop
+  // before the time loop; nothing is written.
+  bool stop_before_stepping = false;
 };
 
 // Called on every rank after every accepted step (and for the start), in step
