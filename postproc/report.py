@@ -18,6 +18,7 @@ import base64
 import html
 import io
 import os
+import sys
 
 import pcsim_post
 
@@ -218,8 +219,16 @@ def main():
         pcsim_post.need_run_folder(a.folder, ("summary.json",), "pcsim sweep")
         text = sweep_report(a.folder)
     output = a.output or os.path.join(a.folder, "report.html")
-    with open(output, "w") as f:
-        f.write(text)
+    temporary = output + ".tmp"
+    try:  # whole or not at all
+        with open(temporary, "w") as f:
+            f.write(text)
+        os.replace(temporary, output)
+    except OSError as e:  # a full disk: pcsim run reports it as its exit 5
+        if os.path.exists(temporary):
+            os.remove(temporary)
+        print("cannot write %s: %s" % (output, e.strerror), file=sys.stderr)
+        sys.exit(5)
     print("report: wrote %s" % output)
 
 

@@ -9,6 +9,7 @@
 #include "exit_status.hpp"
 #include "inputs.hpp"
 #include "pcsim/core/error.hpp"
+#include "pcsim/core/vec_root.hpp"
 #include "pcsim/output/en50318.hpp"
 #include "pcsim/output/output_dir.hpp"
 #include "pcsim/output/run_results.hpp"
@@ -113,13 +114,17 @@ int report_interrupted(const app::CommandContext& ctx, const OutputDir& out,
 }
 
 // report.html (postproc/report.py) in the result folder; a warning if it
-// cannot be made (no Python with matplotlib).
-void write_report(const app::CommandContext& ctx, const OutputDir& out) {
-  const std::string why = app::run_postproc("report.py", {"run", out.partial_dir()});
+// cannot be made (no Python with matplotlib). Returns why it could not be
+// written (a full disk: the run's exit 5), "" otherwise.
+std::string write_report(const app::CommandContext& ctx, const OutputDir& out) {
+  int status = 0;
+  const std::string why = app::run_postproc("report.py", {"run", out.partial_dir()}, &status);
   if (why.empty())
     app::print0(ctx, "  report: report.html\n");
-  else
+  else if (status != app::kPostprocWriteFailed)
     std::fprintf(stderr, "pcsim: warning: no report.html: %s\n", why.c_str());
+  if (status != app::kPostprocWriteFailed) return "";
+  return why.substr(why.rfind(": ") + 2);  // the OS error: "No space left on device"
 }
 
 // A run that ended by itself: the tables, the report, the result in place.
@@ -141,7 +146,15 @@ int report_complete(const app::CommandContext& ctx, OutputDir& out,
   if (facts["rejected_steps"].get<long>() > 0)
     app::print0(ctx, "  %ld steps rejected by Newton and retried with a smaller time step\n",
                 facts["rejected_steps"].get<long>());
-  if (!ctx.has_option("--no-report")) app::on_rank0(ctx, [&] { write_report(ctx, out); });
+  std::string report_failure;
+  if (!ctx.has_option("--no-report"))
+    app::on_rank0(ctx, [&] { report_failure = write_report(ctx, out); });
+  report_failure = broadcast_text(ctx.comm, report_failure);
+  if (!report_failure.empty()) {  // exit 5 on every rank, the results kept
+    out.keep_partial();
+    app::print0(ctx, "  what was written before is kept in %s/\n", out.partial_dir().c_str());
+    throw OutputError(out.file("report.html"), report_failure);
+  }
   out.commit();
   app::print0(ctx, "  results in %s/\n", out.final_dir().c_str());
   return 0;

@@ -108,7 +108,8 @@ std::string postproc_script(const std::string& name) {
   return std::string(PCSIM_SOURCE_DIR) + "/postproc/" + name;
 }
 
-std::string run_postproc(const std::string& script, const std::vector<std::string>& args) {
+std::string run_postproc(const std::string& script, const std::vector<std::string>& args,
+                         int* status_out) {
   const std::string path = postproc_script(script);
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) return "no script " + path;
@@ -121,6 +122,7 @@ std::string run_postproc(const std::string& script, const std::vector<std::strin
   std::string why;
   try {
     const int status = wait_process(start_process(argv, log));
+    if (status_out) *status_out = status;
     if (status != 0)
       why = script + " failed (exit " + std::to_string(status) + "): " + last_line(log);
   } catch (const std::exception& e) {

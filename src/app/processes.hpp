@@ -34,6 +34,10 @@ std::string postproc_script(const std::string& name);
 
 // Runs postproc/<script> with 'args'; "" on success, else why not (one line:
 // the script's last line of output, or why it could not start).
-std::string run_postproc(const std::string& script, const std::vector<std::string>& args);
+// 'status': the script's exit status (kPostprocWriteFailed: it could not
+// write its output, the last line of its log says why).
+constexpr int kPostprocWriteFailed = 5;
+std::string run_postproc(const std::string& script, const std::vector<std::string>& args,
+                         int* status = nullptr);
 
 }  // namespace pcsim::app

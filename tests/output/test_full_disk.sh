@@ -59,6 +59,22 @@ for size in 20k 60k 150k 400k 4m; do
 done
 [ "$failures" -gt 0 ] && cat "$tmp"/*.err | head -40
 
+# Results that fit, a report that does not (results ~0.6 MB, report ~0.25 MB
+# on 0.7 MB): exit 5 naming report.html, the results kept in the partial
+# folder, no half-written report.
+fs=$(mount_tmpfs 700k)
+mounts+=("$fs")
+status=0
+(cd "$tmp" && timeout 300 "$PCSIM_BIN" run "$scene" -o "$fs/r" > "$tmp/report.out" \
+  2> "$tmp/report.err") || status=$?
+[ "$status" -eq 5 ] || fail "report on a full disk: exit $status (expected 5)"
+grep -q "^pcsim: error: cannot write $fs/r.partial/report.html: No space left on device" \
+  "$tmp/report.err" || fail "report on a full disk: $(cat "$tmp/report.err")"
+[ -f "$fs/r.partial/results.h5" ] && [ ! -e "$fs/r" ] || fail "report: results not kept as partial"
+[ ! -e "$fs/r.partial/report.html" ] && [ ! -e "$fs/r.partial/report.html.tmp" ] ||
+  fail "report: a half-written report was left"
+echo "report on a full disk: exit $status: $(grep '^pcsim: error' "$tmp/report.err")"
+
 # The modal cache on a full file system: a warning, the run completes.
 fs=$(mount_tmpfs 8k)
 mounts+=("$fs")
