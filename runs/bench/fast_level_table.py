@@ -1,0 +1,91 @@
+"""Table of runs/bench_fast_level.sh: the reduced (modal) level against linear FE.
+
+usage: /usr/bin/python3 runs/bench/fast_level_table.py WORK_DIR SCENE_NAME...
+WORK_DIR/<scene>/linear and WORK_DIR/<scene>/modal hold the two runs (their
+summary.json). For every pantograph of every scene: the modal run's error
+against linear FE at the same dt and mesh (issue 21's figures: mean, sigma,
+Fm+3s and actual maximum relative; Fm-3s and actual minimum as % of Fm;
+uplift relative; loss of contact in percentage points), its own accuracy
+estimate, its cost (set-up, ms/step, real-time factor, step-time
+percentiles, peak memory) and whether every figure meets the targets
+(mean 0.5 %, sigma/Fm+3s/max 1 %, uplift 2 %, loss of contact 0.1 pp).
+"""
+import json
+import os
+import sys
+
+TARGETS = {"mean": 0.5, "sigma": 1.0, "Fm+3s": 1.0, "max": 1.0, "uplift": 2.0, "loss": 0.1}
+
+
+def load(folder):
+    path = os.path.join(folder, "summary.json")
+    return json.load(open(path)) if os.path.exists(path) else None
+
+
+def errors(fe, modal, fe_run, modal_run):
+    """Issue 21's error figures of one pantograph, in % (loss: percentage points)."""
+    fm = fe["mean_N"]
+
+    def rel(key):
+        return 100.0 * (modal[key] - fe[key]) / abs(fe[key])
+
+    def of_fm(key):
+        return 100.0 * (modal[key] - fe[key]) / abs(fm)
+
+    uplift_fe = fe_run["max_uplift_at_support_m"]
+    uplift = 100.0 * (modal_run["max_uplift_at_support_m"] - uplift_fe) / abs(uplift_fe)
+    return {
+        "mean": rel("mean_N"), "sigma": rel("std_N"), "Fm+3s": rel("stat_max_N"),
+        "max": rel("max_N"), "Fm-3s": of_fm("stat_min_N"), "min": of_fm("min_N"),
+        "uplift": uplift,
+        "loss": modal["loss_of_contact_percent"] - fe["loss_of_contact_percent"],
+    }
+
+
+def passes(e):
+    return all(abs(e[k]) <= t for k, t in TARGETS.items())
+
+
+def row(scene, fe_run, modal_run):
+    cells = []
+    st = modal_run.get("step_time", {})
+    cost = (f"{modal_run.get('setup_s', float('nan')):.1f} | {modal_run['time_per_step_ms']:.3f} | "
+            f"{modal_run['real_time_factor']:.1f} | {st.get('median_ms', float('nan')):.3f} / "
+            f"{st.get('p99_99_ms', float('nan')):.3f} / "
+            f"{st.get('max_without_context_switch_ms', float('nan')):.3f} | "
+            f"{modal_run['peak_memory_mb']:.0f} | {fe_run['time_per_step_ms']:.3f}")
+    sigma_estimate = "-"
+    for c in modal_run.get("accuracy_estimate", {}).get("criteria", []):
+        if c.get("name") == "modal cut-off":
+            sigma_estimate = f"{c.get('estimated_sigma_error_percent', float('nan')):.2f}"
+    for fe, modal in zip(fe_run["pantographs"], modal_run["pantographs"]):
+        if "std_N" not in fe or "std_N" not in modal:
+            cells.append(f"| {scene} | {fe['name']} | (no statistics) |")
+            continue
+        e = errors(fe, modal, fe_run, modal_run)
+        figures = " | ".join(f"{e[k]:+.2f}" for k in
+                             ("mean", "sigma", "Fm+3s", "max", "Fm-3s", "min", "uplift", "loss"))
+        cells.append(f"| {scene} | {fe['name']} | {figures} | {sigma_estimate} | "
+                     f"{'yes' if passes(e) else '**no**'} | {cost} |")
+    return cells
+
+
+def main():
+    work, scenes = sys.argv[1], sys.argv[2:]
+    print("| scene | pantograph | mean % | σ % | Fm+3σ % | max % | Fm−3σ %Fm | min %Fm | "
+          "uplift % | loss pp | estimated σ % | targets met | set-up s | ms/step | RTF | "
+          "step median / p99.99 / max* ms | memory MB | linear FE ms/step |")
+    print("|" + "---|" * 18)
+    for scene in scenes:
+        fe_run = load(os.path.join(work, scene, "linear"))
+        modal_run = load(os.path.join(work, scene, "modal"))
+        if not fe_run or not modal_run:
+            print(f"| {scene} | (a run failed: see {work}/{scene}/*.log) |")
+            continue
+        for line in row(scene, fe_run, modal_run):
+            print(line)
+    print("\n*max: over the steps without an involuntary context switch, the first step apart")
+
+
+if __name__ == "__main__":
+    main()
