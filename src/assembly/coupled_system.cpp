@@ -72,6 +72,14 @@ PetscInt CoupledSystem::global_size() const {
   return n;
 }
 
+Term& CoupledSystem::add_load_term(std::unique_ptr<Term> term) {
+  if (!term->linear_parts().empty() || term->tangent_kind() != TangentKind::constant)
+    throw SolverError("coupled system: '" + term->name() +
+                      "' is not a load term (it has linear parts or a tangent)");
+  terms_.push_back(std::move(term));
+  return *terms_.back();
+}
+
 bool CoupledSystem::cheap_path_possible() const {
   return std::none_of(terms_.begin(), terms_.end(), [](const auto& term) {
     return term->tangent_kind() == TangentKind::varying;

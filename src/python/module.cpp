@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <random>
 #include <string>
 #include <vector>
@@ -24,6 +25,7 @@
 #include "pcsim/simulation/run.hpp"
 #include "pcsim/simulation/run_checkpoint.hpp"
 #include "pcsim/simulation/statics.hpp"
+#include "pcsim/simulation/stepper.hpp"
 
 namespace py = pybind11;
 namespace fs = std::filesystem;
@@ -186,6 +188,90 @@ py::dict modes(const Scene& s, int count, double max_frequency_hz) {
   return out;
 }
 
+// A run advanced step by step (simulation/stepper.hpp): the scene lives as
+// long as the stepper that refers to it.
+// Simulations alive at exit are ended before PETSc, in the order they were
+// made (the same on every rank: their PETSc objects are destroyed
+// collectively).
+struct Simulation;
+std::map<long, Simulation*>& live_simulations() {
+  static std::map<long, Simulation*> live;
+  return live;
+}
+
+struct Simulation {
+  scene::RunScene run_scene;
+  std::unique_ptr<simulation::Stepper> stepper;
+  long serial;
+  Simulation() {
+    static long made = 0;
+    serial = made++;
+    live_simulations()[serial] = this;
+  }
+  ~Simulation() { live_simulations().erase(serial); }
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+  std::size_t index(const py::object& pantograph) const {
+    if (py::isinstance<py::int_>(pantograph)) return pantograph.cast<std::size_t>();
+    const auto name = pantograph.cast<std::string>();
+    const auto names = stepper->pantograph_names();
+    for (std::size_t p = 0; p < names.size(); ++p)
+      if (names[p] == name) return p;
+    throw InputError("step-wise run", "pantograph", "no pantograph named '" + name + "'");
+  }
+};
+
+std::unique_ptr<Simulation> start_simulation(const Scene& s, const std::string& options,
+                                             bool quiet) {
+  if (!options.empty()) PCSIM_PETSC(PetscOptionsInsertString(nullptr, options.c_str()));
+  auto sim = std::make_unique<Simulation>();
+  sim->run_scene = scene::load_run_scene(s.composed);
+  sim->stepper = std::make_unique<simulation::Stepper>(context(quiet), sim->run_scene);
+  return sim;
+}
+
+void bind_simulation(py::module_& m) {
+  using simulation::StepReading;
+  auto reading = [](std::vector<double> StepReading::*field) {
+    return [field](const Simulation& sim) { return array(sim.stepper->reading().*field); };
+  };
+  py::class_<Simulation>(m, "Simulation",
+                         "A run advanced step by step (co-simulation, hardware in the loop)")
+      .def(py::init(&start_simulation), py::arg("scene"), py::arg("options") = "",
+           py::arg("quiet") = true,
+           "Sets the scene's run up as `pcsim run` does (static configuration, static start) "
+           "and stops before the first step; 'options': PETSc options")
+      .def(
+          "advance", [](Simulation& sim, long steps) { return sim.stepper->advance(steps); },
+          py::arg("steps") = 1, "Up to 'steps' time steps (fewer at the end); the steps taken")
+      .def_property_readonly("time", [](const Simulation& s) { return s.stepper->reading().t; })
+      .def_property_readonly("step", [](const Simulation& s) { return s.stepper->reading().step; })
+      .def_property_readonly("end_time", [](const Simulation& s) { return s.stepper->end_time(); })
+      .def_property_readonly("finished", [](const Simulation& s) { return s.stepper->finished(); })
+      .def_property_readonly("pantographs",
+                             [](const Simulation& s) { return s.stepper->pantograph_names(); })
+      .def("contact_force", reading(&StepReading::contact_force),
+           "Contact force on each pantograph's head now [N]")
+      .def("contact_position", reading(&StepReading::contact_x),
+           "Station of each pantograph's contact point now [m]")
+      .def("head_height", reading(&StepReading::head_z),
+           "Height of each pantograph's contact point now [m]")
+      .def(
+          "set_head_force",
+          [](Simulation& sim, const py::object& p, double f) {
+            sim.stepper->set_head_force(sim.index(p), f);
+          },
+          py::arg("pantograph"), py::arg("force"),
+          "A vertical force [N, upwards] on a pantograph's head (index or name) from the next "
+          "step on")
+      .def(
+          "head_force",
+          [](const Simulation& sim, const py::object& p) {
+            return sim.stepper->head_force(sim.index(p));
+          },
+          py::arg("pantograph"), "The force set on a pantograph's head [N]");
+}
+
 void initialize() {
   PetscBool started = PETSC_FALSE;
   PetscInitialized(&started);
@@ -194,7 +280,10 @@ void initialize() {
   char** argv = nullptr;
   if (SlepcInitialize(&argc, &argv, nullptr, nullptr) != 0)
     throw std::runtime_error("pcsim: PETSc/SLEPc could not start");
-  py::module_::import("atexit").attr("register")(py::cpp_function([] { SlepcFinalize(); }));
+  py::module_::import("atexit").attr("register")(py::cpp_function([] {
+    for (auto& [serial, sim] : live_simulations()) sim->stepper.reset();  // PETSc objects first
+    SlepcFinalize();
+  }));
 }
 
 }  // namespace
@@ -246,6 +335,7 @@ PYBIND11_MODULE(pcsim, m) {
         "support_z, dropper_force (when the scene records them), en50318, facts, complete, "
         "folder. 'output': a results folder to keep (none: nothing is kept); 'options': "
         "PETSc options, e.g. '-ts_dt 0.002' (they stay in the options database)");
+  bind_simulation(m);
   m.def("modes", &modes, py::arg("scene"), py::arg("count") = 20, py::arg("max_frequency_hz") = 0.0,
         "The catenary's first 'count' modes (or every mode below max_frequency_hz > 0) about its "
         "static configuration: a dict with frequencies_hz");

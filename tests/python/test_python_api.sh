@@ -1,6 +1,7 @@
 #!/bin/bash
 # The Python API (docs/python.md) on 1 and 2 ranks against `pcsim run` on the
-# same scene (tests/python/python_api_check.py says what is checked), and the
+# same scene (tests/python/python_api_check.py says what is checked), the
+# step-wise interface (tests/python/stepping_check.py), and the
 # worked study of docs/python.md, executed as written.
 set -euo pipefail
 : "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:=/usr/bin/python3}"
@@ -15,14 +16,21 @@ for np in 1 2; do
     { cat "ref-$np.log"; exit 1; }
   "$mpirun" -n $np "$PCSIM_PYTHON" "$PCSIM_SOURCE_DIR/tests/python/python_api_check.py" \
     "$PCSIM_SOURCE_DIR" "ref-$np/summary.json"
+  "$mpirun" -n $np "$PCSIM_PYTHON" "$PCSIM_SOURCE_DIR/tests/python/stepping_check.py" \
+    "$PCSIM_SOURCE_DIR"
 done
-# docs/python.md's study, its first ```python block, run from the repository.
-"$PCSIM_PYTHON" - "$PCSIM_SOURCE_DIR/docs/python.md" > study.py <<'PY'
+# docs/python.md's study (its first ```python block) and its step-wise
+# example (the second), run from the repository as written.
+for block in 0 1; do
+  "$PCSIM_PYTHON" - "$PCSIM_SOURCE_DIR/docs/python.md" $block > "block$block.py" <<'PY'
 import re, sys
 text = open(sys.argv[1]).read()
-print(re.findall(r"```python\n(.*?)```", text, re.S)[0])
+print(re.findall(r"```python\n(.*?)```", text, re.S)[int(sys.argv[2])])
 PY
-(cd "$PCSIM_SOURCE_DIR" && PCSIM_STUDY_PLOT="$tmp/speeds.png" "$PCSIM_PYTHON" "$tmp/study.py") > study.log
-cat study.log
+  (cd "$PCSIM_SOURCE_DIR" && PCSIM_STUDY_PLOT="$tmp/speeds.png" "$PCSIM_PYTHON" "$tmp/block$block.py") \
+    > "block$block.log"
+  cat "block$block.log"
+done
 [ -s "$tmp/speeds.png" ] || { echo "the study wrote no plot"; exit 1; }
-grep -q "km/h" study.log
+grep -q "km/h" block0.log
+grep -q "gain 0.3: raw sigma" block1.log

@@ -37,6 +37,10 @@ class CoupledSystem {
   const std::vector<std::unique_ptr<Term>>& terms() const { return terms_; }
   PetscInt global_size() const;
   double contact_stiffness() const { return contact_stiffness_; }
+  // Adds a load term after construction (before the solver is made): one
+  // with no linear parts and a zero tangent (e.g. PrescribedHeadForces), so
+  // that the Jacobian's pattern and merged parts stay as they are. Returns it.
+  Term& add_load_term(std::unique_ptr<Term> term);
   // True when no term is 'varying': J0 + low-rank changes is exact (cheap path).
   bool cheap_path_possible() const;
 

@@ -1,0 +1,59 @@
+// A run advanced step by step by its caller: the building block of
+// co-simulation and hardware-in-the-loop (the Python API's pcsim.Simulation,
+// docs/python.md). The same set-up as simulation::run() (static
+// configuration, catenary model, coupled system, static start, the HHT
+// solver with the options database's numerics), then:
+//   advance(n)  n time steps (TSSolve continued: the steps equal those of
+//               an uninterrupted run of the scene, bit for bit on one rank);
+//   reading()   time, and per pantograph the contact force, the contact
+//               point's station and the head's height, on every rank;
+//   set_head_force(p, f)  a vertical force on pantograph p's head from the
+//               next step on (assembly/prescribed_forces.hpp).
+// Nothing is written: the caller keeps what it needs. No moving window and
+// no restart. Collective over ctx.comm; failures are exceptions on every rank.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "pcsim/scene/run_scene.hpp"
+#include "pcsim/simulation/context.hpp"
+
+namespace pcsim::simulation {
+
+struct StepReading {
+  double t = 0;  // [s]
+  long step = 0;
+  // Per pantograph, in scene order.
+  std::vector<double> contact_force;  // [N] on the head (sum over the contact wires)
+  std::vector<double> contact_x;      // [m] station of the contact point
+  std::vector<double> head_z;         // [m] height of the head's contact point
+};
+
+class Stepper {
+ public:
+  // InputError for a scene with a moving window; the set-up's console lines
+  // unless ctx.quiet.
+  Stepper(const Context& ctx, scene::RunScene& scene);
+  ~Stepper();
+  Stepper(const Stepper&) = delete;
+  Stepper& operator=(const Stepper&) = delete;
+
+  // Up to n steps, fewer at the scene's end time. Returns the steps taken.
+  long advance(long n = 1);
+  bool finished() const;
+  double end_time() const;
+  const StepReading& reading() const { return reading_; }
+  std::vector<std::string> pantograph_names() const;
+  void set_head_force(std::size_t pantograph, double force_N);
+  double head_force(std::size_t pantograph) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  StepReading reading_;
+  void read();  // reading_ at the TS's state (collective)
+};
+
+}  // namespace pcsim::simulation

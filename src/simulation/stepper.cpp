@@ -1,0 +1,117 @@
+#include "pcsim/simulation/stepper.hpp"
+
+#include <petscts.h>
+
+#include "pcsim/assembly/coupled_system.hpp"
+#include "pcsim/assembly/prescribed_forces.hpp"
+#include "pcsim/core/error.hpp"
+#include "pcsim/simulation/catenary_setup.hpp"
+#include "pcsim/simulation/static_start.hpp"
+#include "pcsim/simulation/statics.hpp"
+#include "pcsim/solvers/dynamics.hpp"
+
+namespace pcsim::simulation {
+
+struct Stepper::Impl {
+  Context ctx;
+  scene::RunScene& scene;
+  StaticConfiguration statics;
+  CatenarySetup setup;
+  std::unique_ptr<assembly::CoupledSystem> system;
+  assembly::PrescribedHeadForces* forces = nullptr;
+  std::unique_ptr<solvers::DynamicSolver> solver;
+  Impl(const Context& c, scene::RunScene& s) : ctx(c), scene(s) {}
+};
+
+Stepper::Stepper(const Context& ctx, scene::RunScene& scene)
+    : impl_(std::make_unique<Impl>(ctx, scene)) {
+  if (scene.window)
+    throw InputError("scene", "window", "a run advanced step by step cannot have a moving window");
+  auto& s = *impl_;
+  s.statics =
+      static_configuration(ctx.comm, scene.catenary.mesh, scene.catenary.form_finding, "static_");
+  print_warnings(ctx, s.statics.result.warnings);
+  s.system = make_coupled_system(ctx, scene, s.statics, s.setup);
+  s.forces = static_cast<assembly::PrescribedHeadForces*>(&s.system->add_load_term(
+      std::make_unique<assembly::PrescribedHeadForces>(s.system->pantographs())));
+  Vec U0 = s.system->create_vector(), V0 = s.system->create_vector();
+  initial_state(*s.system, U0, V0);
+  s.solver = std::make_unique<solvers::DynamicSolver>(*s.system, scene.dt, scene.duration(),
+                                                      scene.hht_alpha);
+  s.solver->set_initial_state(U0, V0);
+  PCSIM_PETSC(VecDestroy(&U0));
+  PCSIM_PETSC(VecDestroy(&V0));
+  read();
+}
+
+Stepper::~Stepper() = default;
+
+double Stepper::end_time() const {
+  return impl_->scene.duration();
+}
+
+bool Stepper::finished() const {
+  return reading_.t >= end_time() * (1 - 1e-12);
+}
+
+long Stepper::advance(long n) {
+  TS ts = impl_->solver->ts();
+  const long before = reading_.step;
+  if (n <= 0 || finished()) return 0;
+  PCSIM_PETSC(TSSetMaxSteps(ts, static_cast<PetscInt>(before + n)));
+  const PetscErrorCode solved = TSSolve(ts, nullptr);
+  TSConvergedReason reason;
+  PCSIM_PETSC(TSGetConvergedReason(ts, &reason));
+  if (reason < 0)
+    throw SolverError(std::string("the time step did not converge (") + TSConvergedReasons[reason] +
+                      ") after t = " + std::to_string(reading_.t) +
+                      " s; check simulation.dt and the forces set on the heads");
+  if (solved) throw_petsc_error(solved, "TSSolve", __FILE__, __LINE__);
+  read();
+  return reading_.step - before;
+}
+
+void Stepper::read() {
+  TS ts = impl_->solver->ts();
+  PetscInt step;
+  PetscReal t;
+  Vec U;
+  PCSIM_PETSC(TSGetStepNumber(ts, &step));
+  PCSIM_PETSC(TSGetTime(ts, &t));
+  PCSIM_PETSC(TSGetSolution(ts, &U));
+  const auto record = impl_->system->record(t, U);  // complete on rank 0
+  const int n = static_cast<int>(impl_->system->pantographs().size());
+  std::vector<double> values(3 * n, 0.0);
+  if (impl_->ctx.rank == 0)
+    for (int p = 0; p < n; ++p) {
+      values[p] = record.contact_force.at(p);
+      values[n + p] = record.contact_x.at(p);
+      values[2 * n + p] = record.head_z.empty() ? 0.0 : record.head_z.at(p);
+    }
+  MPI_Bcast(values.data(), 3 * n, MPI_DOUBLE, 0, impl_->ctx.comm);
+  reading_.t = t;
+  reading_.step = step;
+  reading_.contact_force.assign(values.begin(), values.begin() + n);
+  reading_.contact_x.assign(values.begin() + n, values.begin() + 2 * n);
+  reading_.head_z.assign(values.begin() + 2 * n, values.end());
+}
+
+std::vector<std::string> Stepper::pantograph_names() const {
+  std::vector<std::string> names;
+  for (const auto& slot : impl_->system->pantographs()) names.push_back(slot.run.name);
+  return names;
+}
+
+void Stepper::set_head_force(std::size_t pantograph, double force_N) {
+  if (pantograph >= impl_->system->pantographs().size())
+    throw InputError("step-wise run", "pantograph",
+                     "index " + std::to_string(pantograph) + " out of range (" +
+                         std::to_string(impl_->system->pantographs().size()) + " pantographs)");
+  impl_->forces->set(pantograph, force_N);
+}
+
+double Stepper::head_force(std::size_t pantograph) const {
+  return impl_->forces->force(pantograph);
+}
+
+}  // namespace pcsim::simulation
