@@ -39,6 +39,10 @@ def saltelli_indices(ya, yb, yab):
     """First-order (Saltelli 2010) and total (Jansen) indices from f(A), f(B) (N,) and
     f(A_B^i) (k, N): (S1 (k,), ST (k,)); NaN where f is constant."""
     ya, yb, yab = np.asarray(ya, float), np.asarray(yb, float), np.asarray(yab, float)
+    # Centred on the mean of f over A and B (as SALib does): the estimators' expectations do
+    # not change, the variance of the S1 estimator does not grow with the mean of f.
+    f0 = np.mean(np.concatenate([ya, yb]))
+    ya, yb, yab = ya - f0, yb - f0, yab - f0
     v = np.var(np.concatenate([ya, yb]))
     if not v > 0:
         return np.full(len(yab), np.nan), np.full(len(yab), np.nan)
@@ -49,13 +53,17 @@ def saltelli_indices(ya, yb, yab):
 
 def bootstrap(estimate, n, resamples, seed, confidence):
     """Percentile intervals of estimate(index array) -> tuple of arrays, resampling n rows."""
+    import warnings
     rng = np.random.default_rng(seed)
     draws = [estimate(rng.integers(0, n, n)) for _ in range(resamples)]
     alpha = 100 * (1 - confidence) / 2
     out = []
-    for j in range(len(draws[0])):
-        values = np.array([d[j] for d in draws])
-        out.append((np.nanpercentile(values, alpha, axis=0), np.nanpercentile(values, 100 - alpha, axis=0)))
+    with warnings.catch_warnings():  # a constant figure: NaN intervals, no warning
+        warnings.simplefilter("ignore", RuntimeWarning)
+        for j in range(len(draws[0])):
+            values = np.array([d[j] for d in draws], float)
+            out.append((np.nanpercentile(values, alpha, axis=0),
+                        np.nanpercentile(values, 100 - alpha, axis=0)))
     return out
 
 
@@ -205,11 +213,16 @@ def write_tables(folder, rows, confidence):
         lines += ["## %s" % pantograph, "",
                   "| figure | key | S1 | %d %% interval | ST | %d %% interval | method, n |"
                   % (100 * confidence, 100 * confidence), "|---|---|---|---|---|---|---|"]
-        for r in (r for r in rows if r["pantograph"] == pantograph):
+        mine = [r for r in rows if r["pantograph"] == pantograph]
+        constant = sorted({r["label"] for r in mine if math.isnan(r["S1"])},
+                          key=[r["label"] for r in mine].index)
+        for r in (r for r in mine if not math.isnan(r["S1"])):
             ci = lambda a, b: "" if math.isnan(r[a]) else "[%s, %s]" % (fmt(r[a]), fmt(r[b]))
             lines.append("| %s (%s) | %s | %s | %s | %s | %s | %s, %d |" % (
                 r["label"], r["unit"], r["key"], fmt(r["S1"]), ci("S1_low", "S1_high"), fmt(r["ST"]),
                 ci("ST_low", "ST_high"), r["method"], r["n"]))
+        if constant:
+            lines += ["", "No indices (the same value in every case): %s." % ", ".join(constant)]
         lines.append("")
     text = "\n".join(lines)
     with open(os.path.join(folder, "sensitivity.md"), "w") as f:
@@ -298,7 +311,7 @@ def main():
         for pantograph in sorted(y):
             suffix = "" if len(y) == 1 else "-" + pantograph
             mine = [r for r in rows if r["pantograph"] == pantograph]
-            bar_figure(mine, list(figures), keys, "Sobol indices, %s (%s)" % (pantograph, mine[0]["method"])) \
+            bar_figure(mine, figures, keys, "Sobol indices, %s (%s)" % (pantograph, mine[0]["method"])) \
                 .savefig(os.path.join(folder, "sensitivity%s.png" % suffix), dpi=90)
             scatter_figure(x, y[pantograph], figures, keys, "figures against the sampled keys, %s" % pantograph) \
                 .savefig(os.path.join(folder, "scatter%s.png" % suffix), dpi=80)
