@@ -366,7 +366,8 @@ int run_sweep(const CommandContext& ctx) {
 PCSIM_COMMAND_HELP(
     sweep_help, "sweep",
     "Runs a run scene (docs/scene-format.md, \"Run scenes\") for every combination of\n"
-    "the values of the swept keys, each case as `pcsim run` with its --set:\n"
+    "the values of the swept keys, or for every row of a case table (docs/studies.md:\n"
+    "sampling designs, sensitivity), each case as `pcsim run` with its --set:\n"
     "  --set KEY=FROM:TO:STEP   a range (TO included), e.g. simulation.speed_kmh=200:400:20\n"
     "  --set KEY=V1,V2,...      a list of values, e.g. pantographs[0].start=static,ramp\n"
     "  --set KEY=VALUE          the same value in every case\n"
@@ -383,5 +384,7 @@ PCSIM_COMMAND_HELP(
     {"--ranks", "N", "MPI ranks of each case (1; through mpiexec)"},
     {"--cases", "FILE.csv", "the cases: one row of a table each (see above)"},
     {"--no-report", "", "no report.html"});
-PCSIM_COMMAND("sweep", "a run scene over ranges of values: table, plots and report of EN 50318",
+PCSIM_COMMAND("sweep",
+              "a run scene over ranges of values or a case table: table, plots and report of "
+              "EN 50318",
               run_sweep);
