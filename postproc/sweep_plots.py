@@ -6,7 +6,8 @@
 Six panels: mean contact force Fm; standard deviation sigma; Fm + 3 sigma and Fm - 3 sigma;
 actual maximum and minimum; maximum uplift at a support; loss of contact. The x axis is the
 first swept key (or --x); one line per combination of the other swept keys and per
-pantograph. Where EN 50318 gives acceptance ranges at a case's speed
+pantograph (a sweep of a case table, `pcsim sweep --cases`: points, one colour per pantograph,
+the other keys not held fixed). Where EN 50318 gives acceptance ranges at a case's speed
 (meshes/en50318-ranges.json), the range is drawn as a grey bar at that case.
 """
 import argparse
@@ -29,12 +30,14 @@ def numeric(values):
 
 def series(summary, x_key, ref):
     """{label: [(x, case speed, {figure key: value})]} over the successful cases."""
+    table = "cases_table" in summary
     out = {}
     for case in summary["cases"]:
         s = case.get("summary")
         if case["status"] != 0 or not s:
             continue
-        others = ", ".join("%s=%s" % (k, v) for k, v in case["values"].items() if k != x_key)
+        others = "" if table else ", ".join("%s=%s" % (k, v) for k, v in case["values"].items()
+                                            if k != x_key)
         for p in s.get("pantographs", []):
             if p.get("complete") is False:
                 continue
@@ -73,7 +76,8 @@ def sweep_figure(summary, x_key=None, ref=None):
             xs = [position(p[0]) for p in points]
             for j, key in enumerate(fig_keys):
                 ys = [p[2].get(key) for p in points]
-                ax.plot(xs, ys, "o-" if j == 0 else "s--", ms=4, color="C%d" % k,
+                style = ("o" if j == 0 else "s") if "cases_table" in summary else ("o-" if j == 0 else "s--")
+                ax.plot(xs, ys, style, ms=4, color="C%d" % k,
                         label=(label or "pcsim") if j == 0 else None)
                 for x, (_, speed, _) in zip(xs, points):
                     rng = (pcsim_post.ranges_at(ref, speed) or {}).get(key)

@@ -2,6 +2,8 @@
 // a run scene for every combination of the swept values, each case its own
 // `pcsim run` process (up to N at a time), one table of the EN 50318 figures
 // (output/sweep_results.hpp), plots against the swept values and a report.
+// `pcsim sweep SCENE --cases FILE.csv`: the cases are the rows of a table
+// (sweep_cases.hpp, e.g. a sample of postproc/sample.py), not a grid.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -21,6 +23,7 @@
 #include "pcsim/simulation/interrupt.hpp"
 #include "pcsim/simulation/run_checkpoint.hpp"
 #include "processes.hpp"
+#include "sweep_cases.hpp"
 
 namespace {
 
@@ -37,7 +40,13 @@ struct Plan {
   std::vector<Swept> swept;
   std::vector<output::SweepCase> cases;
   std::vector<std::vector<std::string>> assignments;  // KEY=VALUE of each case
+  std::vector<std::string> origins;                   // --cases: "FILE line N" of each case
+  nlohmann::json table;                               // --cases: the table's record
+  nlohmann::json sample;                              // --cases: its '# sample:' comment
+  std::string table_text;                             // --cases: the file (fingerprint)
 };
+
+constexpr std::size_t kMaxCases = 10000;
 
 std::string number_text(double v) {
   char s[32];
@@ -81,33 +90,26 @@ std::string folder_safe(std::string s) {
   return s;
 }
 
-Plan make_plan(const CommandContext& ctx) {
-  Plan plan;
-  for (const auto& o : ctx.overrides) {
-    if (o.find('=') == std::string::npos) pcsim::parse_override(o, {"", "command line --set " + o});
-    auto values = expand(o);
-    if (values.empty())
-      plan.fixed.push_back(o);
-    else
-      plan.swept.push_back({o.substr(0, o.find('=')), o, std::move(values)});
-  }
-  if (plan.swept.empty())
-    throw InputError("command line", "--set",
-                     "a sweep needs a range KEY=FROM:TO:STEP or a list KEY=V1,V2,... "
-                     "(e.g. --set simulation.speed_kmh=200:400:20)");
+// The case's number, 1-based, zero-padded to width.
+std::string case_index(std::size_t k, int width) {
+  char index[24];
+  std::snprintf(index, sizeof index, "%0*zu", width, k + 1);
+  return index;
+}
+
+// The grid of the swept --set values: every combination, the first key varying slowest.
+void plan_grid(Plan& plan) {
   std::size_t count = 1;
   for (const auto& s : plan.swept) count *= s.values.size();
-  if (count > 10000)
-    throw InputError("command line", "--set", std::to_string(count) + " cases: at most 10000");
-  const int width = count >= 100 ? 3 : 2;
+  if (count > kMaxCases)
+    throw InputError("command line", "--set",
+                     std::to_string(count) + " cases: at most " + std::to_string(kMaxCases));
   for (std::size_t k = 0; k < count; ++k) {
     output::SweepCase c;
     std::vector<std::string> assignments;
-    char index[24];
-    std::snprintf(index, sizeof index, "%0*zu", width, k + 1);
-    c.name = index;
+    c.name = case_index(k, count >= 100 ? 3 : 2);
     std::size_t rest = k, stride = count;
-    for (const auto& s : plan.swept) {  // the first key varies slowest
+    for (const auto& s : plan.swept) {
       stride /= s.values.size();
       const std::string& value = s.values[rest / stride];
       rest %= stride;
@@ -118,6 +120,60 @@ Plan make_plan(const CommandContext& ctx) {
     plan.cases.push_back(c);
     plan.assignments.push_back(assignments);
   }
+}
+
+// The rows of a case table (--cases), each a case; the swept values of a
+// key are its values in the order they first appear.
+void plan_table(Plan& plan, const app::CaseTable& table) {
+  for (const auto& key : table.columns) plan.swept.push_back({key, "", {}});
+  for (std::size_t k = 0; k < table.rows.size(); ++k) {
+    output::SweepCase c;
+    const std::size_t count = table.rows.size();
+    c.name = case_index(k, count >= 1000 ? 4 : count >= 100 ? 3 : 2);
+    std::vector<std::string> assignments;
+    for (std::size_t i = 0; i < table.columns.size(); ++i) {
+      const std::string& value = table.rows[k][i];
+      auto& values = plan.swept[i].values;
+      if (std::find(values.begin(), values.end(), value) == values.end()) values.push_back(value);
+      c.values.emplace_back(table.columns[i], value);
+      assignments.push_back(table.columns[i] + "=" + value);
+    }
+    plan.cases.push_back(c);
+    plan.assignments.push_back(assignments);
+    plan.origins.push_back(table.path + " line " + std::to_string(table.lines[k]));
+  }
+  plan.table = {{"file", table.path},
+                {"columns", table.columns},
+                {"rows", table.rows.size()},
+                {"lines", table.lines}};
+  plan.sample = table.sample;
+  plan.table_text = table.text;
+}
+
+Plan make_plan(const CommandContext& ctx) {
+  Plan plan;
+  for (const auto& o : ctx.overrides) {
+    if (o.find('=') == std::string::npos) pcsim::parse_override(o, {"", "command line --set " + o});
+    auto values = expand(o);
+    if (values.empty())
+      plan.fixed.push_back(o);
+    else
+      plan.swept.push_back({o.substr(0, o.find('=')), o, std::move(values)});
+  }
+  if (ctx.has_option("--cases")) {
+    if (!plan.swept.empty())
+      throw InputError("command line", "--cases",
+                       "the cases come from " + ctx.options.at("--cases") + ": --set " +
+                           plan.swept[0].given + " cannot sweep too (give plain --set KEY=VALUE)");
+    const app::CaseTable table = app::read_case_table(ctx.options.at("--cases"), kMaxCases);
+    plan_table(plan, table);
+    return plan;
+  }
+  if (plan.swept.empty())
+    throw InputError("command line", "--set",
+                     "a sweep needs a range KEY=FROM:TO:STEP, a list KEY=V1,V2,... "
+                     "(e.g. --set simulation.speed_kmh=200:400:20) or --cases FILE.csv");
+  plan_grid(plan);
   return plan;
 }
 
@@ -129,10 +185,12 @@ void check_cases(const CommandContext& ctx, const Plan& plan) {
     fixed.push_back(parse_override(o, {"", "command line --set " + o}));
   for (std::size_t k = 0; k < plan.cases.size(); ++k) {
     auto overrides = fixed;
-    for (std::size_t i = 0; i < plan.swept.size(); ++i)
-      overrides.push_back(
-          parse_override(plan.assignments[k][i], {"", "command line --set " + plan.swept[i].given +
-                                                          " (case " + plan.cases[k].name + ")"}));
+    for (std::size_t i = 0; i < plan.swept.size(); ++i) {
+      const std::string origin =
+          plan.origins.empty() ? "command line --set " + plan.swept[i].given : plan.origins[k];
+      overrides.push_back(parse_override(plan.assignments[k][i],
+                                         {"", origin + " (case " + plan.cases[k].name + ")"}));
+    }
     app::read_run_inputs(ctx, load_composed(ctx.scene_path, overrides));
   }
 }
@@ -274,6 +332,7 @@ int run_sweep(const CommandContext& ctx) {
   request.provenance["overrides"] = ctx.overrides;
   std::string definition = "sweep";  // the fingerprint covers the swept values too
   for (const auto& o : ctx.overrides) definition += " --set " + o;
+  if (plan.table.is_object()) definition += " --cases " + plan.table_text;
   request.provenance["inputs_fingerprint"] = simulation::inputs_fingerprint(
       definition, simulation::recorded_inputs(ctx.scene_path, scene));
   if (ctx.output_dir.empty()) request.dir += "-sweep";
@@ -290,7 +349,9 @@ int run_sweep(const CommandContext& ctx) {
   }
   std::vector<std::pair<std::string, std::vector<std::string>>> swept;
   for (const auto& s : plan.swept) swept.emplace_back(s.key, s.values);
-  const std::string table = output::write_sweep_results(out, swept, plan.cases);
+  nlohmann::json record = nlohmann::json::object();
+  if (plan.table.is_object()) record = {{"cases_table", plan.table}, {"sample", plan.sample}};
+  const std::string table = output::write_sweep_results(out, swept, plan.cases, record);
   app::print0(ctx, "\n%s\n", table.c_str());
   write_plots_and_report(ctx, out);
   out.commit();
@@ -305,10 +366,15 @@ int run_sweep(const CommandContext& ctx) {
 PCSIM_COMMAND_HELP(
     sweep_help, "sweep",
     "Runs a run scene (docs/scene-format.md, \"Run scenes\") for every combination of\n"
-    "the values of the swept keys, each case as `pcsim run` with its --set:\n"
+    "the values of the swept keys, or for every row of a case table (docs/studies.md:\n"
+    "sampling designs, sensitivity), each case as `pcsim run` with its --set:\n"
     "  --set KEY=FROM:TO:STEP   a range (TO included), e.g. simulation.speed_kmh=200:400:20\n"
     "  --set KEY=V1,V2,...      a list of values, e.g. pantographs[0].start=static,ramp\n"
     "  --set KEY=VALUE          the same value in every case\n"
+    "  --cases FILE.csv         the cases as the rows of a table: a header line of keys,\n"
+    "                           one line of values per case ('#' lines are comments; a\n"
+    "                           '# sample: {...}' line, as postproc/sample.py writes, is\n"
+    "                           kept in summary.json); no ranges or lists with it\n"
     "PETSc options go to every case. Results (default out/<name>-sweep/): cases/<case>/\n"
     "(a run result each, and its log), sweep.csv and sweep.md (the EN 50318 figures of\n"
     "every case with their verdicts), sweep.png (figures against the swept values with\n"
@@ -316,6 +382,9 @@ PCSIM_COMMAND_HELP(
     "the cases'.\n",
     {"-j", "N", "run up to N cases at a time (1)"},
     {"--ranks", "N", "MPI ranks of each case (1; through mpiexec)"},
+    {"--cases", "FILE.csv", "the cases: one row of a table each (see above)"},
     {"--no-report", "", "no report.html"});
-PCSIM_COMMAND("sweep", "a run scene over ranges of values: table, plots and report of EN 50318",
+PCSIM_COMMAND("sweep",
+              "a run scene over ranges of values or a case table: table, plots and report of "
+              "EN 50318",
               run_sweep);

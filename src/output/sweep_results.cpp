@@ -97,8 +97,8 @@ std::string markdown(const Swept& swept, const std::vector<Row>& rows) {
 }
 
 nlohmann::json summary_json(const OutputDir& out, const Swept& swept,
-                            const std::vector<SweepCase>& cases) {
-  nlohmann::json j;
+                            const std::vector<SweepCase>& cases, const nlohmann::json& record) {
+  nlohmann::json j = record.is_object() ? record : nlohmann::json::object();
   j["swept"] = nlohmann::json::object();
   for (const auto& [key, values] : swept) j["swept"][key] = values;
   j["cases"] = nlohmann::json::array();
@@ -121,12 +121,13 @@ nlohmann::json summary_json(const OutputDir& out, const Swept& swept,
 }  // namespace
 
 std::string write_sweep_results(const OutputDir& out, const Swept& swept,
-                                const std::vector<SweepCase>& cases) {
+                                const std::vector<SweepCase>& cases, const nlohmann::json& record) {
   const auto rows = rows_of(cases);
   const std::string table = markdown(swept, rows);
   std::ofstream(out.file("sweep.csv")) << csv(swept, rows);
   std::ofstream(out.file("sweep.md")) << table;
-  std::ofstream(out.file("summary.json")) << summary_json(out, swept, cases).dump(2) << "\n";
+  std::ofstream(out.file("summary.json"))
+      << summary_json(out, swept, cases, record).dump(2) << "\n";
   return table;
 }
 

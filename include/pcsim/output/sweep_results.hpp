@@ -6,6 +6,8 @@
 //   sweep.md     the same as a Markdown table, values with their verdicts
 //   summary.json {"swept": {key: [values]}, "cases": [{name, values, status,
 //                 summary}], "en50318": edition and figures, "provenance"}
+//                and the entries of 'record' (pcsim sweep --cases: "cases_table"
+//                {file, columns, rows, lines} and "sample", the table's design)
 // The cases' own folders are cases/<case>/ (a pcsim run result each).
 #pragma once
 
@@ -29,6 +31,6 @@ struct SweepCase {
 std::string write_sweep_results(
     const OutputDir& out,
     const std::vector<std::pair<std::string, std::vector<std::string>>>& swept,
-    const std::vector<SweepCase>& cases);
+    const std::vector<SweepCase>& cases, const nlohmann::json& record = nlohmann::json::object());
 
 }  // namespace pcsim::output
