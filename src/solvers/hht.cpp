@@ -242,12 +242,18 @@ PetscErrorCode attempt_step(TS ts, PetscReal dt, PetscBool* converged) {
   PetscReal dt_step = dt;
   PetscBool hits_final_time = PETSC_FALSE;
   // The last step ends on the final time; a remainder below 1e-6 Δt joins it
-  // (summing thousands of steps leaves remainders ~1e-12 s, and a step that
-  // short makes M/(beta dt^2) swamp the rest of the Newton matrix).
-  if (ts->exact_final_time == TS_EXACTFINALTIME_MATCHSTEP &&
-      t_n + dt_step * (1 + 1e-6) >= ts->max_time) {
-    dt_step = ts->max_time - t_n;
-    hits_final_time = PETSC_TRUE;
+  // (summing thousands of steps leaves remainders ~1e-12 s). A step much
+  // shorter than Δt makes M/(beta dt^2) swamp the rest of the Newton matrix
+  // (a remainder of 3.7e-5 Δt diverged), so when less than 1.5 Δt is left,
+  // the last two steps share it equally (each at least Δt/2).
+  if (ts->exact_final_time == TS_EXACTFINALTIME_MATCHSTEP) {
+    const PetscReal left = ts->max_time - t_n;
+    if (left <= dt_step * (1 + 1e-6)) {
+      dt_step = left;
+      hits_final_time = PETSC_TRUE;
+    } else if (left < 1.5 * dt_step) {
+      dt_step = 0.5 * left;
+    }
   }
   th->dt = dt_step;
   th->t1 = t_n + dt_step;
