@@ -8,6 +8,7 @@
 #include <slepcsys.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -199,6 +200,10 @@ int main(int argc, char** argv) {
   // HDF5 before MPI, and without its own shutdown: HDF5 1.10 crashes when it
   // ends with a file whose close failed (a full disk); pcsim closes every
   // file it writes itself (output/h5_file.hpp, run_stream.hpp).
+  // Open MPI's hwloc would open X displays (its GL component probes :0, ...)
+  // and Xlib ends the process when such a server goes away mid-run (an Xvfb
+  // of another job): pcsim needs no GPU topology.
+  setenv("HWLOC_COMPONENTS", "-gl", 0);
   H5dont_atexit();
   H5open();
   if (SlepcInitialize(&petsc_argc, &petsc_args, nullptr, nullptr) != 0) return 4;

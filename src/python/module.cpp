@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 #include <slepcsys.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -278,6 +279,7 @@ void initialize() {
   if (started) return;
   int argc = 0;
   char** argv = nullptr;
+  setenv("HWLOC_COMPONENTS", "-gl", 0);  // no X display probing (src/app/main.cpp)
   if (SlepcInitialize(&argc, &argv, nullptr, nullptr) != 0)
     throw std::runtime_error("pcsim: PETSc/SLEPc could not start");
   py::module_::import("atexit").attr("register")(py::cpp_function([] {
