@@ -2,7 +2,8 @@
 """Regression figures of pcsim, compared in the SLEPc manner.
 
 Each case runs pcsim, extracts the figures it publishes (the eight EN 50318
-figures of a run, the first 20 frequencies of the modes), prints them with 4
+figures of a run, the first 20 frequencies of the catenary's modes, a
+pantograph's frequencies and damping ratios), prints them with 4
 significant digits and diffs them against the committed file
 tests/regression/expected/<case>.out.
 
@@ -50,6 +51,10 @@ CASES = {
     # modes are computed afresh into a temporary cache (~1 min on 1 rank).
     "en50318-300-modal": ("run", "runs/en50318-300-modal.yaml", []),
     "en50318-static-modes": ("modes", "runs/en50318-static.yaml", []),
+    # docs/pantograph.md's modes of the three pantograph models (seconds each).
+    "pantograph-en50318-modes": ("pantograph", "runs/pantograph/en50318_modes.yaml", []),
+    "pantograph-dsa380-modes": ("pantograph", "runs/pantograph/dsa380_modes.yaml", []),
+    "pantograph-flexible-modes": ("pantograph", "runs/pantograph/flexible_modes.yaml", []),
 }
 
 
@@ -64,6 +69,12 @@ def figures(command, summary):
         for label, unit, key, scale in RUN_FIGURES:
             out.append((f"{label} [{unit}]", scale * p[key]))
         out.append(("maximum uplift at a support [mm]", 1e3 * summary["max_uplift_at_support_m"]))
+    elif command == "pantograph":  # undamped frequencies, damped ones and their damping ratios
+        for i, f in enumerate(summary["pantograph_frequencies_hz"][:20]):
+            out.append((f"mode {i + 1:2d} frequency [Hz]", f))
+        for i, m in enumerate(summary.get("damped_modes", [])[:20]):
+            out.append((f"damped mode {i + 1:2d} frequency [Hz]", m["frequency_hz"]))
+            out.append((f"damped mode {i + 1:2d} damping ratio [-]", m["damping_ratio"]))
     else:
         for i, f in enumerate(summary["catenary_frequencies_hz"][:20]):
             out.append((f"mode {i + 1:2d} frequency [Hz]", f))
