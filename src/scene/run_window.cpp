@@ -129,7 +129,7 @@ void check_window(const InputNode& scene, RunScene& run,
   if (lead_end > last_band_end)
     w.fail_key("spans_ahead", "the window's front reaches the line's end before " + who +
                                   " reaches " + format_number(lead_end) +
-                                  " m (where the run ends: simulation.end_x " +
+                                  " m, where it is when the run ends (simulation.end_x " +
                                   format_number(run.end_x) + " m; at most " +
                                   format_number(last_band_end) + " m)");
   // The line as far as the run goes: the supports the window covers before
