@@ -195,7 +195,7 @@ RunScene load_run_scene(const InputNode& scene, const RunSceneOptions& options) 
   }
   check_time_step(scene, run, options.command_line_dt ? "-ts_dt" : "simulation.dt");
   check_filter_edges(scene, run);
-  if (run.window) check_window(scene, run);
+  if (run.window) check_window(scene, run, options.size_check);
   return run;
 }
 

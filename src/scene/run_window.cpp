@@ -1,4 +1,5 @@
 // The 'window' section of a run scene (run_scene.hpp, RunWindow).
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -22,9 +23,43 @@ void check_periodic_line(const InputNode& w, const catenary::ParametricDesign& d
   if (!why.empty()) w.fail("needs a line of identical spans; the design has " + why);
 }
 
+bool starts_before(const contact::PantographRun& a, const contact::PantographRun& b) {
+  return a.start_x < b.start_x;
+}
+
+// The window (margins and train) must be shorter than the line: it moves along it.
+void check_shorter_than_line(const InputNode& w, const RunWindow& window) {
+  if (window.spans() < window.line_spans) return;
+  const std::string train = window.train_spans == 0
+                                ? ""
+                                : " + " + std::to_string(window.train_spans) +
+                                      " spans of the train (trailing to leading pantograph)";
+  w.fail("a window of " + std::to_string(window.spans()) + " spans (spans_behind" + train +
+         " + 2 + spans_ahead) is not shorter than the line (" + std::to_string(window.line_spans) +
+         " spans)");
+}
+
+// Several pantographs: the window spans the train (train_spans), its mesh
+// rebuilt from the line's design with that many more spans.
+void fit_train(const InputNode& w, RunScene& run, const catenary::MeshSizeCheck& size_check) {
+  auto& window = *run.window;
+  const auto [lo, hi] =
+      std::minmax_element(run.pantographs.begin(), run.pantographs.end(), starts_before);
+  const double train = (hi->start_x - lo->start_x) / window.span_length;
+  window.train_spans = static_cast<int>(std::ceil(train - 1e-9));
+  if (window.train_spans == 0) return;
+  check_shorter_than_line(w, window);
+  catenary::ParametricDesign d = window.design;
+  d.span_count = window.spans();
+  if (size_check) size_check(catenary::mesh_size(d));
+  catenary::CatenaryMesh mesh = catenary::build_parametric(d);
+  mesh.source_file = run.catenary.mesh.source_file;
+  window.mesh = mesh;
+  mesh.support_x = std::move(run.catenary.mesh.support_x);  // the line's
+  run.catenary.mesh = std::move(mesh);
+}
+
 void check_outputs(const InputNode& scene, const InputNode& w, const RunScene& run) {
-  if (run.pantographs.size() != 1)
-    w.fail("one pantograph only (the scene has " + std::to_string(run.pantographs.size()) + ")");
   if (run.catenary.fidelity == catenary::CatenaryFidelity::modal)
     w.fail("the window shifts finite-element states; catenary.model modal has none");
   if (!scene.has("output")) return;
@@ -62,40 +97,45 @@ catenary::DesignBuilder window_design_builder(const InputNode& scene, RunWindow&
     check_periodic_line(w, d);
     window.line_spans = static_cast<int>(d.span_count);
     window.span_length = d.span_length;
-    if (window.spans() >= window.line_spans)
-      w.fail("a window of " + std::to_string(window.spans()) +
-             " spans (spans_behind + 2 + spans_ahead) is not shorter than the line (" +
-             std::to_string(window.line_spans) + " spans)");
+    window.design = d;
+    check_shorter_than_line(w, window);
     d.span_count = window.spans();
     if (size_check) size_check(catenary::mesh_size(d));
     return catenary::build_parametric(d);
   };
 }
 
-void check_window(const InputNode& scene, RunScene& run) {
+// The leading pantograph (the furthest along) starts within the window's
+// first shift_spans() spans and ends, when the first of the scene's reaches
+// end_x, before the window's front has reached the line's end.
+void check_window(const InputNode& scene, RunScene& run,
+                  const catenary::MeshSizeCheck& size_check) {
   const InputNode w = scene["window"];
   auto& window = *run.window;
+  fit_train(w, run, size_check);
   check_outputs(scene, w, run);
   const double L = window.span_length, x0 = run.catenary.mesh.support_x.front();
-  const double start = run.pantographs.front().start_x;
-  if (start >= x0 + (window.spans_behind + 2) * L)
-    w.fail_key("spans_behind", "the pantograph starts at " + format_number(start) +
+  const auto& lead =
+      *std::max_element(run.pantographs.begin(), run.pantographs.end(), starts_before);
+  const std::string who = run.pantographs.size() > 1 ? "the leading pantograph" : "the pantograph";
+  if (lead.start_x >= x0 + window.shift_spans() * L)
+    w.fail_key("spans_behind", who + " starts at " + format_number(lead.start_x) +
                                    " m, beyond the window's first " +
-                                   std::to_string(window.spans_behind + 2) + " spans");
+                                   std::to_string(window.shift_spans()) + " spans");
   // The window moves by two spans while its front stays on the line.
   const long shifts = (window.line_spans - window.spans()) / 2;
-  const double last_band_end = x0 + 2.0 * L * shifts + (window.spans_behind + 2) * L;
-  if (run.end_x > last_band_end)
-    w.fail_key("spans_ahead",
-               "the window's front reaches the line's end before the pantograph "
-               "reaches simulation.end_x (" +
-                   format_number(run.end_x) + " m; at most " + format_number(last_band_end) +
-                   " m)");
+  const double last_band_end = x0 + 2.0 * L * shifts + window.shift_spans() * L;
+  const double lead_end = run.end_x + lead.start_x - run.pantographs.front().start_x;
+  if (lead_end > last_band_end)
+    w.fail_key("spans_ahead", "the window's front reaches the line's end before " + who +
+                                  " reaches " + format_number(lead_end) +
+                                  " m, where it is when the run ends (simulation.end_x " +
+                                  format_number(run.end_x) + " m; at most " +
+                                  format_number(last_band_end) + " m)");
   // The line as far as the run goes: the supports the window covers before
-  // the pantograph reaches end_x (its records and statistics need no others).
+  // the leading pantograph's end (the records and statistics need no others).
   long used = 0;
-  while (used < shifts && x0 + (window.spans_behind + 2 + 2.0 * used) * L <= run.end_x + 1e-9)
-    ++used;
+  while (used < shifts && x0 + (window.shift_spans() + 2.0 * used) * L <= lead_end + 1e-9) ++used;
   run.catenary.mesh.support_x.resize(static_cast<std::size_t>(window.spans() + 2 * used + 1));
   run.dropper_forces = false;
 }

@@ -19,7 +19,10 @@ MovingWindow::MovingWindow(const scene::RunWindow& window, assembly::CoupledSyst
   fe_ = fe;
   const auto& mesh = fe->mesh();
   const auto& layout = fe->system().layout();
-  shift_at_x_ = mesh.support_x.front() + (window.spans_behind + 2) * span_length_;
+  shift_at_x_ = mesh.support_x.front() + window.shift_spans() * span_length_;
+  const auto& pantographs = system.pantographs();
+  for (std::size_t i = 1; i < pantographs.size(); ++i)
+    if (pantographs[i].run.start_x > pantographs[lead_].run.start_x) lead_ = i;
   max_shifts_ = (window.line_spans - window.spans()) / 2;
   window_supports_ = static_cast<int>(mesh.support_x.size());
   for (int node : mesh.support_nodes)
@@ -50,13 +53,14 @@ MovingWindow::MovingWindow(const scene::RunWindow& window, assembly::CoupledSyst
 }
 
 void MovingWindow::after_step(double t, solvers::DynamicSolver& solver) {
-  auto& run = system_.pantographs().front().run;
+  const auto& run = system_.pantographs()[lead_].run;
   if (shifts_ < max_shifts_ && run.contact_x(t) >= shift_at_x_) shift(solver);
 }
 
 // new(g) = U0(g) + (old(s) - U0(s)) for s = source(g): the displacement two
 // spans ahead; static where there is none (the new front spans). Pantograph
-// unknowns (after the catenary's) keep theirs.
+// unknowns (after the catenary's) keep theirs; every pantograph's contact
+// point moves back with the window.
 void MovingWindow::shift(solvers::DynamicSolver& solver) {
   solvers::DynamicState s = solver.save_state();  // rank 0: U, V, A in the global order
   if (!s.U.empty()) {
@@ -69,7 +73,7 @@ void MovingWindow::shift(solvers::DynamicSolver& solver) {
     }
   }
   solver.replace_state(s.U, s.V, s.A);
-  system_.pantographs().front().run.start_x -= 2.0 * span_length_;
+  for (auto& pantograph : system_.pantographs()) pantograph.run.start_x -= 2.0 * span_length_;
   ++shifts_;
   set_pins(*fe_);  // J0 is rebuilt at the next step (replace_state)
 }

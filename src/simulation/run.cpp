@@ -43,9 +43,10 @@ void prepare_window(const Context& ctx, const scene::RunWindow& window,
                     simulation::StaticConfiguration& statics) {
   const auto ends = catenary::release_window_ends(statics.mesh, statics.result.node_values);
   print0(ctx,
-         "  moving window: %d of the line's %d spans (%d behind, 2 with the pantograph, %d "
-         "ahead), %zu wire ends with matched dashpots\n",
-         window.spans(), window.line_spans, window.spans_behind, window.spans_ahead, ends.size());
+         "  moving window: %d of the line's %d spans (%d behind, %d with the %s, %d ahead), "
+         "%zu wire ends with matched dashpots\n",
+         window.spans(), window.line_spans, window.spans_behind, window.train_spans + 2,
+         window.train_spans > 0 ? "train" : "pantograph", window.spans_ahead, ends.size());
 }
 
 // The static configuration of the line, or of the window with its ends released.

@@ -145,6 +145,18 @@ analysis: {from_span: 2, to_span: 3}
 window: {spans_behind: 1, spans_ahead: 1}
 output: {energy: true}
 YAML
+# A window over a train (issue 21): two pantographs 200 m apart on the
+# 10-span line need 2 + 4 (the train) + 2 + 3 spans, not shorter than the line.
+cat > "$w/window-train.yaml" << YAML
+name: window-train
+catenary: {design: $S/meshes/en50318-reference.yaml}
+pantographs:
+  - {name: leading, model: $two_mass, start_x: 205}
+  - {name: trailing, model: $two_mass, start_x: 5}
+simulation: {speed_kmh: 200, end_x: 520}
+analysis: {from_span: 5, to_span: 5}
+window: {spans_behind: 2, spans_ahead: 3}
+YAML
 # Issue 22 (a fuzzer's inputs): duplicate keys, a second document, empty
 # values; pantograph names that are not one HDF5 link name; magnitudes no
 # line or pantograph has; keys a message must name.
@@ -286,6 +298,7 @@ expect end-beyond 2 "end-beyond.yaml|key 'simulation.end_x'|on the line" yes run
 expect window-size 2 "window-size.yaml|key 'window'|4 spans|not shorter than the line (3 spans)" yes run window-size.yaml
 expect window-behind 2 "window-behind.yaml|key 'window.spans_behind'|at least 1" yes run window-behind.yaml
 expect window-typo 2 "window-typo.yaml|key 'window.spans_ahed'|unknown key" yes run window-typo.yaml
+expect window-train 2 "window-train.yaml|key 'window'|a window of 11 spans (spans_behind + 4 spans of the train|not shorter than the line (10 spans)" yes run window-train.yaml
 expect window-energy 2 "window-energy.yaml|key 'output.energy'|moving window" yes run window-energy.yaml
 expect too-fast 2 "too-fast.yaml|key 'simulation.speed_kmh'|wave speed" yes run too-fast.yaml
 expect panto-key 2 "panto-key.yaml|key 'pantographs[0].stiffnes'|unknown key" yes run panto-key.yaml

@@ -1,7 +1,8 @@
 // A moving window over a line of identical spans (docs/scaling.md, "Moving
-// window"): only W spans are integrated; when the pantograph has run on by
-// one period of the line (two spans: the stagger alternates), the dynamic
-// state moves back by that period and the new front spans start static.
+// window"): only W spans are integrated (around the pantograph, or the whole
+// train of pantographs); when the (leading) pantograph has run on by one
+// period of the line (two spans: the stagger alternates), the dynamic state
+// moves back by that period and the new front spans start static.
 // Plain functions of the mesh; the run drives them (src/simulation/moving_window.*).
 #pragma once
 

@@ -38,15 +38,21 @@
 namespace pcsim::scene {
 
 // A moving window over a line of identical spans (catenary/window.hpp): the
-// run integrates spans_behind + 2 + spans_ahead spans, the pantograph within
-// the two middle ones (the window moves back by two spans, the period of the
-// stagger, when it leaves them).
+// run integrates spans_behind + train_spans + 2 + spans_ahead spans, the
+// leading pantograph within the two spans after the train's (the window moves
+// back by two spans, the period of the stagger, when it leaves them). One
+// pantograph: train_spans 0. Several: the window spans the whole train, the
+// trailing pantograph at least spans_behind spans from the rear.
 struct RunWindow {
   int spans_behind = 2, spans_ahead = 3;
-  int spans() const { return spans_behind + 2 + spans_ahead; }
-  int line_spans = 0;           // the line's (the scene's design's)
-  double span_length = 0;       // [m]
-  catenary::CatenaryMesh mesh;  // the window's design: the line's with spans() spans
+  int train_spans = 0;  // ceil(distance trailing -> leading pantograph / span_length)
+  int spans() const { return spans_behind + train_spans + 2 + spans_ahead; }
+  // Spans from the window's rear to where the leading pantograph shifts it.
+  int shift_spans() const { return spans_behind + train_spans + 2; }
+  int line_spans = 0;                 // the line's (the scene's design's)
+  double span_length = 0;             // [m]
+  catenary::ParametricDesign design;  // the line's design, read
+  catenary::CatenaryMesh mesh;        // the window's design: the line's with spans() spans
 };
 // With a window, RunScene::catenary.mesh is the window's mesh with the line's
 // supports (support_x: every span of the line while the scene is checked,
@@ -107,10 +113,12 @@ void check_time_step(const InputNode& scene, RunScene& run, const std::string& d
 void check_filter_edges(const InputNode& scene, RunScene& run);
 // The 'window' section (run_window.cpp): its keys; the builder of the
 // window's mesh from the line's design (a parametric line of identical spans,
-// longer than the window; fills line_spans and span_length); and, once the
-// scene is read, that the pantographs and outputs allow a moving window.
+// longer than the window; fills line_spans, span_length and design); and,
+// once the scene is read, the window fitted to the train (several
+// pantographs: its mesh rebuilt with train_spans, still shorter than the
+// line) and that the pantographs and outputs allow a moving window.
 RunWindow read_window_keys(const InputNode& scene);
 catenary::DesignBuilder window_design_builder(const InputNode& scene, RunWindow& window);
-void check_window(const InputNode& scene, RunScene& run);
+void check_window(const InputNode& scene, RunScene& run, const catenary::MeshSizeCheck& size_check);
 
 }  // namespace pcsim::scene

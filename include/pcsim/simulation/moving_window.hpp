@@ -1,9 +1,11 @@
 // The moving window of `pcsim run` (scene key 'window'; catenary/window.hpp,
-// docs/scaling.md): after every accepted step, when the pantograph has left
-// the window's two middle spans, the catenary's dynamic state (displacement
-// from the static configuration, velocity, acceleration) moves back by two
-// spans, the two new front spans start static, and the pantograph's contact
-// point moves back with it. Records are turned into line coordinates.
+// docs/scaling.md): after every accepted step, when the leading pantograph
+// (the one furthest along; the only one, or the front of a train) has left
+// its two spans (scene::RunWindow::shift_spans), the catenary's dynamic state
+// (displacement from the static configuration, velocity, acceleration) moves
+// back by two spans, the two new front spans start static, and every
+// pantograph's contact point moves back with it. Records are turned into line
+// coordinates.
 #pragma once
 
 #include <petscvec.h>
@@ -42,7 +44,8 @@ class MovingWindow {
   assembly::FECatenary* fe_ = nullptr;
   int line_spans_ = 0, window_spans_ = 0;
   double span_length_ = 0;
-  double shift_at_x_ = 0;  // window station where the pantograph leaves the middle spans
+  double shift_at_x_ = 0;  // window station where the leading pantograph leaves its spans
+  std::size_t lead_ = 0;   // the leading pantograph (largest start_x)
   int max_shifts_ = 0, shifts_ = 0;
   int window_supports_ = 0;
   std::vector<double> line_support_x_, line_static_z_, window_static_z_;
