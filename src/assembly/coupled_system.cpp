@@ -177,17 +177,23 @@ void CoupledSystem::reference_jacobian(double t, Vec U, Vec V, Vec A, Shifts shi
   assemble_tangent(shifts, J0, true);
 }
 
-bool CoupledSystem::low_rank_change(double t, Vec U, Vec V, Vec A, std::vector<RankOne>& terms) {
+bool CoupledSystem::low_rank_change(double t, Vec U, Vec V, Vec A, std::vector<RankOne>& terms,
+                                    Shifts shifts, std::vector<BlockChange>* blocks) {
   const ScopedEvent timed(log_events().low_rank_change);
   load(t, U, V, A);
   terms.clear();
+  if (blocks) blocks->clear();
   bool reference_ok = true;
   for (std::size_t k = 0; k < terms_.size(); ++k) {
     const std::size_t first = terms.size();
     reference_ok = terms_[k]->low_rank_change(state_, terms) && reference_ok;
     // Keys unique over the system: term number in the high bits.
-    for (std::size_t i = first; i < terms.size(); ++i)
-      terms[i].key = static_cast<int>(k << 20) + terms[i].key;
+    const int high = static_cast<int>(k << 20);
+    for (std::size_t i = first; i < terms.size(); ++i) terms[i].key += high;
+    if (!blocks || terms_[k]->tangent_kind() != TangentKind::block) continue;
+    const std::size_t first_block = blocks->size();
+    terms_[k]->block_change(state_, shifts, *blocks);
+    for (std::size_t i = first_block; i < blocks->size(); ++i) (*blocks)[i].key += high;
   }
   return reference_ok;
 }

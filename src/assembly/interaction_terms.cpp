@@ -38,15 +38,45 @@ void PantographTerm::add_residual(const CoupledState& state, Vec F) {
   PCSIM_PETSC(VecSetValues(F, model.dof_count(), idx.data(), R.data(), ADD_VALUES));
 }
 
-void PantographTerm::add_tangent(const CoupledState& state, Shifts shifts, Mat J) {
-  if (!state.on_last_rank()) return;
+std::vector<double> PantographTerm::block_tangent(const CoupledState& state, Shifts shifts) const {
   const auto& model = *slot_.model;
   const int n = model.dof_count();
   Eigen::MatrixXd Kq(n, n), Cq(n, n), Mq(n, n);
   model.tangents(state.t, state.q(index_), state.qd(index_), state.qdd(index_), Kq, Cq, Mq);
-  const RowMatrix Jp = Kq + shifts.v * Cq + shifts.a * Mq;
+  std::vector<double> values(static_cast<std::size_t>(n) * n);
+  Eigen::Map<RowMatrix>(values.data(), n, n) = Kq + shifts.v * Cq + shifts.a * Mq;
+  return values;
+}
+
+void PantographTerm::add_tangent(const CoupledState& state, Shifts shifts, Mat J) {
+  if (!state.on_last_rank()) return;
+  const auto values = block_tangent(state, shifts);
   const auto idx = dof_range(slot_);
-  PCSIM_PETSC(MatSetValues(J, n, idx.data(), n, idx.data(), Jp.data(), ADD_VALUES));
+  const auto n = static_cast<PetscInt>(idx.size());
+  PCSIM_PETSC(MatSetValues(J, n, idx.data(), n, idx.data(), values.data(), ADD_VALUES));
+}
+
+// The reference is kept: block_change() reports the difference to it.
+void PantographTerm::add_reference_tangent(const CoupledState& state, Shifts shifts, Mat J) {
+  if (!state.on_last_rank()) return;
+  reference_ = block_tangent(state, shifts);
+  const auto idx = dof_range(slot_);
+  const auto n = static_cast<PetscInt>(idx.size());
+  PCSIM_PETSC(MatSetValues(J, n, idx.data(), n, idx.data(), reference_.data(), ADD_VALUES));
+}
+
+void PantographTerm::block_change(const CoupledState& state, Shifts shifts,
+                                  std::vector<BlockChange>& blocks) {
+  if (slot_.model->is_linear()) return;
+  BlockChange change;
+  change.first = slot_.first_dof;
+  change.size = slot_.dof_count();
+  if (state.on_last_rank()) {
+    if (reference_.empty()) throw SolverError("pantograph block change before its reference");
+    change.delta = block_tangent(state, shifts);
+    for (std::size_t i = 0; i < change.delta.size(); ++i) change.delta[i] -= reference_[i];
+  }
+  blocks.push_back(std::move(change));
 }
 
 void PantographTerm::insert_pattern(Mat J) const {

@@ -227,13 +227,18 @@ void finish(const Context& ctx, const scene::RunScene& scene, const RunRequest& 
   if (!outcome.complete) out.keep_partial();
 }
 
+bool has_block_terms(const assembly::CoupledSystem& system) {
+  for (const auto& term : system.terms())
+    if (term->tangent_kind() == assembly::TangentKind::block) return true;
+  return false;
+}
+
 }  // namespace
 
+// A nonlinear pantograph's tangent stays in its own block (refactored per
+// iteration on the cheap path): only the catenary decides.
 bool cheap_path_possible(const scene::RunScene& scene) {
-  if (scene.effects.catenary_nonlinear) return false;
-  for (const auto& model : scene.models)
-    if (!model->is_linear()) return false;
-  return true;
+  return !scene.effects.catenary_nonlinear;
 }
 
 RunOutcome run(const Context& ctx, scene::RunScene& scene, const RunRequest& request,
@@ -261,6 +266,8 @@ RunOutcome run(const Context& ctx, scene::RunScene& scene, const RunRequest& req
          static_cast<int>(system->catenary().catenary_dofs()),
          static_cast<int>(system->global_size() - system->catenary().catenary_dofs()), ctx.size,
          solver.cheap_path() ? "cheap (Jacobian reused)" : "full Newton");
+  if (solver.cheap_path() && has_block_terms(*system))
+    print0(ctx, "  cheap path: nonlinear pantograph blocks refactored at every Newton iteration\n");
   if (request.stop_before_stepping) {
     print0(ctx,
            "  -help: the options above are those this run reads; stopped before the "

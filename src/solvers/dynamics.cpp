@@ -16,13 +16,14 @@ bool choose_cheap_path(MPI_Comm comm, bool possible) {
       comm, {"-pcsim_path",
              "pcsim dynamic run",
              "Jacobian path: auto (cheap when every term allows it), full (exact Newton at every "
-             "iteration), cheap (J0 factored once + exact low-rank terms)",
+             "iteration), cheap (J0 factored once + exact low-rank terms + nonlinear "
+             "pantographs' blocks refactored per iteration)",
              "auto",
              {"auto", "full", "cheap"}});
   if (path == "cheap" && !possible)
     throw InputError("command line", "-pcsim_path",
-                     "the cheap path needs a linearised catenary and linear pantographs (a term of "
-                     "this scene changes its tangent with the state)");
+                     "the cheap path needs a linearised or modal catenary (a term of this scene "
+                     "changes its tangent with the state)");
   return path == "auto" ? possible : path == "cheap";
 }
 
@@ -121,12 +122,13 @@ PetscErrorCode DynamicSolver::jacobian(TS, PetscReal t, Vec U, Vec V, Vec A, Pet
 }
 
 // J0 is kept while the shifts (the time step) stay and no term asks for a
-// new one; the low-rank terms follow the state at every Newton iteration.
+// new one; the low-rank terms and the varying blocks (nonlinear pantographs)
+// follow the state at every Newton iteration.
 void DynamicSolver::cheap_jacobian(PetscReal t, Vec U, Vec V, Vec A, assembly::Shifts shifts,
                                    Mat P) {
   const bool same_shifts = shifts.v == cached_shift_v_ && shifts.a == cached_shift_a_;
-  if (same_shifts && system_.low_rank_change(t, U, V, A, terms_)) {
-    low_rank_->set_terms(terms_);
+  if (same_shifts && system_.low_rank_change(t, U, V, A, terms_, shifts, &blocks_)) {
+    low_rank_->set_terms(terms_, blocks_);
     return;
   }
   system_.reference_jacobian(t, U, V, A, shifts, P);
@@ -141,8 +143,8 @@ void DynamicSolver::cheap_jacobian(PetscReal t, Vec U, Vec V, Vec A, assembly::S
     PCSIM_PETSC(VecCopy(from, *to));
   }
   low_rank_->invalidate();
-  system_.low_rank_change(t, U, V, A, terms_);
-  low_rank_->set_terms(terms_);
+  system_.low_rank_change(t, U, V, A, terms_, shifts, &blocks_);
+  low_rank_->set_terms(terms_, blocks_);
 }
 
 void DynamicSolver::set_initial_state(Vec U0, Vec V0) {

@@ -7,10 +7,12 @@
 #include "block_diagonal.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/core/profiling.hpp"
+#include "varying_blocks.hpp"
 
 namespace pcsim::solvers {
 
-LowRankStepSolver::LowRankStepSolver(Mat J0, const char* inner_prefix) : J0_(J0) {
+LowRankStepSolver::LowRankStepSolver(Mat J0, const char* inner_prefix)
+    : J0_(J0), varying_(std::make_unique<VaryingBlocks>()) {
   MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(J0));
   PetscInt m, n, M, N;
   PCSIM_PETSC(MatGetLocalSize(J0, &m, &n));
@@ -41,6 +43,7 @@ void LowRankStepSolver::install(PC pc) {
 
 void LowRankStepSolver::invalidate() {
   factored_ = false;
+  varying_->invalidate();
   for (auto& [g, v] : columns_) VecDestroy(&v);
   columns_.clear();
   for (auto& [key, e] : entries_) e.z_valid = false;
@@ -82,25 +85,30 @@ Vec LowRankStepSolver::unit_solution(PetscInt g) {
   if (g >= lo && g < hi) PCSIM_PETSC(VecSetValue(e, g, 1.0, INSERT_VALUES));
   PCSIM_PETSC(VecAssemblyBegin(e));
   PCSIM_PETSC(VecAssemblyEnd(e));
-  solve_j0(e, z);
+  solve_fixed(e, z);
   PCSIM_PETSC(VecDestroy(&e));
   columns_[g] = z;
   return z;
 }
 
+// z = J0^-1 u with J0 as factored, then the rows of the varying blocks at
+// their current values (again at every change of the blocks).
 void LowRankStepSolver::update_z(Entry& e) {
-  if (e.z_valid || !factored_) return;
-  if (e.term.reuse_columns) {
-    std::vector<Vec> columns;
-    for (PetscInt g : e.term.index) columns.push_back(unit_solution(g));
-    PCSIM_PETSC(VecSet(e.z, 0.0));
-    PCSIM_PETSC(
-        VecMAXPY(e.z, static_cast<PetscInt>(columns.size()), e.term.weight.data(), columns.data()));
-  } else {
-    solve_j0(e.u, e.z);
+  if (!factored_) return;
+  if (!e.z_valid) {
+    if (e.term.reuse_columns) {
+      std::vector<Vec> columns;
+      for (PetscInt g : e.term.index) columns.push_back(unit_solution(g));
+      PCSIM_PETSC(VecSet(e.z, 0.0));
+      PCSIM_PETSC(VecMAXPY(e.z, static_cast<PetscInt>(columns.size()), e.term.weight.data(),
+                           columns.data()));
+    } else {
+      solve_fixed(e.u, e.z);
+    }
+    e.z_valid = true;
+    capacitance_dirty_ = true;
   }
-  e.z_valid = true;
-  capacitance_dirty_ = true;
+  if (!varying_->empty()) varying_->solve_rows(e.u, e.z);
 }
 
 void LowRankStepSolver::evict_unused_columns() {
@@ -117,7 +125,10 @@ void LowRankStepSolver::evict_unused_columns() {
   }
 }
 
-void LowRankStepSolver::set_terms(const std::vector<assembly::RankOne>& terms) {
+void LowRankStepSolver::set_terms(const std::vector<assembly::RankOne>& terms,
+                                  const std::vector<assembly::BlockChange>& blocks) {
+  varying_->set(blocks);
+  if (!varying_->empty()) capacitance_dirty_ = true;  // on every rank alike
   std::set<int> keys;
   for (const auto& term : terms) {
     keys.insert(term.key);
@@ -160,12 +171,17 @@ void LowRankStepSolver::choose_inner(Mat P) {
   if (!pc_option && blocks->analyse(P)) blocks_ = std::move(blocks);
 }
 
-// x = J0^-1 r.
-void LowRankStepSolver::solve_j0(Vec r, Vec x) const {
+// x = J0^-1 r, J0 as factored.
+void LowRankStepSolver::solve_fixed(Vec r, Vec x) const {
   if (blocks_)
     blocks_->solve(r, x);
   else
     PCSIM_PETSC(KSPSolve(inner_, r, x));
+}
+
+void LowRankStepSolver::solve_j0(Vec r, Vec x) const {
+  solve_fixed(r, x);
+  if (!varying_->empty()) varying_->solve_rows(r, x);
 }
 
 PetscErrorCode LowRankStepSolver::pc_setup(PC pc) {
@@ -182,6 +198,7 @@ PetscErrorCode LowRankStepSolver::pc_setup(PC pc) {
     PCSIM_PETSC(KSPSetUp(self->inner_));
   }
   self->invalidate();
+  self->varying_->setup(P);
   self->factored_ = true;
   // Every z the way set_terms() computes it (reuse_columns terms from unit
   // solves): z depends only on J0 and u, never on when the PC was set up, so
@@ -242,6 +259,7 @@ PetscErrorCode LowRankStepSolver::op_mult(Mat A, Vec x, Vec y) {
   LowRankStepSolver* self;
   PCSIM_PETSC(MatShellGetContext(A, &self));
   PCSIM_PETSC(MatMult(self->J0_, x, y));
+  self->varying_->add_change(x, y);
   std::vector<Vec> us;
   std::vector<PetscScalar> c;
   for (auto& [key, e] : self->entries_)

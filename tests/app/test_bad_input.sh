@@ -120,6 +120,7 @@ run_scene spans "$one" "" ", to_span: 7"
 sed -i 's/from_span: 2, to_span: 2, to_span: 7/from_span: 2, to_span: 7/' "$w/spans.yaml"
 run_scene dsa-high "  - {name: p, model: $dsa, start_x: 13.1, working_height: 3.0}"
 run_scene dsa-cheap "  - {name: p, model: $dsa, start_x: 13.1}"
+echo "effects: {catenary_nonlinear: true}" >> "$w/dsa-cheap.yaml"  # no cheap path
 run_scene huge-run "$one" "" "" "huge-design.yaml"
 run_scene close "  - {name: p, model: $two_mass, start_x: 13.1}
   - {name: q, model: $two_mass, start_x: 8.1}"

@@ -54,10 +54,12 @@ class CoupledSystem {
   // The exact tangent, assembled into J.
   void jacobian(double t, Vec U, Vec V, Vec A, Shifts shifts, Mat J);
   // Cheap path: J0 (every term's reference tangent), assembled; then the
-  // terms' low-rank changes against it at the same or a later state. The
+  // terms' low-rank changes against it at the same or a later state, and,
+  // if blocks is given, the 'block' terms' changes (shifts: J0's). The
   // latter returns false when a term asks for a new J0.
   void reference_jacobian(double t, Vec U, Vec V, Vec A, Shifts shifts, Mat J0);
-  bool low_rank_change(double t, Vec U, Vec V, Vec A, std::vector<RankOne>& terms);
+  bool low_rank_change(double t, Vec U, Vec V, Vec A, std::vector<RankOne>& terms,
+                       Shifts shifts = {}, std::vector<BlockChange>* blocks = nullptr);
 
   // Every term's Term::checkpoint(), in order; restore_terms() gives them
   // back (after the reference Jacobian has been rebuilt).

@@ -9,27 +9,36 @@
 namespace pcsim::assembly {
 
 // R_p = model residual (without contact) + (1 - ramp(t)) F0 e_c, on the last
-// rank; dense tangent K + v C + a M of the model.
+// rank; dense tangent K + v C + a M of the model. A nonlinear model is a
+// 'block' term on the cheap path: J0 holds its tangent at J0's state, and
+// block_change() the difference of the current one (its own unknowns only).
 class PantographTerm : public Term {
  public:
   explicit PantographTerm(std::size_t index, const PantographSlot& slot)
       : index_(index), slot_(slot) {}
   std::string name() const override { return "pantograph " + slot_.run.name; }
   TangentKind tangent_kind() const override {
-    return slot_.model->is_linear() ? TangentKind::constant : TangentKind::varying;
+    return slot_.model->is_linear() ? TangentKind::constant : TangentKind::block;
   }
   bool adds_by_set_values() const override { return true; }
   void add_residual(const CoupledState& state, Vec F) override;
   void add_tangent(const CoupledState& state, Shifts shifts, Mat J) override;
   void insert_pattern(Mat J) const override;
+  void add_reference_tangent(const CoupledState& state, Shifts shifts, Mat J) override;
+  void block_change(const CoupledState& state, Shifts shifts,
+                    std::vector<BlockChange>& blocks) override;
   // T + V of the model - Q_ext . q (constant external forces as potentials)
   // + (1 - ramp) F0 q_c.
   double energy(const CoupledState& state) const override;
   TermPower power(const CoupledState& state) const override;
 
  private:
+  // K + v C + a M at the loaded state, row-major (last rank).
+  std::vector<double> block_tangent(const CoupledState& state, Shifts shifts) const;
+
   std::size_t index_;
   const PantographSlot& slot_;
+  std::vector<double> reference_;  // block_tangent() at J0's state (last rank)
 };
 
 // Penalty contact of one pantograph with one contact wire at the moving point

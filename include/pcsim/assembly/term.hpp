@@ -19,7 +19,11 @@
 // how its tangent behaves (TangentKind). A 'low_rank' term adds a reference
 // tangent to J0 and reports the change of its tangent against that reference
 // as rank-one terms c u u^T (low_rank_change), which the solver adds exactly
-// (Woodbury). The solver never knows what a dropper or a contact is.
+// (Woodbury). A 'block' term (a nonlinear pantograph) has its tangent in a
+// small dense block of unknowns that no reference tangent couples with any
+// other: J0 holds its reference value, block_change() the exact change, which
+// the solver refactors at every iteration. The solver never knows what a
+// dropper, a contact or a pantograph is.
 #pragma once
 
 #include <petscmat.h>
@@ -59,9 +63,20 @@ struct RankOne {
   bool contiguous = false;  // index is index[0], index[0] + 1, ... (dense u over a block)
 };
 
+// The change J - J_ref of a tangent confined to the dense diagonal block of
+// unknowns first .. first + size - 1, on the rank that owns them (delta empty
+// elsewhere; key, first and size identical on every rank).
+struct BlockChange {
+  int key = 0;  // identifies the block within its Term
+  PetscInt first = 0;
+  int size = 0;
+  std::vector<double> delta;  // size x size, row-major
+};
+
 enum class TangentKind {
   constant,  // never changes: part of J0 for good
   low_rank,  // reference tangent in J0 + low_rank_change() (contact, slack droppers)
+  block,     // reference tangent in J0 + block_change() (a nonlinear pantograph)
   varying,   // general nonlinear: needs the full Newton path
 };
 
@@ -102,6 +117,10 @@ class Term {
   virtual bool low_rank_change(const CoupledState& state, std::vector<RankOne>& terms) {
     return true;
   }
+  // 'block' terms: the change of the exact tangent (shifts as J0's) against
+  // the reference one, on its own unknowns only (collective).
+  virtual void block_change(const CoupledState& state, Shifts shifts,
+                            std::vector<BlockChange>& blocks) {}
 
   // Checkpoint/restart: the state the term keeps between calls that is not a
   // function of the state vectors (e.g. rank-one terms frozen when a dropper

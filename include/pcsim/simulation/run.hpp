@@ -65,7 +65,7 @@ struct RunOutcome {
 };
 
 // Whether the scene's terms allow the cheap Jacobian path (every tangent
-// constant or low rank): a linearised catenary and linear pantograph models.
+// constant, low rank or a block of its own): a linearised or modal catenary.
 bool cheap_path_possible(const scene::RunScene& scene);
 
 // Runs 'scene' (its pantograph models are moved out) into 'out'; collective

@@ -6,8 +6,10 @@
 //  - full: the exact tangent assembled and factored at every Newton iteration;
 //  - cheap (possible when no term is 'varying'): J0 = every term's reference
 //    tangent, factored once per time-step size; the terms' low-rank changes
-//    enter exactly through LowRankStepSolver (Woodbury). The SNES's operator
-//    is J0 + low rank, so -snes_test_jacobian and -ksp_type work on both.
+//    enter exactly through LowRankStepSolver (Woodbury), and a nonlinear
+//    pantograph's block (decoupled from the rest in J0) is re-evaluated and
+//    refactored at every iteration. The SNES's operator is J0 + changes, so
+//    -snes_test_jacobian and -ksp_type work on both.
 // Options (listed by -help): -pcsim_path <auto|full|cheap>. Direct solver:
 // PETSc's LU with quotient-minimum-degree ordering on one rank (its solves
 // measured 4x faster than MUMPS on the EN 50318 mesh), MUMPS with METIS
@@ -89,6 +91,7 @@ class DynamicSolver {
   long reference_builds_ = 0;
   std::unique_ptr<LowRankStepSolver> low_rank_;
   std::vector<assembly::RankOne> terms_;
+  std::vector<assembly::BlockChange> blocks_;
   double cached_shift_v_ = -1, cached_shift_a_ = -1;
   // The state J0 was assembled at (cheap path), for checkpoints.
   double reference_t_ = 0;

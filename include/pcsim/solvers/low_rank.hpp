@@ -13,6 +13,10 @@
 // inner KSP with options prefix -cheap_ (e.g. -cheap_pc_factor_mat_solver_type), or,
 // when its pattern is block diagonal with small blocks (the reduced-order catenary's)
 // and no -cheap_pc_type is given, inverted block by block (block_diagonal.hpp).
+// 'Block' terms (a nonlinear pantograph, assembly/term.hpp) change a small
+// dense diagonal block of J0 that J0 couples with nothing else: the operator
+// adds the change, and J0^-1 takes those rows from the block's dense LU,
+// refactored at every Jacobian (varying_blocks.hpp); J0 stays factored.
 #pragma once
 
 #include <petscksp.h>
@@ -27,6 +31,7 @@
 namespace pcsim::solvers {
 
 class BlockDiagonalInverse;
+class VaryingBlocks;
 
 class LowRankStepSolver {
  public:
@@ -42,9 +47,11 @@ class LowRankStepSolver {
   // J0 changed (reassembled): the factorisation and every J0^-1 u are stale
   // until the PC is set up again.
   void invalidate();
-  // The current rank-one terms (identical on every rank), at every Jacobian
-  // evaluation. Terms keep their J0^-1 u while their u stays the same.
-  void set_terms(const std::vector<assembly::RankOne>& terms);
+  // The current rank-one terms (identical on every rank) and block changes,
+  // at every Jacobian evaluation. Terms keep their J0^-1 u while their u
+  // stays the same (but for the rows of varying blocks).
+  void set_terms(const std::vector<assembly::RankOne>& terms,
+                 const std::vector<assembly::BlockChange>& blocks = {});
   KSP inner() const { return inner_; }
   // J0 is inverted block by block (known after the first setup), not by the inner KSP.
   bool block_inverse() const { return blocks_ != nullptr; }
@@ -64,12 +71,14 @@ class LowRankStepSolver {
   void evict_unused_columns();
   void update_capacitance();
   void choose_inner(Mat P);
-  void solve_j0(Vec r, Vec x) const;
+  void solve_j0(Vec r, Vec x) const;     // with the varying blocks' current values
+  void solve_fixed(Vec r, Vec x) const;  // J0 as factored
   std::vector<Entry*> active();
 
   Mat J0_, op_ = nullptr;
   KSP inner_ = nullptr;
   std::unique_ptr<BlockDiagonalInverse> blocks_;  // J0 block diagonal: inverted by blocks
+  std::unique_ptr<VaryingBlocks> varying_;        // 'block' terms' changes
   bool factored_ = false, capacitance_dirty_ = true, inner_chosen_ = false;
   std::map<int, Entry> entries_;
   std::map<PetscInt, Vec> columns_;  // J0^-1 e_g

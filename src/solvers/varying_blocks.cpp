@@ -1,0 +1,134 @@
+#include "varying_blocks.hpp"
+
+#include <mpi.h>
+
+#include <set>
+#include <string>
+
+#include "pcsim/core/error.hpp"
+
+namespace pcsim::solvers {
+
+namespace {
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+}  // namespace
+
+void VaryingBlocks::set(const std::vector<assembly::BlockChange>& changes) {
+  std::set<int> keys;
+  for (const auto& change : changes) {
+    keys.insert(change.key);
+    auto [it, added] = blocks_.try_emplace(change.key);
+    Block& b = it->second;
+    if (added && ready_)  // its J0 values are not read yet: only setup() reads them
+      throw SolverError("a varying block of the step matrix appeared after J0's setup");
+    b.first = change.first;
+    b.size = change.size;
+    b.owned = !change.delta.empty();
+    if (b.owned)
+      b.delta = Eigen::Map<const RowMatrix>(change.delta.data(), change.size, change.size);
+    if (ready_ && b.owned) refactor(b);
+  }
+  for (auto it = blocks_.begin(); it != blocks_.end();)
+    it = keys.count(it->first) ? std::next(it) : blocks_.erase(it);
+}
+
+void VaryingBlocks::setup(Mat P) {
+  PetscInt lo, hi;
+  PCSIM_PETSC(MatGetOwnershipRange(P, &lo, &hi));
+  for (auto& [key, b] : blocks_) {
+    const bool here = b.first >= lo && b.first + b.size <= hi;
+    if (here != b.owned || (!here && b.first < hi && b.first + b.size > lo))
+      throw SolverError("a varying block of the step matrix is not on the rank of its change");
+    if (!b.owned) continue;
+    b.reference = Eigen::MatrixXd::Zero(b.size, b.size);
+    for (PetscInt r = b.first; r < b.first + b.size; ++r) {
+      PetscInt n;
+      const PetscInt* cols;
+      const PetscScalar* values;
+      PCSIM_PETSC(MatGetRow(P, r, &n, &cols, &values));
+      bool coupled = false;
+      for (PetscInt k = 0; k < n; ++k) {
+        if (cols[k] >= b.first && cols[k] < b.first + b.size)
+          b.reference(r - b.first, cols[k] - b.first) = values[k];
+        else
+          coupled = coupled || values[k] != 0;
+      }
+      PCSIM_PETSC(MatRestoreRow(P, r, &n, &cols, &values));
+      if (coupled)
+        throw SolverError("J0 couples row " + std::to_string(r) +
+                          " of a varying block with other unknowns");
+    }
+  }
+  check_decoupled(P);
+  ready_ = true;
+  for (auto& [key, b] : blocks_)
+    if (b.owned) refactor(b);
+}
+
+// Columns: P e_j has no entry outside the block of j (collective).
+void VaryingBlocks::check_decoupled(Mat P) const {
+  Vec e, y;
+  PCSIM_PETSC(MatCreateVecs(P, &e, &y));
+  PetscInt lo, hi;
+  PCSIM_PETSC(VecGetOwnershipRange(y, &lo, &hi));
+  bool coupled = false;
+  for (const auto& [key, b] : blocks_)
+    for (PetscInt j = b.first; j < b.first + b.size; ++j) {
+      PCSIM_PETSC(VecSet(e, 0.0));
+      if (b.owned) PCSIM_PETSC(VecSetValue(e, j, 1.0, INSERT_VALUES));
+      PCSIM_PETSC(VecAssemblyBegin(e));
+      PCSIM_PETSC(VecAssemblyEnd(e));
+      PCSIM_PETSC(MatMult(P, e, y));
+      PetscScalar* yy;
+      PCSIM_PETSC(VecGetArray(y, &yy));
+      if (b.owned) std::fill(yy + (b.first - lo), yy + (b.first + b.size - lo), 0.0);
+      PCSIM_PETSC(VecRestoreArray(y, &yy));
+      PetscReal outside;
+      PCSIM_PETSC(VecNorm(y, NORM_INFINITY, &outside));
+      coupled = coupled || outside != 0;
+    }
+  PCSIM_PETSC(VecDestroy(&e));
+  PCSIM_PETSC(VecDestroy(&y));
+  if (coupled) throw SolverError("J0 couples a varying block's column with other unknowns");
+}
+
+void VaryingBlocks::refactor(Block& b) const {
+  b.lu.compute(b.reference + b.delta);
+  if (!(b.lu.rcond() > 0))
+    throw SolverError("the step matrix has a singular varying block at row " +
+                      std::to_string(b.first));
+}
+
+void VaryingBlocks::solve_rows(Vec r, Vec x) const {
+  PetscInt lo, hi;
+  PCSIM_PETSC(VecGetOwnershipRange(x, &lo, &hi));
+  const PetscScalar* rr;
+  PetscScalar* xx;
+  PCSIM_PETSC(VecGetArrayRead(r, &rr));
+  PCSIM_PETSC(VecGetArray(x, &xx));
+  for (const auto& [key, b] : blocks_) {
+    if (!b.owned) continue;
+    const Eigen::Map<const Eigen::VectorXd> rb(rr + (b.first - lo), b.size);
+    Eigen::Map<Eigen::VectorXd>(xx + (b.first - lo), b.size) = b.lu.solve(rb);
+  }
+  PCSIM_PETSC(VecRestoreArray(x, &xx));
+  PCSIM_PETSC(VecRestoreArrayRead(r, &rr));
+}
+
+void VaryingBlocks::add_change(Vec x, Vec y) const {
+  PetscInt lo, hi;
+  PCSIM_PETSC(VecGetOwnershipRange(y, &lo, &hi));
+  const PetscScalar* xx;
+  PetscScalar* yy;
+  PCSIM_PETSC(VecGetArrayRead(x, &xx));
+  PCSIM_PETSC(VecGetArray(y, &yy));
+  for (const auto& [key, b] : blocks_) {
+    if (!b.owned) continue;
+    const Eigen::Map<const Eigen::VectorXd> xb(xx + (b.first - lo), b.size);
+    Eigen::Map<Eigen::VectorXd>(yy + (b.first - lo), b.size) += b.delta * xb;
+  }
+  PCSIM_PETSC(VecRestoreArray(y, &yy));
+  PCSIM_PETSC(VecRestoreArrayRead(x, &xx));
+}
+
+}  // namespace pcsim::solvers

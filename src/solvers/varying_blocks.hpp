@@ -1,0 +1,51 @@
+// The 'block' terms of the cheap path's step matrix (assembly/term.hpp): small
+// dense diagonal blocks of J0 (a nonlinear pantograph's unknowns) whose exact
+// value J0_b + delta changes at every Newton iteration. J0 couples a block
+// with no other unknown (checked at setup), so
+//   (J0 + delta)^-1 r = J0^-1 r  with the block's rows replaced by (J0_b + delta)^-1 r_b:
+// J0 stays factored once, each block is refactored (dense LU) per iteration.
+// Private to src/solvers (the low-rank step solver).
+#pragma once
+
+#include <petscmat.h>
+
+#include <Eigen/Dense>
+#include <map>
+#include <vector>
+
+#include "pcsim/assembly/term.hpp"
+
+namespace pcsim::solvers {
+
+class VaryingBlocks {
+ public:
+  bool empty() const { return blocks_.empty(); }
+  // The current changes (the same keys on every rank; values on the owner).
+  // Refactors the owned blocks when J0's values are known.
+  void set(const std::vector<assembly::BlockChange>& changes);
+  // J0 was factored: reads each owned block of P, checks that P couples it
+  // with no other unknown (collective; throws SolverError otherwise), refactors.
+  void setup(Mat P);
+  // J0 changed: its blocks are unknown until setup().
+  void invalidate() { ready_ = false; }
+  // x's block rows = (J0_b + delta)^-1 r_b (x holds J0^-1 r elsewhere).
+  void solve_rows(Vec r, Vec x) const;
+  // y's block rows += delta x_b.
+  void add_change(Vec x, Vec y) const;
+
+ private:
+  struct Block {
+    PetscInt first = 0;
+    int size = 0;
+    bool owned = false;
+    Eigen::MatrixXd reference, delta;  // J0's values and the change (owner)
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+  };
+  void check_decoupled(Mat P) const;
+  void refactor(Block& b) const;
+
+  std::map<int, Block> blocks_;
+  bool ready_ = false;
+};
+
+}  // namespace pcsim::solvers
