@@ -73,11 +73,13 @@ echo "ok   failed step: exit 3, one line, no PETSc trace, nothing left"
 
 # 6. SIGTERM to a sweep of three cases, two at a time, while they step.
 set +e
-"$PCSIM_BIN" sweep "$long" -o s --set simulation.speed_kmh=250,300,320 -j 2 --no-report \
-  > out.log 2>&1 &
+# The full EN 50318 scene (7080 steps, several seconds per case): both cases
+# are still stepping when the signal comes.
+"$PCSIM_BIN" sweep "$PCSIM_SOURCE_DIR/runs/en50318-300.yaml" -o s \
+  --set simulation.speed_kmh=250,300,320 -j 2 --no-report > out.log 2>&1 &
 pid=$!
-for _ in $(seq 1 200); do  # until both running cases step (at most 20 s)
-  n=$(grep -l "step [0-9]" s.partial/cases/*.log 2> /dev/null | wc -l)
+for _ in $(seq 1 600); do  # until both running cases are in their time loop (at most 60 s)
+  n=$(grep -l "pantograph at" s.partial/cases/*.log 2> /dev/null | wc -l)
   [ "$n" -ge 2 ] && break
   sleep 0.1
 done
