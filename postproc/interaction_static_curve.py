@@ -36,7 +36,7 @@ def bellows_torque(pcsim, model, force, height, workdir):
                 "force: {type: constant, value: %r}}\n"
                 % (os.path.abspath(model), force, height, force))
     out = os.path.join(workdir, "out")
-    subprocess.run([pcsim, "pantograph", scene, "-o", out], check=True,
+    subprocess.run([pcsim, "pantograph", scene, "-o", out, "--overwrite"], check=True,
                    stdout=subprocess.DEVNULL)
     with open(os.path.join(out, "summary.json")) as f:
         return json.load(f)["equilibrium"]["bellows_torque_Nm"]

@@ -62,7 +62,7 @@ for spans in 10 100 1000; do
       echo "bench_catenary.sh: $kind, $spans spans, $np rank(s) ..." >&2
       status=0
       timeout "$BENCH_TIMEOUT" "$root/scripts/mpirun.sh" -n "$np" "$here/bench/time_rank.sh" "$run.time" \
-        "$PCSIM_BIN" "$kind" "$scene" -o "$run" "${log_view[@]}" > "$run.log" 2>&1 || status=$?
+        "$PCSIM_BIN" "$kind" "$scene" -o "$run" --overwrite "${log_view[@]}" > "$run.log" 2>&1 || status=$?
       [ "$status" -ne 124 ] || status=timeout
       # GNU time opens its report before the run: keep it beside the output
       # folder (which pcsim creates atomically at the end), then move it in.

@@ -15,7 +15,7 @@ OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
 for ranks in 1 2; do
   for path in cheap full; do
-    scripts/mpirun.sh -n "$ranks" build/pcsim run "$SCENE" -o "$OUT/np${ranks}_$path" \
+    scripts/mpirun.sh -n "$ranks" build/pcsim run "$SCENE" -o "$OUT/np${ranks}_$path" --overwrite \
       -pcsim_path "$path" "$@" >"$OUT/np${ranks}_$path.log" 2>&1 ||
       { echo "run failed: $ranks ranks, $path path"; cat "$OUT/np${ranks}_$path.log"; exit 1; }
   done

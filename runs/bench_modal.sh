@@ -24,7 +24,7 @@ for spans in 10 40; do
     nonlinear=false
     [ "$model" = nonlinear ] && nonlinear=true
     dir=$OUT/$model-$spans
-    build/pcsim run runs/en50318-300.yaml -o "$dir" --no-report -ts_max_steps "$STEPS" \
+    build/pcsim run runs/en50318-300.yaml -o "$dir" --overwrite --no-report -ts_max_steps "$STEPS" \
       --set catenary.design.spans.count="$spans" --set catenary.model="$model" \
       --set effects.catenary_nonlinear="$nonlinear" "$@" > "$dir.log" 2>&1 ||
       { cat "$dir.log"; exit 1; }

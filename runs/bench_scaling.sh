@@ -26,7 +26,7 @@ echo "load before: $(cut -d' ' -f1-3 /proc/loadavg), $CORES cores"
 run() {  # run NAME RANKS SCENE [options]
   local name=$1 ranks=$2 scene=$3
   shift 3
-  scripts/mpirun.sh -n "$ranks" build/pcsim run "$scene" -o "$OUT/$name" --no-report "$@" \
+  scripts/mpirun.sh -n "$ranks" build/pcsim run "$scene" -o "$OUT/$name" --overwrite --no-report "$@" \
     >"$OUT/$name.log" 2>&1 || { echo "run failed: $name"; tail -20 "$OUT/$name.log"; exit 1; }
 }
 

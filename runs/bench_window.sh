@@ -23,7 +23,7 @@ echo "load before: $(cut -d' ' -f1-3 /proc/loadavg), $(nproc) cores"
 run() {  # run NAME [options]
   local name=$1
   shift
-  scripts/mpirun.sh -n "$RANKS" build/pcsim run runs/en50318-300.yaml -o "$OUT/$name" --no-report \
+  scripts/mpirun.sh -n "$RANKS" build/pcsim run runs/en50318-300.yaml -o "$OUT/$name" --overwrite --no-report \
     --set catenary.design.spans.count="$SPANS" --set simulation.end_x="$END_X" "$@" \
     >"$OUT/$name.log" 2>&1 || { echo "run failed: $name"; tail -20 "$OUT/$name.log"; exit 1; }
 }

@@ -41,7 +41,7 @@ run() {
   fi
   echo "run    $name: pcsim run runs/interaction/$scene.yaml $*"
   rm -rf "${OUT:?}/$name"
-  if ! "$PCSIM" run "$SCENES/$scene.yaml" -o "$OUT/$name" --no-report "$@" >"$OUT/$name.log" 2>&1; then
+  if ! "$PCSIM" run "$SCENES/$scene.yaml" -o "$OUT/$name" --overwrite --no-report "$@" >"$OUT/$name.log" 2>&1; then
     # A failed run is reported (and left out of the tables), the others still run.
     echo "FAILED $name (log: $OUT/$name.log):"
     grep -v "Configure options" "$OUT/$name.log" | tail -n 4 | sed 's/^/       /'

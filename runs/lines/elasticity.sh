@@ -17,7 +17,7 @@ OUT=${OUT:-$ROOT/out/lines}
 mkdir -p "$OUT"
 for variant in stitched unstitched; do
   echo "pcsim static runs/lines/elasticity-$variant.yaml -o $OUT/elasticity-$variant"
-  nice "$PCSIM" static "$ROOT/runs/lines/elasticity-$variant.yaml" -o "$OUT/elasticity-$variant" \
+  nice "$PCSIM" static "$ROOT/runs/lines/elasticity-$variant.yaml" -o "$OUT/elasticity-$variant" --overwrite \
     > "$OUT/elasticity-$variant.log" 2>&1 ||
     { tail -n 5 "$OUT/elasticity-$variant.log"; exit 1; }
   grep "elasticity (" "$OUT/elasticity-$variant.log" | sed 's/^ */  /'

@@ -32,7 +32,7 @@ for mm in 0 0.5 1 2; do
   fi
   echo "pcsim run runs/lines/irregular-random-300.yaml --set catenary.design.irregularities.random.rms=$rms -o $dir"
   nice "$PCSIM" run "$ROOT/runs/lines/irregular-random-300.yaml" \
-    --set "catenary.design.irregularities.random.rms=$rms" -o "$dir" --no-report \
+    --set "catenary.design.irregularities.random.rms=$rms" -o "$dir" --overwrite --no-report \
     > "$dir.log" 2>&1 || { tail -n 5 "$dir.log"; exit 1; }
 done
 /usr/bin/python3 - "${dirs[@]}" <<'PY'

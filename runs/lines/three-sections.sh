@@ -18,7 +18,7 @@ RANKS=${RANKS:-2}
 mkdir -p "$OUT"
 echo "pcsim run runs/lines/three-sections-300.yaml on $RANKS ranks -o $OUT/three-sections-300"
 "$ROOT/scripts/mpirun.sh" -n "$RANKS" "$PCSIM" run "$ROOT/runs/lines/three-sections-300.yaml" \
-  -o "$OUT/three-sections-300" --no-report "$@" > "$OUT/three-sections-300.log" 2>&1 ||
+  -o "$OUT/three-sections-300" --overwrite --no-report "$@" > "$OUT/three-sections-300.log" 2>&1 ||
   { tail -n 20 "$OUT/three-sections-300.log"; exit 1; }
 /usr/bin/python3 - "$OUT/three-sections-300/summary.json" <<'PY'
 import json, sys

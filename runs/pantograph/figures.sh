@@ -18,7 +18,7 @@ mkdir -p "$OUT" "$FIGDIR"
 declare -A ran  # each scene runs once per invocation
 run() {
   [ -n "${ran[$1]:-}" ] && return 0
-  "$PCSIM_BIN" pantograph "$R/$1.yaml" -o "$OUT/$1"
+  "$PCSIM_BIN" pantograph "$R/$1.yaml" -o "$OUT/$1" --overwrite
   ran[$1]=1
 }
 figs=("$@")
