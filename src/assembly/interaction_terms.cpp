@@ -114,12 +114,9 @@ TermPower PantographTerm::power(const CoupledState& state) const {
   if (state.on_last_rank()) {
     const Eigen::VectorXd q = state.q(index_);
     p.dissipative = slot_.model->power(state.t, q, state.qd(index_)).dissipative;
+    // d/dt of (1 - ramp(t)) F0 q_c at fixed q: the same ramp as the residual's.
     const auto& run = slot_.run;
-    const bool ramping =
-        !run.static_start && run.ramp_distance > 0 && run.speed * state.t < run.ramp_distance;
-    if (ramping)
-      p.external =
-          -run.speed / run.ramp_distance * run.static_force * q[slot_.model->contact_dof()];
+    p.external = -run.ramp_rate(state.t) * run.static_force * q[slot_.model->contact_dof()];
   }
   MPI_Comm comm = state.catenary().comm();
   p.dissipative = sum_over_ranks(comm, p.dissipative);

@@ -31,9 +31,15 @@ struct PantographRun {
   double contact_x(double t) const { return start_x + speed * t; }
   // Weight of the pantograph's own uplift during the ramp (thesis 3.3.1); 1 after it.
   double ramp_factor(double t) const {
-    if (static_start || start_gap > 0 || ramp_distance <= 0) return 1.0;
+    if (!ramps()) return 1.0;
     return std::clamp(speed * t / ramp_distance, 0.0, 1.0);
   }
+  // d ramp_factor / dt [1/s] (0 where it is constant: no ramp, or after it).
+  double ramp_rate(double t) const {
+    return ramps() && speed * t < ramp_distance ? speed / ramp_distance : 0.0;
+  }
+  // A ramp start (not static, no gap, a ramp distance).
+  bool ramps() const { return !static_start && start_gap <= 0 && ramp_distance > 0; }
 };
 
 }  // namespace pcsim::contact
