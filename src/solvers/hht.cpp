@@ -428,8 +428,32 @@ PetscErrorCode ts_view(TS ts, PetscViewer viewer) {
 
 }  // namespace
 
+// -citations: the method and the thesis whose models and integrator pcsim
+// follows (docs/thesis.md).
+PetscErrorCode register_citations() {
+  static PetscBool hht_cited = PETSC_FALSE, thesis_cited = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscCall(PetscCitationsRegister(
+      "@article{HilberHughesTaylor1977,\n"
+      "  author  = {Hans M. Hilber and Thomas J. R. Hughes and Robert L. Taylor},\n"
+      "  title   = {Improved numerical dissipation for time integration algorithms in "
+      "structural dynamics},\n"
+      "  journal = {Earthquake Engineering and Structural Dynamics},\n"
+      "  volume  = {5}, number = {3}, pages = {283--292}, year = {1977},\n"
+      "  doi     = {10.1002/eqe.4290050306}}\n",
+      &hht_cited));
+  PetscCall(PetscCitationsRegister(
+      "@mastersthesis{pcsimThesis2014,\n"
+      "  title  = {Modelado no lineal de pantógrafo. Interacción pantógrafo--catenaria},\n"
+      "  school = {Universitat Politècnica de València}, year = {2014},\n"
+      "  note   = {the models and the HHT scheme of pcsim (its docs/thesis.md)}}\n",
+      &thesis_cited));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode ts_create_hht(TS ts) {
   PetscFunctionBeginUser;
+  PetscCall(register_citations());
   ts->ops->reset = ts_reset;
   ts->ops->destroy = ts_destroy;
   ts->ops->view = ts_view;

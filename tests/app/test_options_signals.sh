@@ -5,7 +5,7 @@
 #  2. one with a solver's prefix that no solver read (-ts_dtt, a typo of
 #     -ts_dt) is a warning on stderr after the run;
 #  3. -help lists the options a run reads and stops before the time loop,
-#     exit 0, nothing written;
+#     exit 0, nothing written; -citations cites the HHT method and the thesis;
 #  4. SIGTERM during the set-up ends the run with 143 and nothing left behind;
 #  5. a time step that cannot converge (here: solver options that starve the
 #     linear solve) is exit 3 with one line naming the likely inputs, no
@@ -62,6 +62,12 @@ set -e
 ! grep -q "step [0-9]" out.log || fail "the signal came after the set-up; test needs a shorter sleep"
 [ ! -e r4 ] && [ ! -e r4.partial ] || fail "SIGTERM in the set-up left $(ls -d r4*)"
 echo "ok   SIGTERM in the set-up: 143, nothing left"
+
+# 3b. -citations: the HHT method and the thesis are cited (PetscCitationsRegister).
+run 0 "$PCSIM_BIN" run "$scene" -o r3b --no-report -ts_max_steps 2 -citations cite.bib
+grep -q "HilberHughesTaylor1977" cite.bib && grep -q "pcsimThesis2014" cite.bib ||
+  fail "-citations lacks HHT or the thesis: $(grep -o '@[a-z]*{[A-Za-z0-9]*' cite.bib)"
+echo "ok   -citations: HHT and the thesis"
 
 # 5. A step that fails: exit 3, one message, no trace.
 run 3 "$PCSIM_BIN" run "$scene" -o r5 --no-report -ksp_type cg -pc_type none -ksp_max_it 2
