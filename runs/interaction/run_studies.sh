@@ -219,7 +219,7 @@ table hard.md "--no-ranges" hard-350="350 km/h F0 120 N" hard-300-f60="300 km/h 
   en50318-300="300 km/h F0 120 N"
 for r in hard-350 hard-300-f60 en50318-300; do
   [ -f "$OUT/$r/results.h5" ] || continue
-  $PY "$PP/interaction_check.py" "$OUT/$r" --json "$TAB/check-$r.json" || echo "NON-FINITE VALUES in $r"
+  (cd "$ROOT" && $PY "$PP/interaction_check.py" "${OUT#"$ROOT"/}/$r" --json "$TAB/check-$r.json") || echo "NON-FINITE VALUES in $r"
 done | tee "$TAB/checks.txt"
 plot force "" -o "$DOC/hard-350-force.png" hard-350="350 km/h"
 plot uplift "" -o "$DOC/hard-350-uplift.png" hard-350="350 km/h"
