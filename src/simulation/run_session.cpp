@@ -85,21 +85,25 @@ int RunSession::integrate() {
   const PetscErrorCode solved = TSSolve(ts, nullptr);
   raise_output_failure();
   if (not_finite_) throw SolverError(not_finite_message(not_finite_time_));
-  TSConvergedReason reason;
-  PCSIM_PETSC(TSGetConvergedReason(ts, &reason));
-  if (reason < 0) {
-    PetscInt step = 0;
-    TSGetStepNumber(ts, &step);
-    throw SolverError(std::string("the time step did not converge (") + TSConvergedReasons[reason] +
-                      ") at step " + std::to_string(step + 1) +
-                      ", after t = " + std::to_string(time_) + " s; " + kLikelyInputs +
-                      ", and any -snes_*/-ksp_* options given");
-  }
-  if (solved) throw_petsc_error(solved, "TSSolve", __FILE__, __LINE__);
+  raise_if_step_failed(ts, solved, time_, ", and any -snes_*/-ksp_* options given");
   on_rank0(ctx_, [&] {
     if (stream_) stream_->flush();
   });
   return stop_signal_;
+}
+
+void raise_if_step_failed(TS ts, PetscErrorCode solved, double last_time,
+                          const std::string& also_check) {
+  TSConvergedReason reason;
+  PCSIM_PETSC(TSGetConvergedReason(ts, &reason));
+  if (reason < 0) {
+    PetscInt step = 0;
+    PCSIM_PETSC(TSGetStepNumber(ts, &step));
+    throw SolverError(std::string("the time step did not converge (") + TSConvergedReasons[reason] +
+                      ") at step " + std::to_string(step + 1) + ", after t = " +
+                      std::to_string(last_time) + " s; " + kLikelyInputs + also_check);
+  }
+  if (solved) throw_petsc_error(solved, "TSSolve", __FILE__, __LINE__);
 }
 
 std::string not_finite_message(double t) {

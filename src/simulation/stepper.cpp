@@ -6,6 +6,7 @@
 #include "pcsim/assembly/prescribed_forces.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/simulation/catenary_setup.hpp"
+#include "pcsim/simulation/run_session.hpp"
 #include "pcsim/simulation/static_start.hpp"
 #include "pcsim/simulation/statics.hpp"
 #include "pcsim/solvers/dynamics.hpp"
@@ -60,13 +61,7 @@ long Stepper::advance(long n) {
   if (n <= 0 || finished()) return 0;
   PCSIM_PETSC(TSSetMaxSteps(ts, static_cast<PetscInt>(before + n)));
   const PetscErrorCode solved = TSSolve(ts, nullptr);
-  TSConvergedReason reason;
-  PCSIM_PETSC(TSGetConvergedReason(ts, &reason));
-  if (reason < 0)
-    throw SolverError(std::string("the time step did not converge (") + TSConvergedReasons[reason] +
-                      ") after t = " + std::to_string(reading_.t) +
-                      " s; check simulation.dt and the forces set on the heads");
-  if (solved) throw_petsc_error(solved, "TSSolve", __FILE__, __LINE__);
+  raise_if_step_failed(ts, solved, reading_.t, ", and the forces set on the heads");
   read();
   return reading_.step - before;
 }

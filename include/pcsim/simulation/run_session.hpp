@@ -102,6 +102,12 @@ class RunSession {
   double not_finite_time_ = 0;
 };
 
+// After TSSolve returned 'solved': a failed step is a SolverError naming the
+// step, the last time reached and the inputs that usually cause it (then
+// 'also_check'); another PETSc error is thrown as such.
+void raise_if_step_failed(TS ts, PetscErrorCode solved, double last_time,
+                          const std::string& also_check);
+
 // The SolverError of a state that is not finite at time t: names the inputs
 // that usually cause it.
 std::string not_finite_message(double t);
