@@ -242,16 +242,22 @@ std::string case_line(const output::SweepCase& c) {
 // SIGINT/SIGTERM during a sweep: no new case starts, the running ones get
 // the signal (each stops at its next step, its data and checkpoint kept in
 // its .partial folder) and are waited for. Returns the signal, 0 if none.
-int stop_running_cases(const CommandContext& ctx, Plan& plan, std::map<pid_t, std::size_t>& running,
+// A case's process: which case, since when.
+struct RunningCase {
+  std::size_t index;
+  std::chrono::steady_clock::time_point start;
+};
+
+int stop_running_cases(const CommandContext& ctx, Plan& plan, std::map<pid_t, RunningCase>& running,
                        int signal_number) {
   app::print0(ctx, "  %s: stopping %zu running case(s)\n", simulation::signal_name(signal_number),
               running.size());
-  for (const auto& [pid, index] : running) kill(pid, signal_number);
+  for (const auto& [pid, c] : running) kill(pid, signal_number);
   while (!running.empty()) {
     int status = 0;
     const pid_t pid = app::wait_any_process(status);
     if (pid < 0) break;
-    if (running.count(pid)) plan.cases[running[pid]].status = status;
+    if (running.count(pid)) plan.cases[running[pid].index].status = status;
     running.erase(pid);
   }
   return signal_number;
@@ -260,8 +266,7 @@ int stop_running_cases(const CommandContext& ctx, Plan& plan, std::map<pid_t, st
 // Runs the cases, jobs at a time; returns the signal that stopped the sweep (0: none).
 int run_cases(const CommandContext& ctx, Plan& plan, const OutputDir& out, int jobs) {
   const std::string cases = out.file("cases");
-  std::map<pid_t, std::size_t> running;
-  std::map<pid_t, std::chrono::steady_clock::time_point> started;
+  std::map<pid_t, RunningCase> running;
   std::size_t next = 0, done = 0;
   const auto start = std::chrono::steady_clock::now();
   simulation::GracefulStop stop;
@@ -272,8 +277,7 @@ int run_cases(const CommandContext& ctx, Plan& plan, const OutputDir& out, int j
       std::filesystem::create_directories(cases);
       const pid_t pid = app::start_process(case_command(ctx, plan, next, folder), folder + ".log",
                                            kLauncherVariables);
-      running[pid] = next++;
-      started[pid] = std::chrono::steady_clock::now();
+      running[pid] = {next++, std::chrono::steady_clock::now()};
     }
     int status = 0;
     const pid_t pid =
@@ -281,13 +285,14 @@ int run_cases(const CommandContext& ctx, Plan& plan, const OutputDir& out, int j
     if (pid == app::kWaitStopped)
       return stop_running_cases(ctx, plan, running, stop.agreed_signal(MPI_COMM_SELF));
     if (!running.count(pid)) continue;
-    auto& c = plan.cases[running[pid]];
+    const RunningCase finished = running[pid];
     running.erase(pid);
+    auto& c = plan.cases[finished.index];
     c.status = status;
     std::ifstream summary(cases + "/" + c.name + "/summary.json");
     if (status == 0 && summary) c.summary = nlohmann::json::parse(summary, nullptr, false);
     const auto now = std::chrono::steady_clock::now();
-    const double took = std::chrono::duration<double>(now - started[pid]).count();
+    const double took = std::chrono::duration<double>(now - finished.start).count();
     const double elapsed = std::chrono::duration<double>(now - start).count();
     app::print0(ctx, "  [%zu/%zu] %s: %s (%.1f s; %.0f s since the sweep began)\n", ++done,
                 plan.cases.size(), c.name.c_str(), case_line(c).c_str(), took, elapsed);

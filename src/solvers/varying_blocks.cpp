@@ -99,36 +99,36 @@ void VaryingBlocks::refactor(Block& b) const {
                       std::to_string(b.first));
 }
 
-void VaryingBlocks::solve_rows(Vec r, Vec x) const {
+namespace {
+
+// f(block, its rows of 'in', its rows of 'out') for every block this rank owns.
+template <class Blocks, class F>
+void each_owned_block(const Blocks& blocks, Vec in, Vec out, F&& f) {
   PetscInt lo, hi;
-  PCSIM_PETSC(VecGetOwnershipRange(x, &lo, &hi));
-  const PetscScalar* rr;
-  PetscScalar* xx;
-  PCSIM_PETSC(VecGetArrayRead(r, &rr));
-  PCSIM_PETSC(VecGetArray(x, &xx));
-  for (const auto& [key, b] : blocks_) {
+  PCSIM_PETSC(VecGetOwnershipRange(out, &lo, &hi));
+  const PetscScalar* ii;
+  PetscScalar* oo;
+  PCSIM_PETSC(VecGetArrayRead(in, &ii));
+  PCSIM_PETSC(VecGetArray(out, &oo));
+  for (const auto& [key, b] : blocks) {
     if (!b.owned) continue;
-    const Eigen::Map<const Eigen::VectorXd> rb(rr + (b.first - lo), b.size);
-    Eigen::Map<Eigen::VectorXd>(xx + (b.first - lo), b.size) = b.lu.solve(rb);
+    f(b, Eigen::Map<const Eigen::VectorXd>(ii + (b.first - lo), b.size),
+      Eigen::Map<Eigen::VectorXd>(oo + (b.first - lo), b.size));
   }
-  PCSIM_PETSC(VecRestoreArray(x, &xx));
-  PCSIM_PETSC(VecRestoreArrayRead(r, &rr));
+  PCSIM_PETSC(VecRestoreArray(out, &oo));
+  PCSIM_PETSC(VecRestoreArrayRead(in, &ii));
+}
+
+}  // namespace
+
+void VaryingBlocks::solve_rows(Vec r, Vec x) const {
+  each_owned_block(blocks_, r, x,
+                   [](const auto& b, const auto& rb, auto xb) { xb = b.lu.solve(rb); });
 }
 
 void VaryingBlocks::add_change(Vec x, Vec y) const {
-  PetscInt lo, hi;
-  PCSIM_PETSC(VecGetOwnershipRange(y, &lo, &hi));
-  const PetscScalar* xx;
-  PetscScalar* yy;
-  PCSIM_PETSC(VecGetArrayRead(x, &xx));
-  PCSIM_PETSC(VecGetArray(y, &yy));
-  for (const auto& [key, b] : blocks_) {
-    if (!b.owned) continue;
-    const Eigen::Map<const Eigen::VectorXd> xb(xx + (b.first - lo), b.size);
-    Eigen::Map<Eigen::VectorXd>(yy + (b.first - lo), b.size) += b.delta * xb;
-  }
-  PCSIM_PETSC(VecRestoreArray(y, &yy));
-  PCSIM_PETSC(VecRestoreArrayRead(x, &xx));
+  each_owned_block(blocks_, x, y,
+                   [](const auto& b, const auto& xb, auto yb) { yb += b.delta * xb; });
 }
 
 }  // namespace pcsim::solvers
