@@ -14,6 +14,7 @@
 #include "pcsim/output/output_dir.hpp"
 #include "pcsim/output/run_results.hpp"
 #include "pcsim/scene/run_scene.hpp"
+#include "pcsim/simulation/accuracy_pilot.hpp"
 #include "pcsim/simulation/interrupt.hpp"
 #include "pcsim/simulation/run.hpp"
 #include "processes.hpp"
@@ -205,6 +206,15 @@ int run_dynamic(const app::CommandContext& ctx) {
   app::print_warnings(ctx, run.warnings);
   simulation::RunOutcome outcome;
   try {
+    // The estimate from the scene itself (and a modal run's cut-off), before
+    // the run: not for -help or a restart (its cut-off is the checkpoint's).
+    if (!request.stop_before_stepping && !request.restart && simulation::accuracy_pilot_enabled()) {
+      const simulation::SceneSource source{ctx.scene_path, ctx.overrides, scene,
+                                           ctx.provenance(scene)};
+      const auto pilot = simulation::run_accuracy_pilot(ctx, source, run);
+      simulation::print_pilot(ctx, pilot);
+      request.accuracy_pilot = pilot.json();
+    }
     outcome = simulation::run(ctx, run, request, out);
   } catch (...) {
     keep_partial_if_not_written(ctx, out, std::current_exception());

@@ -204,6 +204,11 @@ std::vector<std::string> case_command(const CommandContext& ctx, const Plan& pla
               {app::own_executable(), "run", ctx.scene_path, "-o", folder, "--no-report"});
   for (const auto& o : plan.fixed) argv.insert(argv.end(), {"--set", o});
   for (const auto& a : plan.assignments[k]) argv.insert(argv.end(), {"--set", a});
+  // The cases' figures are the sweep's result: no accuracy pilot per case
+  // unless asked for (-pcsim_accuracy_pilot true on the sweep's command line).
+  if (std::find(ctx.petsc_arguments.begin(), ctx.petsc_arguments.end(), "-pcsim_accuracy_pilot") ==
+      ctx.petsc_arguments.end())
+    argv.insert(argv.end(), {"-pcsim_accuracy_pilot", "false"});
   argv.insert(argv.end(), ctx.petsc_arguments.begin(), ctx.petsc_arguments.end());
   return argv;
 }
@@ -380,7 +385,8 @@ PCSIM_COMMAND_HELP(
     "                           one line of values per case ('#' lines are comments; a\n"
     "                           '# sample: {...}' line, as postproc/sample.py writes, is\n"
     "                           kept in summary.json); no ranges or lists with it\n"
-    "PETSc options go to every case. Results (default out/<name>-sweep/): cases/<case>/\n"
+    "PETSc options go to every case (no accuracy pilot unless -pcsim_accuracy_pilot true).\n"
+    "Results (default out/<name>-sweep/): cases/<case>/\n"
     "(a run result each, and its log), sweep.csv and sweep.md (the EN 50318 figures of\n"
     "every case with their verdicts), sweep.png (figures against the swept values with\n"
     "the acceptance ranges), summary.json, report.html. The exit status is the worst of\n"

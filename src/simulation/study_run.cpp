@@ -48,8 +48,6 @@ double design_element_length(const InputNode& scene) {
   return design.get_double("element_length", 0.5);  // the design reader's default
 }
 
-namespace {
-
 // The scene changed as the variant says: the element length through a --set
 // of the design's key (composition, like the user's own --set), the rest in
 // the scene read.
@@ -79,6 +77,8 @@ scene::RunScene variant_scene(const SceneSource& source, const StudyVariant& v, 
   run.dropper_forces = false;  // costs a reduced catenary a product per step
   return run;
 }
+
+namespace {
 
 void fill_results(const RunOutcome& outcome, output::StudyRun& out) {
   const auto& facts = outcome.facts;

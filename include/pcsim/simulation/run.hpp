@@ -39,6 +39,9 @@ struct RunRequest {
   // -help: set up every solver (each lists the options it reads), then stop
   // before the time loop; nothing is written.
   bool stop_before_stepping = false;
+  // The accuracy pilot's estimate (accuracy_pilot.hpp), into summary.json's
+  // accuracy_estimate.pilot; null: none ran.
+  nlohmann::json accuracy_pilot;
 };
 
 // Called on every rank after every accepted step (and for the start), in step

@@ -9,6 +9,7 @@
 
 #include "pcsim/catenary/reduced_basis.hpp"
 #include "pcsim/output/accuracy_study.hpp"
+#include "pcsim/scene/run_scene.hpp"
 #include "pcsim/scene/yaml_input.hpp"
 #include "pcsim/simulation/context.hpp"
 
@@ -28,6 +29,11 @@ struct SceneSource {
   InputNode scene;                     // composed from both
   nlohmann::json provenance;           // of the study (output/provenance.hpp)
 };
+
+// The scene of the source changed as the variant says (h: the design's
+// element length, through a --set of catenary.design.element_length when
+// h_factor != 1); no snapshots, no dropper forces.
+scene::RunScene variant_scene(const SceneSource& source, const StudyVariant& variant, double h);
 
 // Runs the variant of the scene through the run pipeline (run.hpp), quietly;
 // results into run_dir (a new folder). Solver failures are recorded in the

@@ -1,0 +1,82 @@
+// The accuracy estimate of a run from its own scene (docs/fidelity.md,
+// "Accuracy estimate"): before the run, short pilot runs of the same scene
+// over a stretch of its analysis section (its first two spans; the
+// pantographs start two spans before it when that saves more than half of
+// the run's travel, else where the run starts them) give every EN 50318
+// figure's
+//  - discretisation error: linear FE at the run's time step and element
+//    length against linear FE at half of both, extrapolated to the converged
+//    value (second order: 4/3 of the difference);
+//  - reduction error (modal level): the modal catenary against linear FE at
+//    the run's time step and element length.
+// Each is reported as kPilotSafety times the pilot's difference, at least
+// kPilotFloor. A modal run whose scene does not set catenary.max_frequency_hz
+// gets its cut-off from the pilot: raised by kCutoffRaise (at most
+// kMaxCutoffRaises times) until every reduction error is within the targets
+// of docs/fidelity.md. The estimate is cached per inputs and numerics in the
+// modal cache folder (--cache DIR), so a second run of the scene costs
+// nothing. -pcsim_accuracy_pilot false switches it off.
+#pragma once
+
+#include <array>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "pcsim/scene/run_scene.hpp"
+#include "pcsim/simulation/context.hpp"
+#include "pcsim/simulation/study_run.hpp"
+
+namespace pcsim::simulation {
+
+// The figures compared, in this order: mean, σ, Fm+3σ, actual maximum and
+// uplift relative [%]; Fm−3σ and actual minimum [% of Fm]; loss of contact
+// [percentage points].
+constexpr int kPilotFigures = 8;
+extern const std::array<const char*, kPilotFigures> kPilotFigureKeys;    // summary.json
+extern const std::array<const char*, kPilotFigures> kPilotFigureLabels;  // console
+// The targets a default modal cut-off must meet (issue 21's, per figure).
+extern const std::array<double, kPilotFigures> kPilotTargets;
+
+constexpr double kPilotSafety = 2.0;  // estimate = safety x the pilot's difference ...
+constexpr double kPilotFloor = 0.1;   // ... and at least this (% or percentage points)
+constexpr double kCutoffRaise = 1.25;
+constexpr int kMaxCutoffRaises = 2;
+
+struct FigureErrors {
+  std::string pantograph;
+  std::array<double, kPilotFigures> value{};  // units as kPilotFigureKeys
+};
+
+struct PilotEstimate {
+  bool done = false;    // a pilot ran or was read from the cache
+  bool cached = false;  // read from the cache
+  double seconds = 0;   // wall time of the pilot runs (0 when cached)
+  int runs = 0;
+  double from_x = 0, to_x = 0;  // the stretch whose figures were compared [m]
+  double start_shift_m = 0;     // the pantographs started this much later than in the run
+  double cutoff_hz = 0;         // modal: the cut-off the run uses
+  int cutoff_raises = 0;        // modal: times the default cut-off was raised
+  bool refined_mesh = false;    // the fine run halved the element length too
+  // Per pantograph, the estimate (safety and floor applied).
+  std::vector<FigureErrors> discretisation, reduction;  // reduction: modal level only
+  // The same, as measured (the raw differences).
+  std::vector<FigureErrors> discretisation_measured, reduction_measured;
+
+  nlohmann::json json() const;
+  static PilotEstimate from_json(const nlohmann::json& j);
+};
+
+// -pcsim_accuracy_pilot (default true); InputError on a value that is not a boolean.
+bool accuracy_pilot_enabled();
+
+// Runs the pilot of 'run' (its scene as 'source' gives it), or reads it from
+// the cache; a modal run without a cut-off in its scene gets the pilot's.
+// Collective on ctx.comm; prints its progress and table unless ctx.quiet.
+PilotEstimate run_accuracy_pilot(const Context& ctx, const SceneSource& source,
+                                 scene::RunScene& run);
+
+// The table of estimated errors (console).
+void print_pilot(const Context& ctx, const PilotEstimate& pilot);
+
+}  // namespace pcsim::simulation

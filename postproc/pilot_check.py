@@ -1,0 +1,96 @@
+#!/usr/bin/python3
+"""The accuracy pilot's estimate against the actual errors of a run.
+
+    pilot_check.py RUN [--reference FE_RUN] [--converged FINE_RUN] [--check]
+
+RUN is a result folder of `pcsim run` whose summary.json holds
+accuracy_estimate.pilot (docs/fidelity.md, "Accuracy estimate"). With
+--reference (linear FE at the same dt and mesh), RUN's actual reduction error
+per figure is compared with the pilot's reduction estimate; with --converged
+(linear FE at a much finer dt and mesh), the reference's actual
+discretisation error with the pilot's discretisation estimate (both runs must
+be of the same scene). Prints one table per pantograph; with --check, exits 1
+unless every estimate is at or above its actual error and at most
+3 x actual + 0.3 (issue 21's bounds).
+"""
+import argparse
+import json
+import sys
+
+# Same order, units and names as simulation/accuracy_pilot.hpp.
+KEYS = ["mean_percent", "sigma_percent", "mean_plus_3sigma_percent", "actual_max_percent",
+        "uplift_percent", "mean_minus_3sigma_percent_of_mean", "actual_min_percent_of_mean",
+        "loss_of_contact_points"]
+LABELS = ["mean", "sigma", "Fm+3sigma", "actual max", "uplift", "Fm-3sigma", "actual min",
+          "loss of contact"]
+UNITS = ["%", "%", "%", "%", "%", "%Fm", "%Fm", "pt"]
+
+
+def figures(summary):
+    """Per pantograph name: the eight figures (N, m, %)."""
+    out = {}
+    for p in summary["pantographs"]:
+        out[p["name"]] = [p["mean_N"], p["std_N"], p["stat_max_N"], p["max_N"],
+                          summary["max_uplift_at_support_m"], p["stat_min_N"], p["min_N"],
+                          p["loss_of_contact_percent"]]
+    return out
+
+
+def actual_errors(run, reference):
+    """Per pantograph: |run - reference| in the units of KEYS."""
+    a, r = figures(run), figures(reference)
+    out = {}
+    for name, ref in r.items():
+        x = a[name]
+        fm = abs(ref[0])
+        rel = [100 * abs(x[i] - ref[i]) / abs(ref[i]) if ref[i] else 0.0 for i in range(5)]
+        out[name] = rel + [100 * abs(x[5] - ref[5]) / fm, 100 * abs(x[6] - ref[6]) / fm,
+                           abs(x[7] - ref[7])]
+    return out
+
+
+def compare(kind, estimate, actual):
+    """Rows (pantograph, figure, estimate, actual, ok) of one kind of error."""
+    rows = []
+    for p in estimate:
+        name = p["pantograph"]
+        for i, key in enumerate(KEYS):
+            e, a = p[key], actual[name][i]
+            ok = a <= e + 1e-12 and e <= 3 * a + 0.3 + 1e-12
+            rows.append((kind, name, i, e, a, ok))
+    return rows
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("run")
+    parser.add_argument("--reference", help="linear FE at the run's dt and mesh")
+    parser.add_argument("--converged", help="linear FE at a finer dt and mesh")
+    parser.add_argument("--check", action="store_true")
+    args = parser.parse_args()
+    run = json.load(open(f"{args.run}/summary.json"))
+    pilot = run["accuracy_estimate"].get("pilot")
+    if pilot is None:
+        sys.exit(f"{args.run}/summary.json: no accuracy_estimate.pilot (the pilot did not run)")
+    rows = []
+    if args.reference:
+        reference = json.load(open(f"{args.reference}/summary.json"))
+        if "reduction" in pilot:
+            rows += compare("reduction", pilot["reduction"], actual_errors(run, reference))
+        if args.converged:
+            converged = json.load(open(f"{args.converged}/summary.json"))
+            rows += compare("discretisation", pilot["discretisation"],
+                            actual_errors(reference, converged))
+    print(f"{'error':15} {'pantograph':12} {'figure':16} {'estimate':>9} {'actual':>9}  "
+          "within [actual, 3 actual + 0.3]")
+    for kind, name, i, e, a, ok in rows:
+        print(f"{kind:15} {name:12} {LABELS[i]:16} {e:8.2f}{UNITS[i]:3} {a:6.2f}{UNITS[i]:3}  "
+              f"{'yes' if ok else 'NO'}")
+    failed = [r for r in rows if not r[5]]
+    print(f"{len(rows) - len(failed)} of {len(rows)} estimates within their bounds")
+    if args.check and (failed or not rows):
+        sys.exit(1)
+
+
+if __name__ == "__main__":
+    main()
