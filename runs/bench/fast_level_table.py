@@ -54,11 +54,17 @@ def row(scene, fe_run, modal_run):
             f"{st.get('p99_99_ms', float('nan')):.3f} / "
             f"{st.get('max_without_context_switch_ms', float('nan')):.3f} | "
             f"{modal_run['peak_memory_mb']:.0f} | {fe_run['time_per_step_ms']:.3f}")
-    sigma_estimate = "-"
-    for c in modal_run.get("accuracy_estimate", {}).get("criteria", []):
+    estimate = modal_run.get("accuracy_estimate", {})
+    calibrated = "-"
+    for c in estimate.get("criteria", []):
         if c.get("name") == "modal cut-off":
-            sigma_estimate = f"{c.get('estimated_sigma_error_percent', float('nan')):.2f}"
+            calibrated = f"{c.get('estimated_sigma_error_percent', float('nan')):.2f}"
+    # The pilot's reduction estimate of σ per pantograph (docs/fidelity.md),
+    # else the calibrated one.
+    pilot = {p["pantograph"]: p["sigma_percent"]
+             for p in estimate.get("pilot", {}).get("reduction", [])}
     for fe, modal in zip(fe_run["pantographs"], modal_run["pantographs"]):
+        sigma_estimate = f"{pilot[fe['name']]:.2f}" if fe["name"] in pilot else calibrated
         if "std_N" not in fe or "std_N" not in modal:
             cells.append(f"| {scene} | {fe['name']} | (no statistics) |")
             continue
