@@ -184,6 +184,27 @@ void keep_partial_if_not_written(const app::CommandContext& ctx, OutputDir& out,
   app::print0(ctx, "  what was written before is kept in %s/\n", out.partial_dir().c_str());
 }
 
+// The estimate from the scene itself (and a modal run's cut-off), before the
+// run (not for -help or a restart: its cut-off is the checkpoint's); null if
+// a pilot run failed (a warning: the run goes on without it).
+nlohmann::json accuracy_pilot(const app::CommandContext& ctx, const InputNode& scene,
+                              scene::RunScene& run) {
+  const simulation::SceneSource source{ctx.scene_path, ctx.overrides, scene, ctx.provenance(scene)};
+  try {
+    const auto pilot = simulation::run_accuracy_pilot(ctx, source, run);
+    simulation::print_pilot(ctx, pilot);
+    return pilot.json();
+  } catch (const SolverError& e) {
+    app::print0(ctx, "\n");
+    app::print_warnings(ctx,
+                        std::vector<std::string>{std::string("no accuracy pilot: ") + e.what() +
+                                                 "; the run goes on without its estimate"});
+  } catch (const simulation::FailedOnOtherRank& e) {  // the other ranks of rank 0's SolverError
+    if (e.status() != simulation::kExitSolver) throw;
+  }
+  return nullptr;
+}
+
 int run_dynamic(const app::CommandContext& ctx) {
   app::RunInputs run_inputs = app::read_run_inputs(ctx);  // every input checked: exit 2 before work
   const InputNode& scene = run_inputs.scene;
@@ -206,15 +227,8 @@ int run_dynamic(const app::CommandContext& ctx) {
   app::print_warnings(ctx, run.warnings);
   simulation::RunOutcome outcome;
   try {
-    // The estimate from the scene itself (and a modal run's cut-off), before
-    // the run: not for -help or a restart (its cut-off is the checkpoint's).
-    if (!request.stop_before_stepping && !request.restart && simulation::accuracy_pilot_enabled()) {
-      const simulation::SceneSource source{ctx.scene_path, ctx.overrides, scene,
-                                           ctx.provenance(scene)};
-      const auto pilot = simulation::run_accuracy_pilot(ctx, source, run);
-      simulation::print_pilot(ctx, pilot);
-      request.accuracy_pilot = pilot.json();
-    }
+    if (!request.stop_before_stepping && !request.restart && simulation::accuracy_pilot_enabled())
+      request.accuracy_pilot = accuracy_pilot(ctx, scene, run);
     outcome = simulation::run(ctx, run, request, out);
   } catch (...) {
     keep_partial_if_not_written(ctx, out, std::current_exception());
