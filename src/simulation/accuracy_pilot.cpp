@@ -346,17 +346,27 @@ PilotEstimate run_accuracy_pilot(const Context& ctx, const SceneSource& source,
   pilot.to_x = stretch.to_x;
   pilot.start_shift_m = stretch.shift;
   const std::string dir = ctx.cache_dir + "/accuracy-pilot-" + key.substr(0, 12);
-  print0(ctx, "  accuracy pilot: spans %d-%d (x %.0f-%.0f m), pantographs %.0f m later: ",
+  print0(ctx, "  accuracy pilot: spans %d-%d (x %.0f-%.0f m), pantographs %.0f m later\n",
          stretch.from_span, stretch.to_span, stretch.from_x, stretch.to_x, stretch.shift);
-  std::fflush(stdout);
+  // One pilot run, its line printed before it starts and its time after.
+  auto timed = [&](const std::string& label, const StudyVariant& variant, double dt,
+                   double cutoff_hz) {
+    print0(ctx, "    %s ... ", label.c_str());
+    std::fflush(stdout);
+    const double t0 = now_s();
+    auto figures = run_pilot(ctx, source, variant, stretch, dt, cutoff_hz, dir);
+    print0(ctx, "%.1f s\n", now_s() - t0);
+    ++pilot.runs;
+    return figures;
+  };
   StudyVariant linear;  // the run's dt and element length
-  const auto reference = run_pilot(ctx, source, linear, stretch, run.dt, 0, dir);
+  const auto reference = timed("linear FE at the run's dt and h", linear, run.dt, 0);
   StudyVariant fine;
   pilot.refined_mesh = design_element_length(source.scene) > 0;
   fine.h_factor = pilot.refined_mesh ? 0.5 : 1.0;
-  const auto converged = run_pilot(ctx, source, fine, stretch, run.dt / 2, 0, dir);
-  pilot.runs = 2;
-  print0(ctx, "linear FE at dt, h and dt/2, h/2");
+  const auto converged = timed(pilot.refined_mesh ? "linear FE at dt/2 and h/2"
+                                                  : "linear FE at dt/2 (explicit design: h kept)",
+                               fine, run.dt / 2, 0);
   // Second order in dt and h: the error of the coarse run is 4/3 of its
   // difference to the run at half both.
   pilot.discretisation_measured = differences(reference, converged, 4.0 / 3.0);
@@ -366,11 +376,11 @@ PilotEstimate run_accuracy_pilot(const Context& ctx, const SceneSource& source,
     reduced.model = catenary::CatenaryFidelity::modal;
     double cutoff = run.catenary.modal.max_frequency_hz;
     for (;;) {
-      const auto figures = run_pilot(ctx, source, reduced, stretch, run.dt, cutoff, dir);
-      ++pilot.runs;
+      char label[96];
+      std::snprintf(label, sizeof label, "modal at %.1f Hz (its modes computed unless cached)",
+                    cutoff);
+      const auto figures = timed(label, reduced, run.dt, cutoff);
       pilot.reduction_measured = differences(figures, reference, 1.0);
-      print0(ctx, ", modal at %.1f Hz", cutoff);
-      std::fflush(stdout);
       if (run.catenary.modal_cutoff_given || within_targets(pilot.reduction_measured) ||
           pilot.cutoff_raises == kMaxCutoffRaises || cutoff <= 0)
         break;
@@ -382,7 +392,7 @@ PilotEstimate run_accuracy_pilot(const Context& ctx, const SceneSource& source,
     run.catenary.modal.max_frequency_hz = cutoff;
   }
   pilot.seconds = now_s() - start;
-  print0(ctx, " (%.1f s)\n", pilot.seconds);
+  print0(ctx, "    %d pilot runs in %.1f s\n", pilot.runs, pilot.seconds);
   write_cached(ctx, key, pilot);
   return pilot;
 }

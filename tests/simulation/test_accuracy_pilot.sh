@@ -8,7 +8,8 @@
 #    (issue 21: 1.4-1.5 x the default were needed on the 20-span line).
 #  - Its reduction estimate of every figure of both pantographs is at or
 #    above the actual error of the run against linear FE at the same dt and
-#    mesh, and at most 3 x actual + 0.3 (postproc/pilot_check.py --check).
+#    mesh, and at most 3 x actual + 0.3 (postproc/pilot_check.py --check);
+#    the run's actual errors are within the fast level's targets (--targets).
 #  - A second run reads the estimate from the cache (no pilot run, the same
 #    numbers, the same cut-off).
 #  - A value that is not a boolean is an input error (exit 2, nothing made).
@@ -26,7 +27,7 @@ run --set catenary.model=modal -o modal -pcsim_accuracy_pilot true > modal.log 2
 grep -q "accuracy pilot: spans 4-5" modal.log || { cat modal.log; exit 1; }
 grep -q "modal cut-off raised" modal.log || { echo "the default cut-off was kept"; exit 1; }
 run -o linear -pcsim_accuracy_pilot false > linear.log 2>&1 || { cat linear.log; exit 1; }
-"$PCSIM_PYTHON" "$PCSIM_SOURCE_DIR/postproc/pilot_check.py" modal --reference linear --check
+"$PCSIM_PYTHON" "$PCSIM_SOURCE_DIR/postproc/pilot_check.py" modal --reference linear --check --targets
 run --set catenary.model=modal -o modal-again -pcsim_accuracy_pilot true > again.log 2>&1 ||
   { cat again.log; exit 1; }
 grep -q "accuracy estimate from the pilot (cached)" again.log || { cat again.log; exit 1; }
