@@ -97,20 +97,22 @@ TEST(MeshSize, UnknownsAndNonzerosMatchTheSystem) {
 // ranks on 2): `pcsim static` here (GNU time) on 10 and 100 spans; 1000 spans and
 // `pcsim modes` from docs/benchmarks.md; `pcsim run` on 10 spans from the
 // interaction benchmark (79 MB, 7080 steps of history included). The estimate
-// is meant to be above, by at most 25 %.
+// is meant to be above, by at most 25 %. The estimates themselves are those of
+// docs/catenary.md's calibration table.
 TEST(MemoryEstimate, CalibratedAgainstMeasuredPeaks) {
   struct Measured {
     long spans;
     MemoryUse use;
     int ranks;
     double megabytes;
+    double estimated;  // docs/catenary.md
   };
   const Measured table[] = {
-      {10, MemoryUse::statics, 1, 67},     {10, MemoryUse::statics, 2, 121},
-      {100, MemoryUse::statics, 1, 226},   {100, MemoryUse::statics, 2, 339},
-      {1000, MemoryUse::statics, 1, 1770}, {10, MemoryUse::modes, 1, 72},
-      {100, MemoryUse::modes, 1, 286},     {1000, MemoryUse::modes, 1, 2425},
-      {10, MemoryUse::run, 1, 79},
+      {10, MemoryUse::statics, 1, 67, 71},       {10, MemoryUse::statics, 2, 121, 129},
+      {100, MemoryUse::statics, 1, 226, 243},    {100, MemoryUse::statics, 2, 339, 355},
+      {1000, MemoryUse::statics, 1, 1770, 1959}, {10, MemoryUse::modes, 1, 72, 80},
+      {100, MemoryUse::modes, 1, 286, 336},      {1000, MemoryUse::modes, 1, 2425, 2887},
+      {10, MemoryUse::run, 1, 79, 89},
   };
   for (const auto& m : table) {
     const auto size = catenary::mesh_size(design_fixtures::reference_design(m.spans));
@@ -120,6 +122,7 @@ TEST(MemoryEstimate, CalibratedAgainstMeasuredPeaks) {
                  std::to_string(m.megabytes) + " MB measured");
     EXPECT_GE(estimate, 0.98 * m.megabytes);
     EXPECT_LE(estimate, 1.25 * m.megabytes);
+    EXPECT_NEAR(estimate, m.estimated, 0.5);  // docs/catenary.md prints whole MB
   }
 }
 
