@@ -227,8 +227,14 @@ int run_dynamic(const app::CommandContext& ctx) {
   app::print_warnings(ctx, run.warnings);
   simulation::RunOutcome outcome;
   try {
-    if (!request.stop_before_stepping && !request.restart && simulation::accuracy_pilot_enabled())
+    const auto pilot = simulation::accuracy_pilot_choice();
+    if (!request.stop_before_stepping && !request.restart &&
+        simulation::wants_accuracy_pilot(pilot, run))
       request.accuracy_pilot = accuracy_pilot(ctx, scene, run);
+    else if (pilot == simulation::PilotChoice::automatic && !request.stop_before_stepping)
+      app::print0(ctx,
+                  "  accuracy: the calibrated estimate below; -pcsim_accuracy_pilot true "
+                  "estimates this run's errors from pilot runs of its scene (docs/fidelity.md)\n");
     outcome = simulation::run(ctx, run, request, out);
   } catch (...) {
     keep_partial_if_not_written(ctx, out, std::current_exception());

@@ -55,8 +55,8 @@ void print_usage() {
       "no PETSc or pcsim object can read is an error, one no solver read a warning.\n"
       "pcsim's own, checked before any work:\n"
       "  -ts_dt, -ts_type hht|alpha2, -ts_hht_alpha [0, 1/3], -pcsim_path auto|full|cheap (run);\n"
-      "  -pcsim_accuracy_pilot true|false: the pilot runs of the accuracy estimate (run;\n"
-      "  default true, docs/fidelity.md);\n"
+      "  -pcsim_accuracy_pilot auto|true|false: the pilot runs of the accuracy estimate\n"
+      "  (run; auto: runs of the modal level; docs/fidelity.md);\n"
       "  -eps_nev N, -modes_fmax F (modes); -pcsim_debug_* (tests).\n"
       "Scene files: docs/scene-format.md; catenary designs: docs/design-format.md.\n");
 }
@@ -226,7 +226,7 @@ int main(int argc, char** argv) {
   bool failed = false;
   try {
     refuse_unknown_options(ctx);
-    pcsim::simulation::accuracy_pilot_enabled();  // checked (exit 2) and read by every command
+    pcsim::simulation::accuracy_pilot_choice();  // checked (exit 2) and read by every command
     debug_fail_if_asked(ctx);
     status = it->second.run(ctx);
     if (status == 0) warn_unread_options(ctx);

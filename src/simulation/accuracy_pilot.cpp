@@ -60,11 +60,8 @@ Stretch pilot_stretch(const scene::RunScene& run) {
   s.to_span = std::min(run.analysis_to_span, run.analysis_from_span + 1);
   s.from_x = support_x[s.from_span - 1];
   s.to_x = support_x[s.to_span];
-  double first = run.pantographs.front().start_x, last = first;
-  for (const auto& p : run.pantographs) {
-    first = std::min(first, p.start_x);
-    last = std::max(last, p.start_x);
-  }
+  double first = run.pantographs.front().start_x;
+  for (const auto& p : run.pantographs) first = std::min(first, p.start_x);
   // Lead-in: two spans (the start's transient), at least a ramp and the
   // filter's edge (3 / cutoff_hz of travel, scene/run_scene_edges.cpp) more
   // than one span.
@@ -77,7 +74,8 @@ Stretch pilot_stretch(const scene::RunScene& run) {
   s.shift = std::max(0.0, s.from_x - lead - first);
   // A later start that saves less than half of the run's travel is not worth
   // the difference it makes (the pilot then repeats the run's own start).
-  if (s.shift < 0.5 * (run.end_x - run.pantographs.front().start_x)) s.shift = 0;
+  // A moving window starts where the line starts: its pantographs too.
+  if (s.shift < 0.5 * (run.end_x - run.pantographs.front().start_x) || run.window) s.shift = 0;
   // The trailing pantograph passes to_x by the filter's edge and a metre.
   const double front = run.pantographs.front().start_x;
   s.end_x = std::min(run.end_x, s.to_x + edge + 1.0 + (front - first));
@@ -307,7 +305,7 @@ PilotEstimate PilotEstimate::from_json(const nlohmann::json& j) {
   return p;
 }
 
-bool accuracy_pilot_enabled() {
+PilotChoice accuracy_pilot_choice() {
   char value[64] = "";
   PetscBool given = PETSC_FALSE;
   // Read inside an options block so that -help lists it (PETSc's macros
@@ -315,19 +313,26 @@ bool accuracy_pilot_enabled() {
   auto read = [&]() -> PetscErrorCode {
     PetscFunctionBeginUser;
     PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "pcsim run", "");
-    PetscCall(PetscOptionsString("-pcsim_accuracy_pilot",
-                                 "pilot runs of the accuracy estimate before the run, and a "
-                                 "modal cut-off chosen by them (true|false; docs/fidelity.md)",
-                                 "", "true", value, sizeof value, &given));
+    PetscCall(PetscOptionsString(
+        "-pcsim_accuracy_pilot",
+        "pilot runs of the accuracy estimate before the run, and a "
+        "modal cut-off chosen by them (auto: modal runs; true; false; docs/fidelity.md)",
+        "", "auto", value, sizeof value, &given));
     PetscOptionsEnd();
     PetscFunctionReturn(0);
   };
   PCSIM_PETSC(read());
   const std::string v = value;
-  if (!given || v.empty() || v == "true" || v == "1" || v == "yes") return true;
-  if (v == "false" || v == "0" || v == "no") return false;
+  if (!given || v == "auto") return PilotChoice::automatic;
+  if (v.empty() || v == "true" || v == "1" || v == "yes") return PilotChoice::on;
+  if (v == "false" || v == "0" || v == "no") return PilotChoice::off;
   throw InputError("command line", "-pcsim_accuracy_pilot",
-                   "'" + v + "' is not a boolean (true or false)");
+                   "'" + v + "' is not auto, true or false");
+}
+
+bool wants_accuracy_pilot(PilotChoice choice, const scene::RunScene& run) {
+  return choice == PilotChoice::on || (choice == PilotChoice::automatic &&
+                                       run.catenary.fidelity == catenary::CatenaryFidelity::modal);
 }
 
 PilotEstimate run_accuracy_pilot(const Context& ctx, const SceneSource& source,

@@ -12,7 +12,7 @@
 #    the run's actual errors are within the fast level's targets (--targets).
 #  - A second run reads the estimate from the cache (no pilot run, the same
 #    numbers, the same cut-off).
-#  - A value that is not a boolean is an input error (exit 2, nothing made).
+#  - A value other than auto, true or false is an input error (exit 2, nothing made).
 # The tests' PETSC_OPTIONS switch the pilot off (tests/CMakeLists.txt); the
 # command line switches it on here.
 set -euo pipefail
@@ -49,6 +49,6 @@ PY
 status=0
 run -o bad -pcsim_accuracy_pilot maybe > bad.log 2>&1 || status=$?
 [ "$status" = 2 ] || { echo "exit $status, not 2"; cat bad.log; exit 1; }
-grep -q "key '-pcsim_accuracy_pilot': 'maybe' is not a boolean" bad.log || { cat bad.log; exit 1; }
+grep -q "key '-pcsim_accuracy_pilot': 'maybe' is not auto, true or false" bad.log || { cat bad.log; exit 1; }
 [ ! -e bad ] && [ ! -e bad.partial ] || { echo "bad: a folder was made"; exit 1; }
 echo "accuracy pilot: ok"

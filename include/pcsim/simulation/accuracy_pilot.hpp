@@ -15,7 +15,7 @@
 // kMaxCutoffRaises times) until every reduction error is within the targets
 // of docs/fidelity.md. The estimate is cached per inputs and numerics in the
 // modal cache folder (--cache DIR), so a second run of the scene costs
-// nothing. -pcsim_accuracy_pilot false switches it off.
+// nothing. -pcsim_accuracy_pilot false switches it off (below).
 #pragma once
 
 #include <array>
@@ -67,8 +67,14 @@ struct PilotEstimate {
   static PilotEstimate from_json(const nlohmann::json& j);
 };
 
-// -pcsim_accuracy_pilot (default true); InputError on a value that is not a boolean.
-bool accuracy_pilot_enabled();
+// -pcsim_accuracy_pilot: auto (the default: runs of the modal level, whose
+// cut-off the pilot chooses; a run of an FE level would pay several times its
+// own cost, mostly for the run at dt/2 and h/2), true, false; InputError on
+// another value.
+enum class PilotChoice { automatic, on, off };
+PilotChoice accuracy_pilot_choice();
+// Whether 'run' gets a pilot under 'choice'.
+bool wants_accuracy_pilot(PilotChoice choice, const scene::RunScene& run);
 
 // Runs the pilot of 'run' (its scene as 'source' gives it), or reads it from
 // the cache; a modal run without a cut-off in its scene gets the pilot's.
