@@ -68,23 +68,33 @@ def compare(kind, estimate, actual):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("run")
+    parser.add_argument("run", help="a result folder of pcsim run with the pilot's estimate")
     parser.add_argument("--reference", help="linear FE at the run's dt and mesh")
     parser.add_argument("--converged", help="linear FE at a finer dt and mesh")
-    parser.add_argument("--check", action="store_true")
-    parser.add_argument("--targets", action="store_true")
+    parser.add_argument("--check", action="store_true",
+                        help="exit 1 unless every estimate is within [actual, 3 actual + 0.3]")
+    parser.add_argument("--targets", action="store_true",
+                        help="exit 1 unless the run's reduction errors meet the targets")
     args = parser.parse_args()
-    run = json.load(open(f"{args.run}/summary.json"))
+
+    def summary(folder):
+        try:
+            with open(f"{folder}/summary.json") as f:
+                return json.load(f)
+        except (OSError, ValueError) as e:
+            sys.exit(f"pilot_check.py: error: {folder}/summary.json: {e.strerror if isinstance(e, OSError) else e}")
+
+    run = summary(args.run)
     pilot = run["accuracy_estimate"].get("pilot")
     if pilot is None:
         sys.exit(f"{args.run}/summary.json: no accuracy_estimate.pilot (the pilot did not run)")
     rows = []
     if args.reference:
-        reference = json.load(open(f"{args.reference}/summary.json"))
+        reference = summary(args.reference)
         if "reduction" in pilot:
             rows += compare("reduction", pilot["reduction"], actual_errors(run, reference))
         if args.converged:
-            converged = json.load(open(f"{args.converged}/summary.json"))
+            converged = summary(args.converged)
             rows += compare("discretisation", pilot["discretisation"],
                             actual_errors(reference, converged))
     print(f"{'error':15} {'pantograph':12} {'figure':16} {'estimate':>9} {'actual':>9}  "
