@@ -98,7 +98,8 @@ Mat StaticProblem::create_matrix() const {
 }
 
 // Reads the extra unknowns (owned by the last rank) on every rank and writes
-// them into the mesh: dropper unstressed lengths and segment length scales.
+// them into the mesh: dropper unstressed lengths (and the stiffness EA / L0
+// of a dropper given by its EA) and segment length scales.
 void StaticProblem::apply_unknowns(Vec x) {
   auto& mesh = system_.mutable_mesh();
   const auto& L = system_.layout();
@@ -113,12 +114,12 @@ void StaticProblem::apply_unknowns(Vec x) {
   MPI_Bcast(extra.data(), static_cast<int>(n_extra), MPI_DOUBLE, L.size() - 1, L.comm());
   const std::size_t n_targets = mesh.height_targets.size();
   for (std::size_t k = 0; k < n_targets; ++k)
-    mesh.bars[mesh.height_targets[k].bar].unstressed_length = extra[k];
+    set_bar_unstressed_length(mesh.bars[mesh.height_targets[k].bar], extra[k]);  // k = EA/L0
   for (std::size_t s = 0; s < mesh.tension_segments.size(); ++s) {
     for (int e : mesh.tension_segments[s].elements)
       mesh.cables[e].unstressed_length = extra[n_targets + s] * mesh.cables[e].ref_length;
     for (int b : mesh.tension_segments[s].bars)
-      mesh.bars[b].unstressed_length = extra[n_targets + s] * bar_design_length(mesh, b);
+      set_bar_unstressed_length(mesh.bars[b], extra[n_targets + s] * bar_design_length(mesh, b));
   }
 }
 

@@ -189,19 +189,22 @@ namespace {
 inline double bar_force_of_length(const BarParameters& bar, double l, double* dN_dl,
                                   double* dN_dL0) {
   const double k = bar.stiffness;
+  // dN/dL0 of N = k (l - L0): -k; with k = EA / L0 also (l - L0) dk/dL0,
+  // together -k l / L0.
+  const double stiff_dL0 = bar.axial_rigidity > 0 ? -k * l / bar.unstressed_length : -k;
   double N = 0, dl = 0, dL0 = 0;
   switch (bar.slack) {
     case SlackCriterion::none:
       N = k * (l - bar.unstressed_length);
       dl = k;
-      dL0 = -k;
+      dL0 = stiff_dL0;
       break;
     case SlackCriterion::force: {
       const double stretch = l - bar.unstressed_length;
       if (stretch > 0) {
         N = k * stretch;
         dl = k;
-        dL0 = -k;
+        dL0 = stiff_dL0;
       }
       break;
     }

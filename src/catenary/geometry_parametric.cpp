@@ -92,6 +92,42 @@ void check_positions(const ParametricDesign& in, const std::string& key,
           "must be smaller than system_height in magnitude (got " + format_number(sags[i]) + ")");
 }
 
+// Exactly one of 'stiffness' [N/m], 'EA' [N] for every dropper and 'EA' [N]
+// per dropper position (as many as the positions of every span).
+void check_dropper_stiffness(const ParametricDesign& in) {
+  const std::string& f = in.file;
+  const DropperDesign& d = in.droppers;
+  const bool per_position = !d.EA_per_position.empty();
+  const int given = (d.stiffness != 0 ? 1 : 0) + (d.EA ? 1 : 0) + (per_position ? 1 : 0);
+  if (given > 1)
+    throw InputError(f, "droppers.EA",
+                     "give the droppers' axial stiffness either as 'stiffness' [N/m] or as 'EA' "
+                     "[N] (one value or one per position), not both");
+  if (given == 0 || d.stiffness != 0) {
+    require_positive(f, "droppers.stiffness", d.stiffness, limits::stiffness);
+    return;
+  }
+  if (!per_position) {
+    require_positive(f, "droppers.EA", *d.EA, limits::axial_stiffness);
+    return;
+  }
+  const std::size_t n = d.EA_per_position.size();
+  if (n != d.positions.size())
+    throw InputError(f, "droppers.EA",
+                     "needs one value per dropper position (" + std::to_string(d.positions.size()) +
+                         " in droppers.positions), got " + std::to_string(n) +
+                         "; or give one number for every dropper");
+  for (std::size_t i = 0; i < d.spans.size(); ++i)
+    if (d.spans[i].positions.size() != n)
+      throw InputError(f, "droppers.EA",
+                       "has one value per dropper position (" + std::to_string(n) + "), but " +
+                           at("droppers.spans", i) + " has " +
+                           std::to_string(d.spans[i].positions.size()) +
+                           " droppers; give one number for every dropper");
+  for (std::size_t i = 0; i < n; ++i)
+    require_positive(f, at("droppers.EA", i), d.EA_per_position[i], limits::axial_stiffness);
+}
+
 void check_droppers(const ParametricDesign& in) {
   const std::string& f = in.file;
   const DropperDesign& d = in.droppers;
@@ -113,7 +149,7 @@ void check_droppers(const ParametricDesign& in) {
     }
     check_positions(in, key, d.spans[i].positions, d.spans[i].sags);
   }
-  require_positive(f, "droppers.stiffness", d.stiffness, limits::stiffness);
+  check_dropper_stiffness(in);
   require_nonnegative(f, "droppers.mass_per_length", d.mass_per_length, limits::mass_per_length);
   require_nonnegative(f, "droppers.clamp_mass_messenger", d.clamp_mass_messenger, limits::mass);
   require_nonnegative(f, "droppers.clamp_mass_contact", d.clamp_mass_contact, limits::mass);

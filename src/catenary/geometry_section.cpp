@@ -313,9 +313,11 @@ void SectionBuilder::add_droppers() {
     b.nodes = {upper, lower};
     b.kind = BarKind::dropper;
     b.stiffness = dr.stiffness;
+    b.axial_rigidity =
+        dr.EA_per_position.empty() ? dr.EA.value_or(0.0) : dr.EA_per_position[st.dropper];
     const double l = (mesh_.nodes[upper].position - mesh_.nodes[lower].position).norm();
     b.mass = dr.mass_per_length * l;
-    b.unstressed_length = l;
+    set_bar_unstressed_length(b, l);  // with EA: k = EA / l until form-finding sets L0
     b.slack = dr.slack;
     b.form_find_length = true;
     b.span = st.span;

@@ -61,7 +61,7 @@ CableDesign read_cable(const InputNode& n) {
 }
 
 DropperDesign read_droppers(const InputNode& drop) {
-  drop.allow_only({"positions", "sags", "spans", "stiffness", "mass_per_length", "slack",
+  drop.allow_only({"positions", "sags", "spans", "stiffness", "EA", "mass_per_length", "slack",
                    "clamp_mass_messenger", "clamp_mass_contact"});
   DropperDesign d;
   InputNode pos = drop["positions"];
@@ -73,7 +73,27 @@ DropperDesign read_droppers(const InputNode& drop) {
     for (std::size_t i = 0; i < sags.size(); ++i) d.sags.push_back(sags.at(i).as_double());
   }
   if (drop.has("spans")) d.spans = reader::read_span_droppers(drop["spans"]);
-  d.stiffness = drop.get_double("stiffness");
+  // Axial stiffness: 'stiffness' [N/m] or 'EA' [N] (one number or one per
+  // position); the builder checks the values and the list's length.
+  const bool has_stiffness = drop.has("stiffness"), has_EA = drop.has("EA");
+  if (has_stiffness && has_EA)
+    drop.fail_key("EA",
+                  "give the droppers' axial stiffness either as 'stiffness' [N/m] or as "
+                  "'EA' [N], not both");
+  if (!has_stiffness && !has_EA)
+    drop.fail_key("stiffness",
+                  "required key is missing: give the droppers' axial stiffness as "
+                  "'stiffness' [N/m] or as 'EA' [N]");
+  if (has_stiffness) d.stiffness = drop.get_double("stiffness");
+  if (has_EA) {
+    InputNode ea = drop["EA"];
+    if (ea.is_sequence()) {
+      if (ea.size() == 0) ea.fail("must be a number or a list of one EA per dropper position [N]");
+      for (std::size_t i = 0; i < ea.size(); ++i) d.EA_per_position.push_back(ea.at(i).as_double());
+    } else {
+      d.EA = ea.as_double();
+    }
+  }
   d.mass_per_length = drop.get_double("mass_per_length", 0.0);
   d.slack = reader::read_slack(drop, "length");
   d.clamp_mass_messenger = drop.get_double("clamp_mass_messenger", 0.0);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <functional>
 #include <random>
+#include <string>
 
 #include "pcsim/catenary/elements.hpp"
 
@@ -392,6 +393,42 @@ TEST(BarElement, ForceTangentAndLengthDerivativeMatchFiniteDifferences) {
     const Eigen::Vector3d e = (q.segment<3>(3) - q.segment<3>(0)).normalized();
     EXPECT_LT((f.segment<3>(3) - N * e).norm(), 1e-10 * scale);
     EXPECT_LT((f.segment<3>(0) + f.segment<3>(3)).norm(), 1e-10 * scale);
+  }
+}
+
+// A bar given by its EA (droppers.EA): k = EA / L0 follows L0, so df/dL0
+// includes dk/dL0 (the form-finding Jacobian column of a dropper's length).
+TEST(BarElement, AxialRigidityStiffnessFollowsUnstressedLength) {
+  for (SlackCriterion slack : {SlackCriterion::none, SlackCriterion::force}) {
+    for (double length : {1.25, 1.15}) {
+      SCOPED_TRACE(std::to_string(static_cast<int>(slack)) + " l=" + std::to_string(length));
+      BarElement bar;
+      bar.axial_rigidity = 2.4e5;
+      bar.stiffness = 1.0;  // overwritten by the length
+      bar.slack = slack;
+      set_bar_unstressed_length(bar, 1.2);
+      EXPECT_DOUBLE_EQ(bar.stiffness, 2.4e5 / 1.2);
+      const BarParameters params = bar_parameters(bar);
+      EXPECT_DOUBLE_EQ(params.stiffness, 2.4e5 / 1.2);
+      const Vec6 q = bar_configuration(length);
+      Vec6 f, df_dL0;
+      const double N = bar_internal_force(params, q, f, nullptr, &df_dL0);
+      const bool active = slack == SlackCriterion::none || length > 1.2;
+      EXPECT_NEAR(N, active ? 2.4e5 * (length - 1.2) / 1.2 : 0.0, 1e-9);
+      const double h = 1e-7;
+      BarElement p = bar, m = bar;
+      set_bar_unstressed_length(p, 1.2 + h);
+      set_bar_unstressed_length(m, 1.2 - h);
+      Vec6 fp, fm;
+      bar_internal_force(bar_parameters(p), q, fp);
+      bar_internal_force(bar_parameters(m), q, fm);
+      EXPECT_LT(relative_error(df_dL0, Vec6((fp - fm) / (2 * h)), 1e-3 * params.stiffness),
+                kFdTolerance);
+      if (active) {  // dN/dL0 = -EA l / L0^2, not -k
+        const Eigen::Vector3d e = (q.segment<3>(3) - q.segment<3>(0)).normalized();
+        EXPECT_NEAR(df_dL0.segment<3>(3).dot(e), -2.4e5 * length / (1.2 * 1.2), 1e-6);
+      }
+    }
   }
 }
 

@@ -96,11 +96,20 @@ struct BarParameters {
   SlackCriterion slack = SlackCriterion::none;
   double equilibrium_length = 0;  // l_eq [m] (criterion 'length')
   double equilibrium_force = 0;   // N_eq [N] (criterion 'length')
+  // EA [N] of a bar given by it, 0 if not: then k = EA / L0 follows L0, and
+  // the derivatives with respect to L0 include dk/dL0.
+  double axial_rigidity = 0;
 };
 
 inline BarParameters bar_parameters(const BarElement& bar) {
-  return {bar.stiffness, bar.unstressed_length, bar.slack, bar.equilibrium_length,
-          bar.equilibrium_force};
+  const double k =
+      bar.axial_rigidity > 0 ? bar.axial_rigidity / bar.unstressed_length : bar.stiffness;
+  return {k,
+          bar.unstressed_length,
+          bar.slack,
+          bar.equilibrium_length,
+          bar.equilibrium_force,
+          bar.axial_rigidity};
 }
 
 // Axial force N (tension positive) [N]; optionally dN/dl.

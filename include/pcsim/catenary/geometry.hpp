@@ -61,8 +61,14 @@ struct DropperDesign {
   std::vector<double> positions;    // [m] from each span's first support, strictly in (0, L)
   std::vector<double> sags;         // [m] presag profile 'heights': sag at each dropper
   std::vector<SpanDroppers> spans;  // spans with their own positions
-  double stiffness = 0;             // [N/m] > 0
-  double mass_per_length = 0;       // [kg/m] >= 0
+  // Axial stiffness: exactly one of 'stiffness' (k [N/m], every dropper),
+  // 'EA' (one EA [N] for every dropper) and 'EA_per_position' (one EA [N] per
+  // position, index as in 'positions' and in every 'spans' entry). With EA,
+  // each dropper's k = EA / L0, L0 its unstressed length (form-found).
+  double stiffness = 0;                 // [N/m] > 0; 0: EA given
+  std::optional<double> EA;             // [N] > 0; empty: not given
+  std::vector<double> EA_per_position;  // [N] > 0; empty: not given
+  double mass_per_length = 0;           // [kg/m] >= 0
   SlackCriterion slack = SlackCriterion::length;
   double clamp_mass_messenger = 0;  // [kg] >= 0
   double clamp_mass_contact = 0;    // [kg] >= 0

@@ -76,6 +76,10 @@ struct BarElement {
   double stiffness = 0;          // axial stiffness k = EA/L [N/m]
   double mass = 0;               // total mass, lumped half to each node [kg]
   double unstressed_length = 0;  // L0 [m]; for droppers found by form-finding
+  // EA [N] of a bar given by it ('droppers.EA'); 0: 'stiffness' is given as
+  // is. When > 0, stiffness = EA / unstressed_length, kept so whenever L0
+  // changes (set_bar_unstressed_length; form-finding).
+  double axial_rigidity = 0;
   SlackCriterion slack = SlackCriterion::none;
   bool form_find_length = false;  // L0 is a form-finding unknown
   int span = -1;                  // span index (droppers), 0-based
@@ -83,6 +87,13 @@ struct BarElement {
   double equilibrium_length = 0;  // l_eq, set after the static solution
   double equilibrium_force = 0;   // N_eq, set after the static solution
 };
+
+// Sets a bar's unstressed length L0 and, for a bar given by its EA, its
+// stiffness k = EA / L0.
+inline void set_bar_unstressed_length(BarElement& bar, double L0) {
+  bar.unstressed_length = L0;
+  if (bar.axial_rigidity > 0) bar.stiffness = bar.axial_rigidity / L0;
+}
 
 struct PointMass {
   int node = -1;
