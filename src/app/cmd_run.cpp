@@ -69,6 +69,12 @@ void print_statistics(const app::CommandContext& ctx, const output::RunSettings&
         output::assess_en50318(run, output::force_statistics_json(p.force), speed_kmh);
     app::print0(ctx, "  pantograph '%s'\n", p.name.c_str());
     print_en50318_table(ctx, figures);
+    if (p.force.actual_min < 0)
+      app::print0(ctx,
+                  "    the filtered minimum is negative: the contact force is zero while the "
+                  "head is off the wire and\n    the %.0f Hz low-pass smooths that edge below "
+                  "zero; unfiltered minimum %.2f N (docs/assessment.md)\n",
+                  s.cutoff_hz, p.force.unfiltered_min);
   }
 }
 

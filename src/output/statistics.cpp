@@ -114,12 +114,14 @@ ForceStatistics force_statistics(const std::vector<double>& position,
   std::size_t lost = 0;
   st.actual_max = -HUGE_VAL;
   st.actual_min = HUGE_VAL;
+  st.unfiltered_min = HUGE_VAL;
   for (std::size_t i = 0; i < position.size(); ++i) {
     if (position[i] < x_start || position[i] > x_end) continue;
     ++st.samples;
     sum += filtered[i];
     st.actual_max = std::max(st.actual_max, filtered[i]);
     st.actual_min = std::min(st.actual_min, filtered[i]);
+    st.unfiltered_min = std::min(st.unfiltered_min, raw[i]);
     if (raw[i] <= 0) ++lost;
   }
   if (st.samples == 0)

@@ -40,6 +40,10 @@ struct ForceStatistics {
   double actual_max = 0;       // of the filtered force
   double actual_min = 0;
   double loss_of_contact_percent = 0;  // samples with UNFILTERED force <= 0, in %
+  // Of the UNFILTERED force: never below 0 (the penalty force is clipped at
+  // zero while the head is off the wire), where the filtered minimum can be
+  // (the low-pass smooths the clipped edge; docs/assessment.md).
+  double unfiltered_min = 0;
 };
 
 // Statistics of `filtered` over the samples whose position lies in [x_start, x_end]; loss of
