@@ -126,11 +126,21 @@ def run_report(folder):
             continue
         body.append(figures_table(pcsim_post.assess(s, p, ref)))
     body.append("<h2 id=\"plots\">Plots</h2>")
-    for make, alt in ((interaction_plots.force_figure, "contact force"),
-                      (interaction_plots.spectrum_figure, "contact force spectrum"),
-                      (interaction_plots.uplift_figure, "uplift at the supports")):
+    # One force and one spectrum panel per pantograph (several overlaid over
+    # the whole line cannot be read), then the uplift at the supports.
+    names = [p["name"] for p in s["pantographs"]]
+    plots = []
+    for name in names:
+        tag = " of '%s'" % name if len(names) > 1 else ""
+        plots += [(lambda n=name, t=tag: interaction_plots.force_figure(
+                      [run], n, title="Contact force%s" % t), "contact force" + tag),
+                  (lambda n=name, t=tag: interaction_plots.spectrum_figure(
+                      [run], n, title="Contact force spectrum%s over the analysis section" % t),
+                   "contact force spectrum" + tag)]
+    plots.append((lambda: interaction_plots.uplift_figure([run]), "uplift at the supports"))
+    for make, alt in plots:
         try:
-            body.append(image(make([run]), alt))
+            body.append(image(make(), alt))
         except pcsim_post.ScriptError as e:  # e.g. a run cut short: no spectrum
             body.append("<p>no %s plot: %s</p>" % (esc(alt), esc(e)))
     facts = [[k, "%.4g" % s[k] if isinstance(s[k], float) else s[k]] for k in

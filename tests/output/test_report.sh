@@ -1,7 +1,8 @@
 #!/bin/bash
 # A run's report and a sweep's table, plots and report, read back as a user would:
 #  - `pcsim run` (EN 50318 scene shortened to 3 spans by --set, 1440 steps, snapshots)
-#    ends with the EN 50318 table and writes report.html (postproc/report.py);
+#    ends with the EN 50318 table and writes report.html (postproc/report.py); a run with
+#    three pantographs gets a force and a spectrum panel per pantograph;
 #  - `pcsim sweep` over two speeds, two cases at a time: sweep.csv, sweep.md, sweep.png,
 #    report.html, summary.json, one run result per case;
 #  - each report.html is parsed: its tables (the EN 50318 figures with a verdict per row),
@@ -26,9 +27,11 @@ grep -qE "mean contact force Fm +N +[0-9.]+ +110 \.\. 120 +(pass|FAIL)" run.log 
   > sweep.log 2>&1 || { cat sweep.log; exit 1; }
 "$PCSIM_PYTHON" "$PCSIM_SOURCE_DIR/postproc/animate.py" run -o run.gif > animate.log 2>&1 ||
   { cat animate.log; exit 1; }
+"$PCSIM_BIN" run "$PCSIM_SOURCE_DIR/tests/contact/data/three-span-three-pantographs.yaml" \
+  -o three > three.log 2>&1 || { cat three.log; exit 1; }
 
 "$PCSIM_PYTHON" - "$tmp" "$PCSIM_SOURCE_DIR/postproc" <<'PY'
-import base64, csv, json, os, subprocess, sys
+import base64, csv, json, os, re, subprocess, sys
 from html.parser import HTMLParser
 from PIL import Image
 tmp, postproc = sys.argv[1], sys.argv[2]
@@ -88,6 +91,15 @@ for r in rows:  # the table holds the cases' own figures
 assert open(os.path.join(tmp, "sweep/sweep.md")).read().count("\n| 0") == 2
 assert os.path.getsize(os.path.join(tmp, "sweep/sweep.png")) > 20000
 assert os.path.isfile(os.path.join(tmp, "sweep/.pcsim-result"))
+
+# Three pantographs: a force and a spectrum panel each (readable, every
+# pantograph's spectrum), then the uplift.
+three = Page()
+three.feed(open(os.path.join(tmp, "three/report.html")).read())
+assert len(three.images) == 7, len(three.images)
+alts = re.findall(r'alt="([^"]*)"', open(os.path.join(tmp, "three/report.html")).read())
+assert alts == [f"contact force{s} of &#x27;{n}&#x27;" for n in ("first", "second", "third")
+                for s in ("", " spectrum")] + ["uplift at the supports"], alts
 
 gif = Image.open(os.path.join(tmp, "run.gif"))
 assert gif.format == "GIF" and gif.n_frames == 15, gif.n_frames  # snapshots at steps 0, 100, ..., 1400
