@@ -264,6 +264,14 @@ double now_s() {
 
 }  // namespace
 
+std::vector<FigureErrors> PilotEstimate::discretisation() const {
+  return with_margin(discretisation_measured);
+}
+
+std::vector<FigureErrors> PilotEstimate::reduction() const {
+  return with_margin(reduction_measured);
+}
+
 nlohmann::json PilotEstimate::json() const {
   nlohmann::json j = {{"cached", cached},
                       {"seconds", seconds},
@@ -274,12 +282,12 @@ nlohmann::json PilotEstimate::json() const {
                       {"refined_mesh", refined_mesh},
                       {"safety_factor", kPilotSafety},
                       {"floor", kPilotFloor},
-                      {"discretisation", errors_json(discretisation)},
+                      {"discretisation", errors_json(discretisation())},
                       {"discretisation_measured", errors_json(discretisation_measured)}};
   if (cutoff_hz > 0) {
     j["cutoff_hz"] = cutoff_hz;
     j["cutoff_raises"] = cutoff_raises;
-    j["reduction"] = errors_json(reduction);
+    j["reduction"] = errors_json(reduction());
     j["reduction_measured"] = errors_json(reduction_measured);
   }
   return j;
@@ -294,12 +302,10 @@ PilotEstimate PilotEstimate::from_json(const nlohmann::json& j) {
   p.to_x = j.at("to_x").get<double>();
   p.start_shift_m = j.at("start_shift_m").get<double>();
   p.refined_mesh = j.at("refined_mesh").get<bool>();
-  p.discretisation = errors_from_json(j.at("discretisation"));
   p.discretisation_measured = errors_from_json(j.at("discretisation_measured"));
   if (j.contains("cutoff_hz")) {
     p.cutoff_hz = j.at("cutoff_hz").get<double>();
     p.cutoff_raises = j.at("cutoff_raises").get<int>();
-    p.reduction = errors_from_json(j.at("reduction"));
     p.reduction_measured = errors_from_json(j.at("reduction_measured"));
   }
   return p;
@@ -375,7 +381,6 @@ PilotEstimate run_accuracy_pilot(const Context& ctx, const SceneSource& source,
   // Second order in dt and h: the error of the coarse run is 4/3 of its
   // difference to the run at half both.
   pilot.discretisation_measured = differences(reference, converged, 4.0 / 3.0);
-  pilot.discretisation = with_margin(pilot.discretisation_measured);
   if (modal) {
     StudyVariant reduced;
     reduced.model = catenary::CatenaryFidelity::modal;
@@ -392,7 +397,6 @@ PilotEstimate run_accuracy_pilot(const Context& ctx, const SceneSource& source,
       cutoff *= kCutoffRaise;
       ++pilot.cutoff_raises;
     }
-    pilot.reduction = with_margin(pilot.reduction_measured);
     pilot.cutoff_hz = cutoff;
     run.catenary.modal.max_frequency_hz = cutoff;
   }
@@ -404,7 +408,8 @@ PilotEstimate run_accuracy_pilot(const Context& ctx, const SceneSource& source,
 
 void print_pilot(const Context& ctx, const PilotEstimate& pilot) {
   if (!pilot.done) return;
-  const bool modal = !pilot.reduction.empty();
+  const auto discretisation = pilot.discretisation(), reduction = pilot.reduction();
+  const bool modal = !reduction.empty();
   print0(ctx, "  accuracy estimate from the pilot%s (x %.0f-%.0f m; %s):\n",
          pilot.cached ? " (cached)" : "", pilot.from_x, pilot.to_x,
          modal ? "discretisation against converged linear FE, reduction against linear FE"
@@ -412,14 +417,13 @@ void print_pilot(const Context& ctx, const PilotEstimate& pilot) {
   if (modal && pilot.cutoff_raises > 0)
     print0(ctx, "    modal cut-off raised %d time(s) to %.1f Hz to meet the targets\n",
            pilot.cutoff_raises, pilot.cutoff_hz);
-  for (std::size_t p = 0; p < pilot.discretisation.size(); ++p) {
-    print0(ctx, "    %-16s %16s%s\n", pilot.discretisation[p].pantograph.c_str(), "discretisation",
+  for (std::size_t p = 0; p < discretisation.size(); ++p) {
+    print0(ctx, "    %-16s %16s%s\n", discretisation[p].pantograph.c_str(), "discretisation",
            modal ? "   reduction" : "");
     for (int f = 0; f < kPilotFigures; ++f) {
       const char* unit = f == 7 ? "pt" : (f == 5 || f == 6) ? "%Fm" : "%";
-      print0(ctx, "    %-16s %12.2f %-3s", kPilotFigureLabels[f], pilot.discretisation[p].value[f],
-             unit);
-      if (modal) print0(ctx, " %9.2f %-3s", pilot.reduction[p].value[f], unit);
+      print0(ctx, "    %-16s %12.2f %-3s", kPilotFigureLabels[f], discretisation[p].value[f], unit);
+      if (modal) print0(ctx, " %9.2f %-3s", reduction[p].value[f], unit);
       print0(ctx, "\n");
     }
   }

@@ -58,10 +58,12 @@ struct PilotEstimate {
   double cutoff_hz = 0;         // modal: the cut-off the run uses
   int cutoff_raises = 0;        // modal: times the default cut-off was raised
   bool refined_mesh = false;    // the fine run halved the element length too
-  // Per pantograph, the estimate (safety and floor applied).
-  std::vector<FigureErrors> discretisation, reduction;  // reduction: modal level only
-  // The same, as measured (the raw differences).
+  // Per pantograph, the pilot's differences as measured (discretisation: the
+  // extrapolated one); reduction: modal level only.
   std::vector<FigureErrors> discretisation_measured, reduction_measured;
+  // The estimates: the measured differences with safety and floor applied.
+  std::vector<FigureErrors> discretisation() const;
+  std::vector<FigureErrors> reduction() const;
 
   nlohmann::json json() const;
   static PilotEstimate from_json(const nlohmann::json& j);
