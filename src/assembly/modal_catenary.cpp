@@ -2,6 +2,7 @@
 
 #include <mpi.h>
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -367,16 +368,37 @@ const WirePoint& ModalCatenary::wire_point(double x, int wire) const {
 }
 
 // eta = Omega^-2 w(x) F: the modal statics under the force (slack ignored).
+// eta = D^-1 f with D = Omega^2, f = phi(x)^T F; with active pins (a
+// moving window's end that is the line's: k u u^T each) by Woodbury:
+// eta = y - D^-1 U (I / k + U^T D^-1 U)^-1 U^T y, y = D^-1 f.
 bool ModalCatenary::closed_form_point_load(double x, int wire, double force, Vec U) const {
   const WirePoint& p = wire_point(x, wire);
   if (!p.on_wire) return false;
   PCSIM_PETSC(VecSet(U, 0.0));
-  if (on_owner()) {
-    PetscScalar* a;
-    PCSIM_PETSC(VecGetArray(U, &a));
-    for (PetscInt k = 0; k < m_; ++k) a[k] = p.weight[k] * force / basis_.omega2[k];
-    PCSIM_PETSC(VecRestoreArray(U, &a));
+  if (!on_owner()) return true;
+  const Eigen::Map<const Eigen::VectorXd> omega2(basis_.omega2.data(), m_);
+  Eigen::VectorXd y(m_);
+  for (PetscInt k = 0; k < m_; ++k) y[k] = p.weight[k] * force / omega2[k];
+  std::vector<const catenary::NodePin*> active;
+  for (const auto& pin : mesh_.pins)
+    if (pin.active) active.push_back(&pin);
+  if (!active.empty()) {
+    const long n = static_cast<long>(active.size());
+    Eigen::MatrixXd Dinv_u(m_, n), small(n, n);
+    for (long j = 0; j < n; ++j)
+      Dinv_u.col(j) = row(active[j]->node, active[j]->dof).transpose().cwiseQuotient(omega2);
+    for (long i = 0; i < n; ++i)
+      for (long j = 0; j < n; ++j)
+        small(i, j) = row(active[i]->node, active[i]->dof).dot(Dinv_u.col(j)) +
+                      (i == j ? 1.0 / active[i]->stiffness : 0.0);
+    Eigen::VectorXd uy(n);
+    for (long i = 0; i < n; ++i) uy[i] = row(active[i]->node, active[i]->dof).dot(y);
+    y -= Dinv_u * small.ldlt().solve(uy);
   }
+  PetscScalar* a;
+  PCSIM_PETSC(VecGetArray(U, &a));
+  std::copy(y.data(), y.data() + m_, a);
+  PCSIM_PETSC(VecRestoreArray(U, &a));
   return true;
 }
 
@@ -444,6 +466,9 @@ std::vector<std::unique_ptr<Term>> ModalCatenary::make_terms(const contact::Inte
     terms.push_back(std::make_unique<ModalExactBars>(*this));
   else if (slack_active_)
     terms.push_back(std::make_unique<ModalDropperSlack>(*this));
+  // A moving window's ends (released: dashpots, pins switched by the run).
+  if (!mesh_.dashpots.empty()) terms.push_back(std::make_unique<ModalNodeDashpots>(*this));
+  if (!mesh_.pins.empty()) terms.push_back(std::make_unique<ModalNodePins>(*this));
   return terms;
 }
 

@@ -28,6 +28,12 @@ Eigen::VectorXd modal_part(const ModalCatenary& catenary, Vec v) {
   return x;
 }
 
+std::vector<PetscInt> all_modes(const ModalCatenary& catenary) {
+  std::vector<PetscInt> modes(catenary.catenary_dofs());
+  for (std::size_t k = 0; k < modes.size(); ++k) modes[k] = static_cast<PetscInt>(k);
+  return modes;
+}
+
 // Adds a dense modal block (m x m) to J on the owner.
 void add_modal_block(const ModalCatenary& catenary, const RowMatrix& block, Mat J) {
   if (!catenary.on_owner()) return;
@@ -105,10 +111,8 @@ TermPower ModalOscillators::power(const CoupledState& state) const {
 
 // ------------------------------------------------------ dropper slack ----
 
-ModalDropperSlack::ModalDropperSlack(ModalCatenary& catenary) : catenary_(catenary) {
-  modes_.resize(catenary.catenary_dofs());
-  for (std::size_t k = 0; k < modes_.size(); ++k) modes_[k] = static_cast<PetscInt>(k);
-}
+ModalDropperSlack::ModalDropperSlack(ModalCatenary& catenary)
+    : catenary_(catenary), modes_(all_modes(catenary)) {}
 
 void ModalDropperSlack::add_residual(const CoupledState&, Vec F) {
   if (!catenary_.on_owner() || catenary_.slack_now().empty()) return;
@@ -152,6 +156,126 @@ double ModalDropperSlack::energy(const CoupledState&) const {
   double e = 0;
   for (std::size_t d : catenary_.slack_now())
     e -= 0.5 * catenary_.bar_stiffness(d) * catenary_.elongation(d) * catenary_.elongation(d);
+  return e;
+}
+
+// ------------------------------------------------- window end terms ----
+
+namespace {
+
+// A rank-one term c phi^T phi over every mode (dense u).
+RankOne modal_rank_one(const ModalCatenary& catenary, int key, const std::vector<PetscInt>& modes,
+                       int node, int dof, double coefficient) {
+  RankOne term;
+  term.key = key;
+  term.index = modes;
+  const auto phi = catenary.row(node, dof);
+  term.weight.assign(phi.data(), phi.data() + phi.size());
+  term.coefficient = coefficient;
+  term.contiguous = true;
+  return term;
+}
+
+// Adds sum over the rows of coefficient(row) (phi . x) phi^T to F's modal part (owner).
+template <class Items, class Coefficient>
+void add_modal_rows(const ModalCatenary& catenary, const Items& items, const Eigen::VectorXd& x,
+                    Coefficient coefficient, Vec F) {
+  if (!catenary.on_owner()) return;
+  PetscScalar* a;
+  PCSIM_PETSC(VecGetArray(F, &a));
+  Eigen::Map<Eigen::VectorXd> f(a, catenary.catenary_dofs());
+  for (const auto& item : items) {
+    const auto phi = catenary.row(item.node, item.dof);
+    f += coefficient(item) * phi.dot(x) * phi.transpose();
+  }
+  PCSIM_PETSC(VecRestoreArray(F, &a));
+}
+
+template <class Items, class Coefficient>
+void add_modal_outer(const ModalCatenary& catenary, const Items& items, Coefficient coefficient,
+                     Mat J) {
+  const PetscInt m = catenary.catenary_dofs();
+  RowMatrix block = RowMatrix::Zero(m, m);
+  bool any = false;
+  for (const auto& item : items) {
+    const double c = coefficient(item);
+    if (c == 0) continue;
+    const auto phi = catenary.row(item.node, item.dof);
+    block += c * phi.transpose() * phi;
+    any = true;
+  }
+  if (any) add_modal_block(catenary, block, J);
+}
+
+}  // namespace
+
+ModalNodeDashpots::ModalNodeDashpots(ModalCatenary& catenary)
+    : catenary_(catenary), modes_(all_modes(catenary)) {}
+
+void ModalNodeDashpots::add_residual(const CoupledState& state, Vec F) {
+  if (!state.V) return;
+  const Eigen::VectorXd v = modal_part(catenary_, state.V);
+  add_modal_rows(
+      catenary_, catenary_.mesh().dashpots, v, [](const auto& d) { return d.coefficient; }, F);
+}
+
+void ModalNodeDashpots::add_tangent(const CoupledState&, Shifts shifts, Mat J) {
+  add_modal_outer(
+      catenary_, catenary_.mesh().dashpots, [&](const auto& d) { return shifts.v * d.coefficient; },
+      J);
+}
+
+bool ModalNodeDashpots::low_rank_change(const CoupledState&, std::vector<RankOne>& terms) {
+  const auto& dashpots = catenary_.mesh().dashpots;
+  for (std::size_t e = 0; e < dashpots.size(); ++e)
+    terms.push_back(modal_rank_one(catenary_, static_cast<int>(e), modes_, dashpots[e].node,
+                                   dashpots[e].dof, shift_v_ * dashpots[e].coefficient));
+  return true;
+}
+
+TermPower ModalNodeDashpots::power(const CoupledState& state) const {
+  TermPower p;
+  if (!state.V) return p;
+  const Eigen::VectorXd v = modal_part(catenary_, state.V);
+  for (const auto& d : catenary_.mesh().dashpots) {
+    const double rate = catenary_.row(d.node, d.dof).dot(v);
+    p.dissipative -= d.coefficient * rate * rate;
+  }
+  return p;
+}
+
+ModalNodePins::ModalNodePins(ModalCatenary& catenary)
+    : catenary_(catenary), modes_(all_modes(catenary)) {}
+
+namespace {
+double active_stiffness(const catenary::NodePin& pin) {
+  return pin.active ? pin.stiffness : 0.0;
+}
+}  // namespace
+
+void ModalNodePins::add_residual(const CoupledState&, Vec F) {
+  add_modal_rows(catenary_, catenary_.mesh().pins, catenary_.eta(), active_stiffness, F);
+}
+
+void ModalNodePins::add_tangent(const CoupledState&, Shifts, Mat J) {
+  add_modal_outer(catenary_, catenary_.mesh().pins, active_stiffness, J);
+}
+
+bool ModalNodePins::low_rank_change(const CoupledState&, std::vector<RankOne>& terms) {
+  const auto& pins = catenary_.mesh().pins;
+  for (std::size_t p = 0; p < pins.size(); ++p)
+    if (pins[p].active)
+      terms.push_back(modal_rank_one(catenary_, static_cast<int>(p), modes_, pins[p].node,
+                                     pins[p].dof, pins[p].stiffness));
+  return true;
+}
+
+double ModalNodePins::energy(const CoupledState&) const {
+  double e = 0;
+  for (const auto& pin : catenary_.mesh().pins) {
+    const double u = catenary_.row(pin.node, pin.dof).dot(catenary_.eta());
+    e += 0.5 * active_stiffness(pin) * u * u;
+  }
   return e;
 }
 

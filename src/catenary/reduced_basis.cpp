@@ -16,6 +16,18 @@ const char* fidelity_name(CatenaryFidelity f) {
   return "?";
 }
 
+const char* modal_method_name(ModalSettings::Method m) {
+  switch (m) {
+    case ModalSettings::Method::automatic:
+      return "auto";
+    case ModalSettings::Method::whole:
+      return "whole";
+    case ModalSettings::Method::window:
+      return "window";
+  }
+  return "?";
+}
+
 std::vector<int> contact_wire_nodes(const CatenaryMesh& mesh) {
   std::vector<int> nodes;
   for (int w : mesh.contact_wire_list())
@@ -33,6 +45,8 @@ std::vector<long> reduced_basis_rows(const CatenaryMesh& mesh, bool full_shapes)
     for (int n : bar.nodes)
       for (int c = 0; c < 3; ++c) keys.push_back(basis_row_key(n, c));
   for (int n : mesh.support_nodes) keys.push_back(basis_row_key(n, 2));
+  for (const auto& d : mesh.dashpots) keys.push_back(basis_row_key(d.node, d.dof));
+  for (const auto& p : mesh.pins) keys.push_back(basis_row_key(p.node, p.dof));
   if (full_shapes)
     for (std::size_t n = 0; n < mesh.nodes.size(); ++n)
       for (int c = 0; c < 3; ++c) keys.push_back(basis_row_key(static_cast<int>(n), c));

@@ -54,11 +54,16 @@ std::vector<long> selected_modes(const ModalData& data, const CatenaryMesh& mesh
   return keep;
 }
 
+// The Ritz vectors as combinations of the computed vectors: Psi X - Phi_keep CX.
+struct RitzCoefficients {
+  Eigen::MatrixXd X, CX;  // shapes x r, kept modes x r
+};
+
 // Ritz vectors of the shapes' M-complement of the kept modes (header):
 // their omega^2 and rows.
-void append_ritz_vectors(const ModalData& data, const std::vector<long>& keep,
-                         const RowMatrix& mode_rows, std::vector<double>& omega2,
-                         RowMatrix& ritz_rows) {
+RitzCoefficients append_ritz_vectors(const ModalData& data, const std::vector<long>& keep,
+                                     const RowMatrix& mode_rows, std::vector<double>& omega2,
+                                     RowMatrix& ritz_rows) {
   const long nd = static_cast<long>(data.shapes()), m = static_cast<long>(keep.size());
   const long nr = static_cast<long>(data.row_keys.size());
   const ConstMap all_C(data.mode_shape_mass.data(), static_cast<long>(data.modes()), nd);
@@ -86,6 +91,29 @@ void append_ritz_vectors(const ModalData& data, const std::vector<long>& keep,
   const Eigen::MatrixXd X = T * ritz.eigenvectors();
   ritz_rows = (ConstMap(data.shape_rows.data(), nr, nd) - mode_rows * C) * X;
   for (long j = 0; j < X.cols(); ++j) omega2.push_back(ritz.eigenvalues()[j]);
+  return {X, C * X};
+}
+
+// The window's shift in the basis B = [Phi_keep, Psi X - Phi_keep CX]:
+// P = B^T M S B from G = V^T M S V over the computed vectors V = [Phi, Psi].
+std::vector<double> shift_in_basis(const ModalData& data, const std::vector<long>& keep,
+                                   const RitzCoefficients& ritz) {
+  const long modes = static_cast<long>(data.modes()), nd = static_cast<long>(data.shapes());
+  const long total = modes + nd, m = static_cast<long>(keep.size()), r = ritz.X.cols();
+  const ConstMap G(data.shift_products.data(), total, total);
+  // G T and T^T (G T), T = [E_keep, -E_keep CX; 0, X] (E_keep: the kept
+  // modes), without forming T (mostly a selection).
+  Eigen::MatrixXd GT(total, m + r);
+  for (long i = 0; i < m; ++i) GT.col(i) = G.col(keep[i]);
+  if (r > 0) GT.rightCols(r) = G.rightCols(nd) * ritz.X - GT.leftCols(m) * ritz.CX;
+  RowMatrix P(m + r, m + r);
+  for (long i = 0; i < m; ++i) P.row(i) = GT.row(keep[i]);
+  if (r > 0) {
+    Eigen::MatrixXd kept_rows(m, m + r);
+    for (long i = 0; i < m; ++i) kept_rows.row(i) = GT.row(keep[i]);
+    P.bottomRows(r) = ritz.X.transpose() * GT.bottomRows(nd) - ritz.CX.transpose() * kept_rows;
+  }
+  return std::vector<double>(P.data(), P.data() + P.size());
 }
 
 }  // namespace
@@ -106,8 +134,12 @@ ReducedBasis assemble_basis(const ModalData& data, const CatenaryMesh& mesh,
     b.omega2.push_back(data.omega2[keep[i]]);
   }
   b.eigenmodes = static_cast<int>(m);
+  RitzCoefficients ritz;
   if (s.dropper_shapes && data.shapes() > 0)
-    append_ritz_vectors(data, keep, mode_rows, b.omega2, ritz_rows);
+    ritz = append_ritz_vectors(data, keep, mode_rows, b.omega2, ritz_rows);
+  const std::size_t vectors = data.modes() + data.shapes();
+  if (!data.shift_products.empty() && data.shift_products.size() == vectors * vectors)
+    b.shift = shift_in_basis(data, keep, ritz);
   RowMatrix rows(nr, m + ritz_rows.cols());
   rows << mode_rows, ritz_rows;
   b.rows.assign(rows.data(), rows.data() + rows.size());

@@ -165,11 +165,13 @@ bool read_file(hid_t file, const std::string& key, catenary::ModalData& d) {
        {std::pair{"/shape_rows", &d.shape_rows}, std::pair{"/mode_shape_mass", &d.mode_shape_mass},
         std::pair{"/shape_mass", &d.shape_mass},
         std::pair{"/shape_flexibility", &d.shape_flexibility},
-        std::pair{"/contact_compliance", &d.contact_compliance}})
+        std::pair{"/contact_compliance", &d.contact_compliance},
+        std::pair{"/shift_products", &d.shift_products}})
     if (H5Lexists(file, path, H5P_DEFAULT) > 0 && !read_dataset(file, path, *v)) return false;
   d.wall_time_s = 0;
-  const std::size_t nd = d.shapes();
-  return ok && d.mode_rows.size() == d.row_keys.size() * d.modes() &&
+  const std::size_t nd = d.shapes(), vectors = d.modes() + nd;
+  return ok && (d.shift_products.empty() || d.shift_products.size() == vectors * vectors) &&
+         d.mode_rows.size() == d.row_keys.size() * d.modes() &&
          d.mode_shape_mass.size() == d.modes() * nd && d.shape_mass.size() == nd * nd &&
          d.shape_flexibility.size() == nd * nd;
 }
@@ -177,7 +179,7 @@ bool read_file(hid_t file, const std::string& key, catenary::ModalData& d) {
 }  // namespace
 
 std::string modal_cache_key(const std::string& design_content, const catenary::CatenaryMesh& mesh,
-                            bool form_finding, bool full_shapes) {
+                            bool form_finding, bool full_shapes, bool window_shift) {
   KeyBuffer key;
   key.add(std::string("pcsim " PCSIM_VERSION " modal data"));
   key.add(kCacheFormat);
@@ -185,6 +187,7 @@ std::string modal_cache_key(const std::string& design_content, const catenary::C
   add_mesh(key, mesh);
   key.add(form_finding);
   key.add(full_shapes);
+  if (window_shift) key.add(std::string("window shift: released ends, shift products"));
   return key.sha256_hex();
 }
 
@@ -264,6 +267,7 @@ void write_modal_data(const std::string& file, const std::string& key,
     write_matrix(h5, "/shape_mass", d.shape_mass, d.shapes());
     write_matrix(h5, "/shape_flexibility", d.shape_flexibility, d.shapes());
     if (!d.contact_compliance.empty()) h5.write("/contact_compliance", d.contact_compliance);
+    write_matrix(h5, "/shift_products", d.shift_products, d.modes() + d.shapes());
     h5.attribute("/", "key", key);
     h5.attribute("/", "cutoff_hz", d.cutoff_hz);
     h5.attribute("/", "max_relative_residual", d.max_relative_residual);

@@ -36,8 +36,12 @@ ElasticityRequest read_elasticity(const InputNode& e, const CatenaryMesh& mesh) 
 }
 
 void read_modal_settings(const InputNode& modal, ModalSettings& s) {
-  modal.allow_only(
-      {"dropper_shapes", "contact_flexibility", "modes", "participation", "droppers", "bars"});
+  modal.allow_only({"dropper_shapes", "contact_flexibility", "modes", "participation", "droppers",
+                    "bars", "method"});
+  const std::string method = modal.get_choice("method", {"auto", "whole", "window"}, "auto");
+  s.method = method == "whole"    ? ModalSettings::Method::whole
+             : method == "window" ? ModalSettings::Method::window
+                                  : ModalSettings::Method::automatic;
   s.dropper_shapes = modal.get_bool("dropper_shapes", true);
   s.contact_flexibility = modal.get_bool("contact_flexibility", true);
   s.vertical_only = modal.get_choice("modes", {"all", "vertical"}, "all") == "vertical";

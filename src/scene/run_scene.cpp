@@ -149,11 +149,28 @@ void read_effects_and_output(const InputNode& scene, RunScene& run) {
 
 RunScene load_run_scene(const InputNode& scene, const RunSceneOptions& options) {
   RunScene run;
+  // A moving window: the scene's 'window', or the modal level's method.
+  const ModalMethodRequest method = modal_method_request(scene);
   std::optional<RunWindow> window;
-  if (scene.has("window")) window = read_window_keys(scene);
-  run.catenary = catenary::load_catenary_scene(
-      scene, options.size_check,
-      window ? window_design_builder(scene, *window) : catenary::DesignBuilder());
+  if (scene.has("window")) {
+    if (method.method == "whole")
+      scene["catenary"]["modal"].fail_key(
+          "method", "whole cannot be combined with a moving window (section 'window')");
+    window = read_window_keys(scene);
+  } else if (method.method == "window" || method.automatic()) {
+    window = RunWindow{};
+  }
+  const bool automatic = window && !scene.has("window") && method.automatic();
+  const InputNode where = scene.has("window") ? scene["window"] : scene["catenary"];
+  catenary::DesignBuilder builder;
+  if (window)
+    builder = automatic ? auto_window_builder(*window) : window_design_builder(where, *window);
+  run.catenary = catenary::load_catenary_scene(scene, options.size_check, builder);
+  std::string declined;
+  if (window && window->line_spans == 0) {  // auto: the line is no window's
+    declined = window->declined;
+    window.reset();
+  }
   if (window) {  // the window's mesh; the line's supports for everything else
     window->mesh = run.catenary.mesh;
     auto& support_x = run.catenary.mesh.support_x;
@@ -195,7 +212,19 @@ RunScene load_run_scene(const InputNode& scene, const RunSceneOptions& options) 
   }
   check_time_step(scene, run, options.command_line_dt ? "-ts_dt" : "simulation.dt");
   check_filter_edges(scene, run);
-  if (run.window) check_window(scene, run, options.size_check);
+  if (run.window && automatic) {
+    std::string why;
+    const bool kept = keep_auto_window(scene, run, options.size_check, why);
+    run.modal_method_note = kept ? "window (auto: " + why + ")" : "whole (auto: " + why + ")";
+  } else if (run.window) {
+    check_window(scene, where, run, options.size_check);
+    run.modal_method_note = scene.has("window") ? "window (the scene's 'window')" : "window";
+  } else if (!method.method.empty()) {
+    run.modal_method_note = method.automatic() ? "whole (auto: " + declined + ")" : "whole";
+  }
+  if (!method.method.empty())
+    run.catenary.modal.method = run.window ? catenary::ModalSettings::Method::window
+                                           : catenary::ModalSettings::Method::whole;
   return run;
 }
 

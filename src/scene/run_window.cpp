@@ -13,13 +13,18 @@ namespace pcsim::scene {
 namespace {
 
 // The line must repeat every two spans: one straight section of identical
-// spans, nothing that changes from span to span.
-void check_periodic_line(const InputNode& w, const catenary::ParametricDesign& d) {
+// spans, nothing that changes from span to span. Empty if it does.
+std::string not_periodic(const catenary::ParametricDesign& d) {
   std::string why;
   if (!d.sections.empty()) why = "sections (tension sections, overlaps, curves)";
   if (d.stitch_wire) why = "a stitch wire";
   if (!d.support_overrides.empty()) why = "support overrides";
   if (!d.irregularities.empty()) why = "irregularities";
+  return why;
+}
+
+void check_periodic_line(const InputNode& w, const catenary::ParametricDesign& d) {
+  const std::string why = not_periodic(d);
   if (!why.empty()) w.fail("needs a line of identical spans; the design has " + why);
 }
 
@@ -59,9 +64,7 @@ void fit_train(const InputNode& w, RunScene& run, const catenary::MeshSizeCheck&
   run.catenary.mesh = std::move(mesh);
 }
 
-void check_outputs(const InputNode& scene, const InputNode& w, const RunScene& run) {
-  if (run.catenary.fidelity == catenary::CatenaryFidelity::modal)
-    w.fail("the window shifts finite-element states; catenary.model modal has none");
+void check_outputs(const InputNode& scene) {
   if (!scene.has("output")) return;
   const InputNode o = scene["output"];
   const char* per_line[] = {"snapshot_every", "checkpoint_every"};
@@ -89,9 +92,8 @@ RunWindow read_window_keys(const InputNode& scene) {
 
 // The line's design read as it is; the window's mesh built from it with
 // spans() spans (only that is checked against the memory).
-catenary::DesignBuilder window_design_builder(const InputNode& scene, RunWindow& window) {
-  return [w = scene["window"], &window](const InputNode& design,
-                                        const catenary::MeshSizeCheck& size_check) {
+catenary::DesignBuilder window_design_builder(const InputNode& w, RunWindow& window) {
+  return [w, &window](const InputNode& design, const catenary::MeshSizeCheck& size_check) {
     if (design.get_string("type", "") != "parametric") w.fail("needs a parametric design");
     catenary::ParametricDesign d = catenary::read_parametric_design(design);
     check_periodic_line(w, d);
@@ -108,12 +110,11 @@ catenary::DesignBuilder window_design_builder(const InputNode& scene, RunWindow&
 // The leading pantograph (the furthest along) starts within the window's
 // first shift_spans() spans and ends, when the first of the scene's reaches
 // end_x, before the window's front has reached the line's end.
-void check_window(const InputNode& scene, RunScene& run,
+void check_window(const InputNode& scene, const InputNode& w, RunScene& run,
                   const catenary::MeshSizeCheck& size_check) {
-  const InputNode w = scene["window"];
   auto& window = *run.window;
   fit_train(w, run, size_check);
-  check_outputs(scene, w, run);
+  check_outputs(scene);
   const double L = window.span_length, x0 = run.catenary.mesh.support_x.front();
   const auto& lead =
       *std::max_element(run.pantographs.begin(), run.pantographs.end(), starts_before);

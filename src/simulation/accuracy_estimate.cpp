@@ -225,6 +225,8 @@ void print_catenary_setup(const Context& ctx, const scene::RunScene& run,
            setup.basis_size, setup.eigenmodes, setup.cutoff_hz, setup.dropped_modes,
            setup.cache_hit ? "read from the cache" : "computed", setup.setup_seconds);
   print0(ctx, "\n");
+  if (setup.modal && !run.modal_method_note.empty())
+    print0(ctx, "  modal method: %s\n", run.modal_method_note.c_str());
 }
 
 void add_fidelity_facts(const scene::RunScene& run, const CatenarySetup& setup,
@@ -233,6 +235,8 @@ void add_fidelity_facts(const scene::RunScene& run, const CatenarySetup& setup,
   facts["catenary_model"] = catenary::fidelity_name(run.catenary.fidelity);
   if (setup.modal) {
     facts["modal"] = setup.facts();
+    facts["modal"]["method"] = catenary::modal_method_name(run.catenary.modal.method);
+    facts["modal"]["method_note"] = run.modal_method_note;
     if (const auto* modal = dynamic_cast<const assembly::ModalCatenary*>(&system.catenary())) {
       const long steps = facts.value("steps", 0L);
       facts["modal"]["dropper_evaluations_per_step"] =

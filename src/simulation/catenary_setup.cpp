@@ -10,6 +10,7 @@
 #include "pcsim/assembly/fe_catenary.hpp"
 #include "pcsim/assembly/modal_catenary.hpp"
 #include "pcsim/assembly/static_problem.hpp"
+#include "pcsim/catenary/window.hpp"
 #include "pcsim/output/modal_cache.hpp"
 #include "pcsim/simulation/context.hpp"
 #include "pcsim/simulation/modal_basis.hpp"
@@ -29,7 +30,7 @@ void broadcast(std::vector<T>& v, MPI_Comm comm) {
 
 void broadcast(catenary::ModalData& d, MPI_Comm comm) {
   for (auto* v : {&d.omega2, &d.mode_rows, &d.shape_rows, &d.mode_shape_mass, &d.shape_mass,
-                  &d.shape_flexibility, &d.contact_compliance})
+                  &d.shape_flexibility, &d.contact_compliance, &d.shift_products})
     broadcast(*v, comm);
   broadcast(d.row_keys, comm);
   double scalars[3] = {d.cutoff_hz, d.max_relative_residual, d.wall_time_s};
@@ -46,8 +47,33 @@ std::string file_content(const std::string& path) {
   return s.str();
 }
 
-catenary::ModalData compute_data(const Context& ctx, const simulation::StaticConfiguration& statics,
-                                 double cutoff_hz, bool full_shapes) {
+// A moving window's shift (catenary/window.hpp) as a matrix over the
+// system's DOFs: S(g, h) = 1 where DOF g takes the displacement of DOF h,
+// the same DOF of the node 'shift' further along; rows of the window's
+// front (nothing beyond) empty. Rows set where owned.
+Mat window_shift_matrix(const assembly::CatenarySystem& system, double shift) {
+  const auto& layout = system.layout();
+  const auto& mesh = system.mesh();
+  const auto partner = catenary::shifted_nodes(mesh, shift);
+  Mat S;
+  PCSIM_PETSC(MatCreateAIJ(system.comm(), layout.local_size(), layout.local_size(), PETSC_DETERMINE,
+                           PETSC_DETERMINE, 1, nullptr, 1, nullptr, &S));
+  const PetscInt lo = layout.first_owned(), hi = lo + layout.local_size();
+  for (std::size_t n = 0; n < mesh.nodes.size(); ++n)
+    for (int c = 0; c < catenary::kNodeDofs; ++c) {
+      const PetscInt g = layout.global_dof(static_cast<int>(n), c);
+      if (g < lo || g >= hi || partner[n] < 0) continue;
+      const PetscInt h = layout.global_dof(partner[n], c);
+      if (h >= 0) PCSIM_PETSC(MatSetValue(S, g, h, 1.0, INSERT_VALUES));
+    }
+  PCSIM_PETSC(MatAssemblyBegin(S, MAT_FINAL_ASSEMBLY));
+  PCSIM_PETSC(MatAssemblyEnd(S, MAT_FINAL_ASSEMBLY));
+  return S;
+}
+
+catenary::ModalData compute_data(const Context& ctx, const scene::RunScene& run,
+                                 const simulation::StaticConfiguration& statics, double cutoff_hz,
+                                 bool full_shapes) {
   assembly::CatenarySystem system(ctx.comm, statics.mesh, 0, &statics.node_owner);
   Vec x = system.create_vector();
   assembly::set_state_from_node_values(system, statics.result.node_values, x);
@@ -67,7 +93,9 @@ catenary::ModalData compute_data(const Context& ctx, const simulation::StaticCon
              100.0 * done / std::max(total, 1L), elapsed,
              done < total ? elapsed * (total - done) / done : 0.0);
   };
-  auto data = simulation::compute_modal_data(system, x, cutoff_hz, full_shapes, progress);
+  Mat shift = run.window ? window_shift_matrix(system, 2.0 * run.window->span_length) : nullptr;
+  auto data = simulation::compute_modal_data(system, x, cutoff_hz, full_shapes, progress, shift);
+  PCSIM_PETSC(MatDestroy(&shift));
   PCSIM_PETSC(VecDestroy(&x));
   return data;
 }
@@ -94,7 +122,7 @@ catenary::ModalData cached_data(const Context& ctx, const scene::RunScene& run,
   out.cache_file = output::modal_cache_file(ctx.cache_dir, key, cutoff_hz);
   print0(ctx, "  computing the catenary's modes below %.1f Hz (cached in %s)\n", cutoff_hz,
          out.cache_file.c_str());
-  data = compute_data(ctx, statics, cutoff_hz, full_shapes);
+  data = compute_data(ctx, run, statics, cutoff_hz, full_shapes);
   out.basis_seconds = data.wall_time_s;
   if (ctx.rank == 0) {
     try {

@@ -63,6 +63,7 @@ class DropperShapes {
   DropperShapes(const DropperShapes&) = delete;
   DropperShapes& operator=(const DropperShapes&) = delete;
   std::size_t count() const { return count_; }
+  Vec vector(std::size_t d) const { return psi_[d]; }
   // phi^T M psi_d for every d.
   std::vector<double> mass_products(Vec phi) const;
   const Eigen::MatrixXd& rows() const { return rows_; }
@@ -179,7 +180,7 @@ std::vector<double> row_major(const Matrix& A) {
 }  // namespace
 
 ModalData compute_modal_data(assembly::CatenarySystem& system, Vec x, double max_frequency_hz,
-                             bool full_shapes, const ModalProgress& progress) {
+                             bool full_shapes, const ModalProgress& progress, Mat shift) {
   PetscLogDouble t0, t1;
   PetscTime(&t0);
   const auto& mesh = system.mesh();
@@ -196,8 +197,11 @@ ModalData compute_modal_data(assembly::CatenarySystem& system, Vec x, double max
     shapes = std::make_unique<DropperShapes>(system, x, op, *K, rows, data.row_keys);
   }
   std::vector<std::vector<double>> columns, mass_products;
+  std::unique_ptr<ShiftProducts> shift_products;  // every vector, for the window's shift
+  if (shift) shift_products = std::make_unique<ShiftProducts>(op.M, shift);
   auto sink = [&](double lambda, Vec phi) {
     data.omega2.push_back(lambda);
+    if (shift_products) shift_products->append(phi);
     columns.emplace_back(rows.size());
     rows.gather(phi, columns.back().data());
     if (shapes) mass_products.push_back(shapes->mass_products(phi));
@@ -221,6 +225,11 @@ ModalData compute_modal_data(assembly::CatenarySystem& system, Vec x, double max
   }
   if (K && !mesh.contact_wire_list().empty())
     data.contact_compliance = contact_compliance(system, *K);
+  if (shift_products) {
+    if (shapes)
+      for (std::size_t d = 0; d < shapes->count(); ++d) shift_products->append(shapes->vector(d));
+    data.shift_products = shift_products->compute(x);
+  }
   PetscTime(&t1);
   data.wall_time_s = t1 - t0;
   return data;

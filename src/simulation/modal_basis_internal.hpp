@@ -5,6 +5,7 @@
 
 #include <petscksp.h>
 
+#include <Eigen/Core>
 #include <functional>
 #include <vector>
 
@@ -50,6 +51,24 @@ using ModeSink = std::function<void(double lambda, Vec phi)>;
 // progress(done, total) after each chunk (may be empty).
 double stream_modes(const Operators& op, double lambda_max, const ModeSink& sink,
                     const std::function<void(long, long)>& progress);
+
+// G = V^T M S V (row-major, c x c, every rank) over the vectors V appended
+// (c of them, their local parts kept: n x c doubles in all): a moving
+// window's shift in the computed vectors (ModalData::shift_products).
+class ShiftProducts {
+ public:
+  ShiftProducts(Mat M, Mat S);
+  void append(Vec v);
+  // Collective; 'like' a vector of the layout. Frees the columns.
+  std::vector<double> compute(Vec like);
+
+ private:
+  static constexpr long kBlock = 256;
+  Mat M_, S_;
+  PetscInt local_ = 0;
+  long count_ = 0;
+  std::vector<Eigen::MatrixXd> blocks_;  // local_ x kBlock each, the last partly filled
+};
 
 // Every eigenpair of a small structure by a dense solve on every rank.
 double stream_all_modes_dense(const Operators& op, const ModeSink& sink);

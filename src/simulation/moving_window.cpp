@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "pcsim/assembly/fe_catenary.hpp"
+#include "pcsim/assembly/modal_catenary.hpp"
 #include "pcsim/catenary/window.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/core/vec_root.hpp"
@@ -14,11 +15,12 @@ MovingWindow::MovingWindow(const scene::RunWindow& window, assembly::CoupledSyst
     : system_(system),
       span_length_(window.span_length),
       line_support_x_(std::move(line_support_x)) {
-  auto* fe = dynamic_cast<assembly::FECatenary*>(&system.catenary());
-  if (!fe) throw SolverError("moving window: needs the finite-element catenary");
-  fe_ = fe;
-  const auto& mesh = fe->mesh();
-  const auto& layout = fe->system().layout();
+  fe_ = dynamic_cast<assembly::FECatenary*>(&system.catenary());
+  modal_ = dynamic_cast<assembly::ModalCatenary*>(&system.catenary());
+  if (!fe_ && !modal_) throw SolverError("moving window: needs the FE or the modal catenary");
+  if (modal_ && modal_->basis().shift.size() != modal_->basis().size() * modal_->basis().size())
+    throw SolverError("moving window: the modal basis has no shift (modal data without a window)");
+  const auto& mesh = system.catenary().mesh();
   shift_at_x_ = mesh.support_x.front() + window.shift_spans() * span_length_;
   const auto& pantographs = system.pantographs();
   for (std::size_t i = 1; i < pantographs.size(); ++i)
@@ -26,7 +28,8 @@ MovingWindow::MovingWindow(const scene::RunWindow& window, assembly::CoupledSyst
   max_shifts_ = (window.line_spans - window.spans()) / 2;
   window_supports_ = static_cast<int>(mesh.support_x.size());
   for (int node : mesh.support_nodes)
-    window_static_z_.push_back(fe->static_node_values()[catenary::kNodeDofs * node + 2]);
+    window_static_z_.push_back(fe_ ? fe_->static_node_values()[catenary::kNodeDofs * node + 2]
+                                   : modal_->static_value(node, 2));
   // A line support's static height: the window's support of the same parity
   // in the middle (the window's end supports are the line's only at its ends).
   const int mid = window_supports_ / 2;
@@ -35,14 +38,21 @@ MovingWindow::MovingWindow(const scene::RunWindow& window, assembly::CoupledSyst
     const int j = kk < mid ? kk : mid - (kk - mid) % 2;
     line_static_z_.push_back(window_static_z_[j]);
   }
-  Vec U0 = system.create_vector();
-  system.catenary().reference_state(U0);
-  static_U_ = gather_to_root(U0);
-  PCSIM_PETSC(VecDestroy(&U0));
   line_spans_ = window.line_spans;
   window_spans_ = window.spans();
-  set_pins(*fe);
+  set_pins();
+  if (fe_) fe_source(*fe_);
+}
+
+// The FE state's shift: every catenary DOF's source two spans ahead.
+void MovingWindow::fe_source(const assembly::FECatenary& fe) {
+  Vec U0 = system_.create_vector();
+  fe.reference_state(U0);
+  static_U_ = gather_to_root(U0);
+  PCSIM_PETSC(VecDestroy(&U0));
+  const auto& layout = fe.system().layout();
   if (layout.rank() != 0) return;
+  const auto& mesh = fe.mesh();
   const auto partner = catenary::shifted_nodes(mesh, 2.0 * span_length_);
   source_.assign(static_cast<std::size_t>(layout.catenary_dofs()), -1);
   for (std::size_t n = 0; n < mesh.nodes.size(); ++n)
@@ -64,24 +74,44 @@ void MovingWindow::after_step(double t, solvers::DynamicSolver& solver) {
 void MovingWindow::shift(solvers::DynamicSolver& solver) {
   solvers::DynamicState s = solver.save_state();  // rank 0: U, V, A in the global order
   if (!s.U.empty()) {
-    const auto U = s.U, V = s.V, A = s.A;
-    for (std::size_t g = 0; g < source_.size(); ++g) {
-      const PetscInt from = source_[g];
-      s.U[g] = static_U_[g] + (from >= 0 ? U[from] - static_U_[from] : 0.0);
-      s.V[g] = from >= 0 ? V[from] : 0.0;
-      s.A[g] = from >= 0 ? A[from] : 0.0;
-    }
+    if (fe_)
+      shift_fe(s);
+    else
+      shift_modal(s);
   }
   solver.replace_state(s.U, s.V, s.A);
   for (auto& pantograph : system_.pantographs()) pantograph.run.start_x -= 2.0 * span_length_;
   ++shifts_;
-  set_pins(*fe_);  // J0 is rebuilt at the next step (replace_state)
+  set_pins();  // J0 is rebuilt at the next step (replace_state)
+}
+
+void MovingWindow::shift_fe(solvers::DynamicState& s) const {
+  const auto U = s.U, V = s.V, A = s.A;
+  for (std::size_t g = 0; g < source_.size(); ++g) {
+    const PetscInt from = source_[g];
+    s.U[g] = static_U_[g] + (from >= 0 ? U[from] - static_U_[from] : 0.0);
+    s.V[g] = from >= 0 ? V[from] : 0.0;
+    s.A[g] = from >= 0 ? A[from] : 0.0;
+  }
+}
+
+// The modal state's shift: eta' = P eta (the M-projection of the shifted
+// field on the basis; catenary::ReducedBasis::shift), the same for the
+// rates; the modal coordinates lead the global order.
+void MovingWindow::shift_modal(solvers::DynamicState& s) const {
+  const long m = static_cast<long>(modal_->basis().size());
+  using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  const Eigen::Map<const RowMatrix> P(modal_->basis().shift.data(), m, m);
+  for (auto* x : {&s.U, &s.V, &s.A}) {
+    Eigen::Map<Eigen::VectorXd> eta(x->data(), m);
+    eta = P * eta.eval();
+  }
 }
 
 // The window's ends that are the line's anchored ends are pinned: the rear
 // before the first shift, the front once it has reached the line's end.
-void MovingWindow::set_pins(assembly::FECatenary& fe) {
-  auto& mesh = fe.system().mutable_mesh();
+void MovingWindow::set_pins() {
+  auto& mesh = fe_ ? fe_->system().mutable_mesh() : modal_->mutable_mesh();
   const double rear = mesh.support_x.front();
   const bool front_at_line_end = 2 * shifts_ + window_spans_ == line_spans_;
   for (auto& pin : mesh.pins)

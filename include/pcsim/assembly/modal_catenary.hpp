@@ -70,6 +70,8 @@ class ModalCatenary : public CatenaryModel {
 
   // For the terms.
   const catenary::ReducedBasis& basis() const { return basis_; }
+  // A moving window's pins are switched between steps (catenary::NodePin::active).
+  catenary::CatenaryMesh& mutable_mesh() { return mesh_; }
   const catenary::ModalSettings& settings() const { return settings_; }
   bool on_owner() const { return rank_ == size_ - 1; }
   const Eigen::VectorXd& eta() const { return eta_; }  // at the loaded state, every rank

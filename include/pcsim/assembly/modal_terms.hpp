@@ -57,6 +57,49 @@ class ModalDropperSlack : public Term {
   std::vector<PetscInt> modes_;  // 0 .. m-1
 };
 
+// A moving window's end dashpots (catenary/window.hpp) over the modes:
+// residual c_e (phi_e . eta') phi_e^T per dashpot e (phi_e: the basis row of
+// its DOF), tangent shift_v c_e phi_e^T phi_e: rank one each, with the
+// shift_v of the last reference tangent (J0 holds none of it: the modal J0
+// stays diagonal). Power -c_e (phi_e . eta')^2.
+class ModalNodeDashpots : public Term {
+ public:
+  explicit ModalNodeDashpots(ModalCatenary& catenary);
+  std::string name() const override { return "modal node dashpots"; }
+  TangentKind tangent_kind() const override { return TangentKind::low_rank; }
+  void add_residual(const CoupledState& state, Vec F) override;
+  void add_tangent(const CoupledState& state, Shifts shifts, Mat J) override;
+  void add_reference_tangent(const CoupledState&, Shifts shifts, Mat) override {
+    shift_v_ = shifts.v;
+  }
+  bool low_rank_change(const CoupledState& state, std::vector<RankOne>& terms) override;
+  TermPower power(const CoupledState& state) const override;
+
+ private:
+  ModalCatenary& catenary_;
+  std::vector<PetscInt> modes_;
+  double shift_v_ = 0;
+};
+
+// A window's active end pins (mesh.pins, switched by the run between steps):
+// residual k (phi_p . eta) phi_p^T, tangent k phi_p^T phi_p (rank one each,
+// not in J0). Energy 1/2 k (phi_p . eta)^2.
+class ModalNodePins : public Term {
+ public:
+  explicit ModalNodePins(ModalCatenary& catenary);
+  std::string name() const override { return "modal node pins"; }
+  TangentKind tangent_kind() const override { return TangentKind::low_rank; }
+  void add_residual(const CoupledState& state, Vec F) override;
+  void add_tangent(const CoupledState& state, Shifts shifts, Mat J) override;
+  void add_reference_tangent(const CoupledState&, Shifts, Mat) override {}
+  bool low_rank_change(const CoupledState& state, std::vector<RankOne>& terms) override;
+  double energy(const CoupledState& state) const override;
+
+ private:
+  ModalCatenary& catenary_;
+  std::vector<PetscInt> modes_;
+};
+
 // Every bar's exact force minus its linearisation at the static state q0:
 // residual P^T (f(q) - f(q0) - K(q0) (q - q0)), q = q0 + P eta (P: the rows
 // of the bar's ends), tangent P^T (K(q) - K(q0)) P (dense: full path).

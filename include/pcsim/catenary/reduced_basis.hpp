@@ -35,7 +35,12 @@ struct ModalSettings {
   // exact: every bar's nonlinear force minus its linearisation (full path).
   enum class Bars { slack, exact } bars = Bars::slack;
   bool full_shapes = false;  // keep every node's position rows (field snapshots)
+  // How the line is reduced (catenary.modal.method): automatic (the run
+  // scene chooses: run_scene.hpp), the whole line's basis, or a moving
+  // window's basis (catenary/window.hpp) shifted with the train.
+  enum class Method { automatic, whole, window } method = Method::automatic;
 };
+const char* modal_method_name(ModalSettings::Method m);
 
 // A catenary mode of frequency f shows in the contact force of a pantograph
 // at speed v on a wire of wave speed c at about f (1 - v/c): the modes up to
@@ -66,8 +71,13 @@ struct ModalData {
   std::vector<double> shape_mass;          // psi_d^T M psi_e, shapes x shapes
   std::vector<double> shape_flexibility;   // b_d^T psi_e = b_d^T K^-1 b_e, shapes x shapes
   std::vector<double> contact_compliance;  // (K^-1)_zz at contact_wire_nodes()
-  double max_relative_residual = 0;        // of the eigenpairs
-  double wall_time_s = 0;                  // to compute it (0 when read from the cache)
+  // A moving window's shift (catenary/window.hpp): G = V^T M S V over the
+  // vectors V = [modes, shapes] (S: the displacement field moved back by the
+  // window's period, zero where it comes from beyond the window's front),
+  // (modes + shapes)^2 row-major; empty without a window.
+  std::vector<double> shift_products;
+  double max_relative_residual = 0;  // of the eigenpairs
+  double wall_time_s = 0;            // to compute it (0 when read from the cache)
   std::size_t modes() const { return omega2.size(); }
   std::size_t shapes() const { return row_keys.empty() ? 0 : shape_rows.size() / row_keys.size(); }
 };
@@ -82,6 +92,10 @@ struct ReducedBasis {
   // Contact point's residual flexibility r = g(x,x) - sum_k phi_k(x)^2 / omega_k^2
   // at contact_wire_nodes() [m/N] (0 when not computed).
   std::vector<double> contact_flexibility;
+  // A moving window's shift in the basis: eta' = P eta with P = B^T M S B
+  // (the M-projection of the shifted field), size() x size() row-major;
+  // empty without a window.
+  std::vector<double> shift;
   double cutoff_hz = 0;
   std::size_t size() const { return omega2.size(); }
 };
@@ -103,8 +117,9 @@ ReducedBasis assemble_basis(const ModalData& data, const CatenaryMesh& mesh,
 std::vector<int> contact_wire_nodes(const CatenaryMesh& mesh);
 
 // The rows a modal model of 'mesh' needs: z and z' of the contact-wire nodes,
-// x, y, z of every bar's ends, z of the supports; with full_shapes x, y, z
-// of every node. Sorted, unique.
+// x, y, z of every bar's ends, z of the supports, the DOFs of its dashpots
+// and pins (a window's ends); with full_shapes x, y, z of every node.
+// Sorted, unique.
 std::vector<long> reduced_basis_rows(const CatenaryMesh& mesh, bool full_shapes);
 
 }  // namespace pcsim::catenary

@@ -5,7 +5,8 @@
 //   modal-<key>-<cut-off>.h5,
 // <key> the SHA-256 of the pcsim version and cache format, the design file's
 // content, the mesh (nodes, elements, properties), the form-finding flag and
-// whether every node's rows are kept (field snapshots). Data computed at a
+// whether every node's rows are kept (field snapshots) and, for a moving
+// window, that its ends are released and the shift's products kept. Data computed at a
 // cut-off serve any lower cut-off (the basis is assembled from them), so a
 // run looks for the file of its key with the smallest cut-off at least its
 // own. A file is written to a temporary name and renamed over (atomic: a
@@ -24,7 +25,7 @@ namespace pcsim::output {
 constexpr const char* kDefaultCacheDir = "out/.pcsim-cache";
 
 std::string modal_cache_key(const std::string& design_content, const catenary::CatenaryMesh& mesh,
-                            bool form_finding, bool full_shapes);
+                            bool form_finding, bool full_shapes, bool window_shift = false);
 // The file for data of this key computed at cutoff_hz (<= 0: every mode).
 std::string modal_cache_file(const std::string& dir, const std::string& key, double cutoff_hz);
 

@@ -53,6 +53,7 @@ struct RunWindow {
   double span_length = 0;             // [m]
   catenary::ParametricDesign design;  // the line's design, read
   catenary::CatenaryMesh mesh;        // the window's design: the line's with spans() spans
+  std::string declined;               // method auto: why the line gets no window
 };
 // With a window, RunScene::catenary.mesh is the window's mesh with the line's
 // supports (support_x: every span of the line while the scene is checked,
@@ -78,6 +79,7 @@ struct RunScene {
   std::vector<InputWarning> warnings;  // allowed, but probably not meant (printed by the app)
   long checkpoint_every = 0;           // steps between checkpoints (restart); 0: none
   std::optional<RunWindow> window;     // 'window': only part of the line is integrated
+  std::string modal_method_note;       // modal level: the method chosen and why
   // Duration of the run: from t = 0 until the first pantograph reaches end_x.
   double duration() const { return (end_x - pantographs.front().start_x) / speed; }
 };
@@ -117,8 +119,28 @@ void check_filter_edges(const InputNode& scene, RunScene& run);
 // once the scene is read, the window fitted to the train (several
 // pantographs: its mesh rebuilt with train_spans, still shorter than the
 // line) and that the pantographs and outputs allow a moving window.
+// 'w': the node errors name (the 'window' section, or catenary.modal where
+// method: window asks for one).
 RunWindow read_window_keys(const InputNode& scene);
-catenary::DesignBuilder window_design_builder(const InputNode& scene, RunWindow& window);
-void check_window(const InputNode& scene, RunScene& run, const catenary::MeshSizeCheck& size_check);
+catenary::DesignBuilder window_design_builder(const InputNode& w, RunWindow& window);
+void check_window(const InputNode& scene, const InputNode& w, RunScene& run,
+                  const catenary::MeshSizeCheck& size_check);
+// The modal level's choice of method (run_modal_method.cpp): a window where
+// the scene has one or catenary.modal.method is window; with auto (the
+// default) where the line is a parametric line of identical spans at least
+// kAutoWindowFactor times as long as the window over the train, the
+// pantographs start and end where a window allows and no output needs the
+// whole line; else the whole line.
+constexpr int kAutoWindowFactor = 2;
+struct ModalMethodRequest {
+  std::string method;  // "" (not modal), "auto", "whole", "window"
+  bool automatic() const { return method == "auto"; }
+};
+ModalMethodRequest modal_method_request(const InputNode& scene);
+catenary::DesignBuilder auto_window_builder(RunWindow& window);
+// After the scene is read: keeps the window if it fits (true) or rebuilds
+// the whole line's mesh and drops it; 'why' says which and why.
+bool keep_auto_window(const InputNode& scene, RunScene& run,
+                      const catenary::MeshSizeCheck& size_check, std::string& why);
 
 }  // namespace pcsim::scene

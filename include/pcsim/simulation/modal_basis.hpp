@@ -24,10 +24,14 @@ namespace pcsim::simulation {
 // 'x': the static configuration of 'system' (no extra unknowns). Collective;
 // the result on every rank.
 // progress(done, total): the modes computed so far, after each chunk of the
-// interval (not for 'every mode').
+// interval (not for 'every mode'). shift: a moving window's shift S (global
+// DOFs of 'system', S(g, h) = 1 where DOF g takes DOF h's displacement), or
+// null; with it the data's shift_products (keeps every vector until the end:
+// n x (modes + shapes) doubles).
 using ModalProgress = std::function<void(long done, long total)>;
 catenary::ModalData compute_modal_data(assembly::CatenarySystem& system, Vec x,
                                        double max_frequency_hz, bool full_shapes,
-                                       const ModalProgress& progress = nullptr);
+                                       const ModalProgress& progress = nullptr,
+                                       Mat shift = nullptr);
 
 }  // namespace pcsim::simulation

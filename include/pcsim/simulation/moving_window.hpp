@@ -5,7 +5,8 @@
 // (displacement from the static configuration, velocity, acceleration) moves
 // back by two spans, the two new front spans start static, and every
 // pantograph's contact point moves back with it. Records are turned into line
-// coordinates.
+// coordinates. The FE state moves DOF by DOF; the modal state by the
+// basis' shift (eta' = P eta: catenary::ReducedBasis::shift).
 #pragma once
 
 #include <petscvec.h>
@@ -14,6 +15,7 @@
 
 #include "pcsim/assembly/coupled_system.hpp"
 #include "pcsim/assembly/fe_catenary.hpp"
+#include "pcsim/assembly/modal_catenary.hpp"
 #include "pcsim/contact/records.hpp"
 #include "pcsim/output/run_stream.hpp"
 #include "pcsim/scene/run_scene.hpp"
@@ -38,10 +40,14 @@ class MovingWindow {
 
  private:
   void shift(solvers::DynamicSolver& solver);
-  void set_pins(assembly::FECatenary& fe);
+  void fe_source(const assembly::FECatenary& fe);
+  void shift_fe(solvers::DynamicState& s) const;
+  void shift_modal(solvers::DynamicState& s) const;
+  void set_pins();
 
   assembly::CoupledSystem& system_;
-  assembly::FECatenary* fe_ = nullptr;
+  assembly::FECatenary* fe_ = nullptr;  // one of the two
+  assembly::ModalCatenary* modal_ = nullptr;
   int line_spans_ = 0, window_spans_ = 0;
   double span_length_ = 0;
   double shift_at_x_ = 0;  // window station where the leading pantograph leaves its spans
