@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "pcsim/core/format.hpp"
+#include "pcsim/scene/criteria_reader.hpp"
 #include "pcsim/scene/pantograph_reader.hpp"
 
 namespace pcsim::scene {
@@ -196,6 +197,7 @@ RunScene load_run_scene(const InputNode& scene, const RunSceneOptions& options) 
   check_time_step(scene, run, options.command_line_dt ? "-ts_dt" : "simulation.dt");
   check_filter_edges(scene, run);
   if (run.window) check_window(scene, run, options.size_check);
+  read_assessment(scene, run);
   return run;
 }
 
