@@ -2,7 +2,9 @@
 # Criteria sets end to end (docs/assessment.md): a three-pantograph scene is
 # judged against en50367-ac by the default rule, every verdict "unverified"
 # (never pass or FAIL) on the console, in summary.json and report.html; the
-# shortened EN 50318 reference case against en50318-2002 with pass/FAIL;
+# shortened EN 50318 reference case against en50318-2002 with pass/FAIL; a
+# user's set file with sourced values gives pass and FAIL and is recorded in
+# the provenance;
 # wrong 'assessment' values and a broken set file give one line naming the
 # file and key, exit 2, and no output folder.
 set -euo pipefail
@@ -49,6 +51,30 @@ p = short["assessment"]["pantographs"]["pantograph"]
 assert short["assessment"]["criteria"] == "en50318-2002"
 assert [c["verdict"] for c in p["criteria"]] == [
     f["verdict"] for f in short["en50318"]["pantograph"]["figures"]], p
+PY
+
+# A user's set (sourced values): pass and FAIL, the set's file in the provenance.
+cat > my-line.yaml <<'YAML'
+name: my-line
+title: a line's own criteria
+criteria:
+  - {key: mean, figure: mean_N, label: mean, unit: N, upper: {constant: 1000},
+     clause: "spec 1.2", source: "our spec", sourced: true}
+  - {key: max, figure: max_N, label: max, unit: N, upper: {constant: 10},
+     clause: "spec 1.3", source: "our spec", sourced: true}
+YAML
+"$PCSIM_BIN" run "$PCSIM_SOURCE_DIR/tests/contact/data/three-span-three-pantographs.yaml" \
+  --set assessment.criteria="$tmp/my-line.yaml" -o mine --no-report > mine.log 2>&1 ||
+  { cat mine.log; fail "a user's set"; }
+grep -qE "^    mean +N +[0-9.]+ +<= 1000 +pass +spec 1.2" mine.log || { cat mine.log; fail "pass"; }
+grep -qE "^    max +N +[0-9.]+ +<= 10 +FAIL +spec 1.3" mine.log || { cat mine.log; fail "FAIL"; }
+"$PCSIM_PYTHON" - "$tmp/my-line.yaml" <<'PY'
+import json, sys
+s = json.load(open("mine/summary.json"))
+assert s["assessment"]["criteria"] == "my-line" and s["assessment"]["choice"] == "scene"
+assert all(p["verdict"] == "fail" for p in s["assessment"]["pantographs"].values())
+roles = {f["role"]: f["path"] for f in s["provenance"]["inputs"]}
+assert roles.get("assessment.criteria") == sys.argv[1], roles
 PY
 
 scene=$PCSIM_SOURCE_DIR/tests/contact/data/en50318-short.yaml
