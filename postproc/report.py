@@ -76,6 +76,18 @@ def figures_table(figures):
     return table(header, rows, classes)
 
 
+def criteria_table(pantograph):
+    """One pantograph's verdicts under a criteria set (summary.json 'assessment')."""
+    rows, classes = [], []
+    for c in pantograph["criteria"]:
+        rows.append([c["label"], c["unit"], number(c["value"], c["unit"]), c["limit"], c["verdict"],
+                     c["clause"]])
+        classes.append([None, None, "num", "num", c["verdict"], None])
+    rows.append(["overall", "", "", "", pantograph["verdict"], ""])
+    classes.append([None, None, None, None, pantograph["verdict"], None])
+    return table(["figure", "unit", "value", "limit", "verdict", "clause"], rows, classes)
+
+
 def provenance_section(p):
     if not p:
         return "<h2 id=\"provenance\">Provenance</h2><p>none recorded</p>"
@@ -119,12 +131,25 @@ def run_report(folder):
                               if ranges else "%s gives acceptance ranges at %s km/h only: values "
                               "without verdict." % (ref["edition"], " and ".join(
                                   "%g" % v for v in sorted(ref["ranges"]))))]
+    a = s.get("assessment")
+    if a:  # the criteria set the run was judged against (docs/assessment.md)
+        body.append("<p>%s</p>" % esc("Criteria set %s: %s (%s; %s)." % (
+            a["criteria"], a["title"], a["choice"], a["file"])))
+    judged = a and a["criteria"] != "en50318-2002"
+    if judged:
+        body[body.index("<h2 id=\"en50318\">EN 50318 figures</h2>") + 1] = (
+            "<p>%s</p>" % esc("%s, %s line at %.0f km/h. \"unverified\": a value not checked "
+                              "against its source, never pass or fail." % (
+                                  a["scope"], a["electrification"], a["line_speed_kmh"])))
     for p in s["pantographs"]:
         body.append("<h3>%s</h3>" % esc(p["name"]))
         if p.get("complete") is False:
             body.append("<p>did not cross the analysis section: no statistics</p>")
             continue
-        body.append(figures_table(pcsim_post.assess(s, p, ref)))
+        if judged:
+            body.append(criteria_table(a["pantographs"][p["name"]]))
+        else:
+            body.append(figures_table(pcsim_post.assess(s, p, ref)))
     body.append("<h2 id=\"plots\">Plots</h2>")
     # One force and one spectrum panel per pantograph (several overlaid over
     # the whole line cannot be read), then the uplift at the supports.

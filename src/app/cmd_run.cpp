@@ -10,6 +10,7 @@
 #include "inputs.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/core/vec_root.hpp"
+#include "pcsim/output/assessment.hpp"
 #include "pcsim/output/en50318.hpp"
 #include "pcsim/output/output_dir.hpp"
 #include "pcsim/output/run_results.hpp"
@@ -25,7 +26,7 @@ namespace {
 using namespace pcsim;
 
 // The EN 50318 table of one pantograph: figure, unit, value, and the range
-// and verdict where the standard gives ranges at this speed.
+// and verdict where the run is judged against EN 50318's ranges at this speed.
 void print_en50318_table(const app::CommandContext& ctx,
                          const std::vector<output::AssessedFigure>& figures) {
   const bool ranges = !figures.empty() && figures.front().has_range;
@@ -44,20 +45,34 @@ void print_en50318_table(const app::CommandContext& ctx,
   if (ranges) app::print0(ctx, "    %d of %zu figures inside the ranges\n", inside, figures.size());
 }
 
-// The EN 50318 figures of every pantograph.
-void print_statistics(const app::CommandContext& ctx, const output::RunSettings& s,
-                      const output::RunStatistics& stats) {
+// Which criteria set judges the run, why, and what it is for.
+void print_criteria_set(const app::CommandContext& ctx, const Assessment& a, double speed_kmh) {
+  app::print0(ctx, "  criteria set %s: %s [%s; %s]\n", a.set.name.c_str(), a.set.title.c_str(),
+              a.choice.c_str(), a.set.file.c_str());
+  if (a.set.name != "en50318-2002") {
+    app::print0(ctx, "  %s, %s line at %.0f km/h", a.set.scope.c_str(), a.electrification.c_str(),
+                a.line_speed_kmh);
+    app::print0(ctx,
+                "; \"unverified\": a value not checked against its source (docs/assessment.md)\n");
+    return;
+  }
   const auto& reference = output::en50318_reference();
-  const double speed_kmh = s.speed * 3.6;
-  app::print0(ctx,
-              "\n  EN 50318 figures (contact force low-pass %.0f Hz, spans %d-%d, %.0f km/h)\n",
-              s.cutoff_hz, s.analysis_from_span, s.analysis_to_span, speed_kmh);
   if (reference.ranges_at(speed_kmh))
-    app::print0(ctx, "  acceptance ranges of %s at %.0f km/h\n", reference.edition.c_str(),
-                speed_kmh);
+    app::print0(ctx, "  acceptance ranges of %s at %.0f km/h (%s)\n", reference.edition.c_str(),
+                speed_kmh, a.set.criteria.empty() ? "" : a.set.criteria.front().clause.c_str());
   else
     app::print0(ctx, "  %s gives acceptance ranges at %s only: values without verdict\n",
                 reference.edition.c_str(), reference.speeds_with_ranges().c_str());
+}
+
+// The figures of every pantograph, judged against the run's criteria set.
+void print_statistics(const app::CommandContext& ctx, const output::RunSettings& s,
+                      const output::RunStatistics& stats) {
+  const double speed_kmh = s.speed * 3.6;
+  const bool en50318 = s.assessment.set.name == "en50318-2002";
+  app::print0(ctx, "\n  figures (contact force low-pass %.0f Hz, spans %d-%d, %.0f km/h)\n",
+              s.cutoff_hz, s.analysis_from_span, s.analysis_to_span, speed_kmh);
+  print_criteria_set(ctx, s.assessment, speed_kmh);
   const nlohmann::json run = {{"max_uplift_at_support_m", stats.max_uplift_m}};
   for (const auto& p : stats.pantographs) {
     if (!p.complete) {
@@ -65,10 +80,18 @@ void print_statistics(const app::CommandContext& ctx, const output::RunSettings&
                   p.name.c_str());
       continue;
     }
-    const auto figures =
-        output::assess_en50318(run, output::force_statistics_json(p.force), speed_kmh);
+    const auto statistics = output::force_statistics_json(p.force);
     app::print0(ctx, "  pantograph '%s'\n", p.name.c_str());
-    print_en50318_table(ctx, figures);
+    if (en50318)
+      print_en50318_table(ctx, output::assess_en50318(run, statistics, speed_kmh));
+    else
+      app::print0(ctx, "%s",
+                  output::assessment_table(
+                      s.assessment, output::judge(s.assessment,
+                                                  output::criteria_values(
+                                                      statistics, stats.max_uplift_m, s.assessment),
+                                                  speed_kmh))
+                      .c_str());
     if (p.force.actual_min < 0)
       app::print0(ctx,
                   "    the filtered minimum is negative: the contact force is zero while the "

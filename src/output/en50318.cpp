@@ -56,9 +56,10 @@ const En50318Reference& en50318_reference() {
 }
 
 std::vector<AssessedFigure> assess_en50318(const nlohmann::json& run,
-                                           const nlohmann::json& pantograph, double speed_kmh) {
+                                           const nlohmann::json& pantograph, double speed_kmh,
+                                           bool with_ranges) {
   const auto& reference = en50318_reference();
-  const auto* ranges = reference.ranges_at(speed_kmh);
+  const auto* ranges = with_ranges ? reference.ranges_at(speed_kmh) : nullptr;
   std::vector<AssessedFigure> out;
   for (const auto& figure : reference.figures) {
     const auto& source = figure.from.empty() ? pantograph : run;
@@ -78,11 +79,12 @@ std::vector<AssessedFigure> assess_en50318(const nlohmann::json& run,
   return out;
 }
 
-nlohmann::json en50318_json(const std::vector<AssessedFigure>& figures, double speed_kmh) {
+nlohmann::json en50318_json(const std::vector<AssessedFigure>& figures, double speed_kmh,
+                            bool with_ranges) {
   const auto& reference = en50318_reference();
   nlohmann::json j = {{"edition", reference.edition},
                       {"speed_kmh", speed_kmh},
-                      {"ranges", reference.ranges_at(speed_kmh) != nullptr},
+                      {"ranges", with_ranges && reference.ranges_at(speed_kmh) != nullptr},
                       {"figures", nlohmann::json::array()}};
   for (const auto& a : figures) {
     nlohmann::json f = {{"key", a.figure.key},

@@ -27,9 +27,12 @@ std::vector<Row> rows_of(const std::vector<SweepCase>& cases) {
       continue;
     }
     const double speed = c.summary.value("speed_kmh", 0.0);
+    // EN 50318's ranges only for a case judged against them (docs/assessment.md).
+    const auto assessment = c.summary.value("assessment", nlohmann::json::object());
+    const bool ranges = assessment.value("criteria", std::string("en50318-2002")) == "en50318-2002";
     for (const auto& p : c.summary.value("pantographs", nlohmann::json::array()))
       rows.push_back({&c, p.value("name", std::string()),
-                      p.value("complete", true) ? assess_en50318(c.summary, p, speed)
+                      p.value("complete", true) ? assess_en50318(c.summary, p, speed, ranges)
                                                 : std::vector<AssessedFigure>{}});
   }
   return rows;

@@ -172,6 +172,7 @@ py::dict run(const Scene& s, const std::string& output, const std::string& optio
   result["complete"] = outcome.complete;
   result["facts"] = to_python(outcome.facts);
   result["en50318"] = to_python(outcome.facts.value("en50318", nlohmann::json::object()));
+  result["assessment"] = to_python(outcome.facts.value("assessment", nlohmann::json::object()));
   result["folder"] = output.empty() ? py::none() : py::cast(dir);
   return result;
 }
@@ -334,7 +335,8 @@ PYBIND11_MODULE(pcsim, m) {
         py::arg("quiet") = true, py::arg("overwrite") = false,
         "Runs the scene through the run pipeline (as `pcsim run`); returns a dict: time, "
         "pantographs (name -> position, contact_force, contact_force_filtered, head_z), "
-        "support_z, dropper_force (when the scene records them), en50318, facts, complete, "
+        "support_z, dropper_force (when the scene records them), en50318, assessment, facts, "
+        "complete, "
         "folder. 'output': a results folder to keep (none: nothing is kept); 'options': "
         "PETSc options, e.g. '-ts_dt 0.002' (they stay in the options database)");
   bind_simulation(m);

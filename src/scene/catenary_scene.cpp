@@ -10,7 +10,8 @@ namespace pcsim::catenary {
 
 void check_scene_sections(const InputNode& scene) {
   scene.allow_only({"name", "description", "catenary", "modes", "pantographs", "simulation",
-                    "effects", "contact", "analysis", "output", "elasticity", "window"});
+                    "effects", "contact", "analysis", "output", "elasticity", "window",
+                    "assessment"});
 }
 
 namespace {

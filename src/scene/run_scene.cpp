@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "pcsim/core/format.hpp"
+#include "pcsim/scene/criteria_reader.hpp"
 #include "pcsim/scene/pantograph_reader.hpp"
 
 namespace pcsim::scene {
@@ -225,6 +226,7 @@ RunScene load_run_scene(const InputNode& scene, const RunSceneOptions& options) 
   if (!method.method.empty())
     run.catenary.modal.method = run.window ? catenary::ModalSettings::Method::window
                                            : catenary::ModalSettings::Method::whole;
+  read_assessment(scene, run);
   return run;
 }
 

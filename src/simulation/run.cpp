@@ -6,11 +6,13 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 #include <memory>
 
 #include "pcsim/assembly/coupled_system.hpp"
 #include "pcsim/catenary/window.hpp"
 #include "pcsim/core/profiling.hpp"
+#include "pcsim/output/assessment.hpp"
 #include "pcsim/output/checkpoint.hpp"
 #include "pcsim/output/en50318.hpp"
 #include "pcsim/output/line_results.hpp"
@@ -156,16 +158,28 @@ nlohmann::json fidelity_facts(const scene::RunScene& run, const RunRequest& requ
   return fidelity;
 }
 
-// The EN 50318 figures of every pantograph that crossed the analysis section.
-nlohmann::json assessed_figures(const output::RunSettings& s, const output::RunStatistics& stats) {
+// The figures of every pantograph that crossed the analysis section: EN
+// 50318's ('en50318': with their ranges and verdicts only when the run is
+// judged against en50318-2002) and their verdicts under the run's criteria
+// set ('assessment', docs/assessment.md).
+void assess_figures(const output::RunSettings& s, const output::RunStatistics& stats,
+                    nlohmann::json& facts) {
   const nlohmann::json run = {{"max_uplift_at_support_m", stats.max_uplift_m}};
-  nlohmann::json assessed = nlohmann::json::object();
-  for (const auto& p : stats.pantographs)
-    if (p.complete)
-      assessed[p.name] = output::en50318_json(
-          output::assess_en50318(run, output::force_statistics_json(p.force), s.speed * 3.6),
-          s.speed * 3.6);
-  return assessed;
+  const bool en50318 = s.assessment.set.name == "en50318-2002";
+  const double speed_kmh = s.speed * 3.6;
+  nlohmann::json figures = nlohmann::json::object();
+  std::map<std::string, std::vector<output::JudgedCriterion>> judged;
+  for (const auto& p : stats.pantographs) {
+    if (!p.complete) continue;
+    const auto statistics = output::force_statistics_json(p.force);
+    figures[p.name] = output::en50318_json(
+        output::assess_en50318(run, statistics, speed_kmh, en50318), speed_kmh, en50318);
+    judged[p.name] = output::judge(
+        s.assessment, output::criteria_values(statistics, stats.max_uplift_m, s.assessment),
+        speed_kmh);
+  }
+  facts["en50318"] = figures;
+  facts["assessment"] = output::assessment_json(s.assessment, judged);
 }
 
 // Rank 0: the statistics, line and energy results of a complete run and its
@@ -174,7 +188,7 @@ void write_complete_results(const OutputDir& out, const catenary::CatenaryMesh& 
                             RunOutcome& outcome) {
   const auto& s = outcome.settings;
   outcome.stats = output::finish_run_results(out, line, s);
-  outcome.facts["en50318"] = assessed_figures(s, outcome.stats);
+  assess_figures(s, outcome.stats, outcome.facts);
   outcome.facts["provenance"] = out.provenance();
   if (line.zones.size() >= 2)
     outcome.facts["line_zones"] =

@@ -13,6 +13,7 @@
 #include "pcsim/core/vec_root.hpp"
 #include "pcsim/output/checkpoint.hpp"
 #include "pcsim/scene/composition.hpp"
+#include "pcsim/scene/criteria_reader.hpp"
 #include "pcsim/simulation/context.hpp"
 
 namespace fs = std::filesystem;
@@ -215,6 +216,14 @@ std::vector<InputFile> run_input_files(const std::string& scene_path, const Inpu
   for (std::size_t i = 0; i < list.size(); ++i)
     files.push_back({"pantograph model " + std::to_string(i + 1), list.at(i).path_value("model"),
                      sha256_hex(to_yaml(list.at(i).load_referenced("model")))});
+  // A criteria set the scene names by its file (not a built-in set: those are pcsim's).
+  if (scene.has("assessment") && scene["assessment"].has("criteria")) {
+    const InputNode a = scene["assessment"];
+    const auto builtin = scene::builtin_criteria_sets();
+    if (std::find(builtin.begin(), builtin.end(), a.get_string("criteria")) == builtin.end())
+      files.push_back({"criteria set", a.path_value("criteria"),
+                       sha256_hex(to_yaml(InputNode::load_file(a.path_value("criteria"))))});
+  }
   return files;
 }
 
@@ -231,7 +240,8 @@ void add_referenced(const InputNode& node, const std::string& path,
   if (!node.is_map()) return;
   for (const auto& key : node.keys()) {
     const std::string child = path.empty() ? key : path + "." + key;
-    const bool reference = key == "design" || key == "model" || key == "rigid_model";
+    const bool reference =
+        key == "design" || key == "model" || key == "rigid_model" || key == "criteria";
     if (reference && node[key].is_scalar()) {
       std::error_code ec;
       if (!fs::is_regular_file(node.path_value(key), ec)) continue;  // a kind name, not a file

@@ -49,11 +49,16 @@ struct AssessedFigure {
 };
 
 // The figures of one pantograph: 'run' is summary.json, 'pantograph' one of its pantographs.
+// with_ranges false: the figures without ranges (a run judged against another
+// criteria set: pcsim/output/assessment.hpp).
 std::vector<AssessedFigure> assess_en50318(const nlohmann::json& run,
-                                           const nlohmann::json& pantograph, double speed_kmh);
+                                           const nlohmann::json& pantograph, double speed_kmh,
+                                           bool with_ranges = true);
 
-// {"edition", "speed_kmh", "ranges": bool, "figures": [{key, label, unit, value, range, verdict}]}
-nlohmann::json en50318_json(const std::vector<AssessedFigure>& figures, double speed_kmh);
+// {"edition", "speed_kmh", "ranges": bool, "figures": [{key, label, unit, value, range, verdict}]};
+// "ranges" is false where the standard gives none at this speed or with_ranges is false.
+nlohmann::json en50318_json(const std::vector<AssessedFigure>& figures, double speed_kmh,
+                            bool with_ranges = true);
 
 // A pantograph's statistics under the keys of summary.json (mean_N, std_N, ...).
 nlohmann::json force_statistics_json(const ForceStatistics& statistics);

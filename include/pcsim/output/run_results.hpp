@@ -11,6 +11,7 @@
 
 #include "pcsim/catenary/mesh.hpp"
 #include "pcsim/contact/records.hpp"
+#include "pcsim/core/criteria.hpp"
 #include "pcsim/output/energy_results.hpp"
 #include "pcsim/output/line_results.hpp"
 #include "pcsim/output/output_dir.hpp"
@@ -27,6 +28,7 @@ struct RunSettings {
   double cutoff_hz = 20;
   bool dropper_forces = true;
   std::vector<std::string> pantograph_names;
+  Assessment assessment;  // the criteria set the figures are judged against
 };
 
 struct PantographStatistics {

@@ -20,6 +20,8 @@
 //   analysis: {from_span: 5, to_span: 6, cutoff_hz: 20}   # 1-based spans
 //   output: {dropper_forces: true, snapshot_every: 0, energy: false, checkpoint_every: 0}
 //   window: {spans_behind: 2, spans_ahead: 3}   # optional moving window (docs/scaling.md)
+//   assessment: {criteria: en50367-ac, electrification: AC, line_speed_kmh: 300,
+//                steady_arm_space_mm: 240}      # docs/assessment.md (default: see there)
 //     snapshot_every: field snapshots every N steps (0: none)
 //     energy: energy balance in energy.h5
 //     checkpoint_every: checkpoint.h5 every N steps, for --restart (0: only when
@@ -32,6 +34,7 @@
 #include <vector>
 
 #include "pcsim/contact/pantograph_run.hpp"
+#include "pcsim/core/criteria.hpp"
 #include "pcsim/pantograph/model.hpp"
 #include "pcsim/scene/catenary_scene.hpp"
 
@@ -80,6 +83,7 @@ struct RunScene {
   long checkpoint_every = 0;           // steps between checkpoints (restart); 0: none
   std::optional<RunWindow> window;     // 'window': only part of the line is integrated
   std::string modal_method_note;       // modal level: the method chosen and why
+  Assessment assessment;  // 'assessment': the criteria set and its inputs (criteria_reader.hpp)
   // Duration of the run: from t = 0 until the first pantograph reaches end_x.
   double duration() const { return (end_x - pantographs.front().start_x) / speed; }
 };

@@ -22,13 +22,15 @@ struct InputFile {
   std::string sha256;
 };
 
-// The scene (composed), its design and every pantograph's model (every rank).
+// The scene (composed), its design, every pantograph's model and the
+// criteria set file it names, if any (every rank).
 std::vector<InputFile> run_input_files(const std::string& scene_path, const InputNode& scene);
 
 // Every input file of a scene as the command reads it, with its content: the
-// scene (composed), and every file it names under a key 'design', 'model' or
-// 'rigid_model' at any depth (designs, pantograph models, the rigid model of
-// a flexible one), each composed with its own base files and 'set' entries.
+// scene (composed), and every file it names under a key 'design', 'model',
+// 'rigid_model' or 'criteria' at any depth (designs, pantograph models, the
+// rigid model of a flexible one, a criteria set's file), each composed with
+// its own base files and 'set' entries.
 // Roles: "scene", then the key path ("catenary.design", "pantographs[0].model",
 // "pantographs[0].model.rigid_model").
 struct RecordedInput {

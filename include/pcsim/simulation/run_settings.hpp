@@ -20,6 +20,7 @@ inline output::RunSettings run_settings(const scene::RunScene& run, const std::s
   s.cutoff_hz = run.cutoff_hz;
   s.dropper_forces = run.dropper_forces;
   for (const auto& p : run.pantographs) s.pantograph_names.push_back(p.name);
+  s.assessment = run.assessment;
   return s;
 }
 
