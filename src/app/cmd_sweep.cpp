@@ -295,11 +295,16 @@ PCSIM_COMMAND_HELP(
     "                           '# sample: {...}' line, as postproc/sample.py writes, is\n"
     "                           kept in summary.json); no ranges or lists with it\n"
     "PETSc options go to every case (no accuracy pilot unless -pcsim_accuracy_pilot true).\n"
-    "Results (default out/<name>-sweep/): cases/<case>/\n"
-    "(a run result each, and its log), sweep.csv and sweep.md (the EN 50318 figures of\n"
-    "every case with their verdicts), sweep.png (figures against the swept values with\n"
-    "the acceptance ranges), summary.json, report.html. The exit status is the worst of\n"
-    "the cases'.\n",
+    "Results in -o DIR, by default out/<scene name>-sweep/ (<scene name>: the scene's\n"
+    "'name', else its file name without .yaml): cases/<case>/ (a run result each, and\n"
+    "its log), journal.jsonl (one line per finished case, written as it finishes),\n"
+    "sweep.csv and sweep.md (the EN 50318 figures of every case with their verdicts,\n"
+    "from the journal), sweep.png (figures against the swept values with the\n"
+    "acceptance ranges), summary.json, report.html. A failed case is recorded and the\n"
+    "sweep goes on; the exit status is the worst of the cases'. SIGINT/SIGTERM stop\n"
+    "the running cases (130/143, the sweep left in DIR.partial); the same command again\n"
+    "resumes it (finished cases kept), another sweep into it is refused (--overwrite:\n"
+    "start anew).\n",
     {"-j", "N", "run up to N cases at a time (1)"},
     {"--ranks", "N", "MPI ranks of each case (1; through mpiexec)"},
     {"--cases", "FILE.csv", "the cases: one row of a table each (see above)"},

@@ -43,6 +43,11 @@ void sync_folder_of(const std::string& file) {
   close(fd);
 }
 
+// One line of JSON; text that is not UTF-8 (a log line) has its bad bytes replaced.
+std::string line_text(const nlohmann::json& j) {
+  return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+
 }  // namespace
 
 bool read_sweep_journal(const std::string& file, SweepJournal& journal, std::string& why) {
@@ -77,13 +82,13 @@ bool read_sweep_journal(const std::string& file, SweepJournal& journal, std::str
 
 void append_sweep_journal(const std::string& file, const nlohmann::json& line) {
   const bool is_new = !std::filesystem::exists(file);
-  write_file(file, line.dump() + "\n", O_APPEND);
+  write_file(file, line_text(line), O_APPEND);
   if (is_new) sync_folder_of(file);
 }
 
 void rewrite_sweep_journal(const std::string& file, const SweepJournal& journal) {
-  std::string text = journal.header.dump() + "\n";
-  for (const auto& e : journal.entries) text += e.dump() + "\n";
+  std::string text = line_text(journal.header);
+  for (const auto& e : journal.entries) text += line_text(e);
   const std::string tmp = file + ".tmp";
   write_file(tmp, text, O_TRUNC);
   if (std::rename(tmp.c_str(), file.c_str()) != 0) throw OutputError(file, std::strerror(errno));
