@@ -5,18 +5,15 @@
 // `pcsim sweep SCENE --cases FILE.csv`: the cases are the rows of a table
 // (sweep_cases.hpp, e.g. a sample of postproc/sample.py), not a grid.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <map>
 
 #include "command.hpp"
 #include "exit_status.hpp"
 #include "inputs.hpp"
+#include "pcsim/output/sweep_journal.hpp"
 #include "pcsim/output/sweep_results.hpp"
 #include "pcsim/scene/composition.hpp"
 #include "pcsim/scene/run_scene.hpp"
@@ -24,27 +21,14 @@
 #include "pcsim/simulation/run_checkpoint.hpp"
 #include "processes.hpp"
 #include "sweep_cases.hpp"
+#include "sweep_runner.hpp"
 
 namespace {
 
 using namespace pcsim;
 using app::CommandContext;
 
-struct Swept {
-  std::string key, given;  // the key path; the --set as given
-  std::vector<std::string> values;
-};
-
-struct Plan {
-  std::vector<std::string> fixed;  // plain overrides, for every case
-  std::vector<Swept> swept;
-  std::vector<output::SweepCase> cases;
-  std::vector<std::vector<std::string>> assignments;  // KEY=VALUE of each case
-  std::vector<std::string> origins;                   // --cases: "FILE line N" of each case
-  nlohmann::json table;                               // --cases: the table's record
-  nlohmann::json sample;                              // --cases: its '# sample:' comment
-  std::string table_text;                             // --cases: the file (fingerprint)
-};
+using Plan = app::SweepPlan;
 
 constexpr std::size_t kMaxCases = 10000;
 
@@ -195,116 +179,6 @@ void check_cases(const CommandContext& ctx, const Plan& plan) {
   }
 }
 
-std::vector<std::string> case_command(const CommandContext& ctx, const Plan& plan, std::size_t k,
-                                      const std::string& folder) {
-  std::vector<std::string> argv;
-  const std::string ranks = ctx.options.count("--ranks") ? ctx.options.at("--ranks") : "1";
-  if (ranks != "1") argv = {PCSIM_MPIEXEC, "-n", ranks};
-  argv.insert(argv.end(),
-              {app::own_executable(), "run", ctx.scene_path, "-o", folder, "--no-report"});
-  for (const auto& o : plan.fixed) argv.insert(argv.end(), {"--set", o});
-  for (const auto& a : plan.assignments[k]) argv.insert(argv.end(), {"--set", a});
-  // The cases' figures are the sweep's result: no accuracy pilot per case
-  // unless asked for (-pcsim_accuracy_pilot true on the sweep's command line).
-  if (std::find(ctx.petsc_arguments.begin(), ctx.petsc_arguments.end(), "-pcsim_accuracy_pilot") ==
-      ctx.petsc_arguments.end())
-    argv.insert(argv.end(), {"-pcsim_accuracy_pilot", "false"});
-  argv.insert(argv.end(), ctx.petsc_arguments.begin(), ctx.petsc_arguments.end());
-  return argv;
-}
-
-// Environment variables of an MPI launcher, which a case must not inherit
-// (it would take itself for this process).
-const std::vector<std::string> kLauncherVariables = {"OMPI_COMM_WORLD",
-                                                     "OMPI_MCA_orte",
-                                                     "OMPI_MCA_ess",
-                                                     "OMPI_MCA_pmix",
-                                                     "OMPI_MCA_initial_wdir",
-                                                     "OMPI_MCA_shmem",
-                                                     "OMPI_MCA_mpi_oversubscribe",
-                                                     "OMPI_FILE_LOCATION",
-                                                     "OMPI_UNIVERSE_SIZE",
-                                                     "OMPI_COMMAND",
-                                                     "OMPI_ARGV",
-                                                     "OMPI_NUM_APP_CTX",
-                                                     "OMPI_FIRST_RANKS",
-                                                     "OMPI_APP_CTX",
-                                                     "PMIX_",
-                                                     "PMI_"};
-
-std::string case_line(const output::SweepCase& c) {
-  if (c.status != 0)
-    return "failed (exit " + std::to_string(c.status) + "), see cases/" + c.name + ".log";
-  std::string line = "ok";
-  for (const auto& p : c.summary.value("pantographs", nlohmann::json::array()))
-    if (p.contains("std_N"))
-      line += ", " + p.value("name", std::string()) + ": mean " +
-              number_text(std::round(10 * p["mean_N"].get<double>()) / 10) + " N, sigma " +
-              number_text(std::round(10 * p["std_N"].get<double>()) / 10) + " N";
-  return line;
-}
-
-// SIGINT/SIGTERM during a sweep: no new case starts, the running ones get
-// the signal (each stops at its next step, its data and checkpoint kept in
-// its .partial folder) and are waited for. Returns the signal, 0 if none.
-// A case's process: which case, since when.
-struct RunningCase {
-  std::size_t index;
-  std::chrono::steady_clock::time_point start;
-};
-
-int stop_running_cases(const CommandContext& ctx, Plan& plan, std::map<pid_t, RunningCase>& running,
-                       int signal_number) {
-  app::print0(ctx, "  %s: stopping %zu running case(s)\n", simulation::signal_name(signal_number),
-              running.size());
-  for (const auto& [pid, c] : running) kill(pid, signal_number);
-  while (!running.empty()) {
-    int status = 0;
-    const pid_t pid = app::wait_any_process(status);
-    if (pid < 0) break;
-    if (running.count(pid)) plan.cases[running[pid].index].status = status;
-    running.erase(pid);
-  }
-  return signal_number;
-}
-
-// Runs the cases, jobs at a time; returns the signal that stopped the sweep (0: none).
-int run_cases(const CommandContext& ctx, Plan& plan, const OutputDir& out, int jobs) {
-  const std::string cases = out.file("cases");
-  std::map<pid_t, RunningCase> running;
-  std::size_t next = 0, done = 0;
-  const auto start = std::chrono::steady_clock::now();
-  simulation::GracefulStop stop;
-  const auto stop_asked = [&] { return stop.agreed_signal(MPI_COMM_SELF) != 0; };
-  while (done < plan.cases.size()) {
-    while (next < plan.cases.size() && static_cast<int>(running.size()) < jobs && !stop_asked()) {
-      const std::string folder = cases + "/" + plan.cases[next].name;
-      std::filesystem::create_directories(cases);
-      const pid_t pid = app::start_process(case_command(ctx, plan, next, folder), folder + ".log",
-                                           kLauncherVariables);
-      running[pid] = {next++, std::chrono::steady_clock::now()};
-    }
-    int status = 0;
-    const pid_t pid =
-        running.empty() ? app::kWaitStopped : app::wait_any_process(status, stop_asked);
-    if (pid == app::kWaitStopped)
-      return stop_running_cases(ctx, plan, running, stop.agreed_signal(MPI_COMM_SELF));
-    if (!running.count(pid)) continue;
-    const RunningCase finished = running[pid];
-    running.erase(pid);
-    auto& c = plan.cases[finished.index];
-    c.status = status;
-    std::ifstream summary(cases + "/" + c.name + "/summary.json");
-    if (status == 0 && summary) c.summary = nlohmann::json::parse(summary, nullptr, false);
-    const auto now = std::chrono::steady_clock::now();
-    const double took = std::chrono::duration<double>(now - finished.start).count();
-    const double elapsed = std::chrono::duration<double>(now - start).count();
-    app::print0(ctx, "  [%zu/%zu] %s: %s (%.1f s; %.0f s since the sweep began)\n", ++done,
-                plan.cases.size(), c.name.c_str(), case_line(c).c_str(), took, elapsed);
-  }
-  return 0;
-}
-
 // Plots of the figures against the swept values and report.html (warnings only).
 void write_plots_and_report(const CommandContext& ctx, const OutputDir& out) {
   for (const auto& [script, args] : std::vector<std::pair<std::string, std::vector<std::string>>>{
@@ -324,6 +198,45 @@ int positive_option(const CommandContext& ctx, const std::string& name) {
   return static_cast<int>(v);
 }
 
+// The sweep's definition: the SHA-256 over the scene and every file it reads
+// (with the shared --set), the --set as given (swept values), the case table
+// and the PETSc options of the cases (command line and PETSC_OPTIONS). The
+// journal keeps it: a rerun resumes only the same definition.
+std::string sweep_definition(const CommandContext& ctx, const Plan& plan, const InputNode& scene) {
+  std::string definition = "sweep";
+  for (const auto& o : ctx.overrides) definition += " --set " + o;
+  if (plan.table.is_object()) definition += " --cases " + plan.table_text;
+  definition += "\npetsc:";
+  for (const auto& a : ctx.petsc_arguments) definition += " " + a;
+  const char* environment = std::getenv("PETSC_OPTIONS");
+  definition += std::string("\nPETSC_OPTIONS=") + (environment ? environment : "");
+  return simulation::inputs_fingerprint(definition,
+                                        simulation::recorded_inputs(ctx.scene_path, scene));
+}
+
+// The output folder's request; a leftover partial folder of the same
+// definition is resumed (sweep_runner.hpp).
+OutputRequest sweep_request(const CommandContext& ctx, const Plan& plan, const InputNode& scene,
+                            const std::string& definition) {
+  // The scene with the overrides every case shares names the sweep; the
+  // provenance lists every --set as given.
+  CommandContext shared = ctx;
+  shared.overrides = plan.fixed;
+  OutputRequest request = shared.output_request(scene);
+  request.provenance["overrides"] = ctx.overrides;
+  std::string fingerprinted = "sweep";  // the fingerprint covers the swept values too
+  for (const auto& o : ctx.overrides) fingerprinted += " --set " + o;
+  if (plan.table.is_object()) fingerprinted += " --cases " + plan.table_text;
+  request.provenance["inputs_fingerprint"] = simulation::inputs_fingerprint(
+      fingerprinted, simulation::recorded_inputs(ctx.scene_path, scene));
+  if (ctx.output_dir.empty()) request.dir += "-sweep";
+  const bool overwrite = ctx.overwrite;
+  request.leftover = [definition, overwrite](const std::string& partial, std::string& why) {
+    return app::sweep_leftover(partial, definition, overwrite, why);
+  };
+  return request;
+}
+
 int run_sweep(const CommandContext& ctx) {
   if (ctx.size > 1)
     throw InputError("command line", "mpirun",
@@ -333,28 +246,24 @@ int run_sweep(const CommandContext& ctx) {
   positive_option(ctx, "--ranks");
   Plan plan = make_plan(ctx);
   check_cases(ctx, plan);
-  // The scene with the overrides every case shares names the sweep; the
-  // provenance lists every --set as given.
   CommandContext shared = ctx;
   shared.overrides = plan.fixed;
   const InputNode scene = shared.load_scene();
-  OutputRequest request = shared.output_request(scene);
-  request.provenance["overrides"] = ctx.overrides;
-  std::string definition = "sweep";  // the fingerprint covers the swept values too
-  for (const auto& o : ctx.overrides) definition += " --set " + o;
-  if (plan.table.is_object()) definition += " --cases " + plan.table_text;
-  request.provenance["inputs_fingerprint"] = simulation::inputs_fingerprint(
-      definition, simulation::recorded_inputs(ctx.scene_path, scene));
-  if (ctx.output_dir.empty()) request.dir += "-sweep";
-  OutputDir out(ctx.comm, request);
+  const std::string definition = sweep_definition(ctx, plan, scene);
+  OutputDir out(ctx.comm, sweep_request(ctx, plan, scene, definition));
+  const std::size_t resumed = app::open_sweep_journal(plan, out, definition);
   app::print0(ctx, "pcsim sweep: scene '%s', %zu cases, %d at a time\n",
               ctx.scene_name(scene).c_str(), plan.cases.size(), jobs);
-  if (const int signal_number = run_cases(ctx, plan, out, jobs)) {
+  if (out.resumed())
+    app::print0(ctx, "  resumed %s: %zu case(s) finished (journal kept), %zu to run\n",
+                out.partial_dir().c_str(), resumed, plan.cases.size() - resumed);
+  if (const int signal_number = app::run_sweep_cases(ctx, plan, out, jobs)) {
     out.keep_partial();
     app::print0(ctx,
-                "\n  interrupted (%s): the finished cases and the stopped ones (with their "
-                "checkpoints) are in %s/cases/\n",
-                simulation::signal_name(signal_number), out.partial_dir().c_str());
+                "\n  interrupted (%s): the finished cases (in %s) and the stopped ones are in "
+                "%s/cases/; the same command again resumes the sweep\n",
+                simulation::signal_name(signal_number), output::kSweepJournalName,
+                out.partial_dir().c_str());
     return 128 + signal_number;
   }
   std::vector<std::pair<std::string, std::vector<std::string>>> swept;
@@ -386,11 +295,16 @@ PCSIM_COMMAND_HELP(
     "                           '# sample: {...}' line, as postproc/sample.py writes, is\n"
     "                           kept in summary.json); no ranges or lists with it\n"
     "PETSc options go to every case (no accuracy pilot unless -pcsim_accuracy_pilot true).\n"
-    "Results (default out/<name>-sweep/): cases/<case>/\n"
-    "(a run result each, and its log), sweep.csv and sweep.md (the EN 50318 figures of\n"
-    "every case with their verdicts), sweep.png (figures against the swept values with\n"
-    "the acceptance ranges), summary.json, report.html. The exit status is the worst of\n"
-    "the cases'.\n",
+    "Results in -o DIR, by default out/<scene name>-sweep/ (<scene name>: the scene's\n"
+    "'name', else its file name without .yaml): cases/<case>/ (a run result each, and\n"
+    "its log), journal.jsonl (one line per finished case, written as it finishes),\n"
+    "sweep.csv and sweep.md (the EN 50318 figures of every case with their verdicts,\n"
+    "from the journal), sweep.png (figures against the swept values with the\n"
+    "acceptance ranges), summary.json, report.html. A failed case is recorded and the\n"
+    "sweep goes on; the exit status is the worst of the cases'. SIGINT/SIGTERM stop\n"
+    "the running cases (130/143, the sweep left in DIR.partial); the same command again\n"
+    "resumes it (finished cases kept), another sweep into it is refused (--overwrite:\n"
+    "start anew).\n",
     {"-j", "N", "run up to N cases at a time (1)"},
     {"--ranks", "N", "MPI ranks of each case (1; through mpiexec)"},
     {"--cases", "FILE.csv", "the cases: one row of a table each (see above)"},

@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -35,15 +36,25 @@ std::vector<char*> c_strings(std::vector<std::string>& words) {
   return out;
 }
 
-std::string last_line(const std::string& path) {
+int status_of(int raw) {
+  return WIFEXITED(raw) ? WEXITSTATUS(raw) : WIFSIGNALED(raw) ? 128 + WTERMSIG(raw) : 4;
+}
+
+double cpu_seconds(const rusage& usage) {
+  return usage.ru_utime.tv_sec + usage.ru_stime.tv_sec +
+         1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
+}  // namespace
+
+std::string last_line_of(const std::string& path) {
   std::ifstream in(path);
   std::string line, last;
   while (std::getline(in, line))
     if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
+  while (!last.empty() && last.back() == '\r') last.pop_back();
   return last;
 }
-
-}  // namespace
 
 pid_t start_process(const std::vector<std::string>& argv, const std::string& log_file,
                     const std::vector<std::string>& environment_drop) {
@@ -75,14 +86,28 @@ int wait_process(pid_t pid) {
   return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : 4;
 }
 
-pid_t wait_any_process(int& status, const std::function<bool()>& stop) {
+pid_t wait_any_process(int& status, const std::function<bool()>& stop, double* cpu_s) {
   int raw = 0;
+  rusage usage{};
   pid_t pid;
-  while ((pid = waitpid(-1, &raw, 0)) < 0) {
+  while ((pid = wait4(-1, &raw, 0, &usage)) < 0) {
     if (errno != EINTR) return -1;
     if (stop && stop()) return kWaitStopped;
   }
-  status = WIFEXITED(raw) ? WEXITSTATUS(raw) : WIFSIGNALED(raw) ? 128 + WTERMSIG(raw) : 4;
+  status = status_of(raw);
+  if (cpu_s) *cpu_s = cpu_seconds(usage);
+  return pid;
+}
+
+pid_t poll_any_process(int& status, double* cpu_s) {
+  int raw = 0;
+  rusage usage{};
+  pid_t pid;
+  while ((pid = wait4(-1, &raw, WNOHANG, &usage)) < 0)
+    if (errno != EINTR) return -1;
+  if (pid == 0) return 0;
+  status = status_of(raw);
+  if (cpu_s) *cpu_s = cpu_seconds(usage);
   return pid;
 }
 
@@ -124,7 +149,7 @@ std::string run_postproc(const std::string& script, const std::vector<std::strin
     const int status = wait_process(start_process(argv, log));
     if (status_out) *status_out = status;
     if (status != 0)
-      why = script + " failed (exit " + std::to_string(status) + "): " + last_line(log);
+      why = script + " failed (exit " + std::to_string(status) + "): " + last_line_of(log);
   } catch (const std::exception& e) {
     why = e.what();
   }

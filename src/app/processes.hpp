@@ -20,8 +20,16 @@ pid_t start_process(const std::vector<std::string>& argv, const std::string& log
 int wait_process(pid_t pid);
 // Waits for any child; its pid, and its status in 'status'. A signal that
 // interrupts the wait and for which 'stop' says true returns kWaitStopped.
+// 'cpu_s' (if given): the CPU time (user + system) of the child and of its
+// own waited-for children [s].
 constexpr pid_t kWaitStopped = -2;
-pid_t wait_any_process(int& status, const std::function<bool()>& stop = {});
+pid_t wait_any_process(int& status, const std::function<bool()>& stop = {},
+                       double* cpu_s = nullptr);
+// As wait_any_process, without waiting: 0 if no child has ended, -1 if none is left.
+pid_t poll_any_process(int& status, double* cpu_s = nullptr);
+
+// The last non-blank line of a text file ("" if none).
+std::string last_line_of(const std::string& path);
 
 // This executable (/proc/self/exe).
 std::string own_executable();

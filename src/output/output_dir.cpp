@@ -206,6 +206,7 @@ OutputDir::OutputDir(MPI_Comm comm, OutputRequest request)
   if (rank_ == 0) why = prepare();
   why = broadcast_text(comm_, why);
   failed_path_ = broadcast_text(comm_, failed_path_);
+  resumed_ = broadcast_text(comm_, resumed_ ? "1" : "") == "1";
   if (!why.empty()) fail(why);
 }
 
@@ -228,8 +229,8 @@ std::string OutputDir::prepare() {
     lock_fd_ = output_guard::acquire_lock(lock_path_, owner, why);
     // Under the lock: the folder may have changed since the check above.
     if (why.empty()) why = target_refusal(final_, request_);
-    if (why.empty()) why = leftover_partial_refusal(partial_);
-    if (why.empty()) {
+    if (why.empty()) why = take_leftover();
+    if (why.empty() && !resumed_) {
       fs::create_directory(partial_);
       owns_partial_ = true;
       started_ = output_guard::utc_now();
@@ -245,6 +246,28 @@ std::string OutputDir::prepare() {
   } catch (const std::exception& e) {
     undo();
     return std::string("cannot prepare the output folder: ") + e.what();
+  }
+}
+
+// A leftover partial folder: one holding only its manifest is removed; else
+// the request's 'leftover' decides (a resumed one is not this run's to remove).
+std::string OutputDir::take_leftover() {
+  std::error_code ec;
+  nlohmann::json m;
+  if (!request_.leftover || !fs::is_directory(fs::symlink_status(partial_, ec)) ||
+      !output_guard::read_manifest(partial_, m) || output_guard::holds_only_manifest(partial_))
+    return leftover_partial_refusal(partial_);
+  std::string why;
+  switch (request_.leftover(partial_, why)) {
+    case OutputRequest::Leftover::resume:
+      resumed_ = true;
+      started_ = m.value("started", output_guard::utc_now());
+      return "";
+    case OutputRequest::Leftover::replace:
+      fs::remove_all(partial_);
+      return "";
+    default:
+      return why.empty() ? leftover_partial_refusal(partial_) : why;
   }
 }
 

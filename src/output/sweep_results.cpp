@@ -110,8 +110,13 @@ nlohmann::json summary_json(const OutputDir& out, const Swept& swept,
     for (const auto& [key, value] : c.values) values[key] = value;
     nlohmann::json summary = c.summary;
     if (summary.is_object()) summary.erase("provenance");  // in cases/<case>/summary.json
-    j["cases"].push_back(
-        {{"name", c.name}, {"values", values}, {"status", c.status}, {"summary", summary}});
+    j["cases"].push_back({{"name", c.name},
+                          {"values", values},
+                          {"status", c.status},
+                          {"error", c.error},
+                          {"wall_s", c.wall_s},
+                          {"cpu_s", c.cpu_s},
+                          {"summary", summary}});
   }
   const auto& reference = en50318_reference();
   j["en50318"] = {{"edition", reference.edition}, {"figures", nlohmann::json::array()}};

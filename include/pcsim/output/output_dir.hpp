@@ -13,13 +13,18 @@
 //    place, and only then is the old one deleted; if a rename fails the new
 //    results stay in "<dir>.partial" and the error names it;
 //  - a failed run (exception) removes its partial folder; SIGINT/SIGTERM remove
-//    it only while it holds nothing but the manifest.
+//    it only while it holds nothing but the manifest;
+//  - a leftover "<dir>.partial" of an interrupted run is refused, unless the
+//    command can continue it (OutputRequest::leftover, `pcsim sweep`'s
+//    journal): then it is resumed (kept and written into, never removed by
+//    this run) or, if the command says so, replaced.
 // Collective over the communicator: only rank 0 touches the file system, and
 // every outcome is broadcast, so that all ranks succeed or throw together.
 #pragma once
 
 #include <mpi.h>
 
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -38,6 +43,12 @@ struct OutputRequest {
   // An earlier result made from other inputs (provenance's inputs_fingerprint)
   // is replaced only when this is set (--overwrite).
   bool overwrite = false;
+  // What to do with a leftover "<dir>.partial" that holds more than its
+  // manifest (called on rank 0, under the lock, with that folder): refuse
+  // (the reason in 'why', "" for the usual message), resume it or replace it.
+  // Unset: refused with the usual message.
+  enum class Leftover { refuse, resume, replace };
+  std::function<Leftover(const std::string& partial, std::string& why)> leftover;
 };
 
 class OutputDir {
@@ -56,6 +67,9 @@ class OutputDir {
   // What produced the results (output/provenance.hpp), for the writers.
   const nlohmann::json& provenance() const { return request_.provenance; }
   const std::string& partial_dir() const { return partial_; }
+  // True if the partial folder is a leftover that this run continues
+  // (OutputRequest::leftover said resume).
+  bool resumed() const { return resumed_; }
   // Puts the finished results in place of any earlier result (collective);
   // if the manifest cannot be written, throws OutputError and keeps the
   // results in the partial folder, not marked complete.
@@ -69,6 +83,7 @@ class OutputDir {
  private:
   std::string prepare();          // rank 0: checks, lock, partial folder; "" or the reason
   std::string swap_into_place();  // rank 0: the commit's renames; "" or the reason
+  std::string take_leftover();    // rank 0: a leftover partial resumed, replaced or refused
   void undo();                    // rank 0: removes what this run made, releases the lock
   [[noreturn]] void fail(const std::string& reason) const;
 
@@ -81,6 +96,7 @@ class OutputDir {
   int lock_fd_ = -1;
   bool owns_partial_ = false;  // this run made partial_ (a leftover is never removed)
   bool committed_ = false;
+  bool resumed_ = false;       // partial_ is a leftover this run continues
   bool keep_partial_ = false;  // a failed commit keeps the new results
 };
 

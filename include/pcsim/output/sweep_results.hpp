@@ -5,7 +5,8 @@
 //                where the standard gives no range)
 //   sweep.md     the same as a Markdown table, values with their verdicts
 //   summary.json {"swept": {key: [values]}, "cases": [{name, values, status,
-//                 summary}], "en50318": edition and figures, "provenance"}
+//                 error, wall_s, cpu_s, summary}], "en50318": edition and
+//                 figures, "provenance"}
 //                and the entries of 'record' (pcsim sweep --cases: "cases_table"
 //                {file, columns, rows, lines} and "sample", the table's design)
 // The cases' own folders are cases/<case>/ (a pcsim run result each).
@@ -23,8 +24,10 @@ namespace pcsim::output {
 struct SweepCase {
   std::string name;                                         // folder under cases/
   std::vector<std::pair<std::string, std::string>> values;  // swept key -> value
-  int status = -1;                                          // exit status of its run
+  int status = -1;                                          // exit status of its run (-1: none)
   nlohmann::json summary;                                   // its summary.json (null if none)
+  std::string error;                                        // a failed run: its last log line
+  double wall_s = 0, cpu_s = 0;                             // its cost
 };
 
 // Writes sweep.csv, sweep.md and summary.json; returns the Markdown table.
