@@ -20,7 +20,7 @@ while [ $# -gt 0 ] && [ "$1" != "--" ]; do scenes+=("$1"); shift; done
 [ "${1:-}" = "--" ] && shift
 if [ ${#scenes[@]} -eq 0 ]; then  # the run scenes of runs/interaction and runs/lines
   for s in runs/interaction/*.yaml runs/lines/*.yaml; do
-    case $s in *-fine.yaml | */elasticity-*.yaml | *-window.yaml) continue ;; esac  # windows: FE only
+    case $s in *-fine.yaml | */elasticity-*.yaml) continue ;; esac
     scenes+=("$s")
   done
 fi

@@ -146,30 +146,37 @@ void read_effects_and_output(const InputNode& scene, RunScene& run) {
   }
 }
 
-}  // namespace
+// The moving window a scene asks for: its 'window' section, or the modal
+// level's method (window, or auto on a long line of identical spans).
+struct WindowChoice {
+  ModalMethodRequest method;
+  bool automatic = false;  // auto chose a window; it may still be dropped
+  std::string declined;    // auto: why the line got none
+};
 
-RunScene load_run_scene(const InputNode& scene, const RunSceneOptions& options) {
-  RunScene run;
-  // A moving window: the scene's 'window', or the modal level's method.
-  const ModalMethodRequest method = modal_method_request(scene);
+// The catenary section, and the window's mesh with the line's supports.
+WindowChoice load_catenary_and_window(const InputNode& scene, const RunSceneOptions& options,
+                                      RunScene& run) {
+  WindowChoice choice;
+  choice.method = modal_method_request(scene);
   std::optional<RunWindow> window;
   if (scene.has("window")) {
-    if (method.method == "whole")
+    if (choice.method.method == "whole")
       scene["catenary"]["modal"].fail_key(
           "method", "whole cannot be combined with a moving window (section 'window')");
     window = read_window_keys(scene);
-  } else if (method.method == "window" || method.automatic()) {
+  } else if (choice.method.method == "window" || choice.method.automatic()) {
     window = RunWindow{};
   }
-  const bool automatic = window && !scene.has("window") && method.automatic();
+  choice.automatic = window && !scene.has("window") && choice.method.automatic();
   const InputNode where = scene.has("window") ? scene["window"] : scene["catenary"];
   catenary::DesignBuilder builder;
   if (window)
-    builder = automatic ? auto_window_builder(*window) : window_design_builder(where, *window);
+    builder =
+        choice.automatic ? auto_window_builder(*window) : window_design_builder(where, *window);
   run.catenary = catenary::load_catenary_scene(scene, options.size_check, builder);
-  std::string declined;
   if (window && window->line_spans == 0) {  // auto: the line is no window's
-    declined = window->declined;
+    choice.declined = window->declined;
     window.reset();
   }
   if (window) {  // the window's mesh; the line's supports for everything else
@@ -180,6 +187,35 @@ RunScene load_run_scene(const InputNode& scene, const RunSceneOptions& options) 
     for (std::size_t k = 0; k < support_x.size(); ++k) support_x[k] = x0 + k * window->span_length;
     run.window = std::move(window);
   }
+  return choice;
+}
+
+// Once the scene is read: the window fitted and checked (auto: kept or
+// dropped), the modal method and the note that says it.
+void settle_window(const InputNode& scene, const RunSceneOptions& options,
+                   const WindowChoice& choice, RunScene& run) {
+  const auto& method = choice.method;
+  if (run.window && choice.automatic) {
+    std::string why;
+    const bool kept = keep_auto_window(scene, run, options.size_check, why);
+    run.modal_method_note = kept ? "window (auto: " + why + ")" : "whole (auto: " + why + ")";
+  } else if (run.window) {
+    const InputNode where = scene.has("window") ? scene["window"] : scene["catenary"];
+    check_window(scene, where, run, options.size_check);
+    run.modal_method_note = scene.has("window") ? "window (the scene's 'window')" : "window";
+  } else if (!method.method.empty()) {
+    run.modal_method_note = method.automatic() ? "whole (auto: " + choice.declined + ")" : "whole";
+  }
+  if (!method.method.empty())
+    run.catenary.modal.method = run.window ? catenary::ModalSettings::Method::window
+                                           : catenary::ModalSettings::Method::whole;
+}
+
+}  // namespace
+
+RunScene load_run_scene(const InputNode& scene, const RunSceneOptions& options) {
+  RunScene run;
+  const WindowChoice window = load_catenary_and_window(scene, options, run);
   const auto& mesh = run.catenary.mesh;
   if (mesh.contact_wire < 0 || mesh.support_x.size() < 2)
     scene["catenary"].fail_key(
@@ -213,19 +249,7 @@ RunScene load_run_scene(const InputNode& scene, const RunSceneOptions& options) 
   }
   check_time_step(scene, run, options.command_line_dt ? "-ts_dt" : "simulation.dt");
   check_filter_edges(scene, run);
-  if (run.window && automatic) {
-    std::string why;
-    const bool kept = keep_auto_window(scene, run, options.size_check, why);
-    run.modal_method_note = kept ? "window (auto: " + why + ")" : "whole (auto: " + why + ")";
-  } else if (run.window) {
-    check_window(scene, where, run, options.size_check);
-    run.modal_method_note = scene.has("window") ? "window (the scene's 'window')" : "window";
-  } else if (!method.method.empty()) {
-    run.modal_method_note = method.automatic() ? "whole (auto: " + declined + ")" : "whole";
-  }
-  if (!method.method.empty())
-    run.catenary.modal.method = run.window ? catenary::ModalSettings::Method::window
-                                           : catenary::ModalSettings::Method::whole;
+  settle_window(scene, options, window, run);
   read_assessment(scene, run);
   return run;
 }
