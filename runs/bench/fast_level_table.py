@@ -8,7 +8,9 @@ Fm+3s and actual maximum relative; Fm-3s and actual minimum as % of Fm;
 uplift relative; loss of contact in percentage points), its own accuracy
 estimate, its cost (set-up, ms/step, real-time factor, step-time
 percentiles, peak memory) and whether every figure meets the targets
-(mean 0.5 %, sigma/Fm+3s/max 1 %, uplift 2 %, loss of contact 0.1 pp).
+(mean 0.5 %, sigma/Fm+3s/max 1 %, uplift 2 %, loss of contact 0.1 pp), the
+modal method and basis, and how many of the pilot's eight reduction
+estimates hold (at or above the actual error, at most 3 x actual + 0.3).
 """
 import json
 import os
@@ -46,6 +48,29 @@ def passes(e):
     return all(abs(e[k]) <= t for k, t in TARGETS.items())
 
 
+# The pilot's figures (simulation/accuracy_pilot.hpp) against errors()'s.
+PILOT_KEYS = {"mean_percent": "mean", "sigma_percent": "sigma", "mean_plus_3sigma_percent": "Fm+3s",
+              "actual_max_percent": "max", "uplift_percent": "uplift",
+              "mean_minus_3sigma_percent_of_mean": "Fm-3s", "actual_min_percent_of_mean": "min",
+              "loss_of_contact_points": "loss"}
+
+
+def estimates_held(pilot_row, e):
+    """'k/n': the pilot's estimates at or above |actual| and at most 3 |actual| + 0.3."""
+    if not pilot_row:
+        return "-"
+    held = [abs(e[k]) <= pilot_row[key] <= 3 * abs(e[k]) + 0.3
+            for key, k in PILOT_KEYS.items() if key in pilot_row]
+    return f"{sum(held)}/{len(held)}"
+
+
+def method(modal_run):
+    m = modal_run.get("modal", {})
+    if not m:
+        return "-"
+    return f"{m.get('method', 'whole')} {m.get('cutoff_hz', float('nan')):.1f} Hz ({m.get('basis_size', 0)})"
+
+
 def row(scene, fe_run, modal_run):
     cells = []
     st = modal_run.get("step_time", {})
@@ -61,8 +86,8 @@ def row(scene, fe_run, modal_run):
             calibrated = f"{c.get('estimated_sigma_error_percent', float('nan')):.2f}"
     # The pilot's reduction estimate of σ per pantograph (docs/fidelity.md),
     # else the calibrated one.
-    pilot = {p["pantograph"]: p["sigma_percent"]
-             for p in estimate.get("pilot", {}).get("reduction", [])}
+    pilot_rows = {p["pantograph"]: p for p in estimate.get("pilot", {}).get("reduction", [])}
+    pilot = {name: p["sigma_percent"] for name, p in pilot_rows.items()}
     for fe, modal in zip(fe_run["pantographs"], modal_run["pantographs"]):
         sigma_estimate = f"{pilot[fe['name']]:.2f}" if fe["name"] in pilot else calibrated
         if "std_N" not in fe or "std_N" not in modal:
@@ -71,17 +96,19 @@ def row(scene, fe_run, modal_run):
         e = errors(fe, modal, fe_run, modal_run)
         figures = " | ".join(f"{e[k]:+.2f}" for k in
                              ("mean", "sigma", "Fm+3s", "max", "Fm-3s", "min", "uplift", "loss"))
-        cells.append(f"| {scene} | {fe['name']} | {figures} | {sigma_estimate} | "
-                     f"{'yes' if passes(e) else '**no**'} | {cost} |")
+        held = estimates_held(pilot_rows.get(fe["name"]), e)
+        cells.append(f"| {scene} | {fe['name']} | {method(modal_run)} | {figures} | "
+                     f"{sigma_estimate} | {held} | {'yes' if passes(e) else '**no**'} | {cost} |")
     return cells
 
 
 def main():
     work, scenes = sys.argv[1], sys.argv[2:]
-    print("| scene | pantograph | mean % | σ % | Fm+3σ % | max % | Fm−3σ %Fm | min %Fm | "
-          "uplift % | loss pp | estimated σ % | targets met | set-up s | ms/step | RTF | "
-          "step median / p99.99 / max* ms | memory MB | linear FE ms/step |")
-    print("|" + "---|" * 18)
+    print("| scene | pantograph | method, cut-off (vectors) | mean % | σ % | Fm+3σ % | max % | "
+          "Fm−3σ %Fm | min %Fm | uplift % | loss pp | estimated σ % | estimates held | "
+          "targets met | set-up s | ms/step | RTF | step median / p99.99 / max* ms | memory MB | "
+          "linear FE ms/step |")
+    print("|" + "---|" * 20)
     for scene in scenes:
         fe_run = load(os.path.join(work, scene, "linear"))
         modal_run = load(os.path.join(work, scene, "modal"))

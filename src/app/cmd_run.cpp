@@ -198,7 +198,8 @@ std::unique_ptr<simulation::RunCheckpoint> load_restart(
   if (dir.empty()) return nullptr;
   if (run.window)
     throw InputError("command line", "--restart",
-                     "a run with a moving window (scene key 'window') cannot be restarted");
+                     "a run with a moving window (scene key 'window', or the modal level's "
+                     "window on a long line: catenary.modal.method) cannot be restarted");
   simulation::check_restart_target(dir, request.dir);
   return std::make_unique<simulation::RunCheckpoint>(
       simulation::load_run_checkpoint(ctx, dir, inputs));
