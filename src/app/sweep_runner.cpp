@@ -14,6 +14,7 @@
 #include <map>
 
 #include "pcsim/core/error.hpp"
+#include "pcsim/output/output_dir.hpp"
 #include "pcsim/output/sweep_journal.hpp"
 #include "pcsim/simulation/interrupt.hpp"
 #include "processes.hpp"
@@ -30,15 +31,6 @@ using nlohmann::json;
 // next step (checkpoint written) before they are killed; a second signal
 // kills them at once.
 constexpr double kStopGraceS = 30;
-
-std::string utc_now() {
-  const std::time_t now = std::time(nullptr);
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
-  return text;
-}
 
 std::string number_text(double v) {
   char s[32];
@@ -106,7 +98,7 @@ json journal_entry(const SweepPlan& plan, std::size_t k) {
   if (summary.is_object()) summary.erase("provenance");  // in cases/<case>/summary.json
   return {{"case", c.name},         {"index", k},         {"values", values},
           {"overrides", overrides}, {"status", c.status}, {"error", c.error},
-          {"wall_s", c.wall_s},     {"cpu_s", c.cpu_s},   {"finished", utc_now()},
+          {"wall_s", c.wall_s},     {"cpu_s", c.cpu_s},   {"finished", utc_timestamp()},
           {"summary", summary}};
 }
 
@@ -190,7 +182,7 @@ std::size_t open_sweep_journal(SweepPlan& plan, const OutputDir& out,
     output::append_sweep_journal(file, {{"pcsim_sweep_journal", output::kSweepJournalVersion},
                                         {"definition", definition},
                                         {"cases", plan.cases.size()},
-                                        {"started", utc_now()}});
+                                        {"started", utc_timestamp()}});
     return 0;
   }
   output::SweepJournal journal = read_journal(file);

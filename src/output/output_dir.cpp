@@ -168,6 +168,10 @@ nlohmann::json manifest(const OutputRequest& request, const std::string& started
 
 }  // namespace
 
+std::string utc_timestamp() {
+  return output_guard::utc_now();
+}
+
 std::string invalid_folder_name_reason(const std::string& name) {
   if (name.empty()) return "must not be empty (it names the output folder out/<name>)";
   if (name == "." || name == "..")

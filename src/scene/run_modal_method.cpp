@@ -20,55 +20,17 @@ ModalMethodRequest modal_method_request(const InputNode& scene) {
   return r;
 }
 
-// A window over a parametric line of identical spans long enough for it
-// (line_spans filled); any other line whole (line_spans 0: no window).
-catenary::DesignBuilder auto_window_builder(RunWindow& window) {
-  return [&window](const InputNode& design, const catenary::MeshSizeCheck& size_check) {
-    window.line_spans = 0;
-    window.declined = "not a parametric design";
-    if (design.get_string("type", "") != "parametric")
-      return catenary::build_catenary_design(design, size_check);
-    catenary::ParametricDesign d = catenary::read_parametric_design(design);
-    const bool identical = d.sections.empty() && !d.stitch_wire && d.support_overrides.empty() &&
-                           d.irregularities.empty();
-    window.declined =
-        "not a line of identical spans (sections, stitch wire, support overrides "
-        "or irregularities)";
-    if (!identical) return catenary::build_catenary_design(design, size_check);
-    window.declined = "the line (" + std::to_string(d.span_count) + " spans) is shorter than " +
-                      std::to_string(kAutoWindowFactor) + " x a window (" +
-                      std::to_string(window.spans()) + " spans)";
-    if (d.span_count < kAutoWindowFactor * window.spans())
-      return catenary::build_catenary_design(design, size_check);
-    window.declined.clear();
-    window.line_spans = static_cast<int>(d.span_count);
-    window.span_length = d.span_length;
-    window.design = d;
-    d.span_count = window.spans();
-    if (size_check) size_check(catenary::mesh_size(d));
-    return catenary::build_parametric(d);
-  };
-}
-
 namespace {
 
 // Why a window does not fit the scene's train, run and outputs ("" if it does).
 std::string window_misfit(const InputNode& scene, const RunScene& run) {
-  RunWindow w = *run.window;
-  const auto by_start = [](const auto& a, const auto& b) { return a.start_x < b.start_x; };
-  const auto [lo, hi] =
-      std::minmax_element(run.pantographs.begin(), run.pantographs.end(), by_start);
-  w.train_spans = static_cast<int>(std::ceil((hi->start_x - lo->start_x) / w.span_length - 1e-9));
-  if (kAutoWindowFactor * w.spans() > w.line_spans)
-    return "the line (" + std::to_string(w.line_spans) + " spans) is less than " +
+  const WindowReach reach = window_reach(run, *run.window);
+  if (kAutoWindowFactor * reach.spans > run.window->line_spans)
+    return "the line (" + std::to_string(run.window->line_spans) + " spans) is less than " +
            std::to_string(kAutoWindowFactor) + " x the window over the train (" +
-           std::to_string(w.spans()) + " spans)";
-  const double L = w.span_length, x0 = run.catenary.mesh.support_x.front();
-  if (hi->start_x >= x0 + w.shift_spans() * L) return "a pantograph starts beyond the window";
-  const long shifts = (w.line_spans - w.spans()) / 2;
-  const double lead_end = run.end_x + hi->start_x - run.pantographs.front().start_x;
-  if (lead_end > x0 + 2.0 * L * shifts + w.shift_spans() * L)
-    return "the run ends too near the line's end";
+           std::to_string(reach.spans) + " spans)";
+  if (reach.lead_start >= reach.start_limit) return "a pantograph starts beyond the window";
+  if (reach.lead_end > reach.end_limit) return "the run ends too near the line's end";
   if (scene.has("output")) {
     const InputNode o = scene["output"];
     if (o.get_int("snapshot_every", 0) > 0 || o.get_int("checkpoint_every", 0) > 0 ||

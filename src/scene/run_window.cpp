@@ -48,10 +48,7 @@ void check_shorter_than_line(const InputNode& w, const RunWindow& window) {
 // rebuilt from the line's design with that many more spans.
 void fit_train(const InputNode& w, RunScene& run, const catenary::MeshSizeCheck& size_check) {
   auto& window = *run.window;
-  const auto [lo, hi] =
-      std::minmax_element(run.pantographs.begin(), run.pantographs.end(), starts_before);
-  const double train = (hi->start_x - lo->start_x) / window.span_length;
-  window.train_spans = static_cast<int>(std::ceil(train - 1e-9));
+  window.train_spans = window_reach(run, window).train_spans;
   if (window.train_spans == 0) return;
   check_shorter_than_line(w, window);
   catenary::ParametricDesign d = window.design;
@@ -90,21 +87,74 @@ RunWindow read_window_keys(const InputNode& scene) {
   return window;
 }
 
-// The line's design read as it is; the window's mesh built from it with
-// spans() spans (only that is checked against the memory).
+namespace {
+
+// The window over the line of design d: the line's facts kept, the mesh of
+// spans() spans built (only that is checked against the memory).
+catenary::CatenaryMesh build_window(RunWindow& window, catenary::ParametricDesign d,
+                                    const catenary::MeshSizeCheck& size_check) {
+  window.line_spans = static_cast<int>(d.span_count);
+  window.span_length = d.span_length;
+  window.design = d;
+  d.span_count = window.spans();
+  if (size_check) size_check(catenary::mesh_size(d));
+  return catenary::build_parametric(d);
+}
+
+}  // namespace
+
+// The line's design read as it is; the window's mesh built from it.
 catenary::DesignBuilder window_design_builder(const InputNode& w, RunWindow& window) {
   return [w, &window](const InputNode& design, const catenary::MeshSizeCheck& size_check) {
     if (design.get_string("type", "") != "parametric") w.fail("needs a parametric design");
     catenary::ParametricDesign d = catenary::read_parametric_design(design);
     check_periodic_line(w, d);
-    window.line_spans = static_cast<int>(d.span_count);
-    window.span_length = d.span_length;
-    window.design = d;
-    check_shorter_than_line(w, window);
-    d.span_count = window.spans();
-    if (size_check) size_check(catenary::mesh_size(d));
-    return catenary::build_parametric(d);
+    RunWindow line = window;
+    line.line_spans = static_cast<int>(d.span_count);
+    check_shorter_than_line(w, line);
+    return build_window(window, d, size_check);
   };
+}
+
+// A window over a parametric line of identical spans long enough for it
+// (line_spans filled); any other line whole (line_spans 0, 'declined' says why).
+catenary::DesignBuilder auto_window_builder(RunWindow& window) {
+  return [&window](const InputNode& design, const catenary::MeshSizeCheck& size_check) {
+    window.line_spans = 0;
+    window.declined = "not a parametric design";
+    if (design.get_string("type", "") != "parametric")
+      return catenary::build_catenary_design(design, size_check);
+    const catenary::ParametricDesign d = catenary::read_parametric_design(design);
+    const std::string why = not_periodic(d);
+    window.declined = "not a line of identical spans (the design has " + why + ")";
+    if (!why.empty()) return catenary::build_catenary_design(design, size_check);
+    window.declined = "the line (" + std::to_string(d.span_count) + " spans) is shorter than " +
+                      std::to_string(kAutoWindowFactor) + " x a window (" +
+                      std::to_string(window.spans()) + " spans)";
+    if (d.span_count < kAutoWindowFactor * window.spans())
+      return catenary::build_catenary_design(design, size_check);
+    window.declined.clear();
+    return build_window(window, d, size_check);
+  };
+}
+
+WindowReach window_reach(const RunScene& run, const RunWindow& window) {
+  WindowReach r;
+  const auto [lo, hi] =
+      std::minmax_element(run.pantographs.begin(), run.pantographs.end(), starts_before);
+  r.train_spans =
+      static_cast<int>(std::ceil((hi->start_x - lo->start_x) / window.span_length - 1e-9));
+  RunWindow fitted = window;
+  fitted.train_spans = r.train_spans;
+  r.spans = fitted.spans();
+  const double L = window.span_length, x0 = run.catenary.mesh.support_x.front();
+  r.lead_start = hi->start_x;
+  r.start_limit = x0 + fitted.shift_spans() * L;
+  // The window moves by two spans while its front stays on the line.
+  r.shifts = (window.line_spans - fitted.spans()) / 2;
+  r.lead_end = run.end_x + hi->start_x - run.pantographs.front().start_x;
+  r.end_limit = x0 + 2.0 * L * r.shifts + fitted.shift_spans() * L;
+  return r;
 }
 
 // The leading pantograph (the furthest along) starts within the window's
@@ -115,28 +165,25 @@ void check_window(const InputNode& scene, const InputNode& w, RunScene& run,
   auto& window = *run.window;
   fit_train(w, run, size_check);
   check_outputs(scene);
-  const double L = window.span_length, x0 = run.catenary.mesh.support_x.front();
-  const auto& lead =
-      *std::max_element(run.pantographs.begin(), run.pantographs.end(), starts_before);
+  const WindowReach reach = window_reach(run, window);
   const std::string who = run.pantographs.size() > 1 ? "the leading pantograph" : "the pantograph";
-  if (lead.start_x >= x0 + window.shift_spans() * L)
-    w.fail_key("spans_behind", who + " starts at " + format_number(lead.start_x) +
+  if (reach.lead_start >= reach.start_limit)
+    w.fail_key("spans_behind", who + " starts at " + format_number(reach.lead_start) +
                                    " m, beyond the window's first " +
                                    std::to_string(window.shift_spans()) + " spans");
-  // The window moves by two spans while its front stays on the line.
-  const long shifts = (window.line_spans - window.spans()) / 2;
-  const double last_band_end = x0 + 2.0 * L * shifts + window.shift_spans() * L;
-  const double lead_end = run.end_x + lead.start_x - run.pantographs.front().start_x;
-  if (lead_end > last_band_end)
+  if (reach.lead_end > reach.end_limit)
     w.fail_key("spans_ahead", "the window's front reaches the line's end before " + who +
-                                  " reaches " + format_number(lead_end) +
+                                  " reaches " + format_number(reach.lead_end) +
                                   " m, where it is when the run ends (simulation.end_x " +
                                   format_number(run.end_x) + " m; at most " +
-                                  format_number(last_band_end) + " m)");
+                                  format_number(reach.end_limit) + " m)");
   // The line as far as the run goes: the supports the window covers before
   // the leading pantograph's end (the records and statistics need no others).
+  const double L = window.span_length, x0 = run.catenary.mesh.support_x.front();
   long used = 0;
-  while (used < shifts && x0 + (window.shift_spans() + 2.0 * used) * L <= lead_end + 1e-9) ++used;
+  while (used < reach.shifts &&
+         x0 + (window.shift_spans() + 2.0 * used) * L <= reach.lead_end + 1e-9)
+    ++used;
   run.catenary.mesh.support_x.resize(static_cast<std::size_t>(window.spans() + 2 * used + 1));
   run.dropper_forces = false;
 }

@@ -48,7 +48,7 @@ struct OutputRequest {
   // (the reason in 'why', "" for the usual message), resume it or replace it.
   // Unset: refused with the usual message.
   enum class Leftover { refuse, resume, replace };
-  std::function<Leftover(const std::string& partial, std::string& why)> leftover;
+  std::function<Leftover(const std::string& partial, std::string& why)> leftover = nullptr;
 };
 
 class OutputDir {
@@ -107,5 +107,8 @@ void check_output_request(MPI_Comm comm, const OutputRequest& request);
 // Why 'name' cannot name an output folder ("" if it can): empty, ".", "..",
 // or with a path separator.
 std::string invalid_folder_name_reason(const std::string& name);
+
+// The time now in UTC as the manifests write it (2026-11-27T09:30:00Z).
+std::string utc_timestamp();
 
 }  // namespace pcsim

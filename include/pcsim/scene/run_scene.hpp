@@ -126,6 +126,16 @@ void check_filter_edges(const InputNode& scene, RunScene& run);
 // 'w': the node errors name (the 'window' section, or catenary.modal where
 // method: window asks for one).
 RunWindow read_window_keys(const InputNode& scene);
+// Where a window over the scene's pantographs reaches: the train's spans,
+// the window's spans with them, the leading pantograph's start and end
+// stations and the limits the window puts on them (start below
+// start_limit, end at most end_limit), its shifts.
+struct WindowReach {
+  int train_spans = 0, spans = 0;
+  long shifts = 0;
+  double lead_start = 0, start_limit = 0, lead_end = 0, end_limit = 0;
+};
+WindowReach window_reach(const RunScene& run, const RunWindow& window);
 catenary::DesignBuilder window_design_builder(const InputNode& w, RunWindow& window);
 void check_window(const InputNode& scene, const InputNode& w, RunScene& run,
                   const catenary::MeshSizeCheck& size_check);
