@@ -6,9 +6,11 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "pcsim/catenary/reduced_basis.hpp"
 #include "pcsim/core/error.hpp"
@@ -188,8 +190,42 @@ std::vector<FigureErrors> errors_from_json(const nlohmann::json& j) {
   return out;
 }
 
+// Options that only observe a run (logs, monitors, viewers, help, the
+// pilot's own switch): they change no figure, so they stay out of the key
+// (a run with -log_view read the cache of the same run without it).
+bool observing_option(const std::string& name) {
+  const auto ends_with = [&](const std::string& tail) {
+    return name.size() >= tail.size() &&
+           name.compare(name.size() - tail.size(), tail.size(), tail) == 0;
+  };
+  const auto starts_with = [&](const std::string& head) { return name.rfind(head, 0) == 0; };
+  return starts_with("log_") || starts_with("malloc") || starts_with("options_") ||
+         starts_with("on_error") || name == "info" || name == "help" || name == "version" ||
+         name == "memory_view" || name == "pcsim_accuracy_pilot" || ends_with("_view") ||
+         name.find("_monitor") != std::string::npos || ends_with("_converged_reason");
+}
+
+// The options database without the observing options: "-name [value]" pairs,
+// a value being a word that does not start with '-' and a letter.
+std::string numerics_options() {
+  char* all = nullptr;
+  PCSIM_PETSC(PetscOptionsGetAll(nullptr, &all));
+  std::istringstream words(all ? all : "");
+  PCSIM_PETSC(PetscFree(all));
+  std::string kept, word;
+  bool keep = false;
+  while (words >> word) {
+    const bool name =
+        word.size() > 1 && word[0] == '-' && std::isalpha(static_cast<unsigned char>(word[1]));
+    if (name) keep = !observing_option(word.substr(1));
+    if (keep) kept += word + " ";
+  }
+  return kept;
+}
+
 // The cache key: the scene's inputs as read, the run's numerics (time step,
-// HHT α, fidelity, cut-off given, the options database) and pcsim's version.
+// HHT α, fidelity, cut-off given, the options database but its observing
+// options) and pcsim's version.
 std::string pilot_key(const SceneSource& source, const scene::RunScene& run) {
   char numerics[256];
   std::snprintf(numerics, sizeof numerics,
@@ -198,10 +234,7 @@ std::string pilot_key(const SceneSource& source, const scene::RunScene& run) {
                 version(), git_commit(), run.dt, run.hht_alpha,
                 catenary::fidelity_name(run.catenary.fidelity), run.catenary.modal.max_frequency_hz,
                 run.catenary.modal_cutoff_given ? 1 : 0);
-  char* options = nullptr;
-  PCSIM_PETSC(PetscOptionsGetAll(nullptr, &options));
-  std::string command = std::string(numerics) + " options: " + (options ? options : "");
-  PCSIM_PETSC(PetscFree(options));
+  const std::string command = std::string(numerics) + " options: " + numerics_options();
   return inputs_fingerprint(command, recorded_inputs(source.path, source.scene));
 }
 
