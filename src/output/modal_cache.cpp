@@ -79,6 +79,9 @@ void add_mesh(KeyBuffer& key, const catenary::CatenaryMesh& mesh) {
     key.add(b.unstressed_length), key.add(b.slack);
   }
   for (const auto& p : mesh.point_masses) key.add(p.node), key.add(p.mass);
+  if (mesh.ice.any())  // (a bare line keeps the keys it had before ice existed)
+    key.add(std::string("ice")), key.add(mesh.ice.contact), key.add(mesh.ice.messenger),
+        key.add(mesh.ice.stitch);
   for (const auto& s : mesh.springs) {
     key.add(s.node), key.add(s.dof), key.add(s.stiffness);
     for (int c = 0; c < 3; ++c) key.add(s.direction[c]);

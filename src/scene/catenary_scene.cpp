@@ -1,5 +1,6 @@
 #include "pcsim/scene/catenary_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -11,7 +12,7 @@ namespace pcsim::catenary {
 void check_scene_sections(const InputNode& scene) {
   scene.allow_only({"name", "description", "catenary", "modes", "pantographs", "simulation",
                     "effects", "contact", "analysis", "output", "elasticity", "window",
-                    "assessment"});
+                    "assessment", "conditions"});
 }
 
 namespace {
@@ -34,6 +35,29 @@ ElasticityRequest read_elasticity(const InputNode& e, const CatenaryMesh& mesh) 
   if ((r.to_x - r.from_x) / r.step > 10000)
     e.fail_key("step", "gives more than 10000 points: one static solution each");
   return r;
+}
+
+// 'conditions': ice (kg/m per wire kind) for now (docs/conditions.md).
+IceLoad read_conditions(const InputNode& c, const CatenaryMesh& mesh) {
+  c.allow_only({"ice"});
+  IceLoad ice;
+  if (!c.has("ice")) return ice;
+  const InputNode i = c["ice"];
+  i.allow_only({"contact", "messenger", "stitch"});
+  const std::pair<const char*, WireKind> kinds[] = {{"contact", WireKind::contact},
+                                                    {"messenger", WireKind::messenger},
+                                                    {"stitch", WireKind::stitch}};
+  for (const auto& [key, kind] : kinds) {
+    if (!i.has(key)) continue;
+    const double m = i.get_nonnegative(key, limits::mass_per_length);
+    const bool present = std::any_of(mesh.wires.begin(), mesh.wires.end(),
+                                     [&](const Wire& w) { return w.kind == kind; });
+    if (m > 0 && !present) i.fail_key(key, std::string("the design has no ") + key + " wire");
+    (kind == WireKind::contact     ? ice.contact
+     : kind == WireKind::messenger ? ice.messenger
+                                   : ice.stitch) = m;
+  }
+  return ice;
 }
 
 void read_modal_settings(const InputNode& modal, ModalSettings& s) {
@@ -95,6 +119,7 @@ CatenaryScene load_catenary_scene(const InputNode& scene, const MeshSizeCheck& s
   out.mesh.source_file = out.design_path;
   out.form_finding = section.get_bool("form_finding", out.mesh.form_finding_default);
   read_catenary_model(section, out);
+  if (scene.has("conditions")) out.mesh.ice = read_conditions(scene["conditions"], out.mesh);
   if (scene.has("elasticity")) out.elasticity = read_elasticity(scene["elasticity"], out.mesh);
   return out;
 }

@@ -330,6 +330,13 @@ expect empty-dt 2 "empty-dt.yaml|key 'simulation.dt'|has no value" yes run empty
 expect empty-model 2 "empty-model.yaml|key 'stages[0].damping'|has no value" yes run empty-panto.yaml
 expect set-empty 2 "command line --set simulation.dt=~|key 'simulation.dt'|has no value" yes \
   run good-run.yaml --set simulation.dt=~
+# ---- issue 25: conditions ----
+expect ice-negative 2 "command line --set conditions.ice.contact=-0.5|key 'conditions.ice.contact'|must not be negative" yes \
+  run good-run.yaml --set conditions.ice.contact=-0.5
+expect ice-stitch 2 "command line --set conditions.ice.stitch=0.5|key 'conditions.ice.stitch'|the design has no stitch wire" yes \
+  run good-run.yaml --set conditions.ice.stitch=0.5
+expect ice-key 2 "command line --set conditions.ice.dropper=0.5|key 'conditions.ice.dropper'|unknown key" yes \
+  run good-run.yaml --set conditions.ice.dropper=0.5
 expect name-slash 2 "name-slash.yaml|key 'pantographs[1].name'|must not contain '/'" yes run name-slash.yaml
 expect name-abs 2 "name-abs.yaml|key 'pantographs[1].name'|must not contain '/'" yes run name-abs.yaml
 expect name-dot 2 "name-dot.yaml|key 'pantographs[0].name'|must not be '.'" yes run name-dot.yaml

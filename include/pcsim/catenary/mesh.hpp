@@ -218,6 +218,20 @@ struct TensionSegment {
   double tension = 0;
 };
 
+// Ice on the wires (scene 'conditions.ice', docs/conditions.md): mass per
+// length added to every wire of a kind after form-finding, so the line
+// built for bare wires carries it (mass and weight) [kg/m].
+struct IceLoad {
+  double contact = 0, messenger = 0, stitch = 0;
+  bool any() const { return contact > 0 || messenger > 0 || stitch > 0; }
+  double on(WireKind kind) const {
+    return kind == WireKind::contact     ? contact
+           : kind == WireKind::messenger ? messenger
+           : kind == WireKind::stitch    ? stitch
+                                         : 0.0;
+  }
+};
+
 struct CatenaryMesh {
   std::string name;
   std::string source_file;
@@ -250,6 +264,7 @@ struct CatenaryMesh {
   std::vector<ContactGapOffset> contact_gap_offsets;
   double rayleigh_alpha = 0;  // C = alpha M + beta K (thesis 3.1)
   double rayleigh_beta = 0;
+  IceLoad ice;  // added by simulation::static_configuration after form-finding
 
   // The contact wires (contact_wires, or contact_wire alone for a mesh that
   // only sets that).

@@ -8,6 +8,7 @@
 #include <mpi.h>
 #include <petscsys.h>
 
+#include <string>
 #include <vector>
 
 #include "pcsim/catenary/mesh.hpp"
@@ -15,16 +16,31 @@
 
 namespace pcsim::simulation {
 
+// What the ice (design.ice, docs/conditions.md) did to the line built bare:
+// the contact wires' largest drop and the largest change of a tension
+// segment's tension (fixed terminations raise it, weights hold it).
+struct IceEffect {
+  double max_contact_drop_m = 0;
+  double max_tension_change_rel = 0;
+  int snes_iterations = 0;  // of the second static solution
+};
+
 // The design -> static configuration. The returned mesh has its tensioning
-// devices released, the result the pull-off forces.
+// devices released, the result the pull-off forces. With ice (design.ice),
+// the line is form-found bare, its devices released, then the ice added
+// (mass and weight of the wires) and the statics solved again: the result
+// and mesh are the iced line's; the form-finding errors stay the bare one's.
 struct StaticConfiguration {
   catenary::CatenaryMesh mesh;    // with the found unstressed lengths, bar equilibria
   catenary::StaticResult result;  // node values etc.
   std::vector<int> node_owner;    // the partition used (reusable by later systems)
   PetscInt catenary_dofs = 0;
+  IceEffect ice;  // zero without ice
 };
 StaticConfiguration static_configuration(MPI_Comm comm, const catenary::CatenaryMesh& design,
                                          bool form_finding, const char* options_prefix = nullptr);
+// One line on what the ice did ("" without ice), for the console.
+std::string ice_summary(const StaticConfiguration& config);
 
 // The catenary's modes about a static configuration (solvers/modes.hpp: nev
 // modes, or every mode below max_frequency_hz > 0), on its own unknowns with
