@@ -24,8 +24,8 @@ int run_static(const app::CommandContext& ctx) {
   app::print0(ctx, "  %d catenary DOFs on %d rank(s); form-finding %s\n",
               static_cast<int>(statics.catenary_dofs), ctx.size, cat.form_finding ? "on" : "off");
   app::print_static_summary(ctx, statics.mesh, statics.result);
-  const std::string ice = simulation::ice_summary(statics);
-  if (!ice.empty()) app::print0(ctx, "  %s\n", ice.c_str());
+  const std::string conditions = simulation::conditions_summary(statics);
+  if (!conditions.empty()) app::print0(ctx, "  %s\n", conditions.c_str());
   if (ctx.rank == 0)
     output::write_static_results(out, statics.mesh, statics.result,
                                  {ctx.scene_name(scene), static_cast<long>(statics.catenary_dofs),

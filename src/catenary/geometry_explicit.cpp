@@ -135,6 +135,7 @@ class ExplicitBuilder {
     require_nonnegative(in_.file, key + ".EI", in.EI, limits::bending_stiffness);
     require_nonnegative(in_.file, key + ".tension", in.tension, limits::tension);
     w.mass_per_length = in.mass_per_length;
+    w.thermal_expansion = in.thermal_expansion;
     w.EA = in.EA;
     w.EI = in.EI;
     w.tension = in.tension;

@@ -215,6 +215,7 @@ void SectionBuilder::add_wire(const std::string& name, WireKind kind, const Cabl
   w.name = name;
   w.kind = kind;
   w.mass_per_length = p.mass_per_length;
+  w.thermal_expansion = p.thermal_expansion;
   w.EA = p.EA;
   w.EI = p.EI;
   w.tension = p.tension;

@@ -84,6 +84,7 @@ void SectionBuilder::add_tensioning_device(int k, int node, int wire, double ten
   dev.node = node;
   dev.wire = wire;
   dev.direction = (k == geo_.layout().first ? -1.0 : 1.0) * geo_.track_tangent(k);
+  dev.travel = t.travel;
   if (t.device == TensioningDeviceKind::weight) {
     dev.kind = TensioningKind::weight;
     const double g = mesh_.gravity.norm();

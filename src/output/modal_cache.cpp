@@ -79,9 +79,12 @@ void add_mesh(KeyBuffer& key, const catenary::CatenaryMesh& mesh) {
     key.add(b.unstressed_length), key.add(b.slack);
   }
   for (const auto& p : mesh.point_masses) key.add(p.node), key.add(p.mass);
-  if (mesh.ice.any())  // (a bare line keeps the keys it had before ice existed)
-    key.add(std::string("ice")), key.add(mesh.ice.contact), key.add(mesh.ice.messenger),
-        key.add(mesh.ice.stitch);
+  const auto& c = mesh.conditions;
+  if (c.any()) {  // (a line without conditions keeps the keys it had before they existed)
+    key.add(std::string("conditions")), key.add(c.ice.contact), key.add(c.ice.messenger);
+    key.add(c.ice.stitch), key.add(c.temperature_change_k);
+    for (const auto& w : mesh.wires) key.add(w.thermal_expansion);
+  }
   for (const auto& s : mesh.springs) {
     key.add(s.node), key.add(s.dof), key.add(s.stiffness);
     for (int c = 0; c < 3; ++c) key.add(s.direction[c]);

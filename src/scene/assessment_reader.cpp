@@ -105,7 +105,7 @@ std::string en50318_reference_mismatch(const InputNode& scene, const RunScene& r
   if (!same_tree(scene["catenary"].load_referenced("design").raw(), builtin_tree(kReferenceDesign),
                  "", {"name", "spans.count", "element_length"}))
     return "the design is not the reference catenary";
-  if (run.catenary.mesh.ice.any()) return "the wires carry ice (conditions.ice)";
+  if (run.catenary.mesh.conditions.any()) return "the line is under conditions (conditions)";
   const CriteriaContext context{run.speed * 3.6, run.speed * 3.6, "AC"};
   const CriteriaSet en50318 = builtin_criteria_set("en50318-2002", context);
   for (const auto& k : en50318.criteria)

@@ -17,6 +17,9 @@ void check_scene_sections(const InputNode& scene) {
 
 namespace {
 
+constexpr double kMaxTemperatureChange =
+    100;  // [K]: -40..+80 C about a design temperature of 10-20 C
+
 ElasticityRequest read_elasticity(const InputNode& e, const CatenaryMesh& mesh) {
   e.allow_only({"force", "from_x", "to_x", "step"});
   if (mesh.contact_wire_list().empty() || mesh.support_x.size() < 2)
@@ -37,27 +40,41 @@ ElasticityRequest read_elasticity(const InputNode& e, const CatenaryMesh& mesh) 
   return r;
 }
 
-// 'conditions': ice (kg/m per wire kind) for now (docs/conditions.md).
-IceLoad read_conditions(const InputNode& c, const CatenaryMesh& mesh) {
-  c.allow_only({"ice"});
-  IceLoad ice;
-  if (!c.has("ice")) return ice;
-  const InputNode i = c["ice"];
+// The ice (kg/m per wire kind): a kind the design does not have is an error.
+IceLoad read_ice(const InputNode& i, const CatenaryMesh& mesh) {
   i.allow_only({"contact", "messenger", "stitch"});
+  IceLoad ice;
   const std::pair<const char*, WireKind> kinds[] = {{"contact", WireKind::contact},
                                                     {"messenger", WireKind::messenger},
                                                     {"stitch", WireKind::stitch}};
   for (const auto& [key, kind] : kinds) {
     if (!i.has(key)) continue;
     const double m = i.get_nonnegative(key, limits::mass_per_length);
-    const bool present = std::any_of(mesh.wires.begin(), mesh.wires.end(),
-                                     [&](const Wire& w) { return w.kind == kind; });
-    if (m > 0 && !present) i.fail_key(key, std::string("the design has no ") + key + " wire");
+    const bool wire = std::any_of(mesh.wires.begin(), mesh.wires.end(),
+                                  [&](const Wire& w) { return w.kind == kind; });
+    const bool stitch_bar =
+        kind == WireKind::stitch &&
+        std::any_of(mesh.bars.begin(), mesh.bars.end(),
+                    [](const BarElement& b) { return b.kind == BarKind::stitch; });
+    if (m > 0 && !wire && !stitch_bar)
+      i.fail_key(key, std::string("the design has no ") + key + " wire");
     (kind == WireKind::contact     ? ice.contact
      : kind == WireKind::messenger ? ice.messenger
                                    : ice.stitch) = m;
   }
   return ice;
+}
+
+// 'conditions' (docs/conditions.md).
+LineConditions read_conditions(const InputNode& c, const CatenaryMesh& mesh) {
+  c.allow_only({"ice", "temperature_change_k"});
+  LineConditions out;
+  if (c.has("ice")) out.ice = read_ice(c["ice"], mesh);
+  out.temperature_change_k = c.get_double("temperature_change_k", 0.0);
+  if (!(std::abs(out.temperature_change_k) <= kMaxTemperatureChange))
+    c.fail_key("temperature_change_k", "must lie within +-100 K of the design temperature (got " +
+                                           format_number(out.temperature_change_k) + " K)");
+  return out;
 }
 
 void read_modal_settings(const InputNode& modal, ModalSettings& s) {
@@ -119,7 +136,7 @@ CatenaryScene load_catenary_scene(const InputNode& scene, const MeshSizeCheck& s
   out.mesh.source_file = out.design_path;
   out.form_finding = section.get_bool("form_finding", out.mesh.form_finding_default);
   read_catenary_model(section, out);
-  if (scene.has("conditions")) out.mesh.ice = read_conditions(scene["conditions"], out.mesh);
+  if (scene.has("conditions")) out.mesh.conditions = read_conditions(scene["conditions"], out.mesh);
   if (scene.has("elasticity")) out.elasticity = read_elasticity(scene["elasticity"], out.mesh);
   return out;
 }

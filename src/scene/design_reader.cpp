@@ -51,9 +51,11 @@ SlackCriterion read_slack(const InputNode& n, const char* fallback) {
 namespace {
 
 CableDesign read_cable(const InputNode& n) {
-  n.allow_only({"mass_per_length", "EA", "EI", "tension"});
+  n.allow_only({"mass_per_length", "EA", "EI", "tension", "thermal_expansion"});
   CableDesign p;
   p.mass_per_length = n.get_double("mass_per_length");
+  p.thermal_expansion =
+      n.get_nonnegative("thermal_expansion", limits::thermal_expansion, p.thermal_expansion);
   p.EA = n.get_double("EA");
   p.EI = n.get_double("EI");
   p.tension = n.get_double("tension");

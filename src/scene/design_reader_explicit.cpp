@@ -50,7 +50,8 @@ std::optional<double> read_unstressed(const InputNode& wn) {
 }
 
 ExplicitWire read_wire(const InputNode& wn, std::size_t index) {
-  wn.allow_only({"name", "kind", "nodes", "mass_per_length", "EA", "EI", "tension", "unstressed"});
+  wn.allow_only({"name", "kind", "nodes", "mass_per_length", "EA", "EI", "tension", "unstressed",
+                 "thermal_expansion"});
   ExplicitWire w;
   w.name = wn.get_string("name", "wire" + std::to_string(index));
   const std::string kind =
@@ -60,6 +61,8 @@ ExplicitWire read_wire(const InputNode& wn, std::size_t index) {
            : kind == "stitch"  ? WireKind::stitch
                                : WireKind::other;
   w.mass_per_length = wn.get_double("mass_per_length");
+  w.thermal_expansion =
+      wn.get_nonnegative("thermal_expansion", limits::thermal_expansion, w.thermal_expansion);
   w.EA = wn.get_double("EA");
   w.EI = wn.get_double("EI");
   w.tension = wn.get_double("tension", 0.0);

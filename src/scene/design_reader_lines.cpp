@@ -173,7 +173,7 @@ void read_line(const InputNode& root, ParametricDesign& d) {
   }
   if (root.has("tensioning")) {
     const InputNode t = root["tensioning"];
-    t.allow_only({"device", "ratio", "weight_mass", "stiffness"});
+    t.allow_only({"device", "ratio", "weight_mass", "stiffness", "travel"});
     const std::string device = t.get_choice("device", {"fixed", "weight", "spring"}, "fixed");
     d.tensioning.device = device == "weight"   ? TensioningDeviceKind::weight
                           : device == "spring" ? TensioningDeviceKind::spring
@@ -185,6 +185,8 @@ void read_line(const InputNode& root, ParametricDesign& d) {
     d.tensioning.ratio = t.get_double("ratio", 1.0);
     if (t.has("weight_mass")) d.tensioning.weight_mass = t.get_double("weight_mass");
     if (device == "spring") d.tensioning.stiffness = t.get_double("stiffness");
+    if (device == "fixed" && t.has("travel")) t.fail_key("travel", "only for a device that moves");
+    d.tensioning.travel = t.get_positive("travel", limits::distance, 0.0);
   }
 }
 

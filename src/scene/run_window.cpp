@@ -56,7 +56,7 @@ void fit_train(const InputNode& w, RunScene& run, const catenary::MeshSizeCheck&
   if (size_check) size_check(catenary::mesh_size(d));
   catenary::CatenaryMesh mesh = catenary::build_parametric(d);
   mesh.source_file = run.catenary.mesh.source_file;
-  mesh.ice = run.catenary.mesh.ice;
+  mesh.conditions = run.catenary.mesh.conditions;
   window.mesh = mesh;
   mesh.support_x = std::move(run.catenary.mesh.support_x);  // the line's
   run.catenary.mesh = std::move(mesh);

@@ -60,8 +60,8 @@ simulation::StaticConfiguration run_statics(const Context& ctx, const scene::Run
   print0(ctx, "  static: %d Newton iterations, height error %.2e m, tension error %.2e\n",
          statics.result.snes_iterations, statics.result.max_height_error_m,
          statics.result.max_tension_error_rel);
-  const std::string ice = simulation::ice_summary(statics);
-  if (!ice.empty()) print0(ctx, "  %s\n", ice.c_str());
+  const std::string conditions = simulation::conditions_summary(statics);
+  if (!conditions.empty()) print0(ctx, "  %s\n", conditions.c_str());
   print_warnings(ctx, statics.result.warnings);
   return statics;
 }

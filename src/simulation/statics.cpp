@@ -9,6 +9,7 @@
 #include "pcsim/assembly/static_problem.hpp"
 #include "pcsim/catenary/reactions.hpp"
 #include "pcsim/core/error.hpp"
+#include "pcsim/core/format.hpp"
 #include "pcsim/solvers/modes.hpp"
 #include "pcsim/solvers/statics.hpp"
 
@@ -16,59 +17,130 @@ namespace pcsim::simulation {
 
 namespace {
 
-// The ice added to the bare line's configuration and its statics solved
-// again from there (no form-finding: the line was built bare).
-void load_ice(MPI_Comm comm, StaticConfiguration& config, const char* options_prefix) {
-  auto& mesh = config.mesh;
-  for (auto& wire : mesh.wires) wire.mass_per_length += mesh.ice.on(wire.kind);
+// The conditions' changes of the bare line: ice on wires and stitch bars
+// (mass and weight), the wires' unstressed lengths stretched by alpha dT.
+void change_line(catenary::CatenaryMesh& mesh) {
+  const auto& c = mesh.conditions;
+  for (auto& wire : mesh.wires) wire.mass_per_length += c.ice.on(wire.kind);
+  for (auto& bar : mesh.bars)
+    if (bar.kind == catenary::BarKind::stitch) bar.mass += c.ice.stitch * bar.unstressed_length;
+  for (auto& cable : mesh.cables)
+    cable.unstressed_length *=
+        1 + mesh.wires[cable.wire].thermal_expansion * c.temperature_change_k;
+}
+
+// What the conditions did: the contact wires' height changes, the tension
+// segments' tension changes, each device's travel (beyond its own: a warning).
+void measure_change(const catenary::CatenaryMesh& mesh, const catenary::StaticResult& bare,
+                    catenary::StaticResult& now, ConditionsEffect& e) {
+  const auto z = [](const catenary::StaticResult& r, int n) { return r.node_values[6 * n + 2]; };
+  for (int w : mesh.contact_wire_list())
+    for (int n : mesh.wires[w].nodes) {
+      e.min_contact_dz_m = std::min(e.min_contact_dz_m, z(now, n) - z(bare, n));
+      e.max_contact_dz_m = std::max(e.max_contact_dz_m, z(now, n) - z(bare, n));
+    }
+  for (std::size_t k = 0; k < bare.segment_tensions.size() && k < now.segment_tensions.size(); ++k)
+    e.max_tension_change_rel = std::max(
+        e.max_tension_change_rel, std::abs(now.segment_tensions[k] / bare.segment_tensions[k] - 1));
+  for (const auto& dev : mesh.tensioning_devices) {
+    Eigen::Vector3d move;
+    for (int c = 0; c < 3; ++c)
+      move[c] = now.node_values[6 * dev.node + c] - bare.node_values[6 * dev.node + c];
+    const double along = move.dot(dev.direction);  // > 0: away from the wire
+    e.max_device_travel_m = std::max(e.max_device_travel_m, std::abs(along));
+    if (dev.travel > 0 && std::abs(along) > dev.travel)
+      now.warnings.push_back("the tensioning device of wire '" + mesh.wires[dev.wire].name +
+                             "' at node " + std::to_string(dev.node) + " needs " +
+                             format_number(1e3 * along) + " mm of travel, beyond its " +
+                             format_number(1e3 * dev.travel) +
+                             " mm (tensioning.travel): it would be at its stop, the tension "
+                             "no longer held");
+  }
+}
+
+// A temperature change on a wire that a device tensions but whose stretch
+// between two interior supports that hold it along the track (fixed
+// messenger supports: no cantilever swing) has no device: that stretch
+// changes tension as between fixed terminations. A midpoint anchor leaves a
+// device on each side: no warning.
+void warn_held_wires(const catenary::CatenaryMesh& mesh, catenary::StaticResult& now) {
+  if (mesh.conditions.temperature_change_k == 0) return;
+  std::vector<bool> device(mesh.nodes.size(), false), tensioned(mesh.wires.size(), false);
+  for (const auto& dev : mesh.tensioning_devices) device[dev.node] = tensioned[dev.wire] = true;
+  for (std::size_t w = 0; w < mesh.wires.size(); ++w) {
+    if (!tensioned[w]) continue;
+    const auto& nodes = mesh.wires[w].nodes;
+    long held = 0;  // stretches between two holds, neither end a device
+    int from = nodes.front();
+    for (std::size_t k = 1; k < nodes.size(); ++k) {
+      const int n = nodes[k];
+      if (k + 1 < nodes.size() && !mesh.nodes[n].fixed[0]) continue;
+      if (!device[from] && !device[n]) ++held;
+      from = n;
+    }
+    if (held > 0)
+      now.warnings.push_back(
+          "wire '" + mesh.wires[w].name + "' has a tensioning device, but " + std::to_string(held) +
+          " of its stretches lie between supports that hold it along the track (no cantilever "
+          "swing): under the temperature change they change tension as between fixed "
+          "terminations (docs/conditions.md)");
+  }
+}
+
+// The bare line's configuration under its conditions: changed, and its
+// statics solved again from there (no form-finding: the line was built bare).
+void apply_conditions(MPI_Comm comm, StaticConfiguration& config, const char* options_prefix) {
+  auto mesh = config.mesh;
+  change_line(mesh);
   assembly::CatenarySystem system(comm, mesh, 0, &config.node_owner);
   Vec x = system.create_vector();
   assembly::set_state_from_node_values(system, config.result.node_values, x);
-  catenary::StaticResult iced;
+  catenary::StaticResult now;
   try {
-    iced = solvers::solve_static(system, x, false, options_prefix);
+    now = solvers::solve_static(system, x, false, options_prefix);
   } catch (...) {
     VecDestroy(&x);
     throw;
   }
   PCSIM_PETSC(VecDestroy(&x));
   const auto& bare = config.result;
-  for (int w : mesh.contact_wire_list())
-    for (int n : mesh.wires[w].nodes)
-      config.ice.max_contact_drop_m = std::max(
-          config.ice.max_contact_drop_m, bare.node_values[6 * n + 2] - iced.node_values[6 * n + 2]);
-  for (std::size_t k = 0; k < bare.segment_tensions.size() && k < iced.segment_tensions.size(); ++k)
-    config.ice.max_tension_change_rel =
-        std::max(config.ice.max_tension_change_rel,
-                 std::abs(iced.segment_tensions[k] / bare.segment_tensions[k] - 1.0));
-  config.ice.snes_iterations = iced.snes_iterations;
-  iced.max_height_error_m = bare.max_height_error_m;  // of the form-finding
-  iced.max_tension_error_rel = bare.max_tension_error_rel;
-  iced.registration_forces = catenary::registration_forces(system.mesh(), iced.node_values);
+  measure_change(system.mesh(), bare, now, config.conditions);
+  warn_held_wires(system.mesh(), now);
+  config.conditions.snes_iterations = now.snes_iterations;
+  now.max_height_error_m = bare.max_height_error_m;  // of the form-finding
+  now.max_tension_error_rel = bare.max_tension_error_rel;
+  now.registration_forces = catenary::registration_forces(system.mesh(), now.node_values);
   config.mesh = system.mesh();
-  config.result = std::move(iced);
+  config.result = std::move(now);
 }
 
 }  // namespace
 
-std::string ice_summary(const StaticConfiguration& config) {
-  const auto& ice = config.mesh.ice;
-  if (!ice.any()) return "";
+std::string conditions_summary(const StaticConfiguration& config) {
+  const auto& c = config.mesh.conditions;
+  if (!c.any()) return "";
   std::string on;
-  char text[320];
+  char text[400];
   const std::pair<const char*, double> kinds[] = {
-      {"contact", ice.contact}, {"messenger", ice.messenger}, {"stitch", ice.stitch}};
+      {"contact", c.ice.contact}, {"messenger", c.ice.messenger}, {"stitch", c.ice.stitch}};
   for (const auto& [kind, m] : kinds)
     if (m > 0) {
-      std::snprintf(text, sizeof text, "%s%g kg/m on the %s wires", on.empty() ? "" : ", ", m,
+      std::snprintf(text, sizeof text, "%sice %g kg/m on the %s wires", on.empty() ? "" : ", ", m,
                     kind);
       on += text;
     }
+  if (c.temperature_change_k != 0) {
+    std::snprintf(text, sizeof text, "%s%+g K from the design temperature", on.empty() ? "" : ", ",
+                  c.temperature_change_k);
+    on += text;
+  }
+  const auto& e = config.conditions;
   std::snprintf(text, sizeof text,
-                "ice: %s (after form-finding, %d Newton iterations): contact wire down by at "
-                "most %.1f mm, tensions changed by at most %.2f %%",
-                on.c_str(), config.ice.snes_iterations, 1e3 * config.ice.max_contact_drop_m,
-                100 * config.ice.max_tension_change_rel);
+                "conditions: %s (after form-finding, %d Newton iterations): contact wire %+.1f .. "
+                "%+.1f mm, tensions changed by at most %.2f %%, tensioning devices moved at most "
+                "%.1f mm",
+                on.c_str(), e.snes_iterations, 1e3 * e.min_contact_dz_m, 1e3 * e.max_contact_dz_m,
+                100 * e.max_tension_change_rel, 1e3 * e.max_device_travel_m);
   return text;
 }
 
@@ -94,7 +166,7 @@ StaticConfiguration static_configuration(MPI_Comm comm, const catenary::Catenary
   catenary::release_tensioning_devices(config.mesh, config.result.node_values);
   config.node_owner = system.layout().node_owner();
   config.catenary_dofs = system.layout().catenary_dofs();
-  if (config.mesh.ice.any()) load_ice(comm, config, options_prefix);
+  if (config.mesh.conditions.any()) apply_conditions(comm, config, options_prefix);
   return config;
 }
 

@@ -32,15 +32,20 @@ struct Node {
 enum class WireKind { messenger, contact, stitch, other };
 
 // Cable properties (thesis 3.1.1).
+// Linear thermal expansion of copper and bronze wires (CuAg, CuMg, Bz II:
+// 17e-6 /K), the default of a design's wires [1/K].
+inline constexpr double kCopperThermalExpansion = 1.7e-5;
+
 struct Wire {
   std::string name;
   WireKind kind = WireKind::other;
   double mass_per_length = 0;  // per unstressed length (the wire as bought) [kg/m]
-  double EA = 0;               // axial stiffness [N]
-  double EI = 0;               // bending stiffness [N m^2]
-  double tension = 0;          // design tension [N] (form-finding target)
-  std::vector<int> nodes;      // node indices in order along the wire
-  std::vector<int> elements;   // cable element indices in order
+  double thermal_expansion = kCopperThermalExpansion;  // [1/K]
+  double EA = 0;                                       // axial stiffness [N]
+  double EI = 0;                                       // bending stiffness [N m^2]
+  double tension = 0;                                  // design tension [N] (form-finding target)
+  std::vector<int> nodes;                              // node indices in order along the wire
+  std::vector<int> elements;                           // cable element indices in order
 };
 
 // Transverse wave speed sqrt(T / rho_T) of a wire at its design tension,
@@ -154,7 +159,8 @@ struct TensioningDevice {
   double mass = 0;                                       // [kg] weight: referred to the wire end
   double stiffness = 0;                                  // [N/m] spring
   bool released = false;
-  double pull = 0;  // [N] along 'direction' in the static configuration (set on release)
+  double pull = 0;    // [N] along 'direction' in the static configuration (set on release)
+  double travel = 0;  // [m] the wire end's travel each way from its design position (0: not given)
 };
 
 // A registration (steady arm) of a contact wire at a support: the node it
@@ -232,6 +238,15 @@ struct IceLoad {
   }
 };
 
+// The conditions the line is under (scene 'conditions', docs/conditions.md):
+// ice, and the temperature's difference from the design temperature (the
+// wires' unstressed lengths grow by alpha dT).
+struct LineConditions {
+  IceLoad ice;
+  double temperature_change_k = 0;  // [K]
+  bool any() const { return ice.any() || temperature_change_k != 0; }
+};
+
 struct CatenaryMesh {
   std::string name;
   std::string source_file;
@@ -264,7 +279,7 @@ struct CatenaryMesh {
   std::vector<ContactGapOffset> contact_gap_offsets;
   double rayleigh_alpha = 0;  // C = alpha M + beta K (thesis 3.1)
   double rayleigh_beta = 0;
-  IceLoad ice;  // added by simulation::static_configuration after form-finding
+  LineConditions conditions;  // applied by simulation::static_configuration after form-finding
 
   // The contact wires (contact_wires, or contact_wire alone for a mesh that
   // only sets that).

@@ -29,6 +29,7 @@ inline constexpr Limit tension{1e7, "N"};                // contact wires 1e4-4e
 inline constexpr Limit axial_stiffness{1e11, "N"};       // EA: steel rods ~1e8 N
 inline constexpr Limit bending_stiffness{1e6, "N m^2"};  // EI: contact wires ~200
 inline constexpr Limit mass_per_length{1e4, "kg/m"};     // wires ~1 kg/m
+inline constexpr Limit thermal_expansion{1e-3, "1/K"};   // copper, bronze 1.7e-5; steel 1.2e-5
 inline constexpr Limit stiffness{1e12, "N/m"};           // springs, droppers, contact
 inline constexpr Limit mass{1e5, "kg"};                  // clamps, arms, weights, stages
 inline constexpr Limit damping{1e8, "N s/m"};            // pantograph stages ~10-100

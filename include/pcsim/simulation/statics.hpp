@@ -16,31 +16,35 @@
 
 namespace pcsim::simulation {
 
-// What the ice (design.ice, docs/conditions.md) did to the line built bare:
-// the contact wires' largest drop and the largest change of a tension
-// segment's tension (fixed terminations raise it, weights hold it).
-struct IceEffect {
-  double max_contact_drop_m = 0;
+// What the conditions (docs/conditions.md) did to the line built bare: the
+// contact wires' height changes, the largest change of a tension segment's
+// tension (fixed terminations change it, weights hold it), the tensioning
+// devices' largest travel.
+struct ConditionsEffect {
+  double min_contact_dz_m = 0, max_contact_dz_m = 0;
   double max_tension_change_rel = 0;
+  double max_device_travel_m = 0;
   int snes_iterations = 0;  // of the second static solution
 };
 
 // The design -> static configuration. The returned mesh has its tensioning
-// devices released, the result the pull-off forces. With ice (design.ice),
-// the line is form-found bare, its devices released, then the ice added
-// (mass and weight of the wires) and the statics solved again: the result
-// and mesh are the iced line's; the form-finding errors stay the bare one's.
+// devices released, the result the pull-off forces. Under conditions
+// (mesh.conditions: ice, temperature), the line is form-found bare, its
+// devices released, then changed (the wires' mass and weight, their
+// unstressed lengths by alpha dT) and its statics solved again: the result
+// and mesh are the changed line's; the form-finding errors stay the bare
+// one's; a device beyond its travel is a warning.
 struct StaticConfiguration {
   catenary::CatenaryMesh mesh;    // with the found unstressed lengths, bar equilibria
   catenary::StaticResult result;  // node values etc.
   std::vector<int> node_owner;    // the partition used (reusable by later systems)
   PetscInt catenary_dofs = 0;
-  IceEffect ice;  // zero without ice
+  ConditionsEffect conditions;  // zero without conditions
 };
 StaticConfiguration static_configuration(MPI_Comm comm, const catenary::CatenaryMesh& design,
                                          bool form_finding, const char* options_prefix = nullptr);
-// One line on what the ice did ("" without ice), for the console.
-std::string ice_summary(const StaticConfiguration& config);
+// One line on what the conditions did ("" without any), for the console.
+std::string conditions_summary(const StaticConfiguration& config);
 
 // The catenary's modes about a static configuration (solvers/modes.hpp: nev
 // modes, or every mode below max_frequency_hz > 0), on its own unknowns with
