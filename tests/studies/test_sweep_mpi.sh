@@ -12,7 +12,8 @@
 #  4. SIGTERM to the ranks while cases run: exit 143, the group journals
 #     merged into journal.jsonl; SIGKILL (no chance to merge): the group
 #     journals kept; each time the same command resumes the sweep and its
-#     tables equal those of the sweep run without mpirun.
+#     tables equal those of the sweep run without mpirun; SIGTERM to mpirun
+#     (which forwards it), resumed without mpirun.
 set -euo pipefail
 : "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:=/usr/bin/python3}"
 tmp=$(mktemp -d)
@@ -130,11 +131,11 @@ echo "ok   -sweep_ranks_per_case 3 on 2 ranks: $(grep "pcsim: error" bad.log)"
 grid=(sweep "$scene" --set simulation.dt=0.0001 --set simulation.speed_kmh=180:230:10 --no-report)
 expect 0 ref "$PCSIM_BIN" "${grid[@]}" -o ref -j 2
 journaled() { cat "$1".partial/journal*.jsonl 2> /dev/null | grep -c '"case"' || true; }
-stop_when_two_done() {  # stop_when_two_done SIGNAL FOLDER: the ranks get SIGNAL
+stop_when_two_done() {  # stop_when_two_done SIGNAL FOLDER [mpirun]: the ranks (or mpirun) get it
   "$mpirun" -n 2 "$PCSIM_BIN" "${grid[@]}" -o "$2" > "$2-1.log" 2>&1 &
   local pid=$!
   for _ in $(seq 1 1200); do [ "$(journaled "$2")" -ge 2 ] && break; sleep 0.05; done
-  kill -"$1" $(pgrep -P $pid) 2> /dev/null || true
+  kill -"$1" $([ "${3:-}" = mpirun ] && echo $pid || pgrep -P $pid) 2> /dev/null || true
   [ "$1" = KILL ] && kill -KILL $pid 2> /dev/null || true
   wait $pid 2> /dev/null || true
 }
@@ -143,10 +144,16 @@ grep -q "interrupted (SIGTERM)" term-1.log || { cat term-1.log; fail "no stop af
 [ -z "$(ls term.partial/journal-*.jsonl 2> /dev/null)" ] || fail "group journals not merged"
 stop_when_two_done KILL killed
 [ -n "$(ls killed.partial/journal-*.jsonl 2> /dev/null)" ] || fail "no group journal after SIGKILL"
-for d in term killed; do
+stop_when_two_done TERM forwarded mpirun
+grep -q "interrupted (SIGTERM)" forwarded-1.log || { cat forwarded-1.log; fail "mpirun's SIGTERM"; }
+for d in term killed forwarded; do
   done_before=$(journaled $d)
   [ "$done_before" -ge 2 ] && [ "$done_before" -lt 6 ] || fail "$d: $done_before cases before"
-  expect 0 $d-2 "$mpirun" -n 2 "$PCSIM_BIN" "${grid[@]}" -o $d
+  if [ $d = forwarded ]; then
+    expect 0 $d-2 "$PCSIM_BIN" "${grid[@]}" -o $d -j 2
+  else
+    expect 0 $d-2 "$mpirun" -n 2 "$PCSIM_BIN" "${grid[@]}" -o $d
+  fi
   grep -qF "$done_before case(s) finished (journal kept), $((6 - done_before)) to run" $d-2.log ||
     { cat $d-2.log; fail "$d: no resume line"; }
   [ "$(grep -c '^  \[' $d-2.log)" -eq $((6 - done_before)) ] || fail "$d: cases rerun"
