@@ -277,6 +277,10 @@ int run_dynamic(const app::CommandContext& ctx) {
 
 }  // namespace
 
+int pcsim::app::run_scene_command(const CommandContext& ctx) {
+  return run_dynamic(ctx);
+}
+
 PCSIM_COMMAND_HELP(
     run_help, "run",
     "scene sections (docs/scene-format.md, \"Run scenes\"):\n"

@@ -4,7 +4,10 @@
 // (output/sweep_results.hpp), plots against the swept values and a report.
 // `pcsim sweep SCENE --cases FILE.csv`: the cases are the rows of a table
 // (sweep_cases.hpp, e.g. a sample of postproc/sample.py), not a grid.
+#include <petscsys.h>
+
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -21,6 +24,7 @@
 #include "pcsim/simulation/run_checkpoint.hpp"
 #include "processes.hpp"
 #include "sweep_cases.hpp"
+#include "sweep_mpi.hpp"
 #include "sweep_runner.hpp"
 
 namespace {
@@ -237,11 +241,78 @@ OutputRequest sweep_request(const CommandContext& ctx, const Plan& plan, const I
   return request;
 }
 
-int run_sweep(const CommandContext& ctx) {
-  if (ctx.size > 1)
-    throw InputError("command line", "mpirun",
-                     "pcsim sweep starts every case as its own process: run it without mpirun "
-                     "(--ranks N gives each case N ranks)");
+// The sweep's command line without -sweep_ranks_per_case: how the ranks are
+// grouped is no part of the sweep's definition, nor an option of its cases.
+CommandContext without_ranks_per_case(const CommandContext& ctx) {
+  CommandContext stripped = ctx;
+  auto& args = stripped.petsc_arguments;
+  for (std::size_t i = 0; i < args.size(); ++i)
+    if (args[i] == app::kRanksPerCaseOption) {
+      const bool valued =
+          i + 1 < args.size() && (args[i + 1][0] != '-' || args[i + 1].size() == 1 ||
+                                  std::isdigit(static_cast<unsigned char>(args[i + 1][1])));
+      args.erase(args.begin() + static_cast<long>(i),
+                 args.begin() + static_cast<long>(i + (valued ? 2 : 1)));
+      break;
+    }
+  return stripped;
+}
+
+// Under mpirun: -j and --ranks are the local mode's; the journal is opened on
+// rank 0 and the cases it holds are known to every rank; no accuracy pilot
+// per case unless asked for (as the local mode's case_command).
+std::size_t open_mpi_sweep(const CommandContext& ctx, Plan& plan, const OutputDir& out,
+                           const std::string& definition) {
+  std::size_t resumed = 0;
+  app::on_rank0(ctx, [&] { resumed = app::open_sweep_journal(plan, out, definition); });
+  std::vector<int> statuses;
+  for (const auto& c : plan.cases) statuses.push_back(c.status);
+  MPI_Bcast(statuses.data(), static_cast<int>(statuses.size()), MPI_INT, 0, ctx.comm);
+  for (std::size_t k = 0; k < plan.cases.size(); ++k) plan.cases[k].status = statuses[k];
+  unsigned long count = resumed;
+  MPI_Bcast(&count, 1, MPI_UNSIGNED_LONG, 0, ctx.comm);
+  if (std::find(ctx.petsc_arguments.begin(), ctx.petsc_arguments.end(), "-pcsim_accuracy_pilot") ==
+      ctx.petsc_arguments.end())
+    PCSIM_PETSC(PetscOptionsSetValue(nullptr, "-pcsim_accuracy_pilot", "false"));
+  return count;
+}
+
+void refuse_local_options_under_mpirun(const CommandContext& ctx) {
+  for (const char* name : {"-j", "--ranks"})
+    if (ctx.has_option(name))
+      throw InputError("command line", name,
+                       "under mpirun every rank runs cases, " +
+                           std::string(app::kRanksPerCaseOption) +
+                           " K ranks each (docs/cluster.md): -j and --ranks are for a sweep "
+                           "without mpirun");
+}
+
+// The tables from the journal (rank 0), plots and report, the folder committed;
+// the exit status is the worst of the cases'.
+int finish_sweep(const CommandContext& ctx, Plan& plan, OutputDir& out) {
+  std::vector<std::pair<std::string, std::vector<std::string>>> swept;
+  for (const auto& s : plan.swept) swept.emplace_back(s.key, s.values);
+  nlohmann::json record = nlohmann::json::object();
+  if (plan.table.is_object()) record = {{"cases_table", plan.table}, {"sample", plan.sample}};
+  app::on_rank0(ctx, [&] {
+    if (ctx.size > 1) app::fill_cases_from_journal(plan, out);
+    const std::string table = output::write_sweep_results(out, swept, plan.cases, record);
+    app::print0(ctx, "\n%s\n", table.c_str());
+    write_plots_and_report(ctx, out);
+  });
+  int status = 0;
+  for (const auto& c : plan.cases) status = std::max(status, c.status);
+  MPI_Bcast(&status, 1, MPI_INT, 0, ctx.comm);
+  out.commit();
+  app::print0(ctx, "  results in %s/\n", out.final_dir().c_str());
+  return status == 0 ? 0 : std::min(status, app::kExitInternal);
+}
+
+int run_sweep(const CommandContext& given) {
+  const int ranks_per_case = app::sweep_ranks_per_case(given);
+  const CommandContext ctx = without_ranks_per_case(given);
+  const bool mpi = ctx.size > 1;
+  if (mpi) refuse_local_options_under_mpirun(ctx);
   const int jobs = positive_option(ctx, "-j");
   positive_option(ctx, "--ranks");
   Plan plan = make_plan(ctx);
@@ -251,13 +322,20 @@ int run_sweep(const CommandContext& ctx) {
   const InputNode scene = shared.load_scene();
   const std::string definition = sweep_definition(ctx, plan, scene);
   OutputDir out(ctx.comm, sweep_request(ctx, plan, scene, definition));
-  const std::size_t resumed = app::open_sweep_journal(plan, out, definition);
-  app::print0(ctx, "pcsim sweep: scene '%s', %zu cases, %d at a time\n",
-              ctx.scene_name(scene).c_str(), plan.cases.size(), jobs);
+  const std::size_t resumed = mpi ? open_mpi_sweep(ctx, plan, out, definition)
+                                  : app::open_sweep_journal(plan, out, definition);
+  if (mpi)
+    app::print0(ctx, "pcsim sweep: scene '%s', %zu cases, %d group(s) of %d rank(s)\n",
+                ctx.scene_name(scene).c_str(), plan.cases.size(), ctx.size / ranks_per_case,
+                ranks_per_case);
+  else
+    app::print0(ctx, "pcsim sweep: scene '%s', %zu cases, %d at a time\n",
+                ctx.scene_name(scene).c_str(), plan.cases.size(), jobs);
   if (out.resumed())
     app::print0(ctx, "  resumed %s: %zu case(s) finished (journal kept), %zu to run\n",
                 out.partial_dir().c_str(), resumed, plan.cases.size() - resumed);
-  if (const int signal_number = app::run_sweep_cases(ctx, plan, out, jobs)) {
+  if (const int signal_number = mpi ? app::run_sweep_cases_mpi(ctx, plan, out, ranks_per_case)
+                                    : app::run_sweep_cases(ctx, plan, out, jobs)) {
     out.keep_partial();
     app::print0(ctx,
                 "\n  interrupted (%s): the finished cases (in %s) and the stopped ones are in "
@@ -266,18 +344,7 @@ int run_sweep(const CommandContext& ctx) {
                 out.partial_dir().c_str());
     return 128 + signal_number;
   }
-  std::vector<std::pair<std::string, std::vector<std::string>>> swept;
-  for (const auto& s : plan.swept) swept.emplace_back(s.key, s.values);
-  nlohmann::json record = nlohmann::json::object();
-  if (plan.table.is_object()) record = {{"cases_table", plan.table}, {"sample", plan.sample}};
-  const std::string table = output::write_sweep_results(out, swept, plan.cases, record);
-  app::print0(ctx, "\n%s\n", table.c_str());
-  write_plots_and_report(ctx, out);
-  out.commit();
-  app::print0(ctx, "  results in %s/\n", out.final_dir().c_str());
-  int status = 0;
-  for (const auto& c : plan.cases) status = std::max(status, c.status);
-  return status == 0 ? 0 : std::min(status, app::kExitInternal);
+  return finish_sweep(ctx, plan, out);
 }
 
 }  // namespace
@@ -304,7 +371,12 @@ PCSIM_COMMAND_HELP(
     "sweep goes on; the exit status is the worst of the cases'. SIGINT/SIGTERM stop\n"
     "the running cases (130/143, the sweep left in DIR.partial); the same command again\n"
     "resumes it (finished cases kept), another sweep into it is refused (--overwrite:\n"
-    "start anew).\n",
+    "start anew). sweep.h5: the table with a unit on every column.\n"
+    "Under mpirun with more than one rank (docs/cluster.md) the cases run in-process:\n"
+    "the ranks are split into groups of -sweep_ranks_per_case K (1; a divisor of the\n"
+    "ranks), each group runs one case at a time on its K ranks, taking the next case\n"
+    "as it finishes one; each group journals into journal-<group>.jsonl, merged into\n"
+    "journal.jsonl by rank 0. `mpirun -n 1` is a sweep without mpirun (-j, --ranks).\n",
     {"-j", "N", "run up to N cases at a time (1)"},
     {"--ranks", "N", "MPI ranks of each case (1; through mpiexec)"},
     {"--cases", "FILE.csv", "the cases: one row of a table each (see above)"},

@@ -29,6 +29,7 @@ struct CommandContext : simulation::Context {
   std::vector<std::string> arguments;  // the whole command line (argv)
   std::vector<std::string> overrides;  // --set KEY=VALUE, in order
   bool overwrite = false;              // --overwrite: replace a result of other inputs
+  bool cleanup_on_signal = true;       // OutputRequest::cleanup_on_signal (false: MPI sweep cases)
   std::vector<std::string> petsc_arguments;    // what went to PETSc's options database
   std::map<std::string, std::string> options;  // the command's own options ("" for a flag)
   bool has_option(const std::string& name) const { return options.count(name) > 0; }
@@ -89,6 +90,10 @@ using simulation::total_peak_memory_mb;
 // options no solver read are warned about.
 void refuse_unknown_options(const CommandContext& ctx);
 void warn_unread_options(const CommandContext& ctx);
+
+// `pcsim run` with this command line (cmd_run.cpp): the cases of a sweep
+// under mpirun run through it in-process, each on its group's communicator.
+int run_scene_command(const CommandContext& ctx);
 
 // Newton history, form-finding errors and dropper forces of a static solution.
 void print_static_summary(const CommandContext& ctx, const catenary::CatenaryMesh& mesh,

@@ -63,6 +63,7 @@ OutputRequest CommandContext::output_request(const InputNode& scene) const {
   request.scene_name = name;
   request.provenance = provenance(scene);
   request.overwrite = overwrite;
+  request.cleanup_on_signal = cleanup_on_signal;
   return request;
 }
 

@@ -74,6 +74,8 @@ const std::vector<std::string> kLauncherVariables = {"OMPI_COMM_WORLD",
                                                      "PMIX_",
                                                      "PMI_"};
 
+}  // namespace
+
 std::string case_line(const output::SweepCase& c) {
   if (c.status != 0)
     return "failed (exit " + std::to_string(c.status) + (c.error.empty() ? "" : ": " + c.error) +
@@ -101,6 +103,8 @@ json journal_entry(const SweepPlan& plan, std::size_t k) {
           {"wall_s", c.wall_s},     {"cpu_s", c.cpu_s},   {"finished", utc_timestamp()},
           {"summary", summary}};
 }
+
+namespace {
 
 // The plan's cases as the journal has them (a case it lacks: status -1);
 // the number of cases found. A line of another case list is left out.
@@ -139,9 +143,8 @@ output::SweepJournal read_journal(const std::string& file) {
   return journal;
 }
 
-// A case's leftovers from an interrupted sweep: its partial run folder (made
-// by pcsim: it has the manifest) is removed, unless a run still holds its
-// lock (a case process of a killed sweep left running).
+}  // namespace
+
 void discard_case_leftovers(const std::string& folder) {
   const std::string partial = folder + ".partial";
   std::error_code ec;
@@ -151,8 +154,6 @@ void discard_case_leftovers(const std::string& folder) {
   if (fd >= 0) close(fd);
   if (!held) fs::remove_all(partial, ec);
 }
-
-}  // namespace
 
 OutputRequest::Leftover sweep_leftover(const std::string& partial, const std::string& definition,
                                        bool overwrite, std::string& why) {
@@ -178,6 +179,7 @@ OutputRequest::Leftover sweep_leftover(const std::string& partial, const std::st
 std::size_t open_sweep_journal(SweepPlan& plan, const OutputDir& out,
                                const std::string& definition) {
   const std::string file = out.file(output::kSweepJournalName);
+  if (out.resumed()) output::merge_group_journals(file);  // an MPI sweep's group files
   if (!out.resumed()) {
     output::append_sweep_journal(file, {{"pcsim_sweep_journal", output::kSweepJournalVersion},
                                         {"definition", definition},
@@ -341,13 +343,16 @@ int Runner::run(int jobs) {
 int run_sweep_cases(const CommandContext& ctx, SweepPlan& plan, const OutputDir& out, int jobs) {
   Runner runner(ctx, plan, out);
   if (const int signal_number = runner.run(jobs)) return signal_number;
-  // The tables are the journal's.
+  fill_cases_from_journal(plan, out);
+  return 0;
+}
+
+void fill_cases_from_journal(SweepPlan& plan, const OutputDir& out) {
   const std::size_t found = load_journal(plan, read_journal(out.file(output::kSweepJournalName)));
   if (found != plan.cases.size())
     throw OutputError(out.file(output::kSweepJournalName),
                       "it holds " + std::to_string(found) + " of the " +
                           std::to_string(plan.cases.size()) + " cases");
-  return 0;
 }
 
 }  // namespace pcsim::app

@@ -2,7 +2,8 @@
 // up to N at a time, each finished case (success or failure) appended to the
 // sweep's journal (output/sweep_journal.hpp) before anything else is done
 // with it; a rerun into the same folder resumes from the journal; SIGINT and
-// SIGTERM stop the running cases and leave the journal as it is.
+// SIGTERM stop the running cases and leave the journal as it is. The
+// journal's helpers below serve the MPI mode too (sweep_mpi.hpp).
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -48,5 +49,21 @@ std::size_t open_sweep_journal(SweepPlan& plan, const OutputDir& out,
 // signal that stopped the sweep (0: none). Then fills the plan's cases from
 // the journal (when not stopped).
 int run_sweep_cases(const CommandContext& ctx, SweepPlan& plan, const OutputDir& out, int jobs);
+
+// The plan's cases from the journal (the tables are the journal's); throws
+// OutputError if it lacks a case.
+void fill_cases_from_journal(SweepPlan& plan, const OutputDir& out);
+
+// The journal line of finished case k.
+nlohmann::json journal_entry(const SweepPlan& plan, std::size_t k);
+
+// A finished case in a few words: "ok, <pantograph>: mean .. N, sigma .. N"
+// or "failed (exit N: error), see cases/<case>.log".
+std::string case_line(const output::SweepCase& c);
+
+// A case's leftovers from an interrupted sweep: its partial run folder (made
+// by pcsim: it has the manifest) is removed, unless a run still holds its
+// lock (a case process of a killed sweep left running).
+void discard_case_leftovers(const std::string& folder);
 
 }  // namespace pcsim::app

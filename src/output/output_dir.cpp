@@ -240,7 +240,8 @@ std::string OutputDir::prepare() {
       started_ = output_guard::utc_now();
       output_guard::write_manifest(partial_, manifest(request_, started_, false, partial_));
     }
-    if (why.empty()) output_guard::arm_interrupt_cleanup(partial_, lock_path_);
+    if (why.empty() && request_.cleanup_on_signal)
+      armed_ = output_guard::arm_interrupt_cleanup(partial_, lock_path_);
     if (!why.empty()) undo();
     return why;
   } catch (const OutputError& e) {
@@ -275,9 +276,14 @@ std::string OutputDir::take_leftover() {
   }
 }
 
+void OutputDir::disarm() {
+  if (armed_) output_guard::disarm_interrupt_cleanup();
+  armed_ = false;
+}
+
 // Rank 0, on failure: removes what this run made (not a kept partial folder).
 void OutputDir::undo() {
-  output_guard::disarm_interrupt_cleanup();
+  disarm();
   std::error_code ec;
   if (owns_partial_ && !keep_partial_) fs::remove_all(partial_, ec);
   output_guard::release_lock(lock_fd_, lock_path_);
@@ -313,7 +319,7 @@ void OutputDir::commit() {
     }
     if (why.empty()) {
       committed_ = true;
-      output_guard::disarm_interrupt_cleanup();
+      disarm();
       output_guard::release_lock(lock_fd_, lock_path_);
       lock_fd_ = -1;
     }
@@ -328,7 +334,7 @@ void OutputDir::keep_partial() {
   MPI_Barrier(comm_);
   if (rank_ == 0) {
     keep_partial_ = true;
-    output_guard::disarm_interrupt_cleanup();
+    disarm();
     output_guard::release_lock(lock_fd_, lock_path_);
     lock_fd_ = -1;
     created_parents_.clear();

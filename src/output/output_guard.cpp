@@ -196,14 +196,15 @@ void install(int signal_number, struct sigaction& previous) {
 
 }  // namespace
 
-void arm_interrupt_cleanup(const std::string& partial, const std::string& lock) {
-  if (g_armed || partial.size() + 32 >= PATH_MAX || lock.size() >= PATH_MAX) return;
+bool arm_interrupt_cleanup(const std::string& partial, const std::string& lock) {
+  if (g_armed || partial.size() + 32 >= PATH_MAX || lock.size() >= PATH_MAX) return false;
   copy_path(g_partial, partial);
   copy_path(g_manifest, manifest_path(partial));
   copy_path(g_lock, lock);
   g_armed = 1;
   install(SIGINT, g_previous_int);
   install(SIGTERM, g_previous_term);
+  return true;
 }
 
 void disarm_interrupt_cleanup() {

@@ -27,8 +27,9 @@ void release_lock(int fd, const std::string& path);
 
 // Until disarmed, SIGINT and SIGTERM first remove 'partial' if it holds
 // nothing but its manifest, and the lock file, then end the process as the
-// signal would. An inherited SIG_IGN is kept.
-void arm_interrupt_cleanup(const std::string& partial, const std::string& lock);
+// signal would. An inherited SIG_IGN is kept. Returns false (nothing done)
+// if another folder's cleanup is armed: only the one that armed it disarms it.
+bool arm_interrupt_cleanup(const std::string& partial, const std::string& lock);
 void disarm_interrupt_cleanup();
 
 }  // namespace pcsim::output_guard

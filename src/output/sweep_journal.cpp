@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -48,17 +49,11 @@ std::string line_text(const nlohmann::json& j) {
   return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
-}  // namespace
-
-bool read_sweep_journal(const std::string& file, SweepJournal& journal, std::string& why) {
-  journal = SweepJournal();
-  std::ifstream in(file);
-  if (!in) {
-    why = "it has no journal (" + std::string(kSweepJournalName) + ")";
-    return false;
-  }
+// The case lines of 'in' into the journal; with 'header', its first line is
+// the header (false if it is not one).
+bool read_lines(std::istream& in, SweepJournal& journal, bool header, std::string& why) {
   std::string line;
-  bool first = true;
+  bool first = header;
   while (std::getline(in, line)) {
     // A line without its newline was torn by a kill: dropped like an unreadable one.
     const bool whole = !in.eof();
@@ -78,6 +73,46 @@ bool read_sweep_journal(const std::string& file, SweepJournal& journal, std::str
   }
   if (first) why = "its journal (" + std::string(kSweepJournalName) + ") is empty";
   return !first;
+}
+
+}  // namespace
+
+bool read_sweep_journal(const std::string& file, SweepJournal& journal, std::string& why) {
+  journal = SweepJournal();
+  std::ifstream in(file);
+  if (!in) {
+    why = "it has no journal (" + std::string(kSweepJournalName) + ")";
+    return false;
+  }
+  return read_lines(in, journal, true, why);
+}
+
+std::string group_journal_name(int group) {
+  return "journal-" + std::to_string(group) + ".jsonl";
+}
+
+std::size_t merge_group_journals(const std::string& file) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> groups;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(fs::path(file).parent_path(), ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind("journal-", 0) == 0 && e.path().extension() == ".jsonl")
+      groups.push_back(e.path());
+  }
+  if (groups.empty()) return 0;
+  SweepJournal journal;
+  std::string why;
+  if (!read_sweep_journal(file, journal, why)) throw OutputError(file, why);
+  const std::size_t before = journal.entries.size();
+  std::sort(groups.begin(), groups.end());
+  for (const auto& g : groups) {
+    std::ifstream in(g);
+    read_lines(in, journal, false, why);
+  }
+  rewrite_sweep_journal(file, journal);
+  for (const auto& g : groups) fs::remove(g, ec);
+  return journal.entries.size() - before;
 }
 
 void append_sweep_journal(const std::string& file, const nlohmann::json& line) {

@@ -1,10 +1,15 @@
 #include "pcsim/output/sweep_results.hpp"
 
+#include <cerrno>
+#include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
+#include "pcsim/core/error.hpp"
 #include "pcsim/output/en50318.hpp"
+#include "pcsim/output/h5_file.hpp"
 
 namespace pcsim::output {
 
@@ -126,6 +131,59 @@ nlohmann::json summary_json(const OutputDir& out, const Swept& swept,
   return j;
 }
 
+// A swept key as an HDF5 dataset name (no '/').
+std::string dataset_name(std::string key) {
+  for (char& c : key)
+    if (c == '/') c = '_';
+  return key;
+}
+
+// The figures of one column: value (NaN where none) and verdict of each row.
+void write_figure_columns(H5File& h5, const En50318Figure& f, const std::vector<Row>& rows) {
+  std::vector<double> values;
+  std::vector<std::string> verdicts;
+  for (const auto& r : rows) {
+    const AssessedFigure* a = nullptr;
+    for (const auto& x : r.figures)
+      if (x.figure.key == f.key) a = &x;
+    values.push_back(a ? a->value : std::nan(""));
+    verdicts.push_back(a && a->has_range ? (a->inside ? "pass" : "fail") : "");
+  }
+  h5.write("/figures/" + f.key, values, DatasetInfo(f.unit, f.label + " (NaN: none)"));
+  h5.write_strings("/verdicts/" + f.key, verdicts,
+                   DatasetInfo("none", f.label + ": pass, fail or empty (no range)"));
+}
+
+void write_h5_table(const std::string& file, const Swept& swept, const std::vector<Row>& rows) {
+  H5File h5(file);
+  std::vector<std::string> names, pantographs, statuses, errors;
+  std::vector<long> exit_statuses;
+  std::vector<double> speeds;
+  for (const auto& r : rows) {
+    names.push_back(r.c->name);
+    pantographs.push_back(r.pantograph);
+    statuses.push_back(status_text(r));
+    exit_statuses.push_back(r.c->status);
+    errors.push_back(r.c->error);
+    speeds.push_back(r.c->summary.is_object() ? r.c->summary.value("speed_kmh", 0.0)
+                                              : std::nan(""));
+  }
+  h5.write_strings("/case", names, DatasetInfo("none", "case (its folder under cases/)"));
+  for (std::size_t i = 0; i < swept.size(); ++i) {
+    std::vector<std::string> values;
+    for (const auto& r : rows) values.push_back(r.c->values[i].second);
+    h5.write_strings("/values/" + dataset_name(swept[i].first), values,
+                     DatasetInfo("none", "the case's value of scene key " + swept[i].first));
+  }
+  h5.write_strings("/pantograph", pantographs, DatasetInfo("none", "pantograph of the row"));
+  h5.write_strings("/status", statuses, DatasetInfo("none", "ok, no statistics or failed"));
+  h5.write_int("/exit_status", exit_statuses, DatasetInfo("1", "exit status of the case's run"));
+  h5.write_strings("/error", errors, DatasetInfo("none", "a failed case's error"));
+  h5.write("/speed_kmh", speeds, DatasetInfo("km/h", "train speed (NaN: failed case)"));
+  for (const auto& f : en50318_reference().figures) write_figure_columns(h5, f, rows);
+  h5.close();
+}
+
 }  // namespace
 
 std::string write_sweep_results(const OutputDir& out, const Swept& swept,
@@ -136,6 +194,10 @@ std::string write_sweep_results(const OutputDir& out, const Swept& swept,
   std::ofstream(out.file("sweep.md")) << table;
   std::ofstream(out.file("summary.json"))
       << summary_json(out, swept, cases, record).dump(2) << "\n";
+  // sweep.h5 whole or not at all: written under another name, then renamed.
+  const std::string h5 = out.file(kSweepH5Name), tmp = h5 + ".tmp";
+  write_h5_table(tmp, swept, rows);
+  if (std::rename(tmp.c_str(), h5.c_str()) != 0) throw OutputError(h5, std::strerror(errno));
   return table;
 }
 

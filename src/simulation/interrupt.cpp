@@ -10,6 +10,7 @@ namespace {
 volatile sig_atomic_t g_signal = 0;
 volatile sig_atomic_t g_first_at = 0;  // monotonic time of the first signal [s]
 struct sigaction g_previous_int, g_previous_term;
+int g_depth = 0;  // GracefulStops alive: a nested one (a run in an MPI sweep) keeps the outer's
 
 // A second signal within this time of the first is the same request delivered
 // twice: timeout(1) signals its child and then its whole process group, a
@@ -48,12 +49,14 @@ void install(int signal_number, struct sigaction& previous) {
 }  // namespace
 
 GracefulStop::GracefulStop() {
+  if (g_depth++ > 0) return;  // the outer one's handlers and signal stay
   g_signal = 0;
   install(SIGINT, g_previous_int);
   install(SIGTERM, g_previous_term);
 }
 
 GracefulStop::~GracefulStop() {
+  if (--g_depth > 0) return;
   if (g_previous_int.sa_handler != SIG_IGN) sigaction(SIGINT, &g_previous_int, nullptr);
   if (g_previous_term.sa_handler != SIG_IGN) sigaction(SIGTERM, &g_previous_term, nullptr);
 }

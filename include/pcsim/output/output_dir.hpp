@@ -49,6 +49,10 @@ struct OutputRequest {
   // Unset: refused with the usual message.
   enum class Leftover { refuse, resume, replace };
   std::function<Leftover(const std::string& partial, std::string& why)> leftover = nullptr;
+  // SIGINT/SIGTERM before the commit remove a partial folder that holds only
+  // its manifest and end the process. false: the caller handles them (a case
+  // of a sweep under mpirun stops at its next step instead).
+  bool cleanup_on_signal = true;
 };
 
 class OutputDir {
@@ -85,6 +89,7 @@ class OutputDir {
   std::string swap_into_place();  // rank 0: the commit's renames; "" or the reason
   std::string take_leftover();    // rank 0: a leftover partial resumed, replaced or refused
   void undo();                    // rank 0: removes what this run made, releases the lock
+  void disarm();                  // rank 0: the signal cleanup off, if this folder armed it
   [[noreturn]] void fail(const std::string& reason) const;
 
   MPI_Comm comm_;
@@ -98,6 +103,7 @@ class OutputDir {
   bool committed_ = false;
   bool resumed_ = false;       // partial_ is a leftover this run continues
   bool keep_partial_ = false;  // a failed commit keeps the new results
+  bool armed_ = false;         // this folder armed the signal cleanup (output_guard.hpp)
 };
 
 // Throws what OutputDir's constructor would throw for 'request', touching

@@ -12,6 +12,11 @@
 //              summary.json without the provenance (null for a failed case)}
 // The sweep's tables (sweep_results.hpp) are built from it; a rerun of the
 // same sweep into the same folder keeps its cases and runs the others.
+// Under mpirun (docs/cluster.md) each group of ranks appends its cases to a
+// file of its own, journal-<group>.jsonl (case lines only): a single file
+// appended from several nodes is not safe on a network file system (NFS
+// does not keep O_APPEND writes of two clients apart). Rank 0 merges them
+// into journal.jsonl when the sweep ends or is resumed.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -35,6 +40,15 @@ bool read_sweep_journal(const std::string& file, SweepJournal& journal, std::str
 
 // Appends one line (write() + fsync()); throws OutputError if it cannot.
 void append_sweep_journal(const std::string& file, const nlohmann::json& line);
+
+// The case-line file of group 'group' of an MPI sweep: "journal-<group>.jsonl".
+std::string group_journal_name(int group);
+
+// Moves the case lines of the group files beside 'file' (journal-*.jsonl)
+// into it (rewritten, then the group files removed; a kill in between leaves
+// a case twice, which readers take once). Returns how many lines it moved;
+// throws OutputError if it cannot.
+std::size_t merge_group_journals(const std::string& file);
 
 // Writes the journal anew (temporary file, fsync, rename): after a resume, a
 // torn last line is gone. Throws OutputError if it cannot.

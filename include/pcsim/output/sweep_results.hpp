@@ -4,6 +4,12 @@
 //                figure its value (display unit) and verdict (pass/fail, empty
 //                where the standard gives no range)
 //   sweep.md     the same as a Markdown table, values with their verdicts
+//   sweep.h5     the same table, one dataset per column, each with its 'unit'
+//                and 'description' attributes (output/h5_file.hpp): /case,
+//                /values/<swept key>, /pantograph, /status, /exit_status,
+//                /error, /speed_kmh, /figures/<figure key> (display unit,
+//                NaN where none), /verdicts/<figure key>; written to a
+//                temporary file, then renamed
 //   summary.json {"swept": {key: [values]}, "cases": [{name, values, status,
 //                 error, wall_s, cpu_s, summary}], "en50318": edition and
 //                 figures, "provenance"}
@@ -21,6 +27,8 @@
 
 namespace pcsim::output {
 
+constexpr const char* kSweepH5Name = "sweep.h5";
+
 struct SweepCase {
   std::string name;                                         // folder under cases/
   std::vector<std::pair<std::string, std::string>> values;  // swept key -> value
@@ -30,7 +38,7 @@ struct SweepCase {
   double wall_s = 0, cpu_s = 0;                             // its cost
 };
 
-// Writes sweep.csv, sweep.md and summary.json; returns the Markdown table.
+// Writes sweep.csv, sweep.md, summary.json and sweep.h5; returns the Markdown table.
 std::string write_sweep_results(
     const OutputDir& out,
     const std::vector<std::pair<std::string, std::vector<std::string>>>& swept,

@@ -5,6 +5,8 @@
 // folder. A second signal, a second or more after the first, ends the process
 // at once, through the handler that was there before (the output folder's
 // cleanup, output_dir.hpp); one sooner is the same request delivered twice.
+// GracefulStops nest: an inner one (each case of an MPI sweep) keeps the
+// outer one's handlers, and a signal caught before it was made.
 #pragma once
 
 #include <mpi.h>
