@@ -242,7 +242,7 @@ def report_page(sources, header, body, inputs, diff, images):
     return report.page("pcsim compare: %s" % " vs ".join(s.label for s in sources), "\n".join(parts))
 
 
-def output_folder(a, sources):
+def output_folder(a):
     folder = a.output or os.path.join("out", "compare-" + "-".join(folder_label(p) for p in
                                                                   a.runs + [a.measurement or ""] if p))
     if os.path.isdir(folder) and set(os.listdir(folder)) - {".pcsim-result"}:
@@ -276,7 +276,7 @@ def main():
                     help="largest position lag of the measurement searched (m; default half a span)")
     a = ap.parse_args()
     sources = load_sources(a)
-    folder = output_folder(a, sources)
+    folder = output_folder(a)
     ref = pcsim_post.reference()
     rows = figure_rows(sources, ref)
     header, body = table_cells(rows, sources)
