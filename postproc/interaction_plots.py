@@ -66,11 +66,10 @@ def load_runs(folders, labels):
     return [Run(f, l) for f, l in zip(folders, labels)]
 
 
-def force_figure(runs, pantograph=None, raw=False, xlim=None, title=None):
-    plt = pcsim_post.pyplot()
-    fig, ax = plt.subplots(figsize=(11, 4.2))
+def draw_forces(ax, runs, names, raw=False):
+    """The filtered contact force of pantographs 'names' of every run on 'ax' (the raw one too
+    with one run or raw), the analysis section shaded."""
     ax.axvspan(runs[0].x_from, runs[0].x_to, color="0.85", zorder=0, label="analysis section")
-    names = [pantograph] if pantograph else list(runs[0].pantographs) if len(runs) == 1 else [None]
     cutoff = runs[0].summary["analysis"]["cutoff_hz"]
     for run in runs:
         for pname in names:
@@ -82,18 +81,24 @@ def force_figure(runs, pantograph=None, raw=False, xlim=None, title=None):
                     label="%s filtered %g Hz" % (tag, cutoff))
     ax.set_xlabel("contact point position x (m)")
     ax.set_ylabel("contact force (N)")
-    ax.set_title(title or "Contact force, %s" % ", ".join(r.label for r in runs))
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, loc="upper right", ncol=2)
+
+
+def force_figure(runs, pantograph=None, raw=False, xlim=None, title=None):
+    plt = pcsim_post.pyplot()
+    fig, ax = plt.subplots(figsize=(11, 4.2))
+    names = [pantograph] if pantograph else list(runs[0].pantographs) if len(runs) == 1 else [None]
+    draw_forces(ax, runs, names, raw)
+    ax.set_title(title or "Contact force, %s" % ", ".join(r.label for r in runs))
     if xlim:
         ax.set_xlim(*xlim)
     fig.tight_layout()
     return fig
 
 
-def spectrum_figure(runs, pantograph=None, title=None):
-    plt = pcsim_post.pyplot()
-    fig, ax = plt.subplots(figsize=(9, 4.2))
+def draw_spectrum(ax, runs, pantograph=None):
+    """The amplitude spectrum of the raw contact force of every run over the analysis section."""
     fmax = runs[0].summary["analysis"]["cutoff_hz"]
     for run in runs:
         name, p = run.pantograph(pantograph)
@@ -119,9 +124,15 @@ def spectrum_figure(runs, pantograph=None, title=None):
     ax.set_xlim(0, fmax)
     ax.set_xlabel("frequency (Hz)  (dashed: span passing v/L = %.2f Hz and harmonics)" % fs)
     ax.set_ylabel("amplitude (N)")
-    ax.set_title(title or "Contact force spectrum over the analysis section")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
+
+
+def spectrum_figure(runs, pantograph=None, title=None):
+    plt = pcsim_post.pyplot()
+    fig, ax = plt.subplots(figsize=(9, 4.2))
+    draw_spectrum(ax, runs, pantograph)
+    ax.set_title(title or "Contact force spectrum over the analysis section")
     fig.tight_layout()
     return fig
 
@@ -160,20 +171,27 @@ def uplift_many(runs, title=None):
         worst = max(section, key=lambda i: up[:, i].max()) if section else int(np.argmax(up.max(axis=0)))
         ax1.plot(run.time, up[:, worst], lw=1.0, color="C%d" % k,
                  label="%s, support x = %.0f m" % (run.label, run.support_x[worst]))
-        ax2.plot(run.support_x, up.max(axis=0), "o-", ms=3, color="C%d" % k,
-                 label="%s (max in section %.1f mm)" % (run.label, 1e3 * run.summary["max_uplift_at_support_m"]))
-    ax2.axvspan(runs[0].x_from, runs[0].x_to, color="0.85", zorder=0)
+    draw_max_uplift(ax2, runs)
     ax1.set_xlabel("time (s)")
     ax1.set_ylabel("uplift at the support of the largest uplift (mm)")
     ax1.grid(alpha=0.3)
     ax1.legend(fontsize=7)
-    ax2.set_xlabel("support position x (m)  (shaded: analysis section)")
-    ax2.set_ylabel("max uplift (mm)")
-    ax2.grid(alpha=0.3)
-    ax2.legend(fontsize=7)
     fig.suptitle(title or "Uplift at the supports, %s" % ", ".join(r.label for r in runs))
     fig.tight_layout()
     return fig
+
+
+def draw_max_uplift(ax, runs):
+    """The largest uplift at every support of every run (mm), the analysis section shaded."""
+    for k, run in enumerate(runs):
+        largest = run.summary.get("max_uplift_at_support_m")
+        ax.plot(run.support_x, 1e3 * run.uplift.max(axis=0), "o-", ms=3, color="C%d" % k,
+                label=run.label + (" (max in section %.1f mm)" % (1e3 * largest) if largest is not None else ""))
+    ax.axvspan(runs[0].x_from, runs[0].x_to, color="0.85", zorder=0)
+    ax.set_xlabel("support position x (m)  (shaded: analysis section)")
+    ax.set_ylabel("max uplift (mm)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
 
 
 def uplift_figure(runs, title=None):

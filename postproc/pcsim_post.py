@@ -96,19 +96,23 @@ def assess(run_summary, pantograph, ref=None):
     return out
 
 
-def main(function):
-    """Runs function(); a ScriptError, a missing file or package ends the script with one line."""
+def main(function, error_status=1):
+    """Runs function(); a ScriptError, a missing file or package ends the script with one line
+    and exit status error_status."""
     name = os.path.basename(sys.argv[0])
+
+    def stop(message):
+        print("%s: error: %s" % (name, message), file=sys.stderr)
+        sys.exit(error_status)
     try:
         function()
     except ScriptError as e:
-        sys.exit("%s: error: %s" % (name, e))
+        stop(e)
     except (FileNotFoundError, IsADirectoryError, NotADirectoryError) as e:
-        sys.exit("%s: error: %s: %s" % (name, e.strerror, e.filename))
+        stop("%s: %s" % (e.strerror, e.filename))
     except ImportError as e:
-        sys.exit("%s: error: %s (a Python package is missing for %s)" % (name, e, sys.executable))
+        stop("%s (a Python package is missing for %s)" % (e, sys.executable))
     except subprocess.CalledProcessError as e:
-        sys.exit("%s: error: %s failed with exit status %d" % (name, " ".join(map(str, e.cmd)), e.returncode))
+        stop("%s failed with exit status %d" % (" ".join(map(str, e.cmd)), e.returncode))
     except KeyError as e:
-        sys.exit("%s: error: missing entry %s in the results (written by another pcsim version?)"
-                 % (name, e))
+        stop("missing entry %s in the results (written by another pcsim version?)" % e)

@@ -28,6 +28,7 @@ struct CommandContext : simulation::Context {
   std::string subcommand;              // commands with a subcommand: `pcsim study accuracy SCENE`
   std::vector<std::string> arguments;  // the whole command line (argv)
   std::vector<std::string> overrides;  // --set KEY=VALUE, in order
+  std::vector<std::string> operands;   // commands without a scene: what they take instead
   bool overwrite = false;              // --overwrite: replace a result of other inputs
   bool cleanup_on_signal = true;       // OutputRequest::cleanup_on_signal (false: MPI sweep cases)
   std::vector<std::string> petsc_arguments;    // what went to PETSc's options database
@@ -58,6 +59,9 @@ struct Command {
   std::vector<CommandOption> options;
   std::function<int(const CommandContext&)> run;
   bool has_subcommand = false;  // the first argument names a subcommand
+  // What a command takes instead of a scene, for its usage line ("RUN_A RUN_B
+  // [RUN ...]"); "" for the commands of one scene file.
+  std::string operands;
 };
 
 std::map<std::string, Command>& command_registry();
@@ -76,6 +80,12 @@ struct CommandHelpRegistrar {
                        std::vector<CommandOption> options) {
     command_registry()[name].help = std::move(help);
     command_registry()[name].options = std::move(options);
+  }
+};
+
+struct CommandOperandsRegistrar {
+  CommandOperandsRegistrar(const std::string& name, std::string operands) {
+    command_registry()[name].operands = std::move(operands);
   }
 };
 
@@ -109,3 +119,6 @@ void print_static_summary(const CommandContext& ctx, const catenary::CatenaryMes
 // --help text (scene sections, docs) and the command's own options.
 #define PCSIM_COMMAND_HELP(tag, name, help, ...) \
   static ::pcsim::app::CommandHelpRegistrar pcsim_command_help_##tag(name, help, {__VA_ARGS__})
+// A command that takes 'operands' (its usage line) instead of a scene file.
+#define PCSIM_COMMAND_OPERANDS(tag, name, operands) \
+  static ::pcsim::app::CommandOperandsRegistrar pcsim_command_operands_##tag(name, operands)

@@ -36,14 +36,23 @@ const char* const kCommonOptions =
     "  --cache DIR      cache of reduced (modal) catenary bases (default out/.pcsim-cache)\n"
     "  -h, --help       this text\n";
 
+// The common options of a command that takes no scene (Command::operands).
+const char* const kOperandCommonOptions =
+    "  -o DIR           output folder (default %s)\n"
+    "  -h, --help       this text\n";
+
 void print_usage() {
   std::printf(
       "pcsim %s - parallel pantograph-catenary interaction simulator\n\n"
-      "usage: pcsim <command> SCENE.yaml [-o DIR] [--set KEY=VALUE]... [PETSc options]\n"
+      "usage: pcsim <command> SCENE.yaml [-o DIR] [--set KEY=VALUE]... [PETSc options]\n",
+      pcsim::version());
+  for (const auto& [name, command] : pcsim::app::command_registry())
+    if (!command.operands.empty())
+      std::printf("       pcsim %s %s [-o DIR]\n", name.c_str(), command.operands.c_str());
+  std::printf(
       "       pcsim <command> --help     the scene sections and options of a command\n"
       "       pcsim --version\n\n"
-      "commands:\n",
-      pcsim::version());
+      "commands:\n");
   for (const auto& [name, command] : pcsim::app::command_registry())
     std::printf("  %-12s %s\n", name.c_str(), command.summary.c_str());
   std::printf("\noptions:\n");
@@ -66,6 +75,7 @@ std::string default_output(const std::string& command) {
   if (command == "sweep") return "out/<scene name>-sweep/";
   if (command == "study") return "out/<scene name>-accuracy/";
   if (command == "check") return "none: check writes nothing";
+  if (command == "compare") return "out/compare-<A>-<B>/, the names of what is compared";
   return "out/<scene name>/";
 }
 
@@ -73,13 +83,18 @@ void print_command_help(const std::string& name, const Command& command) {
   std::string own;
   for (const auto& o : command.options)
     own += " [" + o.name + (o.value.empty() ? "" : " " + o.value) + "]";
-  std::printf(
-      "usage: pcsim %s%s SCENE.yaml [-o DIR] [--set KEY=VALUE]...%s [PETSc options]\n  %s\n",
-      name.c_str(), command.has_subcommand ? " SUBCOMMAND" : "", own.c_str(),
-      command.summary.c_str());
+  if (command.operands.empty())
+    std::printf(
+        "usage: pcsim %s%s SCENE.yaml [-o DIR] [--set KEY=VALUE]...%s [PETSc options]\n  %s\n",
+        name.c_str(), command.has_subcommand ? " SUBCOMMAND" : "", own.c_str(),
+        command.summary.c_str());
+  else
+    std::printf("usage: pcsim %s %s [-o DIR]%s\n  %s\n", name.c_str(), command.operands.c_str(),
+                own.c_str(), command.summary.c_str());
   if (!command.help.empty()) std::printf("\n%s", command.help.c_str());
   std::printf("\noptions:\n");
-  std::printf(kCommonOptions, default_output(name).c_str());
+  std::printf(command.operands.empty() ? kCommonOptions : kOperandCommonOptions,
+              default_output(name).c_str());
   for (const auto& o : command.options) {
     const std::string left = o.name + (o.value.empty() ? "" : " " + o.value);
     std::printf("  %-16s %s\n", left.c_str(), o.help.c_str());
@@ -106,8 +121,15 @@ int parse_arguments(int argc, char** argv, const Command& command, CommandContex
                  i + 1 < argc ? (std::string(", not the option ") + argv[i + 1]).c_str() : "");
     return false;
   };
+  const bool takes_operands = !command.operands.empty();
   for (int i = 2; i < argc; ++i) {
     const char* arg = argv[i];
+    if (takes_operands && (!std::strncmp(arg, "--set", 5) || !std::strcmp(arg, "--cache") ||
+                           !std::strcmp(arg, "--overwrite"))) {
+      std::fprintf(stderr, "pcsim: error: pcsim %s takes no %s (pcsim %s --help)\n",
+                   ctx.command.c_str(), arg, ctx.command.c_str());
+      return 2;
+    }
     if (!std::strcmp(arg, "-o") || !std::strcmp(arg, "--output")) {
       if (!needs(i, "a folder")) return 2;
       ctx.output_dir = argv[++i];
@@ -130,6 +152,8 @@ int parse_arguments(int argc, char** argv, const Command& command, CommandContex
       ctx.options[o->name] = o->value.empty() ? "" : argv[++i];
     } else if (!std::strcmp(arg, "--overwrite")) {
       ctx.overwrite = true;
+    } else if (takes_operands && arg[0] != '-') {
+      ctx.operands.push_back(arg);
     } else if (ctx.scene_path.empty() && arg[0] != '-') {
       ctx.scene_path = arg;
     } else if (arg[0] != '-' && !(i > 2 && ctx.petsc_arguments.size() &&
@@ -154,7 +178,7 @@ int parse_arguments(int argc, char** argv, const Command& command, CommandContex
     }
     ctx.petsc_arguments.insert(ctx.petsc_arguments.begin(), recorded.begin(), recorded.end());
   }
-  if (ctx.scene_path.empty()) {
+  if (ctx.scene_path.empty() && !takes_operands) {
     for (const auto& a : ctx.petsc_arguments)
       if (a == "-help") {
         print_command_help(ctx.command, command);

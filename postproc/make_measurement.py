@@ -1,0 +1,70 @@
+#!/usr/bin/python3
+"""A synthetic "measurement" CSV made from a `pcsim run` result, to try `pcsim compare --measurement`.
+
+    make_measurement.py RUN [-o FILE.csv] [--lag M] [--offset N] [--noise N] [--spacing M]
+                        [--seed S] [--pantograph NAME] [--supports K]
+
+The run's raw contact force averaged over every --spacing m along the track, with a force
+offset, white Gaussian noise (standard deviation --noise) and a position lag: the row at
+x holds the force the run has at x - lag (an odometer reading lag m ahead). The uplift
+histories of the K supports nearest to the analysis section's middle are added as
+'uplift X [mm]' columns (the support's own position X, no lag). Format: docs/assessment.md
+"Measurements".
+"""
+import argparse
+import os
+
+import numpy as np
+
+import interaction_plots
+import pcsim_post
+
+
+def sample_averages(position, force, x, spacing):
+    """The force averaged over [x - spacing/2, x + spacing/2], as an acquisition system
+    integrates between samples (point samples would alias the contact's high frequencies)."""
+    integral = np.concatenate(([0.0], np.cumsum(0.5 * (force[1:] + force[:-1]) * np.diff(position))))
+    return (np.interp(x + 0.5 * spacing, position, integral)
+            - np.interp(x - 0.5 * spacing, position, integral)) / spacing
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0], epilog=__doc__.split("\n\n", 2)[2],
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("run", metavar="RUN", help="pcsim run result folder")
+    ap.add_argument("-o", "--output", help="CSV file to write (default: RUN-synthetic.csv)")
+    ap.add_argument("--lag", type=float, default=3.7, help="position lag (m, default 3.7)")
+    ap.add_argument("--offset", type=float, default=8.0, help="force offset (N, default 8)")
+    ap.add_argument("--noise", type=float, default=5.0, help="noise standard deviation (N, default 5)")
+    ap.add_argument("--spacing", type=float, default=0.25, help="sample spacing (m, default 0.25)")
+    ap.add_argument("--seed", type=int, default=1, help="seed of the noise (default 1)")
+    ap.add_argument("--pantograph", metavar="NAME", help="pantograph (default: the first)")
+    ap.add_argument("--supports", type=int, default=2, help="uplift columns (default 2)")
+    a = ap.parse_args()
+    run = interaction_plots.Run(a.run)
+    output = a.output or os.path.normpath(a.run) + "-synthetic.csv"
+    name, p = run.pantograph(a.pantograph)
+    position, order = np.unique(p["position"], return_index=True)  # standing still: one row
+    true_x = np.arange(position[0] + a.spacing, position[-1] - a.spacing, a.spacing)
+    noise = np.random.default_rng(a.seed).normal(0.0, a.noise, len(true_x))
+    force = sample_averages(position, p["contact_force"][order], true_x, a.spacing)
+    force += a.offset + noise
+    middle = 0.5 * (run.x_from + run.x_to)
+    chosen = sorted(np.argsort(np.abs(run.support_x - middle))[:a.supports])
+    time_at = np.interp(true_x, position, run.time[order])
+    columns = [true_x + a.lag, force] + [1e3 * np.interp(time_at, run.time, run.uplift[:, i])
+                                         for i in chosen]
+    header = ["x [m]", "force [N]"] + ["uplift %g [mm]" % run.support_x[i] for i in chosen]
+    with open(output, "w") as f:
+        f.write("# synthetic measurement from %s, pantograph '%s' (postproc/make_measurement.py):\n"
+                "# lag %g m, force offset %g N, noise %g N (seed %d), every %g m\n"
+                % (os.path.basename(os.path.normpath(a.run)), name, a.lag, a.offset, a.noise,
+                   a.seed, a.spacing))
+        f.write(",".join(header) + "\n")
+        for row in zip(*columns):
+            f.write(",".join("%.3f" % v for v in row) + "\n")
+    print("make_measurement: wrote %s (%d rows)" % (output, len(true_x)))
+
+
+if __name__ == "__main__":
+    pcsim_post.main(main)
