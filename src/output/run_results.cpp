@@ -100,6 +100,9 @@ PantographStatistics pantograph_results(hid_t file, const RunSettings& s,
   st.complete = !x.empty() && x.front() <= s.analysis_from_x && x.back() >= s.analysis_to_x;
   if (st.complete)
     st.force = force_statistics(x, filtered, force, s.analysis_from_x, s.analysis_to_x);
+  if (st.complete && s.loss_min_duration_s > 0)
+    st.force.loss_of_contact_percent = loss_of_contact_percent(
+        x, time, force, s.analysis_from_x, s.analysis_to_x, s.loss_min_duration_s);
   return st;
 }
 

@@ -104,6 +104,27 @@ std::vector<double> zero_phase_lowpass(const std::vector<double>& x, double samp
   return zero_phase_filter(butterworth_lowpass(order, cutoff_hz, sample_rate_hz), x);
 }
 
+double loss_of_contact_percent(const std::vector<double>& position, const std::vector<double>& time,
+                               const std::vector<double>& raw, double x_start, double x_end,
+                               double min_duration) {
+  const auto inside = [&](std::size_t i) { return position[i] >= x_start && position[i] <= x_end; };
+  std::size_t samples = 0, lost = 0;
+  for (std::size_t i = 0; i < raw.size();) {
+    if (raw[i] > 0) {
+      samples += inside(i) ? 1 : 0;
+      ++i;
+      continue;
+    }
+    std::size_t end = i, in = 0;  // the stretch [i, end) of raw <= 0
+    for (; end < raw.size() && raw[end] <= 0; ++end) in += inside(end) ? 1 : 0;
+    const double lasts = (end < time.size() ? time[end] : time.back()) - time[i];
+    samples += in;
+    if (lasts >= min_duration * (1 - 1e-9)) lost += in;
+    i = end;
+  }
+  return samples ? 100.0 * static_cast<double>(lost) / static_cast<double>(samples) : 0.0;
+}
+
 ForceStatistics force_statistics(const std::vector<double>& position,
                                  const std::vector<double>& filtered,
                                  const std::vector<double>& raw, double x_start, double x_end) {

@@ -12,6 +12,10 @@ namespace pcsim::scene {
 
 namespace {
 
+// analysis.loss_min_duration_ms: at most a second (the arcing figures count
+// interruptions of a few ms).
+constexpr Limit kLossDuration{1000, "ms"};
+
 void read_simulation(const InputNode& scene, RunScene& run, std::optional<double> dt) {
   const auto& mesh = run.catenary.mesh;
   const InputNode sim = scene["simulation"];
@@ -82,13 +86,14 @@ void read_analysis(const InputNode& scene, RunScene& run) {
   run.analysis_to_span = std::min(6, n_spans);
   if (scene.has("analysis")) {
     const InputNode a = scene["analysis"];
-    a.allow_only({"from_span", "to_span", "cutoff_hz"});
+    a.allow_only({"from_span", "to_span", "cutoff_hz", "loss_min_duration_ms"});
     run.analysis_from_span = static_cast<int>(a.get_int("from_span", run.analysis_from_span));
     run.analysis_to_span = static_cast<int>(a.get_int("to_span", run.analysis_to_span));
     if (run.analysis_from_span < 1 || run.analysis_to_span > n_spans ||
         run.analysis_from_span > run.analysis_to_span)
       a.fail("spans must satisfy 1 <= from_span <= to_span <= " + std::to_string(n_spans));
     run.cutoff_hz = a.get_positive("cutoff_hz", limits::frequency, 20.0);
+    run.loss_min_duration_s = 1e-3 * a.get_nonnegative("loss_min_duration_ms", kLossDuration, 0.0);
   }
   run.analysis_from_x = mesh.support_x[run.analysis_from_span - 1];
   run.analysis_to_x = mesh.support_x[run.analysis_to_span];

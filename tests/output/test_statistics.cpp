@@ -204,3 +204,26 @@ TEST(Statistics, FilteredMinimumOfAClippedForceIsNegativeTheUnfilteredOneIsNot) 
   // in samples, within one of the 200 per period (0.5 %; measured 26.5 %).
   EXPECT_NEAR(st.loss_of_contact_percent, 100 * (M_PI / 2 - std::asin(2.0 / 3)) / M_PI, 0.5);
 }
+
+TEST(Statistics, LossOfContactWithAMinimumDuration) {
+  // 1 kHz samples, 1 m apart; in the section [100, 899]: losses of 2, 4, 5
+  // and 12 samples (2, 4, 5, 12 ms), and one of 6 samples that starts 3
+  // samples before the section (3 inside, lasting 6 ms).
+  std::vector<double> pos, time, raw(1000, 100.0);
+  for (int i = 0; i < 1000; ++i) pos.push_back(i), time.push_back(1e-3 * i);
+  const auto lose = [&](int from, int count) {
+    for (int i = from; i < from + count; ++i) raw[i] = 0.0;
+  };
+  lose(200, 2), lose(300, 4), lose(400, 5), lose(500, 12), lose(97, 6);
+  const auto all = pcsim::force_statistics(pos, raw, raw, 100.0, 899.0);
+  // Every lost sample (min 0): 3 + 2 + 4 + 5 + 12 = 26 of 800; as force_statistics.
+  EXPECT_NEAR(pcsim::loss_of_contact_percent(pos, time, raw, 100.0, 899.0, 0.0),
+              all.loss_of_contact_percent, 1e-12);
+  EXPECT_NEAR(all.loss_of_contact_percent, 100.0 * 26 / 800, 1e-12);
+  // From 5 ms on: the 5-, 12- and the 6-sample stretch (3 inside): 20 of 800.
+  EXPECT_NEAR(pcsim::loss_of_contact_percent(pos, time, raw, 100.0, 899.0, 5e-3), 100.0 * 20 / 800,
+              1e-12);
+  // From 10 ms on: the 12-sample one only.
+  EXPECT_NEAR(pcsim::loss_of_contact_percent(pos, time, raw, 100.0, 899.0, 10e-3), 100.0 * 12 / 800,
+              1e-12);
+}

@@ -26,6 +26,7 @@ struct RunSettings {
   double analysis_from_x = 0, analysis_to_x = 0;
   int analysis_from_span = 0, analysis_to_span = 0;  // 1-based
   double cutoff_hz = 20;
+  double loss_min_duration_s = 0;  // a loss of contact counts from this duration on
   bool dropper_forces = true;
   std::vector<std::string> pantograph_names;
   Assessment assessment;  // the criteria set the figures are judged against

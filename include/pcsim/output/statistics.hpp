@@ -53,4 +53,13 @@ ForceStatistics force_statistics(const std::vector<double>& position,
                                  const std::vector<double>& filtered,
                                  const std::vector<double>& raw, double x_start, double x_end);
 
+// Loss of contact in % of the samples in [x_start, x_end] (by position),
+// counting only the stretches of consecutive samples with raw <= 0 that last
+// at least min_duration [s] (from the first such sample to the next in
+// contact, by 'time'; a stretch cut by the section's edge counts what lies
+// inside). min_duration 0: every such sample, as force_statistics counts.
+double loss_of_contact_percent(const std::vector<double>& position, const std::vector<double>& time,
+                               const std::vector<double>& raw, double x_start, double x_end,
+                               double min_duration);
+
 }  // namespace pcsim

@@ -75,6 +75,7 @@ struct RunScene {
   double analysis_from_x = 0, analysis_to_x = 0;
   int analysis_from_span = 0, analysis_to_span = 0;  // 1-based
   double cutoff_hz = 20;
+  double loss_min_duration_s = 0;  // analysis.loss_min_duration_ms / 1000
   bool dropper_forces = true;
   double hht_alpha = 0.1;   // HHT numerical dissipation (simulation.hht_alpha; -ts_hht_alpha wins)
   bool energy = false;      // energy balance every step (energy.h5)

@@ -18,6 +18,7 @@ inline output::RunSettings run_settings(const scene::RunScene& run, const std::s
   s.analysis_from_span = run.analysis_from_span;
   s.analysis_to_span = run.analysis_to_span;
   s.cutoff_hz = run.cutoff_hz;
+  s.loss_min_duration_s = run.loss_min_duration_s;
   s.dropper_forces = run.dropper_forces;
   for (const auto& p : run.pantographs) s.pantograph_names.push_back(p.name);
   s.assessment = run.assessment;
