@@ -62,18 +62,14 @@ for option in -pcsim_debug_fail_rank -eps_nev -modes_fmax; do
   grep -qe "$option" help.log || fail "-help does not list $option"
 done
 
-# pcsim sweep: needs a range; refuses several ranks; a list of values on one rank of mpirun.
+# pcsim sweep: needs a range (sweeps under mpirun: tests/studies/test_sweep_mpi.sh).
 set +e
 "$PCSIM_BIN" sweep "$short" -o sw0 > sw0.log 2>&1
 s0=$?
-"$PCSIM_SOURCE_DIR/scripts/mpirun.sh" -n 2 "$PCSIM_BIN" sweep "$short" -o sw1 \
-  --set simulation.dt=0.001,0.002 > sw1.log 2>&1
-s1=$?
 "$PCSIM_BIN" sweep "$short" -o sw2 --set simulation.speed_kmh=250:900:50 > sw2.log 2>&1
 s2=$?
 set -e
 [ $s0 -eq 2 ] && grep -q "a sweep needs a range" sw0.log || { cat sw0.log; fail "sweep without range"; }
-[ $s1 -eq 2 ] && grep -q "run it without mpirun" sw1.log || { cat sw1.log; fail "sweep on 2 ranks"; }
 [ $s2 -eq 2 ] && [ ! -e sw2 ] && grep -q "(case 05_speed_kmh-450): key 'simulation.speed_kmh'" sw2.log ||
   { cat sw2.log; fail "sweep beyond the wave speed is not refused before running"; }
 "$PCSIM_SOURCE_DIR/scripts/mpirun.sh" -n 1 "$PCSIM_BIN" sweep "$short" -o sw3 --no-report \
