@@ -38,10 +38,10 @@ struct RayleighDamping {
 // Cable properties of one wire ('wires.contact', 'wires.messenger').
 struct CableDesign {
   double mass_per_length = 0;                          // [kg/m] > 0
-  double thermal_expansion = kCopperThermalExpansion;  // [1/K] >= 0
   double EA = 0;                                       // [N] > 0
   double EI = 0;                                       // [N m^2] >= 0
   double tension = 0;                                  // design tension [N] > 0
+  double thermal_expansion = kCopperThermalExpansion;  // [1/K] >= 0 (last: aggregate order)
 };
 
 // Contact-wire presag in a span whose two supports hold the wire in service.
@@ -206,14 +206,14 @@ struct WireRun {
 struct ExplicitWire {
   std::string name;
   WireKind kind = WireKind::other;
-  double mass_per_length = 0;                          // > 0
-  double thermal_expansion = kCopperThermalExpansion;  // [1/K] >= 0
-  double EA = 0;                                       // > 0
-  double EI = 0;                                       // >= 0
-  double tension = 0;                                  // >= 0
-  std::vector<NodeRef> nodes;                          // the wire's nodes, used when 'run' is empty
+  double mass_per_length = 0;  // > 0
+  double EA = 0;               // > 0
+  double EI = 0;               // >= 0
+  double tension = 0;          // >= 0
+  std::vector<NodeRef> nodes;  // the wire's nodes, used when 'run' is empty
   std::optional<WireRun> run;
-  std::optional<double> unstressed_ratio;  // L0/Lref > 0; empty: taut at 'tension'
+  std::optional<double> unstressed_ratio;              // L0/Lref > 0; empty: taut at 'tension'
+  double thermal_expansion = kCopperThermalExpansion;  // [1/K] >= 0
 };
 
 struct ExplicitBar {

@@ -40,12 +40,12 @@ struct Wire {
   std::string name;
   WireKind kind = WireKind::other;
   double mass_per_length = 0;  // per unstressed length (the wire as bought) [kg/m]
-  double thermal_expansion = kCopperThermalExpansion;  // [1/K]
-  double EA = 0;                                       // axial stiffness [N]
-  double EI = 0;                                       // bending stiffness [N m^2]
-  double tension = 0;                                  // design tension [N] (form-finding target)
-  std::vector<int> nodes;                              // node indices in order along the wire
-  std::vector<int> elements;                           // cable element indices in order
+  double EA = 0;               // axial stiffness [N]
+  double EI = 0;               // bending stiffness [N m^2]
+  double tension = 0;          // design tension [N] (form-finding target)
+  std::vector<int> nodes;      // node indices in order along the wire
+  std::vector<int> elements;   // cable element indices in order
+  double thermal_expansion = kCopperThermalExpansion;  // [1/K] (last: aggregate order)
 };
 
 // Transverse wave speed sqrt(T / rho_T) of a wire at its design tension,
