@@ -108,15 +108,18 @@ double PantographTerm::energy(const CoupledState& state) const {
 
 // The model's constant external forces (uplift, bellows torque, aerodynamic
 // force) are potentials in energy(): only their explicit change with time,
-// the ramp (1 - ramp(t)) F0 q_c, does work here.
+// the ramp (1 - ramp(t)) F0 q_c, and a base motion's load do work here.
 TermPower PantographTerm::power(const CoupledState& state) const {
   TermPower p;
   if (state.on_last_rank()) {
     const Eigen::VectorXd q = state.q(index_);
-    p.dissipative = slot_.model->power(state.t, q, state.qd(index_)).dissipative;
-    // d/dt of (1 - ramp(t)) F0 q_c at fixed q: the same ramp as the residual's.
+    const auto model_power = slot_.model->power(state.t, q, state.qd(index_));
+    p.dissipative = model_power.dissipative;
+    // d/dt of (1 - ramp(t)) F0 q_c at fixed q: the same ramp as the residual's; plus the
+    // work of a prescribed base motion (no potential).
     const auto& run = slot_.run;
-    p.external = -run.ramp_rate(state.t) * run.static_force * q[slot_.model->contact_dof()];
+    p.external = -run.ramp_rate(state.t) * run.static_force * q[slot_.model->contact_dof()] +
+                 model_power.base;
   }
   MPI_Comm comm = state.catenary().comm();
   p.dissipative = sum_over_ranks(comm, p.dissipative);

@@ -205,25 +205,36 @@ std::string write_modes(const StudyScene& s, const ModesStudyResult& r, json& j)
   return log;
 }
 
-void write_complex(H5File& h5, const std::string& group,
-                   const std::vector<std::complex<double>>& h) {
+void write_complex(H5File& h5, const std::string& group, const std::vector<std::complex<double>>& h,
+                   const char* unit, const std::string& what) {
   std::vector<double> re, im, mag;
   for (const auto& v : h)
     re.push_back(v.real()), im.push_back(v.imag()), mag.push_back(std::abs(v));
-  const std::string what = "receptance H_cc of the contact coordinate (" + group.substr(1) + ")";
-  h5.write(group + "/real", re, {"m/N", what + ", real part"});
-  h5.write(group + "/imag", im, {"m/N", what + ", imaginary part"});
-  h5.write(group + "/abs", mag, {"m/N", what + ", magnitude"});
+  h5.write(group + "/real", re, {unit, what + ", real part"});
+  h5.write(group + "/imag", im, {unit, what + ", imaginary part"});
+  h5.write(group + "/abs", mag, {unit, what + ", magnitude"});
+}
+
+void write_receptance(H5File& h5, const std::string& group,
+                      const std::vector<std::complex<double>>& h) {
+  write_complex(h5, group, h, "m/N",
+                "receptance H_cc of the contact coordinate (" + group.substr(1) + ")");
 }
 
 std::string write_frf(OutputDir& out, const StudyScene& s, const FrfStudyResult& r, json& j) {
   H5File h5(out.file("frf.h5"));
   stamp_provenance(h5, out.provenance());
   h5.write("/frequency_hz", r.frequencies_hz, {"Hz", "frequencies of the FRF"});
-  write_complex(h5, "/direct", r.direct);
-  if (r.symmetric) write_complex(h5, "/modal", r.modal);
+  write_receptance(h5, "/direct", r.direct);
+  if (r.symmetric) write_receptance(h5, "/modal", r.modal);
   j["frf"] = {{"dof", s.model->dof_names()[r.dof]}, {"points", r.frequencies_hz.size()}};
   std::string log = format("  H_cc over %zu frequencies\n", r.frequencies_hz.size());
+  if (!r.transmissibility.empty()) {
+    write_complex(h5, "/transmissibility", r.transmissibility, "m/m",
+                  "base-to-head transmissibility z_c / z_b (direct)");
+    j["frf"]["transmissibility"] = true;
+    log += "  base-to-head transmissibility z_c / z_b: /transmissibility\n";
+  }
   if (r.symmetric) {
     j["frf"]["direct_vs_modal_max_relative_difference"] = r.direct_vs_modal_max_relative_difference;
     log += format("  direct vs modal superposition: max relative difference %.3e\n",

@@ -204,6 +204,13 @@ std::complex<double> frf_direct(const LinearModel& lin, int i, int j, double ome
   return D.fullPivLu().solve(f)[i];
 }
 
+std::complex<double> transmissibility_direct(const LinearModel& lin, const BaseSupport& base, int i,
+                                             double omega) {
+  if (base.dof < 0) throw SolverError("transmissibility: the model has no base support");
+  const std::complex<double> load(base.stiffness, omega * base.damping);
+  return frf_direct(lin, i, base.dof, omega) * load;
+}
+
 std::vector<std::complex<double>> frf_modal(const LinearModel& lin, const std::vector<Mode>& damped,
                                             int i, int j, const std::vector<double>& omegas) {
   if (!lin.M.isApprox(lin.M.transpose()) || !lin.K.isApprox(lin.K.transpose()) ||

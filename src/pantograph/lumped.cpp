@@ -38,9 +38,23 @@ std::vector<std::string> LumpedPantograph::dof_names() const {
   return names;
 }
 
-void LumpedPantograph::residual(double, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+BaseSupport LumpedPantograph::base_support() const {
+  const auto& last = p_.stages.back();
+  return {dof_count() - 1, last.stiffness, last.damping};
+}
+
+// The last stage's element k (z_n − z_b) + c (v_n − v_b): K q and C q̇ hold k z_n + c v_n,
+// the prescribed rest is a load. The tangents do not change.
+double LumpedPantograph::base_load(double t) const {
+  if (!base_.displacement) return 0.0;
+  const auto& last = p_.stages.back();
+  return last.stiffness * base_.displacement(t) + last.damping * base_.velocity(t);
+}
+
+void LumpedPantograph::residual(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                                 const Eigen::VectorXd& qdd, Eigen::Ref<Eigen::VectorXd> R) const {
   R.noalias() = M_ * qdd + C_ * qd + K_ * q - Q_;
+  if (base_.displacement) R[dof_count() - 1] -= base_load(t);
 }
 
 void LumpedPantograph::tangents(double, const Eigen::VectorXd&, const Eigen::VectorXd&,
@@ -71,9 +85,11 @@ double LumpedPantograph::potential_energy(const Eigen::VectorXd& q) const {
   return 0.5 * q.dot(K_ * q) - (Q_ - Q_ext_).dot(q);
 }
 
-PowerSplit LumpedPantograph::power(double, const Eigen::VectorXd&,
+// Springs and dampers measured with the roof at rest: the roof's motion does the work of
+// its load on the last stage, (k z_b + c v_b) v_n.
+PowerSplit LumpedPantograph::power(double t, const Eigen::VectorXd&,
                                    const Eigen::VectorXd& qd) const {
-  return {-qd.dot(C_ * qd), Q_ext_.dot(qd)};
+  return {-qd.dot(C_ * qd), Q_ext_.dot(qd), base_load(t) * qd[dof_count() - 1]};
 }
 
 }  // namespace pcsim::pantograph

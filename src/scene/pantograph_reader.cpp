@@ -6,6 +6,7 @@
 #include "pcsim/core/format.hpp"
 #include "pcsim/scene/composition.hpp"
 #include "pcsim/scene/flexible_dsa380_reader.hpp"
+#include "pcsim/scene/time_signal.hpp"
 
 namespace pcsim::scene {
 
@@ -84,13 +85,17 @@ std::unique_ptr<pantograph::PantographModel> load_pantograph_model(const InputNo
 
 std::unique_ptr<pantograph::PantographModel> load_pantograph(const InputNode& entry,
                                                              double speed_m_s) {
-  entry.allow_only({"model", "effects"});
+  entry.allow_only({"model", "effects", "base_motion"});
   const auto model = entry.load_referenced("model");
+  std::unique_ptr<pantograph::PantographModel> loaded;
   if (entry.has("effects")) {
     const auto effects = entry["effects"];
-    return load_pantograph_model(model, &effects, speed_m_s);
+    loaded = load_pantograph_model(model, &effects, speed_m_s);
+  } else {
+    loaded = load_pantograph_model(model, nullptr, speed_m_s);
   }
-  return load_pantograph_model(model, nullptr, speed_m_s);
+  apply_base_motion(entry, *loaded);
+  return loaded;
 }
 
 pantograph::LumpedParameters load_lumped_parameters(const InputNode& model) {

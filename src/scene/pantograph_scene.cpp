@@ -1,11 +1,9 @@
 #include "pcsim/scene/pantograph_scene.hpp"
 
-#include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "pcsim/scene/pantograph_reader.hpp"
+#include "pcsim/scene/time_signal.hpp"
 
 namespace pcsim::scene {
 
@@ -13,31 +11,10 @@ namespace {
 
 using namespace pcsim::pantograph;
 
-// Force from a file of "t, F" rows (commas or blanks; '#' comments).
+// Force from a file of "t, F" rows, interpolated linearly and held constant outside.
 ForceHistory load_force_file(const InputNode& f) {
-  const std::string path = f.get_file_path("file");
-  std::ifstream in(path);
-  std::vector<double> ts, fs;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    for (char& c : line)
-      if (c == ',') c = ' ';
-    std::istringstream ss(line);
-    double t, v;
-    if (!(ss >> t >> v)) f.fail_key("file", "bad line '" + line + "' (expected: t, force)");
-    if (!ts.empty() && t <= ts.back()) f.fail_key("file", "times must increase");
-    ts.push_back(t);
-    fs.push_back(v);
-  }
-  if (ts.empty()) f.fail_key("file", "no samples");
-  return [ts, fs](double t) {  // linear interpolation, held constant outside
-    if (t <= ts.front()) return fs.front();
-    if (t >= ts.back()) return fs.back();
-    const size_t k = std::upper_bound(ts.begin(), ts.end(), t) - ts.begin();
-    const double w = (t - ts[k - 1]) / (ts[k] - ts[k - 1]);
-    return (1 - w) * fs[k - 1] + w * fs[k];
-  };
+  const Samples s = load_samples(f, "force");
+  return [s](double t) { return s.value(t); };
 }
 
 TimeStudy load_time_study(const InputNode& st) {
@@ -158,6 +135,12 @@ StudyScene load_pantograph_study_scene(const InputNode& scene) {
   }
   check_working_height(e, *s.model, s.contact_force, s.working_height, e.has("working_height"));
   s.study = load_study(st, s.study_type, *s.model);
+  // The linearised model and the other studies do not take the base motion.
+  const auto* time = std::get_if<TimeStudy>(&s.study);
+  if (scene["pantograph"].has("base_motion") && (!time || time->linear))
+    scene["pantograph"].fail_key("base_motion",
+                                 "only for time studies without 'linear' (an frf study gives the "
+                                 "base-to-head transmissibility)");
   return s;
 }
 

@@ -7,6 +7,7 @@
 #include "pcsim/core/format.hpp"
 #include "pcsim/scene/criteria_reader.hpp"
 #include "pcsim/scene/pantograph_reader.hpp"
+#include "pcsim/scene/time_signal.hpp"
 
 namespace pcsim::scene {
 
@@ -44,13 +45,14 @@ void read_simulation(const InputNode& scene, RunScene& run, std::optional<double
 // Entry i of the scene's pantographs: how it travels and starts, and its model.
 void read_pantograph(const InputNode& p, std::size_t i, RunScene& run) {
   p.allow_only({"name", "model", "start_x", "static_force", "start", "ramp_distance",
-                "working_height", "effects"});
+                "working_height", "effects", "base_motion"});
   const double x_first = run.catenary.mesh.support_x.front();
   contact::PantographRun pr;
   pr.name = p.get_string("name", "pantograph" + std::to_string(i + 1));
   const InputNode effects = p.has("effects") ? p["effects"] : InputNode(YAML::Node(), p.file(), "");
   auto model = load_pantograph_model(p.load_referenced("model"),
                                      p.has("effects") ? &effects : nullptr, run.speed);
+  apply_base_motion(p, *model);
   pr.start_x = p.get_double("start_x", x_first + 5.0);
   if (pr.start_x < x_first || pr.start_x >= run.end_x)
     p.fail_key("start_x", "must lie on the line before simulation.end_x (" +

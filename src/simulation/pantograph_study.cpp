@@ -68,6 +68,9 @@ FrfStudyResult run_frf(const StudyScene& s, const FrfStudy& st, const Eigen::Vec
   std::vector<double> omegas;
   for (double f : st.frequencies_hz) omegas.push_back(2 * M_PI * f);
   for (double w : omegas) r.direct.push_back(frf_direct(lin, c, c, w));  // H_cc (2.36)
+  const BaseSupport base = s.model->base_support();
+  if (base.dof >= 0)
+    for (double w : omegas) r.transmissibility.push_back(transmissibility_direct(lin, base, c, w));
   if (r.symmetric) {
     r.modal = frf_modal(lin, solvers::damped_modes_slepc(lin), c, c, omegas);  // (2.40)
     for (std::size_t k = 0; k < omegas.size(); ++k)

@@ -60,7 +60,7 @@ void to_eigen(Vec v, Eigen::VectorXd* out, int offset, int n) {
 void powers(Context* ctx, double t, double* pd, double* pe) {
   const PowerSplit P = ctx->model->power(t, ctx->q, ctx->qd);
   *pd = P.dissipative;
-  *pe = P.external - (*ctx->force)(t)*ctx->qd[ctx->c];
+  *pe = P.external + P.base - (*ctx->force)(t)*ctx->qd[ctx->c];
 }
 
 void record(Context* ctx, double t, double wd, double we) {

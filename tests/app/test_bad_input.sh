@@ -120,6 +120,8 @@ run_scene spans "$one" "" ", to_span: 7"
 sed -i 's/from_span: 2, to_span: 2, to_span: 7/from_span: 2, to_span: 7/' "$w/spans.yaml"
 run_scene dsa-high "  - {name: p, model: $dsa, start_x: 13.1, working_height: 3.0}"
 run_scene dsa-cheap "  - {name: p, model: $dsa, start_x: 13.1}"
+run_scene dsa-base "  - {name: p, model: $dsa, start_x: 13.1,
+     base_motion: {type: harmonic, amplitude: 0.002, frequency_hz: 5}}"
 echo "effects: {catenary_nonlinear: true}" >> "$w/dsa-cheap.yaml"  # no cheap path
 run_scene huge-run "$one" "" "" "huge-design.yaml"
 run_scene close "  - {name: p, model: $two_mass, start_x: 13.1}
@@ -337,6 +339,16 @@ expect ice-stitch 2 "command line --set conditions.ice.stitch=0.5|key 'condition
   run good-run.yaml --set conditions.ice.stitch=0.5
 expect ice-key 2 "command line --set conditions.ice.dropper=0.5|key 'conditions.ice.dropper'|unknown key" yes \
   run good-run.yaml --set conditions.ice.dropper=0.5
+# issue 25: the pantograph's base motion (docs/conditions.md "Vehicle excitation")
+base="pantographs[0].base_motion"
+expect base-key 2 "command line --set $base|key '$base.phase'|unknown key" yes \
+  run good-run.yaml --set "$base={type: harmonic, amplitude: 0.002, frequency_hz: 5, phase: 1}"
+expect base-negative 2 "command line --set $base|key '$base.amplitude'|must be positive" yes \
+  run good-run.yaml --set "$base={type: harmonic, amplitude: -0.002, frequency_hz: 5}"
+expect base-file 2 "command line --set $base|key '$base.file'|no such file" yes \
+  run good-run.yaml --set "$base={type: file, file: no-such-roof.csv}"
+expect base-dsa 2 "dsa-base.yaml|key '$base'|not available for the dsa380 pantograph model yet" yes \
+  run dsa-base.yaml
 expect name-slash 2 "name-slash.yaml|key 'pantographs[1].name'|must not contain '/'" yes run name-slash.yaml
 expect name-abs 2 "name-abs.yaml|key 'pantographs[1].name'|must not contain '/'" yes run name-abs.yaml
 expect name-dot 2 "name-dot.yaml|key 'pantographs[0].name'|must not be '.'" yes run name-dot.yaml

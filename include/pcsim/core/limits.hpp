@@ -44,6 +44,7 @@ inline constexpr Limit pantograph_length{100.0, "m"};  // DSA-380 bars ~1-2 m
 inline constexpr Limit inertia{1e5, "kg m^2"};
 inline constexpr Limit rotational_stiffness{1e9, "N m/rad"};
 inline constexpr Limit cubic_stiffness{1e18, "N/m^3"};
+inline constexpr Limit base_motion{1.0, "m"};       // vehicle roof motion ~1-10 mm
 inline constexpr Limit density{1e5, "kg/m^3"};      // steel 7850
 inline constexpr Limit youngs_modulus{1e13, "Pa"};  // steel 2.1e11
 // Time and frequency.

@@ -100,6 +100,10 @@ std::vector<Mode> damped_modes_from_eigenpairs(const LinearModel& lin,
 
 // Receptance H_ij(ω) = [K + iωC − ω²M]⁻¹_ij (2.36).
 std::complex<double> frf_direct(const LinearModel& lin, int i, int j, double omega);
+// Base-to-coordinate-i transmissibility z_i / z_b = H_i,d(ω) (k + iωc) (issue 25): a base
+// motion z_b e^{iωt} loads the coordinate d joined to the base by (k, c) with (k + iωc) z_b.
+std::complex<double> transmissibility_direct(const LinearModel& lin, const BaseSupport& base, int i,
+                                             double omega);
 // H_ij(ω) = Σ_r φ_r,i φ_r,j / (a_r (iω − λ_r)) + conj. (2.40), a_r = φ_rᵀ A φ_r, with the
 // damped state-space modes, at each ω of `omegas` (a_r computed once); requires symmetric
 // M, C, K.

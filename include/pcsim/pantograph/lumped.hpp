@@ -2,7 +2,8 @@
 // two-mass model). q[i] is the upward displacement of stage i from its unloaded position;
 // stage 0 is the head. Stage i is joined to stage i+1 by (k_i, c_i); the last stage is
 // joined to the roof. Q = static uplift on one stage − gravity (optional) + aerodynamic
-// force a + b v + c v² on the head (optional).
+// force a + b v + c v² on the head (optional) + the load of a prescribed roof motion
+// z_b(t) on the last stage, k z_b + c v_b (optional, issue 25).
 #pragma once
 
 #include <string>
@@ -49,6 +50,8 @@ class LumpedPantograph : public PantographModel {
   double kinetic_energy(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const override;
   double potential_energy(const Eigen::VectorXd& q) const override;
   PowerSplit power(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const override;
+  BaseSupport base_support() const override;
+  void set_base_motion(BaseMotion motion) override { base_ = std::move(motion); }
 
   const Eigen::MatrixXd& mass() const { return M_; }
   const Eigen::MatrixXd& damping() const { return C_; }
@@ -62,6 +65,10 @@ class LumpedPantograph : public PantographModel {
   Eigen::VectorXd Q_;      // uplift − gravity + aerodynamic (constant)
   Eigen::VectorXd Q_ext_;  // the part of Q that is external work (uplift + aero)
   double offset_ = 0;
+  BaseMotion base_;  // empty: the roof does not move
+
+  // k z_b(t) + c v_b(t) on the last stage (0 without base motion).
+  double base_load(double t) const;
 };
 
 }  // namespace pcsim::pantograph

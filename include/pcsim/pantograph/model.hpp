@@ -10,6 +10,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -22,6 +23,22 @@ namespace pcsim::pantograph {
 struct PowerSplit {
   double dissipative = 0;  // damper, friction (≤ 0 for passive elements)
   double external = 0;     // uplift force / bellows torque, aerodynamic force
+  // Prescribed base motion: power of its time-dependent load on the lowest stage (no
+  // potential: a coupling adds it to the external work as it is).
+  double base = 0;
+};
+
+// Prescribed vertical motion of a pantograph's base (the vehicle roof): z_b(t) [m,
+// upwards] and v_b(t) = dz_b/dt [m/s], defined for every t.
+struct BaseMotion {
+  std::function<double(double)> displacement, velocity;
+};
+
+// The spring and damper that join coordinate `dof` to the base; dof < 0: the model has
+// no such element (it does not take a base motion).
+struct BaseSupport {
+  int dof = -1;
+  double stiffness = 0, damping = 0;
 };
 
 class PantographModel {
@@ -58,6 +75,13 @@ class PantographModel {
   virtual double kinetic_energy(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const = 0;
   virtual double potential_energy(const Eigen::VectorXd& q) const = 0;
   virtual PowerSplit power(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const = 0;
+
+  // Base motion (issue 25): the element joined to the base, and the prescribed motion of
+  // the base (models with base_support().dof >= 0 only).
+  virtual BaseSupport base_support() const { return {}; }
+  virtual void set_base_motion(BaseMotion) {
+    throw SolverError(kind() + " pantograph: no base motion");
+  }
 };
 
 }  // namespace pcsim::pantograph

@@ -1,6 +1,7 @@
 // Scenes of `pcsim pantograph` (studies of the pantograph alone, thesis chapter 2):
 //   name: ...
-//   pantograph: {model: <model file relative to the scene>, effects: {...}}
+//   pantograph: {model: <model file relative to the scene>, effects: {...},
+//                base_motion: {...} (lumped models; scene/time_signal.hpp)}
 //   speed_kmh: 0                               # for the aerodynamic force only
 //   equilibrium: {contact_force: 120, working_height: 1.2}
 //   study: {type: time|modes|frf|sweep|calibrate, ...}
