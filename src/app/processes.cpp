@@ -47,6 +47,12 @@ double cpu_seconds(const rusage& usage) {
 
 }  // namespace
 
+double own_cpu_seconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return cpu_seconds(usage);
+}
+
 std::string last_line_of(const std::string& path) {
   std::ifstream in(path);
   std::string line, last;

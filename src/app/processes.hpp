@@ -28,6 +28,9 @@ pid_t wait_any_process(int& status, const std::function<bool()>& stop = {},
 // As wait_any_process, without waiting: 0 if no child has ended, -1 if none is left.
 pid_t poll_any_process(int& status, double* cpu_s = nullptr);
 
+// The CPU time (user + system) of this process so far [s].
+double own_cpu_seconds();
+
 // The last non-blank line of a text file ("" if none).
 std::string last_line_of(const std::string& path);
 

@@ -2,7 +2,6 @@
 
 #include <fcntl.h>
 #include <petscsys.h>
-#include <sys/resource.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -10,11 +9,11 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 
 #include "exit_status.hpp"
 #include "pcsim/core/error.hpp"
+#include "pcsim/core/vec_root.hpp"
 #include "pcsim/output/sweep_journal.hpp"
 #include "pcsim/simulation/interrupt.hpp"
 #include "pcsim/solvers/command_line.hpp"
@@ -25,7 +24,6 @@ namespace pcsim::app {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-using nlohmann::json;
 
 // Declared in an options block so that -help lists it and PETSc counts it read.
 PetscErrorCode read_ranks_per_case(MPI_Comm comm, char* text, std::size_t size, PetscBool* set) {
@@ -36,22 +34,6 @@ PetscErrorCode read_ranks_per_case(MPI_Comm comm, char* text, std::size_t size, 
                                text, text, size, set));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
-}
-
-// CPU time of this process [s].
-double cpu_seconds() {
-  rusage r{};
-  getrusage(RUSAGE_SELF, &r);
-  return r.ru_utime.tv_sec + r.ru_stime.tv_sec + 1e-6 * (r.ru_utime.tv_usec + r.ru_stime.tv_usec);
-}
-
-// The text of rank 'root' of comm, on every rank.
-std::string text_from(MPI_Comm comm, int root, std::string text) {
-  int size = static_cast<int>(text.size());
-  MPI_Bcast(&size, 1, MPI_INT, root, comm);
-  text.resize(static_cast<std::size_t>(size));
-  MPI_Bcast(text.data(), size, MPI_CHAR, root, comm);
-  return text;
 }
 
 // This process's stdout and stderr into a file for its lifetime (a case's
@@ -181,9 +163,7 @@ CommandContext GroupRunner::case_context(std::size_t k, const std::string& folde
   c.options = {{"--no-report", ""}};
   c.overrides = plan_.fixed;
   c.overrides.insert(c.overrides.end(), plan_.assignments[k].begin(), plan_.assignments[k].end());
-  c.arguments = {own_executable(), "run", ctx_.scene_path, "-o", folder, "--no-report"};
-  for (const auto& o : c.overrides) c.arguments.insert(c.arguments.end(), {"--set", o});
-  c.arguments.insert(c.arguments.end(), ctx_.petsc_arguments.begin(), ctx_.petsc_arguments.end());
+  c.arguments = case_command(ctx_, plan_, k, folder);  // (no --ranks under mpirun)
   return c;
 }
 
@@ -192,7 +172,7 @@ CaseEnd GroupRunner::run_case(std::size_t k) {
   if (group_rank_ == 0) discard_case_leftovers(folder);
   const CommandContext c = case_context(k, folder);
   const auto start = Clock::now();
-  const double cpu_start = cpu_seconds();
+  const double cpu_start = own_cpu_seconds();
   CaseEnd end;
   std::string message;
   {
@@ -209,11 +189,11 @@ CaseEnd GroupRunner::run_case(std::size_t k) {
     } mine{2 * end.status + (message.empty() ? 0 : 1), group_rank_}, agreed{0, 0};
     MPI_Allreduce(&mine, &agreed, 1, MPI_2INT, MPI_MAXLOC, group_);
     end.status = agreed.key / 2;
-    if (agreed.key % 2) end.error = text_from(group_, agreed.rank, message);
+    if (agreed.key % 2) end.error = broadcast_text(group_, message, agreed.rank);
     if (group_rank_ == 0 && !end.error.empty()) std::fprintf(stderr, "%s\n", end.error.c_str());
   }
   end.wall_s = std::chrono::duration<double>(Clock::now() - start).count();
-  const double cpu = cpu_seconds() - cpu_start;
+  const double cpu = own_cpu_seconds() - cpu_start;
   MPI_Reduce(&cpu, &end.cpu_s, 1, MPI_DOUBLE, MPI_SUM, 0, group_);
   return end;
 }
@@ -225,10 +205,7 @@ void GroupRunner::journal(std::size_t k, const CaseEnd& end) {
   c.error = end.error;
   c.wall_s = end.wall_s;
   c.cpu_s = end.cpu_s;
-  c.summary = nullptr;
-  std::ifstream summary(out_.file("cases") + "/" + c.name + "/summary.json");
-  if (end.status == 0 && summary) c.summary = json::parse(summary, nullptr, false);
-  if (c.summary.is_discarded()) c.summary = nullptr;
+  c.summary = read_case_summary(out_.file("cases") + "/" + c.name, end.status);
   output::append_sweep_journal(out_.file(output::group_journal_name(group_index_)),
                                journal_entry(plan_, k));
   const std::size_t done = resumed_ + static_cast<std::size_t>(fetch_add(1)) + 1;
@@ -274,6 +251,11 @@ int sweep_ranks_per_case(const CommandContext& ctx) {
 int run_sweep_cases_mpi(const CommandContext& ctx, SweepPlan& plan, const OutputDir& out,
                         int ranks_per_case) {
   on_rank0(ctx, [&] { std::filesystem::create_directories(out.file("cases")); });
+  // As the local mode's case processes (case_command): no accuracy pilot per
+  // case unless the sweep asks for one; the cases read this process's options.
+  PetscBool pilot_given = PETSC_FALSE;
+  PCSIM_PETSC(PetscOptionsHasName(nullptr, nullptr, "-pcsim_accuracy_pilot", &pilot_given));
+  if (!pilot_given) PCSIM_PETSC(PetscOptionsSetValue(nullptr, "-pcsim_accuracy_pilot", "false"));
   int signal_number = 0;
   {
     GroupRunner runner(ctx, plan, out, ranks_per_case);

@@ -38,23 +38,6 @@ std::string number_text(double v) {
   return s;
 }
 
-std::vector<std::string> case_command(const CommandContext& ctx, const SweepPlan& plan,
-                                      std::size_t k, const std::string& folder) {
-  std::vector<std::string> argv;
-  const std::string ranks = ctx.options.count("--ranks") ? ctx.options.at("--ranks") : "1";
-  if (ranks != "1") argv = {PCSIM_MPIEXEC, "-n", ranks};
-  argv.insert(argv.end(), {own_executable(), "run", ctx.scene_path, "-o", folder, "--no-report"});
-  for (const auto& o : plan.fixed) argv.insert(argv.end(), {"--set", o});
-  for (const auto& a : plan.assignments[k]) argv.insert(argv.end(), {"--set", a});
-  // The cases' figures are the sweep's result: no accuracy pilot per case
-  // unless asked for (-pcsim_accuracy_pilot true on the sweep's command line).
-  if (std::find(ctx.petsc_arguments.begin(), ctx.petsc_arguments.end(), "-pcsim_accuracy_pilot") ==
-      ctx.petsc_arguments.end())
-    argv.insert(argv.end(), {"-pcsim_accuracy_pilot", "false"});
-  argv.insert(argv.end(), ctx.petsc_arguments.begin(), ctx.petsc_arguments.end());
-  return argv;
-}
-
 // Environment variables of an MPI launcher, which a case must not inherit
 // (it would take itself for this process).
 const std::vector<std::string> kLauncherVariables = {"OMPI_COMM_WORLD",
@@ -75,6 +58,30 @@ const std::vector<std::string> kLauncherVariables = {"OMPI_COMM_WORLD",
                                                      "PMI_"};
 
 }  // namespace
+
+std::vector<std::string> case_command(const CommandContext& ctx, const SweepPlan& plan,
+                                      std::size_t k, const std::string& folder) {
+  std::vector<std::string> argv;
+  const std::string ranks = ctx.options.count("--ranks") ? ctx.options.at("--ranks") : "1";
+  if (ranks != "1") argv = {PCSIM_MPIEXEC, "-n", ranks};
+  argv.insert(argv.end(), {own_executable(), "run", ctx.scene_path, "-o", folder, "--no-report"});
+  for (const auto& o : plan.fixed) argv.insert(argv.end(), {"--set", o});
+  for (const auto& a : plan.assignments[k]) argv.insert(argv.end(), {"--set", a});
+  // The cases' figures are the sweep's result: no accuracy pilot per case
+  // unless asked for (-pcsim_accuracy_pilot true on the sweep's command line).
+  if (std::find(ctx.petsc_arguments.begin(), ctx.petsc_arguments.end(), "-pcsim_accuracy_pilot") ==
+      ctx.petsc_arguments.end())
+    argv.insert(argv.end(), {"-pcsim_accuracy_pilot", "false"});
+  argv.insert(argv.end(), ctx.petsc_arguments.begin(), ctx.petsc_arguments.end());
+  return argv;
+}
+
+json read_case_summary(const std::string& folder, int status) {
+  std::ifstream summary(folder + "/summary.json");
+  if (status != 0 || !summary) return nullptr;
+  json parsed = json::parse(summary, nullptr, false);
+  return parsed.is_discarded() ? json(nullptr) : parsed;
+}
 
 std::string case_line(const output::SweepCase& c) {
   if (c.status != 0)
@@ -259,9 +266,7 @@ void Runner::finished(pid_t pid, int status, double cpu_s, bool stopping) {
   auto& c = plan_.cases[rc.index];
   c.status = status;
   const std::string folder = out_.file("cases") + "/" + c.name;
-  std::ifstream summary(folder + "/summary.json");
-  if (status == 0 && summary) c.summary = json::parse(summary, nullptr, false);
-  if (c.summary.is_discarded()) c.summary = nullptr;
+  c.summary = read_case_summary(folder, status);
   c.error = status == 0 ? "" : last_line_of(folder + ".log");
   const auto now = Clock::now();
   c.wall_s = std::chrono::duration<double>(now - rc.start).count();

@@ -54,6 +54,16 @@ int run_sweep_cases(const CommandContext& ctx, SweepPlan& plan, const OutputDir&
 // OutputError if it lacks a case.
 void fill_cases_from_journal(SweepPlan& plan, const OutputDir& out);
 
+// `pcsim run SCENE -o FOLDER --no-report --set ...` of case k with the
+// sweep's PETSc options (no accuracy pilot unless the sweep asks for one),
+// behind mpiexec when --ranks asks for more than one.
+std::vector<std::string> case_command(const CommandContext& ctx, const SweepPlan& plan,
+                                      std::size_t k, const std::string& folder);
+
+// A finished case's summary.json from its folder (null unless it ran to its
+// end, status 0, and the file parses).
+nlohmann::json read_case_summary(const std::string& folder, int status);
+
 // The journal line of finished case k.
 nlohmann::json journal_entry(const SweepPlan& plan, std::size_t k);
 

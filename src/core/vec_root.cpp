@@ -50,11 +50,11 @@ void scatter_from_root(const std::vector<double>& values, Vec x) {
   PCSIM_PETSC(VecDestroy(&all));
 }
 
-std::string broadcast_text(MPI_Comm comm, std::string text) {
+std::string broadcast_text(MPI_Comm comm, std::string text, int root) {
   int size = static_cast<int>(text.size());
-  MPI_Bcast(&size, 1, MPI_INT, 0, comm);
+  MPI_Bcast(&size, 1, MPI_INT, root, comm);
   text.resize(static_cast<std::size_t>(size));
-  MPI_Bcast(text.data(), size, MPI_CHAR, 0, comm);
+  MPI_Bcast(text.data(), size, MPI_CHAR, root, comm);
   return text;
 }
 

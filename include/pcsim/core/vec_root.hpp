@@ -15,7 +15,7 @@ std::vector<double> gather_to_root(Vec x);
 // x from rank 0's entries in global order (other ranks' ignored); a
 // SolverError on every rank if rank 0's count differs from x's size.
 void scatter_from_root(const std::vector<double>& values, Vec x);
-// Rank 0's text, on every rank of comm.
-std::string broadcast_text(MPI_Comm comm, std::string text);
+// Rank root's text, on every rank of comm.
+std::string broadcast_text(MPI_Comm comm, std::string text, int root = 0);
 
 }  // namespace pcsim
