@@ -13,22 +13,27 @@
 
 namespace pcsim::assembly {
 
-BarForces::BarForces(FECatenary& catenary, bool slack) : catenary_(catenary), slack_(slack) {
+// Without slack every bar is taut (CatenarySystem::kTautBars): none switches.
+BarForces::BarForces(FECatenary& catenary, bool slack)
+    : catenary_(catenary),
+      slack_(slack),
+      parts_(slack ? CatenarySystem::kBars : CatenarySystem::kBars | CatenarySystem::kTautBars) {
   const auto& bars = catenary_.mesh().bars;
   for (std::size_t b = 0; b < bars.size(); ++b)
-    if (bars[b].slack != catenary::SlackCriterion::none) slack_bars_.push_back(static_cast<int>(b));
+    if (slack && bars[b].slack != catenary::SlackCriterion::none)
+      slack_bars_.push_back(static_cast<int>(b));
 }
 
 void BarForces::add_residual(const CoupledState&, Vec F) {
-  catenary_.system().add_forces(F, nullptr, CatenarySystem::kBars);
+  catenary_.system().add_forces(F, nullptr, parts_);
 }
 
 void BarForces::add_tangent(const CoupledState&, Shifts, Mat J) {
-  catenary_.system().add_forces(nullptr, J, CatenarySystem::kBars);
+  catenary_.system().add_forces(nullptr, J, parts_);
 }
 
 double BarForces::energy(const CoupledState&) const {
-  double local = catenary_.system().local_potential_energy(CatenarySystem::kBars), total = 0;
+  double local = catenary_.system().local_potential_energy(parts_), total = 0;
   MPI_Allreduce(&local, &total, 1, MPI_DOUBLE, MPI_SUM, catenary_.comm());
   return total;
 }

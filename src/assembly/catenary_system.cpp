@@ -170,7 +170,7 @@ void CatenarySystem::add_cable_forces(double* r, Mat J, bool cables, bool loads)
   }
 }
 
-void CatenarySystem::add_bar_forces(double* r, Mat J, bool bars, bool loads) const {
+void CatenarySystem::add_bar_forces(double* r, Mat J, bool bars, bool loads, bool slack) const {
   Vec6 q6, f6;
   Mat6 K6;
   RowMat6 K6r;
@@ -180,7 +180,7 @@ void CatenarySystem::add_bar_forces(double* r, Mat J, bool bars, bool loads) con
     f6.setZero();
     if (bars) {
       bar_values(b, q6.data());
-      bar_internal_force(bar_parameters(bar), q6, f6, J ? &K6 : nullptr, nullptr);
+      bar_internal_force(bar_parameters(bar, slack), q6, f6, J ? &K6 : nullptr, nullptr);
     }
     if (loads) f6 -= bar_gravity_force(bar.mass, mesh_.gravity);
     add_block(r, bar.nodes.data(), 3, f6.data());  // bars act on position DOFs only
@@ -243,7 +243,7 @@ void CatenarySystem::add_forces(Vec R, Mat J, unsigned terms) {
   double* r = R ? begin_residual() : nullptr;
   const bool cables = terms & kCables, bars = terms & kBars, loads = terms & kLoads;
   if (cables || loads) add_cable_forces(r, J, cables, loads);
-  if (bars || loads) add_bar_forces(r, J, bars, loads);
+  if (bars || loads) add_bar_forces(r, J, bars, loads, !(terms & kTautBars));
   if (loads) add_point_forces(r, J);
   if (R) end_residual(R);
 }
@@ -264,7 +264,7 @@ double CatenarySystem::local_potential_energy(unsigned terms) const {
   for (int b : L.local_bars()) {
     const auto& bar = mesh_.bars[b];
     bar_values(b, q6.data());
-    if (bars) energy += bar_strain_energy(bar_parameters(bar), q6);
+    if (bars) energy += bar_strain_energy(bar_parameters(bar, !(terms & kTautBars)), q6);
     if (loads) energy -= bar_gravity_force(bar.mass, mesh_.gravity).dot(q6);
   }
   if (!loads) return energy;
@@ -326,10 +326,10 @@ double CatenarySystem::cable_mean_tension(int element) const {
                                 el.unstressed_length, q12, nullptr, nullptr);
 }
 
-double CatenarySystem::bar_force(int bar) const {
+double CatenarySystem::bar_force(int bar, bool slack) const {
   Vec6 q6;
   bar_values(bar, q6.data());
-  return bar_axial_force(bar_parameters(mesh_.bars[bar]), q6, nullptr);
+  return bar_axial_force(bar_parameters(mesh_.bars[bar], slack), q6, nullptr);
 }
 
 static std::vector<double> node_values_from(const CatenaryMesh& mesh, const DofLayout& L,

@@ -78,16 +78,17 @@ double Inertia::energy(const CoupledState& state) const {
 
 RayleighDamping::RayleighDamping(FECatenary& catenary, const contact::InteractionEffects& e) {
   const double alpha = catenary.mesh().rayleigh_alpha, beta = catenary.mesh().rayleigh_beta;
+  const unsigned taut = e.dropper_slack ? 0u : CatenarySystem::kTautBars;
   // Every constant matrix holds a subset of the Jacobian's pattern (FECatenary).
   parts_.push_back({catenary.mass_matrix(), 0.0, alpha, 0.0, SUBSET_NONZERO_PATTERN});
   if (e.catenary_nonlinear) {
-    parts_.push_back({catenary.static_tangent(CatenarySystem::kAllTerms), 0.0, beta, 0.0,
+    parts_.push_back({catenary.static_tangent(CatenarySystem::kAllTerms | taut), 0.0, beta, 0.0,
                       SUBSET_NONZERO_PATTERN});
   } else {
     // K0 (cables, loads) is the linearised cables' matrix: the products merge.
     parts_.push_back(
         {catenary.static_tangent(kCablesAndLoads), 0.0, beta, 0.0, SUBSET_NONZERO_PATTERN});
-    parts_.push_back({catenary.static_tangent(CatenarySystem::kBars | FECatenary::kOwnPattern), 0.0,
+    parts_.push_back({catenary.static_tangent(CatenarySystem::kBars | taut | FECatenary::kOwnPattern), 0.0,
                       beta, 0.0, SUBSET_NONZERO_PATTERN});
   }
 }

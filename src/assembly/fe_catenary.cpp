@@ -95,7 +95,8 @@ Mat FECatenary::static_tangent(unsigned mask) {
   if (it != tangents_.end()) return it->second;
   Mat K = system_->layout().create_matrix();
   system_->load_state(U0_);
-  system_->add_forces(nullptr, K, mask & CatenarySystem::kAllTerms);
+  system_->add_forces(nullptr, K,
+                      mask & (CatenarySystem::kAllTerms | CatenarySystem::kTautBars));
   PCSIM_PETSC(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY));
   PCSIM_PETSC(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
   tangents_[mask] = K;
@@ -161,14 +162,13 @@ std::vector<double> FECatenary::dropper_forces() const {
   std::vector<double> forces(droppers_.size(), 0.0);
   for (std::size_t d = 0; d < droppers_.size(); ++d)
     if (L.owner(mesh().bars[droppers_[d]].nodes[0]) == L.rank())
-      forces[d] = system_->bar_force(droppers_[d]);
+      forces[d] = system_->bar_force(droppers_[d], dropper_slack_);
   return forces;
 }
 
 std::vector<std::unique_ptr<Term>> FECatenary::make_terms(const contact::InteractionEffects& e,
                                                           Mat /*pattern*/) {
-  if (!e.dropper_slack)
-    for (auto& bar : system_->mutable_mesh().bars) bar.slack = catenary::SlackCriterion::none;
+  dropper_slack_ = e.dropper_slack;
   std::vector<std::unique_ptr<Term>> terms;
   if (e.catenary_nonlinear)
     terms.push_back(std::make_unique<NonlinearCableForces>(*this));

@@ -324,8 +324,9 @@ ModalCatenary::CachedPoint& ModalCatenary::cached_point(double x, int wire) cons
   p.weight.clear();
   if (p.on_wire) {
     const auto& el = mesh_.cables[element];
-    const auto s = contact::hermite_shape(chi, el.ref_length);
-    const auto ds = contact::hermite_shape_derivative(chi, el.ref_length);
+    const auto h = catenary::hermite(chi, el.ref_length);
+    const auto& s = h.s;
+    const auto& ds = h.ds;
     const int node[4] = {el.nodes[0], el.nodes[0], el.nodes[1], el.nodes[1]};
     const int comp[4] = {2, 5, 2, 5};  // z, z' at each end (thesis 3.13)
     const auto r0 = row(node[0], comp[0]), r1 = row(node[1], comp[1]);
@@ -423,7 +424,7 @@ std::vector<double> ModalCatenary::dropper_forces() const {
     const auto d = static_cast<std::size_t>(droppers_[i]);
     const auto& bar = mesh_.bars[slack_bars_[d]];
     const double stretch = anchor_elongation_[static_cast<long>(d)] - stretch_[d];
-    const bool slack = slack_active_ || settings_.bars == catenary::ModalSettings::Bars::exact;
+    const bool slack = dropper_slack_;  // else every bar taut
     if (slack && bar.slack == catenary::SlackCriterion::force)
       forces[i] = bar.stiffness * std::max(stretch_[d] + stretch, 0.0);
     else if (slack && bar.slack == catenary::SlackCriterion::length)
@@ -454,8 +455,7 @@ std::vector<double> ModalCatenary::node_positions_to_root(Vec U) const {
 
 std::vector<std::unique_ptr<Term>> ModalCatenary::make_terms(const contact::InteractionEffects& e,
                                                              Mat pattern) {
-  if (!e.dropper_slack)
-    for (auto& bar : mesh_.bars) bar.slack = catenary::SlackCriterion::none;
+  dropper_slack_ = e.dropper_slack;
   const bool exact = settings_.bars == catenary::ModalSettings::Bars::exact;
   slack_active_ = !exact && e.dropper_slack;
   slack_set_current_ = false;
@@ -463,7 +463,7 @@ std::vector<std::unique_ptr<Term>> ModalCatenary::make_terms(const contact::Inte
   terms.push_back(std::make_unique<ModalOscillators>(*this, e.rayleigh_damping,
                                                      mesh_.rayleigh_alpha, mesh_.rayleigh_beta));
   if (exact)
-    terms.push_back(std::make_unique<ModalExactBars>(*this));
+    terms.push_back(std::make_unique<ModalExactBars>(*this, e.dropper_slack));
   else if (slack_active_)
     terms.push_back(std::make_unique<ModalDropperSlack>(*this));
   // A moving window's ends (released: dashpots, pins switched by the run).

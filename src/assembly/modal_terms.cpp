@@ -281,7 +281,7 @@ double ModalNodePins::energy(const CoupledState&) const {
 
 // ------------------------------------------------------- exact bars ----
 
-ModalExactBars::ModalExactBars(ModalCatenary& catenary) : catenary_(catenary) {
+ModalExactBars::ModalExactBars(ModalCatenary& catenary, bool slack) : catenary_(catenary) {
   const auto& mesh = catenary.mesh();
   const PetscInt m = catenary.catenary_dofs();
   for (std::size_t b = 0; b < mesh.bars.size(); ++b) {
@@ -295,7 +295,8 @@ ModalExactBars::ModalExactBars(ModalCatenary& catenary) : catenary_(catenary) {
     for (int end = 0; end < 2; ++end)
       for (int c = 0; c < 3; ++c)
         q0[3 * end + c] = catenary.static_value(mesh.bars[b].nodes[end], c);
-    catenary::bar_internal_force(catenary::bar_parameters(mesh.bars[b]), q0, f0, &K0);
+    bar.params = catenary::bar_parameters(mesh.bars[b], slack);
+    catenary::bar_internal_force(bar.params, q0, f0, &K0);
     bar.q0 = q0;
     bar.f0 = f0;
     bar.K0 = K0;
@@ -305,14 +306,13 @@ ModalExactBars::ModalExactBars(ModalCatenary& catenary) : catenary_(catenary) {
 
 void ModalExactBars::add_residual(const CoupledState&, Vec F) {
   if (!catenary_.on_owner()) return;
-  const auto& mesh = catenary_.mesh();
   PetscScalar* a;
   PCSIM_PETSC(VecGetArray(F, &a));
   Eigen::Map<Eigen::VectorXd> f(a, catenary_.catenary_dofs());
   for (const auto& bar : bars_) {
     const catenary::Vec6 dq = bar.P * catenary_.eta();
     catenary::Vec6 q = bar.q0 + dq, fq;
-    catenary::bar_internal_force(catenary::bar_parameters(mesh.bars[bar.index]), q, fq, nullptr);
+    catenary::bar_internal_force(bar.params, q, fq, nullptr);
     const catenary::Vec6 r = fq - bar.f0 - bar.K0 * dq;
     f += bar.P.transpose() * r;
   }
@@ -320,24 +320,22 @@ void ModalExactBars::add_residual(const CoupledState&, Vec F) {
 }
 
 void ModalExactBars::add_tangent(const CoupledState&, Shifts, Mat J) {
-  const auto& mesh = catenary_.mesh();
   const PetscInt m = catenary_.catenary_dofs();
   RowMatrix block = RowMatrix::Zero(m, m);
   for (const auto& bar : bars_) {
     catenary::Vec6 q = bar.q0 + bar.P * catenary_.eta(), fq;
     catenary::Mat6 K;
-    catenary::bar_internal_force(catenary::bar_parameters(mesh.bars[bar.index]), q, fq, &K);
+    catenary::bar_internal_force(bar.params, q, fq, &K);
     block += bar.P.transpose() * (K - bar.K0) * bar.P;
   }
   add_modal_block(catenary_, block, J);
 }
 
 double ModalExactBars::energy(const CoupledState&) const {
-  const auto& mesh = catenary_.mesh();
   double e = 0;
   for (const auto& bar : bars_) {
     const catenary::Vec6 dq = bar.P * catenary_.eta();
-    const auto params = catenary::bar_parameters(mesh.bars[bar.index]);
+    const auto& params = bar.params;
     e += catenary::bar_strain_energy(params, bar.q0 + dq) -
          catenary::bar_strain_energy(params, bar.q0) - bar.f0.dot(dq) - 0.5 * dq.dot(bar.K0 * dq);
   }

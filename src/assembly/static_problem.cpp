@@ -30,6 +30,10 @@ void set_state_from_node_values(const CatenarySystem& system,
 }
 
 namespace {
+
+// Statics hold every bar taut: a bar's slack criterion needs the equilibrium
+// (length, force) that statics find (finish() records it).
+constexpr unsigned kStaticTerms = CatenarySystem::kAllTerms | CatenarySystem::kTautBars;
 double bar_design_length(const CatenaryMesh& mesh, int b) {
   return (mesh.nodes[mesh.bars[b].nodes[1]].position - mesh.nodes[mesh.bars[b].nodes[0]].position)
       .norm();
@@ -63,16 +67,6 @@ StaticProblem::StaticProblem(CatenarySystem& system, bool form_finding)
     segment_count_.push_back(static_cast<int>(s.elements.size() + s.bars.size()));
     for (int b : s.bars) segment_of_bar_[b] = static_cast<int>(k);
   }
-  for (auto& bar : system.mutable_mesh().bars) {
-    slack_criteria_.push_back(bar.slack);
-    bar.slack = SlackCriterion::none;
-  }
-}
-
-StaticProblem::~StaticProblem() {
-  if (finished_) return;
-  auto& bars = system_.mutable_mesh().bars;
-  for (std::size_t b = 0; b < slack_criteria_.size(); ++b) bars[b].slack = slack_criteria_[b];
 }
 
 Mat StaticProblem::create_matrix() const {
@@ -167,7 +161,7 @@ void StaticProblem::add_form_finding_terms(Vec R, Mat J) {
     const int k = target_of_bar_[b];
     if (k < 0 || !J) continue;
     system_.bar_values(b, q6.data());
-    bar_internal_force(bar_parameters(mesh.bars[b]), q6, f6, nullptr, &df6);
+    bar_internal_force(bar_parameters(mesh.bars[b], false), q6, f6, nullptr, &df6);
     system_.bar_indices(b, idx6);
     const PetscInt col = L.extra_global(k);
     for (int i = 0; i < 6; ++i)
@@ -219,7 +213,7 @@ void StaticProblem::add_bar_segment_terms(Vec R, Mat J) {
   for (int b : L.local_bars()) {
     const int s = segment_of_bar_[b];
     if (s < 0) continue;
-    const auto params = bar_parameters(mesh.bars[b]);
+    const auto params = bar_parameters(mesh.bars[b], false);
     system_.bar_values(b, q6.data());
     const double N = bar_internal_force(params, q6, f6, nullptr, &df6);
     const PetscInt row = L.extra_global(static_cast<PetscInt>(n_targets + s));
@@ -245,7 +239,7 @@ void StaticProblem::add_bar_segment_terms(Vec R, Mat J) {
 void StaticProblem::residual(Vec x, Vec R) {
   if (form_finding_) apply_unknowns(x);
   system_.load_state(x);
-  system_.assemble_static(R, nullptr);
+  system_.assemble_static(R, nullptr, kStaticTerms);
   if (form_finding_) add_form_finding_terms(R, nullptr);
   PCSIM_PETSC(VecAssemblyBegin(R));
   PCSIM_PETSC(VecAssemblyEnd(R));
@@ -257,7 +251,7 @@ void StaticProblem::jacobian(Vec x, Mat J) {
   PCSIM_PETSC(MatZeroEntries(J));
   Vec scratch;
   PCSIM_PETSC(VecDuplicate(x, &scratch));
-  system_.add_forces(nullptr, J);
+  system_.add_forces(nullptr, J, kStaticTerms);
   if (form_finding_) add_form_finding_terms(scratch, J);
   PCSIM_PETSC(VecAssemblyBegin(scratch));
   PCSIM_PETSC(VecAssemblyEnd(scratch));
@@ -278,16 +272,14 @@ StaticResult StaticProblem::finish(Vec x) {
     Vec6 q6;
     system_.bar_values(b, q6.data());
     result.bar_lengths[b] = (q6.tail<3>() - q6.head<3>()).norm();
-    result.bar_forces[b] = system_.bar_force(b);
+    result.bar_forces[b] = system_.bar_force(b, false);
   }
   allreduce_sum(L.comm(), result.bar_forces);
   allreduce_sum(L.comm(), result.bar_lengths);
   for (std::size_t b = 0; b < mesh.bars.size(); ++b) {
     mesh.bars[b].equilibrium_length = result.bar_lengths[b];
     mesh.bars[b].equilibrium_force = result.bar_forces[b];
-    mesh.bars[b].slack = slack_criteria_[b];
   }
-  finished_ = true;
   result.segment_tensions.assign(mesh.tension_segments.size(), 0.0);
   for (int e : L.local_cables()) {
     const int s = mesh.cables[e].tension_segment;
@@ -330,7 +322,7 @@ void StaticProblem::static_tangent(Vec x, Mat K) {
   if (form_finding_) apply_unknowns(x);
   system_.load_state(x);
   PCSIM_PETSC(MatZeroEntries(K));
-  system_.add_forces(nullptr, K);
+  system_.add_forces(nullptr, K, kStaticTerms);
   const auto& L = system_.layout();
   if (L.rank() == L.size() - 1)
     for (PetscInt k = 0; k < L.extra_dofs(); ++k)

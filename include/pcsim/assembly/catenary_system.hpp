@@ -59,6 +59,9 @@ class CatenarySystem {
     kBars = 2u,    // bars (droppers, steady arms, stitch wires)
     kLoads = 4u,   // gravity of everything, constant node forces, support springs
     kAllTerms = 7u,
+    // With kBars: every bar taut, its slack criterion ignored (dropper
+    // slackening off, form-finding).
+    kTautBars = 8u,
   };
   // R = f_elastic - f_gravity + springs at the loaded state (R is overwritten:
   // zero outside the assembled terms). If J is not null the tangent is added
@@ -79,8 +82,8 @@ class CatenarySystem {
   // Mean axial force of a local or remote cable element at the loaded state
   // (needs the element's nodes to be needed on this rank).
   double cable_mean_tension(int element) const;
-  // Axial force of a bar at the loaded state.
-  double bar_force(int bar) const;
+  // Axial force of a bar at the loaded state (slack = false: taut, see kTautBars).
+  double bar_force(int bar, bool slack = true) const;
 
   // Gathers the global state to rank 0 as node positions (3 per node; the
   // design value for constrained DOFs). Empty on other ranks.
@@ -107,7 +110,7 @@ class CatenarySystem {
   std::vector<double> gather_node_values(Vec x, bool to_root) const;
   void add_block(double* r, const int* nodes, int dofs_per_node, const double* f) const;
   void add_cable_forces(double* r, Mat J, bool cables, bool loads) const;
-  void add_bar_forces(double* r, Mat J, bool bars, bool loads) const;
+  void add_bar_forces(double* r, Mat J, bool bars, bool loads, bool slack) const;
   void add_point_forces(double* r, Mat J) const;
   void add_spring(double* r, Mat J, const catenary::SupportSpring& spring) const;
   std::vector<PointLoad> point_loads_;

@@ -75,7 +75,8 @@ class BarForces : public Term {
   std::vector<RankOne> switch_terms(std::size_t i) const;
   FECatenary& catenary_;
   bool slack_;
-  std::vector<int> slack_bars_;                    // bars with a slack criterion
+  unsigned parts_;                                 // CatenarySystem terms it assembles
+  std::vector<int> slack_bars_;                    // bars with a slack criterion (slack on)
   std::vector<char> reference_states_;             // their state in J0
   std::vector<Eigen::Matrix3d> reference_blocks_;  // their 3x3 block in J0 (owner rank)
   struct Frozen {

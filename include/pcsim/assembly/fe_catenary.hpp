@@ -80,6 +80,7 @@ class FECatenary : public CatenaryModel {
   std::vector<std::unique_ptr<contact::ContactWireLocator>> locators_;
   mutable std::vector<WirePoint> points_;  // the last wire_point() of each wire
   std::vector<int> droppers_;              // dropper bars in mesh order (records)
+  bool dropper_slack_ = true;              // the scene's effect (make_terms)
   Mat mass_ = nullptr;
   std::map<unsigned, Mat> tangents_;
   std::map<unsigned, Vec> forces_;

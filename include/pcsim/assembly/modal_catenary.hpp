@@ -112,6 +112,7 @@ class ModalCatenary : public CatenaryModel {
   std::vector<int> slack_bars_;     // bars tracked over the basis
   std::vector<int> wire_position_;  // node -> position in contact_wire_nodes(), -1
   bool slack_active_ = false;       // the slack correction is a term
+  bool dropper_slack_ = true;       // the scene's effect (make_terms)
   std::vector<double> stretch_, bnorm_, bnorm_omega_;  // s_d, |b_d|, |Omega^-1 b_d|
   RowMatrix B_;
   RowMatrix support_rows_;  // the contact-wire height rows of the supports

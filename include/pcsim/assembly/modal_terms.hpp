@@ -11,6 +11,7 @@
 
 #include "pcsim/assembly/modal_catenary.hpp"
 #include "pcsim/assembly/term.hpp"
+#include "pcsim/catenary/elements.hpp"
 
 namespace pcsim::assembly {
 
@@ -105,7 +106,8 @@ class ModalNodePins : public Term {
 // of the bar's ends), tangent P^T (K(q) - K(q0)) P (dense: full path).
 class ModalExactBars : public Term {
  public:
-  explicit ModalExactBars(ModalCatenary& catenary);
+  // slack = false: every bar taut (dropper slackening off).
+  ModalExactBars(ModalCatenary& catenary, bool slack);
   std::string name() const override { return "modal bars (exact)"; }
   TangentKind tangent_kind() const override { return TangentKind::varying; }
   void add_residual(const CoupledState& state, Vec F) override;
@@ -119,6 +121,7 @@ class ModalExactBars : public Term {
     Rows6 P;
     Eigen::Matrix<double, 6, 1> q0, f0;
     Eigen::Matrix<double, 6, 6> K0;
+    catenary::BarParameters params;
   };
   ModalCatenary& catenary_;
   std::vector<Bar> bars_;

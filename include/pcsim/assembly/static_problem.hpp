@@ -10,8 +10,9 @@
 // (z_node = z_design) and one per tension segment (mean axial force = design
 // tension), solved monolithically.
 // Slack criteria are defined relative to the static equilibrium (3.1.2):
-// while the problem exists every bar is a plain linear bar; finish() stores
-// the equilibrium lengths and forces of the bars and restores the criteria.
+// the problem holds every bar as a plain linear bar (CatenarySystem::kTautBars;
+// the mesh's criteria are not touched); finish() stores the equilibrium
+// lengths and forces of the bars.
 #pragma once
 
 #include <petscmat.h>
@@ -35,7 +36,6 @@ class StaticProblem {
  public:
   // With form_finding the system must hold form_finding_unknowns() extras.
   StaticProblem(CatenarySystem& system, bool form_finding);
-  ~StaticProblem();  // restores the slack criteria if finish() was not called
   StaticProblem(const StaticProblem&) = delete;
   StaticProblem& operator=(const StaticProblem&) = delete;
 
@@ -73,8 +73,6 @@ class StaticProblem {
   std::vector<int> segment_count_;    // elements (or bars) per segment
   std::vector<int> segment_of_bar_;   // bar -> its tension segment or -1
   std::vector<double> height_scale_;  // residual scale of each height row [N/m]
-  std::vector<catenary::SlackCriterion> slack_criteria_;
-  bool finished_ = false;
 };
 
 }  // namespace pcsim::assembly

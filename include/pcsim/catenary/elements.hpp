@@ -101,12 +101,15 @@ struct BarParameters {
   double axial_rigidity = 0;
 };
 
-inline BarParameters bar_parameters(const BarElement& bar) {
+// With slack = false the bar's slack criterion is ignored: taut whatever its
+// length (dropper slackening off; the static equilibrium is the same, since
+// N_eq = k (l_eq - L0) there).
+inline BarParameters bar_parameters(const BarElement& bar, bool slack = true) {
   const double k =
       bar.axial_rigidity > 0 ? bar.axial_rigidity / bar.unstressed_length : bar.stiffness;
   return {k,
           bar.unstressed_length,
-          bar.slack,
+          slack ? bar.slack : SlackCriterion::none,
           bar.equilibrium_length,
           bar.equilibrium_force,
           bar.axial_rigidity};
