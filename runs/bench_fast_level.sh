@@ -38,7 +38,7 @@ for scene in "${scenes[@]}"; do
     pilot=true
     [ "$model" = linear ] && pilot=false
     if ! build/pcsim run "$scene" -o "$dir" --overwrite --no-report --cache "$OUT/cache" \
-      --set catenary.model=$model --set effects.catenary_nonlinear=false \
+      --set catenary.model=$model \
       -pcsim_accuracy_pilot $pilot "$@" \
       > "$OUT/$name/$model.log" 2>&1; then
       echo "FAILED: $scene ($model), see $OUT/$name/$model.log" >&2

@@ -21,12 +21,9 @@ echo "| fidelity | spans | unknowns | ms/step | real-time factor | peak memory [
 echo "|---|---|---|---|---|---|"
 for spans in 10 40; do
   for model in nonlinear linear modal; do
-    nonlinear=false
-    [ "$model" = nonlinear ] && nonlinear=true
     dir=$OUT/$model-$spans
     build/pcsim run runs/en50318-300.yaml -o "$dir" --overwrite --no-report -ts_max_steps "$STEPS" \
-      --set catenary.design.spans.count="$spans" --set catenary.model="$model" \
-      --set effects.catenary_nonlinear="$nonlinear" "$@" > "$dir.log" 2>&1 ||
+      --set catenary.design.spans.count="$spans" --set catenary.model="$model" "$@" > "$dir.log" 2>&1 ||
       { cat "$dir.log"; exit 1; }
     python3 - "$dir/summary.json" "$model" "$spans" <<'PY'
 import json, sys
