@@ -6,22 +6,12 @@
 #include <limits>
 #include <stdexcept>
 
+#include "pcsim/catenary/elements.hpp"
+
 namespace pcsim::contact {
 
-std::array<double, 4> hermite_shape(double chi, double lref) {
-  const double xi = chi / lref, xi2 = xi * xi, xi3 = xi2 * xi;
-  return {1 - 3 * xi2 + 2 * xi3, lref * (xi - 2 * xi2 + xi3), 3 * xi2 - 2 * xi3,
-          lref * (-xi2 + xi3)};
-}
-
-std::array<double, 4> hermite_shape_derivative(double chi, double lref) {
-  const double xi = chi / lref, xi2 = xi * xi;
-  return {(-6 * xi + 6 * xi2) / lref, 1 - 4 * xi + 3 * xi2, (6 * xi - 6 * xi2) / lref,
-          -2 * xi + 3 * xi2};
-}
-
 Vector12d shape_row(double chi, double lref, int component) {
-  const auto s = hermite_shape(chi, lref);
+  const auto s = catenary::hermite(chi, lref).s;
   Vector12d row = Vector12d::Zero();
   for (int k = 0; k < 4; ++k) row(3 * k + component) = s[k];
   return row;
@@ -29,7 +19,7 @@ Vector12d shape_row(double chi, double lref, int component) {
 
 double interpolate(const Vector12d& q, double chi, double lref, int component) {
   // s1 + s3 = 1: written relative to node i so that large track coordinates lose no digits.
-  const auto s = hermite_shape(chi, lref);
+  const auto s = catenary::hermite(chi, lref).s;
   const int c = component;
   return q(c) + (s[1] * q(3 + c) + s[2] * (q(6 + c) - q(c)) + s[3] * q(9 + c));
 }
@@ -38,7 +28,7 @@ ContactLocation locate_contact_point(const Vector12d& q, double lref, double x_c
   if (!(lref > 0)) throw std::invalid_argument("locate_contact_point: Lref must be positive");
   auto g = [&](double chi) { return interpolate(q, chi, lref, 0) - x_c; };
   auto dg = [&](double chi) {
-    const auto d = hermite_shape_derivative(chi, lref);
+    const auto d = catenary::hermite(chi, lref).ds;
     return d[0] * q(0) + d[1] * q(3) + d[2] * q(6) + d[3] * q(9);
   };
   ContactLocation loc;

@@ -22,9 +22,7 @@ using Vector12d = Eigen::Matrix<double, 12, 1>;
 using Vector13d = Eigen::Matrix<double, 13, 1>;
 using Matrix13d = Eigen::Matrix<double, 13, 13>;
 
-// Shape functions s1..s4 at chi and their derivatives with respect to chi.
-std::array<double, 4> hermite_shape(double chi, double lref);
-std::array<double, 4> hermite_shape_derivative(double chi, double lref);
+// The shape functions s1..s4: catenary::hermite() (one implementation).
 
 // Component c (0 = x, 1 = y, 2 = z) of r(chi) (3.12, 3.13).
 double interpolate(const Vector12d& q, double chi, double lref, int component);
