@@ -82,18 +82,15 @@ Dsa380Pantograph::Dsa380Pantograph(Dsa380Parameters params, Dsa380Effects effect
   if (e_.aerodynamic)
     aero_force_ = p_.aero_a + p_.aero_b * speed_m_s + p_.aero_c * speed_m_s * speed_m_s;
   bellows_ = Bellows(p_.bellows, e_.uplift_characteristic, aero_force_);
+  spring_ = head_spring(p_);
+  damper_ = frame_damper(p_, e_);
+  friction_ = head_friction(e_);
 }
 
 std::vector<std::string> Dsa380Pantograph::dof_names() const {
   std::vector<std::string> names = {"theta", "x10", "y10", "theta7"};
   if (bellows_.has_state()) names.push_back("bellows_dM");
   return names;
-}
-
-double Dsa380Pantograph::spring_force(double l, double l0, double* stiffness) const {
-  const double e = l - l0;
-  if (stiffness) *stiffness = p_.kl + 3 * p_.kl3 * e * e;
-  return p_.kl * e + p_.kl3 * e * e * e;
 }
 
 void Dsa380Pantograph::residual(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
@@ -116,7 +113,7 @@ void Dsa380Pantograph::residual(double t, const Eigen::VectorXd& q, const Eigen:
     const double dx = k.x5[0] - x10 + sigma * half * ct7;
     const double dy = k.y5[0] - y10 + sigma * half * st7;
     const double l = std::hypot(dx, dy);
-    const double f = spring_force(l, sp == 0 ? p_.l10 : p_.l20, nullptr) / l;
+    const double f = spring_.force(l - (sp == 0 ? p_.l10 : p_.l20)) / l;
     R[0] += f * (dx * k.x5[1] + dy * k.y5[1]);
     R[1] -= f * dx;
     R[2] -= f * dy;
@@ -124,12 +121,11 @@ void Dsa380Pantograph::residual(double t, const Eigen::VectorXd& q, const Eigen:
   }
   if (e_.damper) {  // damper through its lever (A.13–A.19)
     const double h = k.damper_length[1], va = h * thd;
-    if (!e_.damper_one_way || k.y5[1] * thd < 0)
-      R[0] += (p_.c * va + e_.damper_quadratic * va * std::abs(va)) * h;
+    if (damper_.acts(k.y5[1] * thd)) R[0] += damper_.force(va) * h;
   }
   if (e_.friction) {  // smoothed Coulomb friction head–frame (2.16–2.17)
     const double vr = yd - k.y5[1] * thd;
-    const double Ff = e_.friction_force * M_2_PI * std::atan(vr / e_.friction_kt);
+    const double Ff = friction_.force(vr);
     R[0] -= Ff * k.y5[1];
     R[2] += Ff;
   }
@@ -178,7 +174,7 @@ void Dsa380Pantograph::tangents(double, const Eigen::VectorXd& q, const Eigen::V
     const double dy = k.y5[0] - y10 + sigma * half * st7;
     const double l = std::hypot(dx, dy);
     double fl = 0;
-    const double f = spring_force(l, sp == 0 ? p_.l10 : p_.l20, &fl);
+    const double f = spring_.force(l - (sp == 0 ? p_.l10 : p_.l20), &fl);
     Eigen::Matrix<double, 2, 4> D;
     D << k.x5[1], -1, 0, -sigma * half * st7, k.y5[1], 0, -1, sigma * half * ct7;
     const Eigen::Vector2d dvec(dx, dy);
@@ -191,18 +187,15 @@ void Dsa380Pantograph::tangents(double, const Eigen::VectorXd& q, const Eigen::V
   }
   if (e_.damper) {
     const double h = k.damper_length[1], h1 = k.damper_length[2], va = h * thd;
-    if (!e_.damper_one_way || k.y5[1] * thd < 0) {
-      const double fd = p_.c * va + e_.damper_quadratic * va * std::abs(va);
-      const double fd1 = p_.c + 2 * e_.damper_quadratic * std::abs(va);
+    if (damper_.acts(k.y5[1] * thd)) {
+      const double fd = damper_.force(va), fd1 = damper_.dforce(va);
       Cq(0, 0) += fd1 * h * h;
       Kq(0, 0) += fd1 * h1 * thd * h + fd * h1;
     }
   }
   if (e_.friction) {
     const double vr = yd - k.y5[1] * thd;
-    const double kt = e_.friction_kt;
-    const double Ff = e_.friction_force * M_2_PI * std::atan(vr / kt);
-    const double dFf = e_.friction_force * M_2_PI * kt / (kt * kt + vr * vr);  // (3.32)
+    const double Ff = friction_.force(vr), dFf = friction_.dforce(vr);  // (3.32)
     const Eigen::Vector4d gv(-k.y5[1], 0, 1, 0);
     Cq.topLeftCorner<4, 4>() += dFf * gv * gv.transpose();
     Kq.col(0).head<4>() += dFf * (-k.y5[2] * thd) * gv;
@@ -246,7 +239,7 @@ double Dsa380Pantograph::potential_energy(const Eigen::VectorXd& q) const {
     const double l =
         std::hypot(k.x5[0] - q[1] + sigma * half * ct7, k.y5[0] - q[2] + sigma * half * st7);
     const double e = l - (sp == 0 ? p_.l10 : p_.l20);
-    V += 0.5 * p_.kl * e * e + 0.25 * p_.kl3 * e * e * e * e;
+    V += spring_.energy(e);
   }
   return V + bellows_.potential_energy(bellows_dof(), q);
 }
@@ -260,12 +253,11 @@ PowerSplit Dsa380Pantograph::power(double, const Eigen::VectorXd& q,
   const auto k = dsa380_kinematics(p_, q[0]);
   if (e_.damper) {
     const double va = k.damper_length[1] * qd[0];
-    if (!e_.damper_one_way || k.y5[1] * qd[0] < 0)
-      P.dissipative -= (p_.c * va + e_.damper_quadratic * va * std::abs(va)) * va;
+    if (damper_.acts(k.y5[1] * qd[0])) P.dissipative += damper_.power(va);
   }
   if (e_.friction) {
     const double vr = qd[2] - k.y5[1] * qd[0];
-    P.dissipative -= e_.friction_force * M_2_PI * std::atan(vr / e_.friction_kt) * vr;
+    P.dissipative += friction_.power(vr);
   }
   return P;
 }
@@ -275,7 +267,8 @@ double dsa380_head_descent(const Dsa380Parameters& p, double load, double* dz_dl
   const double half = 0.5 * p.L7, l0 = 0.5 * (p.l10 + p.l20);
   auto phi = [&](double z, double* dphi) {
     const double l = std::hypot(z, half), e = l - l0;
-    const double f = p.kl * e + p.kl3 * e * e * e, fl = p.kl + 3 * p.kl3 * e * e;
+    double fl = 0;
+    const double f = head_spring(p).force(e, &fl);
     *dphi = 2 * (fl * z * z / (l * l) + f * (1 / l - z * z / (l * l * l)));
     return 2 * f * z / l - load;
   };

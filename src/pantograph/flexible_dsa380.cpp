@@ -16,6 +16,9 @@ FlexibleDsa380Pantograph::FlexibleDsa380Pantograph(FlexibleDsa380Parameters para
   if (e_.aerodynamic)
     aero_force_ = r.aero_a + r.aero_b * speed_m_s + r.aero_c * speed_m_s * speed_m_s;
   bellows_ = Bellows(r.bellows, e_.uplift_characteristic, aero_force_);
+  spring_ = head_spring(r);
+  damper_ = frame_damper(r, e_);
+  friction_ = head_friction(e_);
   const int n = dof_count();
   bar_mass_ = Eigen::MatrixXd::Zero(n, n);
   bar_weight_ = Eigen::VectorXd::Zero(n);
@@ -44,14 +47,8 @@ Vector6 FlexibleDsa380Pantograph::gather(const FlexibleDsa380Mesh::Element& e,
   return qe;
 }
 
-double FlexibleDsa380Pantograph::spring_force(double l, double l0, double* stiffness) const {
-  const double e = l - l0;
-  if (stiffness) *stiffness = p_.rigid.kl + 3 * p_.rigid.kl3 * e * e;
-  return p_.rigid.kl * e + p_.rigid.kl3 * e * e * e;
-}
-
 bool FlexibleDsa380Pantograph::damper_active(const Eigen::VectorXd& qd) const {
-  return e_.damper && (!e_.damper_one_way || qd[mesh_.y5] < 0);  // one-way: frame descending
+  return e_.damper && damper_.acts(qd[mesh_.y5]);
 }
 
 namespace {
@@ -116,7 +113,7 @@ void FlexibleDsa380Pantograph::add_head(const Eigen::VectorXd& q, const Eigen::V
                             q[mesh_.y5] - q[2] + sigma * half * st7);
     const double l = d.norm();
     double fl = 0;
-    const double f = spring_force(l, sp == 0 ? p.l10 : p.l20, &fl);
+    const double f = spring_.force(l - (sp == 0 ? p.l10 : p.l20), &fl);
     Eigen::Matrix<double, 2, 5> D;
     D << 1, 0, -1, 0, -sigma * half * st7, 0, 1, 0, -1, sigma * half * ct7;
     const Eigen::Matrix<double, 5, 1> grad = D.transpose() * d / l;
@@ -141,8 +138,7 @@ void FlexibleDsa380Pantograph::add_drive(const Eigen::VectorXd& q, const Eigen::
   if (damper_active(qd)) {  // f_d(v_a) h, v_a = h θ̇, h = dl_a/dθ (A.13–A.19)
     const Jet la = damper_length(p, q[0]);
     const double h = la[1], h1 = la[2], va = h * qd[0];
-    const double fd = p.c * va + e_.damper_quadratic * va * std::abs(va);
-    const double fd1 = p.c + 2 * e_.damper_quadratic * std::abs(va);
+    const double fd = damper_.force(va), fd1 = damper_.dforce(va);
     if (R) (*R)[0] += fd * h;
     if (K) {
       (*C)(0, 0) += fd1 * h * h;
@@ -151,14 +147,14 @@ void FlexibleDsa380Pantograph::add_drive(const Eigen::VectorXd& q, const Eigen::
   }
   if (e_.friction) {  // head–frame friction (2.16–2.17), v_r = ẏ10 − ẏ5
     const int y5 = mesh_.y5;
-    const double vr = qd[2] - qd[y5], kt = e_.friction_kt;
-    const double Ff = e_.friction_force * M_2_PI * std::atan(vr / kt);
+    const double vr = qd[2] - qd[y5];
+    const double Ff = friction_.force(vr);
     if (R) {
       (*R)[2] += Ff;
       (*R)[y5] -= Ff;
     }
     if (K) {
-      const double dFf = e_.friction_force * M_2_PI * kt / (kt * kt + vr * vr);  // (3.32)
+      const double dFf = friction_.dforce(vr);  // (3.32)
       (*C)(2, 2) += dFf;
       (*C)(2, y5) -= dFf;
       (*C)(y5, 2) -= dFf;
@@ -254,7 +250,7 @@ double FlexibleDsa380Pantograph::potential_energy(const Eigen::VectorXd& q) cons
     const double l = std::hypot(q[mesh_.x5] - q[1] + sigma * half * ct7,
                                 q[mesh_.y5] - q[2] + sigma * half * st7);
     const double e = l - (sp == 0 ? p.l10 : p.l20);
-    V += 0.5 * p.kl * e * e + 0.25 * p.kl3 * e * e * e * e;
+    V += spring_.energy(e);
   }
   return V + bellows_.potential_energy(bellows_dof(), q);
 }
@@ -266,11 +262,11 @@ PowerSplit FlexibleDsa380Pantograph::power(double, const Eigen::VectorXd& q,
   bellows_.add_power(p_.rigid, 0, bellows_dof(), q, qd, &P);
   if (damper_active(qd)) {
     const double va = damper_length(p_.rigid, q[0])[1] * qd[0];
-    P.dissipative -= (p_.rigid.c * va + e_.damper_quadratic * va * std::abs(va)) * va;
+    P.dissipative += damper_.power(va);
   }
   if (e_.friction) {
     const double vr = qd[2] - qd[mesh_.y5];
-    P.dissipative -= e_.friction_force * M_2_PI * std::atan(vr / e_.friction_kt) * vr;
+    P.dissipative += friction_.power(vr);
   }
   return P;
 }

@@ -21,6 +21,7 @@
 
 #include "pcsim/pantograph/bellows.hpp"
 #include "pcsim/pantograph/jet.hpp"
+#include "pcsim/pantograph/laws.hpp"
 #include "pcsim/pantograph/model.hpp"
 
 namespace pcsim::pantograph {
@@ -63,6 +64,17 @@ struct Dsa380Effects {
   // The bellows torque follows the uplift characteristic (bellows.hpp); else fixed M0.
   bool uplift_characteristic = false;
 };
+
+// The force laws of both DSA-380 models (laws.hpp) from their parameters.
+inline HeadSpring head_spring(const Dsa380Parameters& p) {
+  return {p.kl, p.kl3};
+}
+inline FrameDamper frame_damper(const Dsa380Parameters& p, const Dsa380Effects& e) {
+  return {p.c, e.damper_quadratic, e.damper_one_way};
+}
+inline HeadFriction head_friction(const Dsa380Effects& e) {
+  return {e.friction_force, e.friction_kt};
+}
 
 // Name of the mode whose dominant coordinate is q[dof]: "frame", "head horizontal",
 // "head vertical", "head rotation" ("" outside 0..3).
@@ -125,7 +137,6 @@ class Dsa380Pantograph : public PantographModel {
   const Bellows& bellows() const { return bellows_; }
 
  private:
-  double spring_force(double l, double l0, double* stiffness) const;
   [[noreturn]] void fail_working_height(double theta, double h0, double z,
                                         const std::string& what) const;
   int bellows_dof() const { return bellows_.has_state() ? 4 : -1; }
@@ -134,6 +145,9 @@ class Dsa380Pantograph : public PantographModel {
   double aero_force_ = 0;
   double M0_ = 0;
   Bellows bellows_;
+  HeadSpring spring_;
+  FrameDamper damper_;
+  HeadFriction friction_;
 };
 
 }  // namespace pcsim::pantograph

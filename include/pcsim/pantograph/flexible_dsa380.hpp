@@ -146,7 +146,6 @@ class FlexibleDsa380Pantograph : public PantographModel {
   void apply_restraints(const Eigen::VectorXd& qdd, Eigen::VectorXd* R, Eigen::MatrixXd* K,
                         Eigen::MatrixXd* C, Eigen::MatrixXd* M) const;
   Vector6 gather(const FlexibleDsa380Mesh::Element& e, const Eigen::VectorXd& q) const;
-  double spring_force(double l, double l0, double* stiffness) const;
   bool damper_active(const Eigen::VectorXd& qd) const;
   int bellows_dof() const {
     return bellows_.has_state() ? static_cast<int>(mesh_.names.size()) : -1;
@@ -162,6 +161,9 @@ class FlexibleDsa380Pantograph : public PantographModel {
   double aero_force_ = 0;
   double M0_ = 0;
   Bellows bellows_;  // uplift characteristic: M0 + ΔM(θ) with the rigid mechanism's ΔM
+  HeadSpring spring_;
+  FrameDamper damper_;
+  HeadFriction friction_;
 };
 
 }  // namespace pcsim::pantograph
