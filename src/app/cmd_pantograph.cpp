@@ -10,6 +10,7 @@
 #include "pcsim/output/pantograph_results.hpp"
 #include "pcsim/scene/pantograph_scene.hpp"
 #include "pcsim/simulation/pantograph_study.hpp"
+#include "pcsim/solvers/pantograph_time.hpp"
 
 namespace {
 
@@ -21,6 +22,7 @@ int run_pantograph(const CommandContext& ctx) {
   const InputNode& node = in.scene;
   pantograph::StudyScene& study = in.study;
   const std::string& name = in.name;
+  if (study.study_type == "time") solvers::pantograph_ts_type();  // checked before any work
   OutputDir out(ctx.comm, ctx.output_request(node));
   app::print0(ctx, "pcsim pantograph: scene '%s', %s model, study %s\n", name.c_str(),
               study.model->kind().c_str(), study.study_type.c_str());

@@ -18,17 +18,18 @@ using pantograph::PowerSplit;
 using pantograph::TimeHistory;
 using pantograph::TimeOptions;
 
-// The single place that selects the implicit integrator: the project's HHT-α TS type
-// (pcsim::solvers, "hht"). To fall back to PETSc's generalised-α configured as HHT, set
-// kUseProjectHht = false (alpha_m = 1, alpha_f = 1−α, γ = ½+α, β = (1+α)²/4).
-constexpr bool kUseProjectHht = true;
-
+// The single place that selects the implicit integrator, by the options database
+// (-pantograph_ts_type): the project's HHT-α TS type (pcsim::solvers, "hht", the
+// default) or PETSc's generalised-α configured as the same HHT ("alpha2": alpha_m = 1,
+// alpha_f = 1−α, γ = ½+α, β = (1+α)²/4; its -pantograph_ts_alpha_* options still
+// apply). No other TS type integrates the second-order form.
 void configure_hht(TS ts, double alpha) {
-  if (kUseProjectHht) {
+  const std::string chosen = pantograph_ts_type();
+  if (chosen == kTSHHT) {
     register_hht_ts();
     PCSIM_PETSC(TSSetType(ts, kTSHHT));
     hht_set_alpha(ts, alpha);
-  } else {
+  } else if (chosen == TSALPHA2) {
     PCSIM_PETSC(TSSetType(ts, TSALPHA2));
     PCSIM_PETSC(
         TSAlpha2SetParams(ts, 1.0, 1.0 - alpha, 0.5 + alpha, 0.25 * (1 + alpha) * (1 + alpha)));
@@ -239,6 +240,18 @@ void set_up_hht(TS ts, Context* ctx, const Eigen::VectorXd& q0, const Eigen::Vec
 
 }  // namespace
 
+std::string pantograph_ts_type() {
+  char type[64] = "";
+  PetscBool set = PETSC_FALSE;
+  PCSIM_PETSC(PetscOptionsGetString(nullptr, "pantograph_", "-ts_type", type, sizeof type, &set));
+  const std::string chosen = set ? type : kTSHHT;
+  if (chosen != kTSHHT && chosen != TSALPHA2)
+    throw InputError("command line", "-pantograph_ts_type",
+                     "'" + chosen + "' cannot integrate the pantograph's second-order form; use " +
+                         kTSHHT + " (the default) or " + TSALPHA2);
+  return chosen;
+}
+
 TimeHistory integrate_pantograph(const PantographModel& model, const Eigen::VectorXd& q0,
                                  const Eigen::VectorXd& qd0, const ForceHistory& contact_force,
                                  const TimeOptions& opt) {
@@ -272,6 +285,10 @@ TimeHistory integrate_pantograph(const PantographModel& model, const Eigen::Vect
   PCSIM_PETSC(TSSetMaxSteps(ts, static_cast<PetscInt>(std::ceil(opt.t_end / opt.dt)) + 10));
   PCSIM_PETSC(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
   PCSIM_PETSC(TSSetFromOptions(ts));
+  if (!ctx.implicit) {  // -pantograph_ts_type is the hht scheme's: rk4 stays RK4
+    PCSIM_PETSC(TSSetType(ts, TSRK));
+    PCSIM_PETSC(TSRKSetType(ts, TSRK4));
+  }
   PCSIM_PETSC(TSSolve(ts, U));
   TSConvergedReason reason;
   PCSIM_PETSC(TSGetConvergedReason(ts, &reason));
