@@ -271,7 +271,15 @@ void bind_simulation(py::module_& m) {
           [](const Simulation& sim, const py::object& p) {
             return sim.stepper->head_force(sim.index(p));
           },
-          py::arg("pantograph"), "The force set on a pantograph's head [N]");
+          py::arg("pantograph"), "The force set on a pantograph's head [N]")
+      .def(
+          "set_base_motion",
+          [](Simulation& sim, const py::object& p, double z, double v) {
+            sim.stepper->set_base_motion(sim.index(p), z, v);
+          },
+          py::arg("pantograph"), py::arg("displacement"), py::arg("velocity") = 0.0,
+          "A pantograph's base (the vehicle roof) at 'displacement' [m, upwards] moving at "
+          "'velocity' [m/s] from the next step on, held until set again (lumped models)");
 }
 
 void initialize() {

@@ -2,6 +2,8 @@
 
 #include <petscts.h>
 
+#include <cmath>
+
 #include "pcsim/assembly/coupled_system.hpp"
 #include "pcsim/assembly/prescribed_forces.hpp"
 #include "pcsim/core/error.hpp"
@@ -20,6 +22,7 @@ struct Stepper::Impl {
   CatenarySetup setup;
   std::unique_ptr<assembly::CoupledSystem> system;
   assembly::PrescribedHeadForces* forces = nullptr;
+  std::vector<std::shared_ptr<std::array<double, 2>>> bases;  // held z_b, v_b per pantograph
   std::unique_ptr<solvers::DynamicSolver> solver;
   Impl(const Context& c, scene::RunScene& s) : ctx(c), scene(s) {}
 };
@@ -97,12 +100,41 @@ std::vector<std::string> Stepper::pantograph_names() const {
   return names;
 }
 
-void Stepper::set_head_force(std::size_t pantograph, double force_N) {
-  if (pantograph >= impl_->system->pantographs().size())
+namespace {
+void check_index(std::size_t pantograph, std::size_t count) {
+  if (pantograph >= count)
     throw InputError("step-wise run", "pantograph",
                      "index " + std::to_string(pantograph) + " out of range (" +
-                         std::to_string(impl_->system->pantographs().size()) + " pantographs)");
+                         std::to_string(count) + " pantographs)");
+}
+}  // namespace
+
+void Stepper::set_head_force(std::size_t pantograph, double force_N) {
+  check_index(pantograph, impl_->system->pantographs().size());
   impl_->forces->set(pantograph, force_N);
+}
+
+// The model reads the held values (pantograph::BaseMotion, lumped models): a
+// load k z_b + c v_b on the lowest stage, its power counted as external work.
+void Stepper::set_base_motion(std::size_t pantograph, double displacement_m, double velocity_m_s) {
+  auto& slots = impl_->system->pantographs();
+  check_index(pantograph, slots.size());
+  auto& slot = slots[pantograph];
+  if (slot.model->base_support().dof < 0)
+    throw InputError("step-wise run", "pantograph",
+                     "'" + slot.run.name + "': its " + slot.model->kind() +
+                         " model takes no base motion (lumped models do)");
+  if (!std::isfinite(displacement_m) || !std::isfinite(velocity_m_s))
+    throw InputError("step-wise run", "base motion", "not a finite number");
+  auto& bases = impl_->bases;
+  if (bases.size() < slots.size()) bases.resize(slots.size());
+  if (!bases[pantograph]) {
+    auto held = std::make_shared<std::array<double, 2>>();
+    bases[pantograph] = held;
+    slot.model->set_base_motion(
+        {[held](double) { return (*held)[0]; }, [held](double) { return (*held)[1]; }});
+  }
+  *bases[pantograph] = {displacement_m, velocity_m_s};
 }
 
 double Stepper::head_force(std::size_t pantograph) const {
