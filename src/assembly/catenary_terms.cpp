@@ -88,8 +88,9 @@ RayleighDamping::RayleighDamping(FECatenary& catenary, const contact::Interactio
     // K0 (cables, loads) is the linearised cables' matrix: the products merge.
     parts_.push_back(
         {catenary.static_tangent(kCablesAndLoads), 0.0, beta, 0.0, SUBSET_NONZERO_PATTERN});
-    parts_.push_back({catenary.static_tangent(CatenarySystem::kBars | taut | FECatenary::kOwnPattern), 0.0,
-                      beta, 0.0, SUBSET_NONZERO_PATTERN});
+    parts_.push_back(
+        {catenary.static_tangent(CatenarySystem::kBars | taut | FECatenary::kOwnPattern), 0.0, beta,
+         0.0, SUBSET_NONZERO_PATTERN});
   }
 }
 

@@ -95,8 +95,7 @@ Mat FECatenary::static_tangent(unsigned mask) {
   if (it != tangents_.end()) return it->second;
   Mat K = system_->layout().create_matrix();
   system_->load_state(U0_);
-  system_->add_forces(nullptr, K,
-                      mask & (CatenarySystem::kAllTerms | CatenarySystem::kTautBars));
+  system_->add_forces(nullptr, K, mask & (CatenarySystem::kAllTerms | CatenarySystem::kTautBars));
   PCSIM_PETSC(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY));
   PCSIM_PETSC(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
   tangents_[mask] = K;
