@@ -14,8 +14,8 @@
 #include "pcsim/output/modal_cache.hpp"
 #include "pcsim/simulation/context.hpp"
 #include "pcsim/simulation/modal_basis.hpp"
+#include "pcsim/simulation/setup_memory.hpp"
 #include "pcsim/simulation/statics.hpp"
-#include "setup_memory.hpp"
 
 namespace pcsim::simulation {
 

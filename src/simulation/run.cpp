@@ -22,13 +22,13 @@
 #include "pcsim/simulation/moving_window.hpp"
 #include "pcsim/simulation/run_session.hpp"
 #include "pcsim/simulation/run_settings.hpp"
+#include "pcsim/simulation/setup_memory.hpp"
 #include "pcsim/simulation/static_start.hpp"
 #include "pcsim/simulation/statics.hpp"
 #include "pcsim/solvers/direct.hpp"
 #include "pcsim/solvers/dynamics.hpp"
 #include "pcsim/solvers/schur_dd.hpp"
 #include "pcsim/solvers/statics.hpp"
-#include "setup_memory.hpp"
 
 namespace pcsim::simulation {
 

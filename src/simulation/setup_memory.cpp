@@ -1,4 +1,4 @@
-#include "setup_memory.hpp"
+#include "pcsim/simulation/setup_memory.hpp"
 
 #include <petscsys.h>
 
