@@ -51,16 +51,17 @@ std::string SweepBases::summary() const {
     largest = std::max(largest, d.dofs);
   }
   const std::size_t compute = designs_.size() - cached;
+  std::string pairs;  // several cut-offs of one design
+  if (cutoffs > designs_.size())
+    pairs = ", " + std::to_string(cutoffs) + " (design, cut-off) pairs";
   char text[600];
-  std::snprintf(
-      text, sizeof text,
-      "  modal bases: %zu case(s) on %zu catenary design(s) (%zu cut-off(s)): %zu "
-      "served by the cache folder, %zu to compute (an eigensolve of up to %ld "
-      "unknowns each, by the first case that needs it%s); each group keeps its last "
-      "%zu in memory\n",
-      modal_cases_, designs_.size(), cutoffs, cached, compute, largest,
-      cutoffs > designs_.size() ? "; one more when a lower cut-off of a design runs first" : "",
-      simulation::kKeptBases);
+  std::snprintf(text, sizeof text,
+                "  modal bases: %zu case(s) on %zu catenary design(s)%s: %zu served by the cache "
+                "folder, %zu to compute (an eigensolve of up to %ld unknowns each, by the first "
+                "case that needs it%s); each group keeps its last %zu in memory\n",
+                modal_cases_, designs_.size(), pairs.c_str(), cached, compute, largest,
+                pairs.empty() ? "" : "; one more when a lower cut-off of a design runs first",
+                simulation::kKeptBases);
   return text;
 }
 

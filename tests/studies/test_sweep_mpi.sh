@@ -177,7 +177,7 @@ YAML
 modal=(sweep modal.yaml --set "pantographs[0].static_force=100,110,120,130" --no-report
   --cache modal-cache)
 expect 0 modal-local "$PCSIM_BIN" "${modal[@]}" -o modal-local -j 2
-grep -qF "modal bases: 4 case(s) on 1 catenary design(s) (1 cut-off(s)): 0 served by the cache folder, 1 to compute" modal-local.log ||
+grep -qF "modal bases: 4 case(s) on 1 catenary design(s): 0 served by the cache folder, 1 to compute" modal-local.log ||
   { cat modal-local.log; fail "modal: no line on the bases"; }
 expect 0 modal-mpi "$mpirun" -n 2 "$PCSIM_BIN" "${modal[@]}" -o modal-mpi
 grep -qF "1 served by the cache folder, 0 to compute" modal-mpi.log || fail "modal: cache"
