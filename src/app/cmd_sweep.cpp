@@ -23,6 +23,7 @@
 #include "pcsim/simulation/interrupt.hpp"
 #include "pcsim/simulation/run_checkpoint.hpp"
 #include "processes.hpp"
+#include "sweep_bases.hpp"
 #include "sweep_cases.hpp"
 #include "sweep_mpi.hpp"
 #include "sweep_runner.hpp"
@@ -167,7 +168,9 @@ Plan make_plan(const CommandContext& ctx) {
 
 // Reads and checks every case's inputs as `pcsim run` would (inputs.hpp:
 // input errors before anything runs).
-void check_cases(const CommandContext& ctx, const Plan& plan) {
+// Every case read and checked as `pcsim run` would; the modal bases they need.
+app::SweepBases check_cases(const CommandContext& ctx, const Plan& plan) {
+  app::SweepBases bases;
   std::vector<InputOverride> fixed;
   for (const auto& o : plan.fixed)
     fixed.push_back(parse_override(o, {"", "command line --set " + o}));
@@ -179,8 +182,10 @@ void check_cases(const CommandContext& ctx, const Plan& plan) {
       overrides.push_back(parse_override(plan.assignments[k][i],
                                          {"", origin + " (case " + plan.cases[k].name + ")"}));
     }
-    app::read_run_inputs(ctx, load_composed(ctx.scene_path, overrides));
+    const auto inputs = app::read_run_inputs(ctx, load_composed(ctx.scene_path, overrides));
+    bases.add(ctx, inputs.run, inputs.memory.dofs);
   }
+  return bases;
 }
 
 // Plots of the figures against the swept values and report.html (warnings only).
@@ -316,7 +321,7 @@ int run_sweep(const CommandContext& given) {
   const int jobs = positive_option(ctx, "-j");
   positive_option(ctx, "--ranks");
   Plan plan = make_plan(ctx);
-  check_cases(ctx, plan);
+  const app::SweepBases bases = check_cases(ctx, plan);
   CommandContext shared = ctx;
   shared.overrides = plan.fixed;
   const InputNode scene = shared.load_scene();
@@ -331,6 +336,7 @@ int run_sweep(const CommandContext& given) {
   else
     app::print0(ctx, "pcsim sweep: scene '%s', %zu cases, %d at a time\n",
                 ctx.scene_name(scene).c_str(), plan.cases.size(), jobs);
+  app::print0(ctx, "%s", bases.summary().c_str());
   if (out.resumed())
     app::print0(ctx, "  resumed %s: %zu case(s) finished (journal kept), %zu to run\n",
                 out.partial_dir().c_str(), resumed, plan.cases.size() - resumed);

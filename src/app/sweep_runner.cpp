@@ -14,6 +14,7 @@
 #include <map>
 
 #include "pcsim/core/error.hpp"
+#include "pcsim/output/modal_cache.hpp"
 #include "pcsim/output/output_dir.hpp"
 #include "pcsim/output/sweep_journal.hpp"
 #include "pcsim/simulation/interrupt.hpp"
@@ -65,6 +66,8 @@ std::vector<std::string> case_command(const CommandContext& ctx, const SweepPlan
   const std::string ranks = ctx.options.count("--ranks") ? ctx.options.at("--ranks") : "1";
   if (ranks != "1") argv = {PCSIM_MPIEXEC, "-n", ranks};
   argv.insert(argv.end(), {own_executable(), "run", ctx.scene_path, "-o", folder, "--no-report"});
+  if (ctx.cache_dir != output::kDefaultCacheDir)  // the sweep's cache folder (was: the default)
+    argv.insert(argv.end(), {"--cache", ctx.cache_dir});
   for (const auto& o : plan.fixed) argv.insert(argv.end(), {"--set", o});
   for (const auto& a : plan.assignments[k]) argv.insert(argv.end(), {"--set", a});
   // The cases' figures are the sweep's result: no accuracy pilot per case

@@ -129,10 +129,9 @@ ReducedBasis assemble_basis(const ModalData& data, const CatenaryMesh& mesh,
   const long nr = static_cast<long>(data.row_keys.size()), m = static_cast<long>(keep.size());
   const ConstMap all_rows(data.mode_rows.data(), nr, static_cast<long>(data.modes()));
   RowMatrix mode_rows(nr, m), ritz_rows(nr, 0);
-  for (long i = 0; i < m; ++i) {
-    mode_rows.col(i) = all_rows.col(keep[i]);
-    b.omega2.push_back(data.omega2[keep[i]]);
-  }
+  for (long i = 0; i < m; ++i) b.omega2.push_back(data.omega2[keep[i]]);
+  for (long r = 0; r < nr; ++r)  // row by row: both are row-major (a column copy strides)
+    for (long i = 0; i < m; ++i) mode_rows(r, i) = all_rows(r, keep[i]);
   b.eigenmodes = static_cast<int>(m);
   RitzCoefficients ritz;
   if (s.dropper_shapes && data.shapes() > 0)
@@ -140,9 +139,9 @@ ReducedBasis assemble_basis(const ModalData& data, const CatenaryMesh& mesh,
   const std::size_t vectors = data.modes() + data.shapes();
   if (!data.shift_products.empty() && data.shift_products.size() == vectors * vectors)
     b.shift = shift_in_basis(data, keep, ritz);
-  RowMatrix rows(nr, m + ritz_rows.cols());
+  b.rows.resize(static_cast<std::size_t>(nr * (m + ritz_rows.cols())));
+  Eigen::Map<RowMatrix> rows(b.rows.data(), nr, m + ritz_rows.cols());
   rows << mode_rows, ritz_rows;
-  b.rows.assign(rows.data(), rows.data() + rows.size());
   if (!mesh.contact_wire_list().empty()) {
     const auto cw = contact_rows(data, mesh);
     b.contact_flexibility.assign(cw.size(), 0.0);

@@ -206,11 +206,11 @@ std::string modal_cache_file(const std::string& dir, const std::string& key, dou
   return dir + "/modal-" + key.substr(0, 24) + "-" + cutoff + ".h5";
 }
 
-bool find_modal_data(const std::string& dir, const std::string& key, double max_frequency_hz,
-                     catenary::ModalData& data, std::string& file) {
+std::vector<std::string> modal_data_candidates(const std::string& dir, const std::string& key,
+                                               double max_frequency_hz) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (!fs::is_directory(dir, ec)) return false;
+  if (!fs::is_directory(dir, ec)) return {};
   const std::string prefix = "modal-" + key.substr(0, 24) + "-";
   std::vector<std::pair<double, std::string>> candidates;  // (cut-off, file)
   for (const auto& entry : fs::directory_iterator(dir, ec)) {
@@ -226,11 +226,18 @@ bool find_modal_data(const std::string& dir, const std::string& key, double max_
     if (serves) candidates.emplace_back(cutoff <= 0 ? 1e300 : cutoff, entry.path().string());
   }
   std::sort(candidates.begin(), candidates.end());
+  std::vector<std::string> files;
+  for (const auto& c : candidates) files.push_back(c.second);
+  return files;
+}
+
+bool find_modal_data(const std::string& dir, const std::string& key, double max_frequency_hz,
+                     catenary::ModalData& data, std::string& file) {
   const auto covers = [&](double cutoff) {
     return max_frequency_hz <= 0 ? cutoff <= 0
                                  : cutoff <= 0 || cutoff >= max_frequency_hz * (1 - 1e-12);
   };
-  for (const auto& [cutoff, path] : candidates)
+  for (const auto& path : modal_data_candidates(dir, key, max_frequency_hz))
     if (read_modal_data(path, key, data) && covers(data.cutoff_hz)) {
       file = path;
       return true;

@@ -1,19 +1,20 @@
 #include "pcsim/simulation/catenary_setup.hpp"
 
 #include <petsctime.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 #include "pcsim/assembly/fe_catenary.hpp"
 #include "pcsim/assembly/modal_catenary.hpp"
 #include "pcsim/assembly/static_problem.hpp"
 #include "pcsim/catenary/window.hpp"
+#include "pcsim/core/vec_root.hpp"
 #include "pcsim/output/modal_cache.hpp"
 #include "pcsim/simulation/context.hpp"
 #include "pcsim/simulation/modal_basis.hpp"
+#include "pcsim/simulation/setup_memory.hpp"
 #include "pcsim/simulation/statics.hpp"
 
 namespace pcsim::simulation {
@@ -38,13 +39,6 @@ void broadcast(catenary::ModalData& d, MPI_Comm comm) {
   d.cutoff_hz = scalars[0];
   d.max_relative_residual = scalars[1];
   d.wall_time_s = scalars[2];
-}
-
-std::string file_content(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 // A moving window's shift (catenary/window.hpp) as a matrix over the
@@ -104,11 +98,9 @@ catenary::ModalData compute_data(const Context& ctx, const scene::RunScene& run,
 // computed and stored (a cache that cannot be written costs a warning, not
 // the run).
 catenary::ModalData cached_data(const Context& ctx, const scene::RunScene& run,
-                                const simulation::StaticConfiguration& statics, double cutoff_hz,
-                                bool full_shapes, CatenarySetup& out) {
-  const std::string key =
-      output::modal_cache_key(file_content(run.catenary.design_path), run.catenary.mesh,
-                              run.catenary.form_finding, full_shapes);
+                                const simulation::StaticConfiguration& statics,
+                                const std::string& key, double cutoff_hz, bool full_shapes,
+                                CatenarySetup& out) {
   catenary::ModalData data;
   int hit = 0;
   if (ctx.rank == 0)
@@ -134,6 +126,48 @@ catenary::ModalData cached_data(const Context& ctx, const scene::RunScene& run,
   return data;
 }
 
+// The cache file a process of its own would read the data of 'key' from
+// first, with its modification time and size (a file renamed over is
+// another); "" if there is none. Rank 0 looks, every rank gets it.
+std::string cache_file_served(const Context& ctx, const std::string& key, double cutoff_hz) {
+  std::string served;
+  if (ctx.rank == 0) {
+    const auto files = output::modal_data_candidates(ctx.cache_dir, key, cutoff_hz);
+    struct stat st {};
+    if (!files.empty() && stat(files.front().c_str(), &st) == 0)
+      served = files.front() + "@" + std::to_string(st.st_mtim.tv_sec) + "." +
+               std::to_string(st.st_mtim.tv_nsec) + ":" + std::to_string(st.st_size);
+  }
+  return broadcast_text(ctx.comm, served);
+}
+
+// The run's basis: kept in this process's memory by an earlier run
+// (setup_memory.hpp) if the cache folder still serves it from the same file
+// (every rank must have it), else assembled from the cache's data or from
+// data computed now, and kept.
+catenary::ReducedBasis modal_basis(const Context& ctx, const scene::RunScene& run,
+                                   const simulation::StaticConfiguration& statics,
+                                   const catenary::ModalSettings& settings, CatenarySetup& out) {
+  const std::string key =
+      output::modal_cache_key(file_content(run.catenary.design_path), run.catenary.mesh,
+                              run.catenary.form_finding, settings.full_shapes);
+  const std::string kept_key = kept_basis_key(key, settings);
+  const std::string served = cache_file_served(ctx, key, settings.max_frequency_hz);
+  auto kept = find_kept_basis(kept_key, served);
+  int mine = kept ? 1 : 0, everywhere = 0;
+  MPI_Allreduce(&mine, &everywhere, 1, MPI_INT, MPI_MIN, ctx.comm);
+  if (everywhere) {
+    out.cache_hit = out.basis_kept = true;
+    out.cache_file = served.substr(0, served.rfind('@'));
+    return std::move(*kept);
+  }
+  auto basis = catenary::assemble_basis(
+      cached_data(ctx, run, statics, key, settings.max_frequency_hz, settings.full_shapes, out),
+      statics.mesh, settings);
+  keep_basis(kept_key, cache_file_served(ctx, key, settings.max_frequency_hz), basis);
+  return basis;
+}
+
 }  // namespace
 
 nlohmann::json CatenarySetup::facts() const {
@@ -145,6 +179,7 @@ nlohmann::json CatenarySetup::facts() const {
   j["dropped_modes"] = dropped_modes;
   j["cache_hit"] = cache_hit;
   j["cache_file"] = cache_file;
+  j["basis_kept_in_memory"] = basis_kept;
   j["basis_compute_s"] = basis_seconds;
   j["basis_setup_s"] = setup_seconds;
   return j;
@@ -169,9 +204,7 @@ CatenarySetup make_catenary_model(const Context& ctx, const scene::RunScene& run
                          "): give a cut-off frequency");
   PetscLogDouble t0, t1;
   PetscTime(&t0);
-  auto basis = catenary::assemble_basis(
-      cached_data(ctx, run, statics, settings.max_frequency_hz, settings.full_shapes, out),
-      statics.mesh, settings);
+  auto basis = modal_basis(ctx, run, statics, settings, out);
   PetscTime(&t1);
   out.modal = true;
   out.setup_seconds = t1 - t0;

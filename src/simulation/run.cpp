@@ -22,6 +22,7 @@
 #include "pcsim/simulation/moving_window.hpp"
 #include "pcsim/simulation/run_session.hpp"
 #include "pcsim/simulation/run_settings.hpp"
+#include "pcsim/simulation/setup_memory.hpp"
 #include "pcsim/simulation/static_start.hpp"
 #include "pcsim/simulation/statics.hpp"
 #include "pcsim/solvers/direct.hpp"
@@ -52,14 +53,15 @@ void prepare_window(const Context& ctx, const scene::RunWindow& window,
 }
 
 // The static configuration of the line, or of the window with its ends released.
-simulation::StaticConfiguration run_statics(const Context& ctx, const scene::RunScene& run) {
-  auto statics =
-      simulation::static_configuration(ctx.comm, run.window ? run.window->mesh : run.catenary.mesh,
-                                       run.catenary.form_finding, "static_");
+simulation::StaticConfiguration run_statics(const Context& ctx, const scene::RunScene& run,
+                                            bool& kept) {
+  auto statics = kept_static_configuration(ctx, run.catenary.design_path,
+                                           run.window ? run.window->mesh : run.catenary.mesh,
+                                           run.catenary.form_finding, kept);
   if (run.window) prepare_window(ctx, *run.window, statics);
-  print0(ctx, "  static: %d Newton iterations, height error %.2e m, tension error %.2e\n",
+  print0(ctx, "  static: %d Newton iterations, height error %.2e m, tension error %.2e%s\n",
          statics.result.snes_iterations, statics.result.max_height_error_m,
-         statics.result.max_tension_error_rel);
+         statics.result.max_tension_error_rel, kept ? " (kept in memory from an earlier run)" : "");
   const std::string conditions = simulation::conditions_summary(statics);
   if (!conditions.empty()) print0(ctx, "  %s\n", conditions.c_str());
   print_warnings(ctx, statics.result.warnings);
@@ -226,6 +228,7 @@ void finish(const Context& ctx, const scene::RunScene& scene, const RunRequest& 
   outcome.facts.update(
       fidelity_facts(scene, request, setup, system, solver, session, outcome.estimate, window));
   outcome.facts["setup_s"] = outcome.setup_s;
+  outcome.facts["statics_kept_in_memory"] = outcome.statics_kept;
   if (request.restart) {
     outcome.facts["restarted_from"] = request.restart_dir;
     outcome.facts["restart_step"] = request.restart->state.step;
@@ -265,7 +268,7 @@ RunOutcome run(const Context& ctx, scene::RunScene& scene, const RunRequest& req
   RunOutcome outcome;
   const auto& design = scene.catenary.mesh;
   LogStage stage("Form-finding");  // -log_view: the phases of a run
-  const auto statics = run_statics(ctx, scene);
+  const auto statics = run_statics(ctx, scene, outcome.statics_kept);
   stage.next("Static start");
   outcome.settings = run_settings(scene, request.name);
   CatenarySetup setup;

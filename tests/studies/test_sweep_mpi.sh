@@ -13,7 +13,14 @@
 #     merged into journal.jsonl; SIGKILL (no chance to merge): the group
 #     journals kept; each time the same command resumes the sweep and its
 #     tables equal those of the sweep run without mpirun; SIGTERM to mpirun
-#     (which forwards it), resumed without mpirun.
+#     (which forwards it), resumed without mpirun;
+#  5. a modal sweep of four cases on one design without mpirun, cache folder
+#     empty: it says up front that it needs one basis, to compute; then under
+#     `mpirun -n 2` (one basis, served by the cache): a group's cases after
+#     its first take the static configuration and the basis the first kept
+#     in memory; the tables equal byte for byte. (Not from an empty cache
+#     under mpirun: both groups would compute the basis at once and the later
+#     rename makes the other's kept basis another file's: read again.)
 set -euo pipefail
 : "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:=/usr/bin/python3}"
 tmp=$(mktemp -d)
@@ -160,3 +167,32 @@ for d in term killed forwarded; do
   cmp ref/sweep.csv $d/sweep.csv && cmp ref/sweep.md $d/sweep.md || fail "$d: tables differ"
   echo "ok   $d after $done_before of 6 cases, resumed: $((6 - done_before)) run, tables equal"
 done
+
+# 5. Bases kept in memory by the groups.
+cat > modal.yaml <<YAML
+base: $scene
+name: modal
+set: {catenary.model: modal, catenary.max_frequency_hz: 120}
+YAML
+modal=(sweep modal.yaml --set "pantographs[0].static_force=100,110,120,130" --no-report
+  --cache modal-cache)
+expect 0 modal-local "$PCSIM_BIN" "${modal[@]}" -o modal-local -j 2
+grep -qF "modal bases: 4 case(s) on 1 catenary design(s): 0 served by the cache folder, 1 to compute" modal-local.log ||
+  { cat modal-local.log; fail "modal: no line on the bases"; }
+expect 0 modal-mpi "$mpirun" -n 2 "$PCSIM_BIN" "${modal[@]}" -o modal-mpi
+grep -qF "1 served by the cache folder, 0 to compute" modal-mpi.log || fail "modal: cache"
+"$PCSIM_PYTHON" - <<'PY' || fail "modal: kept"
+import json
+kept = {}
+for d in ("modal-mpi", "modal-local"):
+    for line in open(f"{d}/journal.jsonl"):
+        j = json.loads(line)
+        if "case" in j:
+            s = j["summary"]
+            kept.setdefault(d, []).append(s["modal"]["basis_kept_in_memory"] and s["statics_kept_in_memory"])
+# the first case of each group (a group may run one case, another three)
+assert kept["modal-mpi"].count(False) == 2, kept
+assert not any(kept["modal-local"]), kept  # a process per case
+PY
+cmp modal-mpi/sweep.csv modal-local/sweep.csv || fail "modal: tables differ"
+echo "ok   modal sweep: one basis to compute, kept by each group for its second case; tables equal"

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "pcsim/catenary/mesh.hpp"
 #include "pcsim/catenary/reduced_basis.hpp"
@@ -29,6 +30,11 @@ std::string modal_cache_key(const std::string& design_content, const catenary::C
 // The file for data of this key computed at cutoff_hz (<= 0: every mode).
 std::string modal_cache_file(const std::string& dir, const std::string& key, double cutoff_hz);
 
+// The files of 'key' whose names say they serve max_frequency_hz, in the
+// order find_modal_data tries them (the smallest cut-off first); a listing
+// of the folder, nothing read.
+std::vector<std::string> modal_data_candidates(const std::string& dir, const std::string& key,
+                                               double max_frequency_hz);
 // The cached data of 'key' that serve max_frequency_hz (the smallest cut-off
 // at least that; for every mode (<= 0) only such data), and their file;
 // false if there are none (or none readable).

@@ -22,6 +22,7 @@ struct CatenarySetup {
   std::unique_ptr<assembly::CatenaryModel> model;
   bool modal = false;
   bool cache_hit = false;
+  bool basis_kept = false;  // the basis kept in memory by an earlier run of this process
   std::string cache_file;
   double basis_seconds = 0;  // computing the basis (0 when read from the cache)
   double setup_seconds = 0;  // reading or computing it

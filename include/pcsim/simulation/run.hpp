@@ -57,8 +57,9 @@ struct RunOutcome {
   bool complete = false;      // not stopped by a signal: it reached its end time or -ts_max_steps
   bool checkpointed = false;  // a checkpoint at its last step (interrupted or stopped early)
   long steps = 0;
-  double time = 0;     // simulated [s]
-  double setup_s = 0;  // wall time before the time loop [s]
+  double time = 0;            // simulated [s]
+  double setup_s = 0;         // wall time before the time loop [s]
+  bool statics_kept = false;  // the static configuration kept by an earlier run (setup_memory.hpp)
   output::RunSettings settings;
   nlohmann::json facts;          // summary.json's solver, performance and fidelity facts
   output::RunStatistics stats;   // complete runs, rank 0
