@@ -102,9 +102,17 @@ void MovingWindow::shift_modal(solvers::DynamicState& s) const {
   const long m = static_cast<long>(modal_->basis().size());
   using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   const Eigen::Map<const RowMatrix> P(modal_->basis().shift.data(), m, m);
-  for (auto* x : {&s.U, &s.V, &s.A}) {
-    Eigen::Map<Eigen::VectorXd> eta(x->data(), m);
-    eta = P * eta.eval();
+  // One pass over P's rows for the three states (a row stays in cache for its
+  // three dots): 26-31 ms against 41-42 ms for three products at m = 4409
+  // (an Eigen micro-benchmark, random P, -O2, on a loaded 2-core machine).
+  const Eigen::VectorXd U = Eigen::Map<Eigen::VectorXd>(s.U.data(), m),
+                        V = Eigen::Map<Eigen::VectorXd>(s.V.data(), m),
+                        A = Eigen::Map<Eigen::VectorXd>(s.A.data(), m);
+  for (long i = 0; i < m; ++i) {
+    const auto row = P.row(i);
+    s.U[i] = row.dot(U);
+    s.V[i] = row.dot(V);
+    s.A[i] = row.dot(A);
   }
 }
 
