@@ -22,6 +22,7 @@
 #include "pcsim/simulation/moving_window.hpp"
 #include "pcsim/simulation/run_session.hpp"
 #include "pcsim/simulation/run_settings.hpp"
+#include "pcsim/simulation/run_setup.hpp"
 #include "pcsim/simulation/setup_memory.hpp"
 #include "pcsim/simulation/static_start.hpp"
 #include "pcsim/simulation/statics.hpp"
@@ -38,34 +39,6 @@ double now_s() {
   PetscLogDouble t;
   PetscTime(&t);
   return t;
-}
-
-// The window's mesh (static configuration) with its ends released
-// (catenary/window.hpp), on the console.
-void prepare_window(const Context& ctx, const scene::RunWindow& window,
-                    simulation::StaticConfiguration& statics) {
-  const auto ends = catenary::release_window_ends(statics.mesh, statics.result.node_values);
-  print0(ctx,
-         "  moving window: %d of the line's %d spans (%d behind, %d with the %s, %d ahead), "
-         "%zu wire ends with matched dashpots\n",
-         window.spans(), window.line_spans, window.spans_behind, window.train_spans + 2,
-         window.train_spans > 0 ? "train" : "pantograph", window.spans_ahead, ends.size());
-}
-
-// The static configuration of the line, or of the window with its ends released.
-simulation::StaticConfiguration run_statics(const Context& ctx, const scene::RunScene& run,
-                                            bool& kept) {
-  auto statics = kept_static_configuration(ctx, run.catenary.design_path,
-                                           run.window ? run.window->mesh : run.catenary.mesh,
-                                           run.catenary.form_finding, kept);
-  if (run.window) prepare_window(ctx, *run.window, statics);
-  print0(ctx, "  static: %d Newton iterations, height error %.2e m, tension error %.2e%s\n",
-         statics.result.snes_iterations, statics.result.max_height_error_m,
-         statics.result.max_tension_error_rel, kept ? " (kept in memory from an earlier run)" : "");
-  const std::string conditions = simulation::conditions_summary(statics);
-  if (!conditions.empty()) print0(ctx, "  %s\n", conditions.c_str());
-  print_warnings(ctx, statics.result.warnings);
-  return statics;
 }
 
 void warn_if_start_differs(const Context& ctx, assembly::CoupledSystem& system,
@@ -268,12 +241,12 @@ RunOutcome run(const Context& ctx, scene::RunScene& scene, const RunRequest& req
   RunOutcome outcome;
   const auto& design = scene.catenary.mesh;
   LogStage stage("Form-finding");  // -log_view: the phases of a run
-  const auto statics = run_statics(ctx, scene, outcome.statics_kept);
-  stage.next("Static start");
+  RunSetup prepared = set_up_run(ctx, scene, &stage);
+  const auto& statics = prepared.statics;
+  const CatenarySetup& setup = prepared.catenary;
+  auto& system = prepared.system;
+  outcome.statics_kept = prepared.statics_kept;
   outcome.settings = run_settings(scene, request.name);
-  CatenarySetup setup;
-  auto system = make_coupled_system(ctx, scene, statics, setup);
-  print_catenary_setup(ctx, scene, setup);
   system->set_record_dropper_forces(scene.dropper_forces);
   std::unique_ptr<MovingWindow> window;
   if (scene.window)

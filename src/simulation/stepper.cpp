@@ -9,6 +9,7 @@
 #include "pcsim/core/error.hpp"
 #include "pcsim/simulation/catenary_setup.hpp"
 #include "pcsim/simulation/run_session.hpp"
+#include "pcsim/simulation/run_setup.hpp"
 #include "pcsim/simulation/static_start.hpp"
 #include "pcsim/simulation/statics.hpp"
 #include "pcsim/solvers/dynamics.hpp"
@@ -18,9 +19,8 @@ namespace pcsim::simulation {
 struct Stepper::Impl {
   Context ctx;
   scene::RunScene& scene;
-  StaticConfiguration statics;
-  CatenarySetup setup;
-  std::unique_ptr<assembly::CoupledSystem> system;
+  RunSetup prepared;  // statics, catenary facts
+  assembly::CoupledSystem* system = nullptr;
   assembly::PrescribedHeadForces* forces = nullptr;
   std::vector<std::shared_ptr<std::array<double, 2>>> bases;  // held z_b, v_b per pantograph
   std::unique_ptr<solvers::DynamicSolver> solver;
@@ -32,10 +32,8 @@ Stepper::Stepper(const Context& ctx, scene::RunScene& scene)
   if (scene.window)
     throw InputError("scene", "window", "a run advanced step by step cannot have a moving window");
   auto& s = *impl_;
-  s.statics =
-      static_configuration(ctx.comm, scene.catenary.mesh, scene.catenary.form_finding, "static_");
-  print_warnings(ctx, s.statics.result.warnings);
-  s.system = make_coupled_system(ctx, scene, s.statics, s.setup);
+  s.prepared = set_up_run(ctx, scene, nullptr);
+  s.system = s.prepared.system.get();
   s.forces = static_cast<assembly::PrescribedHeadForces*>(&s.system->add_load_term(
       std::make_unique<assembly::PrescribedHeadForces>(s.system->pantographs())));
   Vec U0 = s.system->create_vector(), V0 = s.system->create_vector();
