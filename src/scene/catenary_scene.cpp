@@ -65,11 +65,73 @@ IceLoad read_ice(const InputNode& i, const CatenaryMesh& mesh) {
   return ice;
 }
 
+// EN 1991-1-4 terrain categories (Table 4.1): roughness length z0 and
+// minimum height zmin [m].
+struct Terrain {
+  const char* name;
+  double z0, zmin;
+};
+constexpr Terrain kTerrains[] = {
+    {"0", 0.003, 1}, {"I", 0.01, 1}, {"II", 0.05, 2}, {"III", 0.3, 5}, {"IV", 1.0, 10}};
+
+// The turbulence (docs/conditions.md, "Turbulence"); defaults of the
+// intensity and length scale from the terrain category at 'height' by EN
+// 1991-1-4: I_v = 1 / ln(z / z0) (4.7, k_I = c0 = 1), L = 300 (z / 200)^alpha
+// with alpha = 0.67 + 0.05 ln z0 (B.2), z >= zmin.
+TurbulenceSettings read_turbulence(const InputNode& t) {
+  t.allow_only({"terrain_category", "height", "intensity", "length_scale", "vertical_ratio",
+                "coherence_decay", "seed", "grid_spacing", "time_step"});
+  TurbulenceSettings s;
+  s.on = true;
+  const std::string category =
+      t.get_choice("terrain_category", {"0", "I", "II", "III", "IV"}, "II");
+  const Terrain* terrain = kTerrains;
+  while (category != terrain->name) ++terrain;
+  const double z = std::max(t.get_positive("height", limits::height, 6.0), terrain->zmin);
+  s.intensity = t.get_positive("intensity", 1.0 / std::log(z / terrain->z0));
+  if (s.intensity > 1) t.fail_key("intensity", "must be at most 1 (sigma_u / V)");
+  s.length_scale = t.get_positive("length_scale", limits::distance,
+                                  300 * std::pow(z / 200, 0.67 + 0.05 * std::log(terrain->z0)));
+  s.vertical_ratio = t.get_nonnegative("vertical_ratio", limits::coefficient, s.vertical_ratio);
+  s.coherence_decay = t.get_positive("coherence_decay", limits::coefficient, s.coherence_decay);
+  const long seed = t.get_int("seed", 1);
+  if (seed < 0) t.fail_key("seed", "must not be negative");
+  s.seed = static_cast<unsigned long>(seed);
+  s.grid_spacing = t.get_positive("grid_spacing", limits::distance, s.grid_spacing);
+  s.time_step = t.get_positive("time_step", limits::time_step, s.time_step);
+  return s;
+}
+
+// The mean wind and the blow-off check's widths (docs/conditions.md).
+WindLoad read_wind(const InputNode& w) {
+  w.allow_only({"speed", "direction_deg", "air_density", "working_half_width", "vehicle_sway",
+                "track_tolerance", "turbulence"});
+  WindLoad wind;
+  if (w.has("turbulence")) wind.turbulence = read_turbulence(w["turbulence"]);
+  wind.speed = w.get_nonnegative("speed", limits::wind_speed);
+  wind.direction_deg = w.get_double("direction_deg", wind.direction_deg);
+  if (!(std::abs(wind.direction_deg) <= 360))
+    w.fail_key("direction_deg", "must lie within +-360 degrees (got " +
+                                    format_number(wind.direction_deg) + ")");
+  wind.air_density = w.get_positive("air_density", limits::air_density, wind.air_density);
+  wind.working_half_width =
+      w.get_positive("working_half_width", limits::height, wind.working_half_width);
+  wind.vehicle_sway = w.get_nonnegative("vehicle_sway", limits::height, 0.0);
+  wind.track_tolerance = w.get_nonnegative("track_tolerance", limits::height, 0.0);
+  if (wind.turbulence.on && wind.speed == 0)
+    w.fail_key("turbulence", "needs a mean wind (speed > 0): the drag is linearised about it");
+  if (!(wind.permissible_m() > 0))
+    w.fail("working_half_width - vehicle_sway - track_tolerance must be positive (got " +
+           format_number(wind.permissible_m()) + " m)");
+  return wind;
+}
+
 // 'conditions' (docs/conditions.md).
 LineConditions read_conditions(const InputNode& c, const CatenaryMesh& mesh) {
-  c.allow_only({"ice", "temperature_change_k"});
+  c.allow_only({"ice", "temperature_change_k", "wind"});
   LineConditions out;
   if (c.has("ice")) out.ice = read_ice(c["ice"], mesh);
+  if (c.has("wind")) out.wind = read_wind(c["wind"]);
   out.temperature_change_k = c.get_double("temperature_change_k", 0.0);
   if (!(std::abs(out.temperature_change_k) <= kMaxTemperatureChange))
     c.fail_key("temperature_change_k", "must lie within +-100 K of the design temperature (got " +
@@ -137,6 +199,8 @@ CatenaryScene load_catenary_scene(const InputNode& scene, const MeshSizeCheck& s
   out.form_finding = section.get_bool("form_finding", out.mesh.form_finding_default);
   read_catenary_model(section, out);
   if (scene.has("conditions")) out.mesh.conditions = read_conditions(scene["conditions"], out.mesh);
+  if (out.mesh.conditions.wind.turbulence.on && out.fidelity == CatenaryFidelity::modal)
+    scene["conditions"]["wind"].fail_key("turbulence", "not available for model: modal yet");
   if (scene.has("elasticity")) out.elasticity = read_elasticity(scene["elasticity"], out.mesh);
   return out;
 }

@@ -1,0 +1,54 @@
+// The wind's turbulence on the wires (docs/conditions.md, "Turbulence"): the
+// drag of the fluctuations u' (along the mean wind) and w' (vertical),
+// linearised about the mean wind (whose own drag is a dead load of the
+// catenary, catenary/wind.hpp),
+//   dq = (rho Cd d / 2) (|V_n| I + V_n V_n^T / |V_n|) P (u' e_V + w' e_z),
+// P = I - t t^T the projection normal to the wire: across the track,
+// rho Cd d V u' laterally and rho Cd d V w' / 2 vertically. A time-dependent
+// load on the FE catenary's cable elements, u' and w' interpolated from the
+// field's grid at the element's middle: residual only (no tangent), so the
+// cheap path stays; its power is external work in the energy balance.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include "pcsim/assembly/fe_catenary.hpp"
+#include "pcsim/assembly/term.hpp"
+#include "pcsim/catenary/wind_field.hpp"
+
+namespace pcsim::assembly {
+
+class WindTurbulence : public Term {
+ public:
+  explicit WindTurbulence(FECatenary& catenary);
+  ~WindTurbulence() override;
+  std::string name() const override { return "wind turbulence"; }
+  TangentKind tangent_kind() const override { return TangentKind::constant; }
+  bool adds_by_set_values() const override { return true; }
+  void add_residual(const CoupledState& state, Vec F) override;
+  TermPower power(const CoupledState& state) const override;
+
+  const catenary::WindSeries& lateral() const { return u_; }
+  const catenary::WindSeries& vertical() const { return w_; }
+
+ private:
+  struct Element {
+    std::array<PetscInt, 12> idx{};
+    Eigen::Vector3d a, b;  // load per unstressed length per unit u', w' [N s/m^2]
+    double x = 0, ref_length = 0, unstressed_length = 0;
+  };
+  void add_loads(double t, Vec F, double sign) const;
+  std::vector<Element> elements_;
+  catenary::WindSeries u_, w_;
+  mutable Vec work_ = nullptr;
+};
+
+// The load per unstressed length per unit u' and w' on a wire of unit
+// tangent t in the mean wind V (horizontal): the columns a, b above.
+void turbulent_drag_gradients(const catenary::Wire& wire, const Eigen::Vector3d& tangent,
+                              const Eigen::Vector3d& velocity, double air_density,
+                              Eigen::Vector3d& a, Eigen::Vector3d& b);
+
+}  // namespace pcsim::assembly

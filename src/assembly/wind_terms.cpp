@@ -1,0 +1,99 @@
+#include "pcsim/assembly/wind_terms.hpp"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "pcsim/assembly/coupled_state.hpp"
+#include "pcsim/catenary/elements.hpp"
+#include "pcsim/core/error.hpp"
+
+namespace pcsim::assembly {
+
+void turbulent_drag_gradients(const catenary::Wire& wire, const Eigen::Vector3d& tangent,
+                              const Eigen::Vector3d& velocity, double air_density,
+                              Eigen::Vector3d& a, Eigen::Vector3d& b) {
+  const Eigen::Vector3d t = tangent.normalized();
+  const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - t * t.transpose();
+  const Eigen::Vector3d vn = P * velocity;
+  const double speed = vn.norm();
+  a.setZero(), b.setZero();
+  if (speed == 0) return;  // wind along the wire: no drag, none linearised
+  const double k = 0.5 * air_density * catenary::wire_drag_coefficient(wire) *
+                   catenary::wire_diameter(wire);
+  const Eigen::Matrix3d D = k * (speed * Eigen::Matrix3d::Identity() + vn * vn.transpose() / speed);
+  a = D * P * velocity.normalized();
+  b = D * P * Eigen::Vector3d::UnitZ();
+}
+
+namespace {
+
+// The field's stations cover the line's cable nodes (design x).
+catenary::WindSeries series(const catenary::CatenaryMesh& mesh, double sigma, double length,
+                            std::uint64_t seed) {
+  const auto& wind = mesh.conditions.wind;
+  const auto& s = wind.turbulence;
+  double lo = 1e300, hi = -1e300;
+  for (const auto& el : mesh.cables)
+    for (int n : el.nodes)
+      lo = std::min(lo, mesh.nodes[n].position.x()), hi = std::max(hi, mesh.nodes[n].position.x());
+  const int nx = std::max(2, static_cast<int>(std::ceil((hi - lo) / s.grid_spacing)) + 1);
+  catenary::TurbulenceSpec spec{wind.speed, sigma, length, s.coherence_decay, seed};
+  return catenary::generate_turbulence(spec, lo, s.grid_spacing, nx, s.time_step, s.time_points);
+}
+
+}  // namespace
+
+WindTurbulence::WindTurbulence(FECatenary& catenary) {
+  const auto& mesh = catenary.mesh();
+  const auto& wind = mesh.conditions.wind;
+  const auto& s = wind.turbulence;
+  const double sigma_u = s.intensity * wind.speed;
+  u_ = series(mesh, sigma_u, s.length_scale, s.seed);
+  w_ = series(mesh, s.vertical_ratio * sigma_u, s.vertical_length_ratio * s.length_scale,
+              s.seed + 0x9e3779b97f4a7c15ULL);  // an independent stream for w'
+  const auto& system = catenary.system();
+  for (int e : system.layout().local_cables()) {
+    const auto& el = mesh.cables[e];
+    const Eigen::Vector3d p0 = mesh.nodes[el.nodes[0]].position,
+                          p1 = mesh.nodes[el.nodes[1]].position;
+    Element out;
+    system.cable_indices(e, out.idx.data());
+    turbulent_drag_gradients(mesh.wires[el.wire], p1 - p0, wind.velocity(), wind.air_density,
+                             out.a, out.b);
+    out.x = 0.5 * (p0.x() + p1.x());
+    out.ref_length = el.ref_length, out.unstressed_length = el.unstressed_length;
+    elements_.push_back(out);
+  }
+}
+
+WindTurbulence::~WindTurbulence() {
+  if (work_) VecDestroy(&work_);
+}
+
+void WindTurbulence::add_loads(double t, Vec F, double sign) const {
+  for (const auto& el : elements_) {
+    const Eigen::Vector3d q = u_.interpolate(el.x, t) * el.a + w_.interpolate(el.x, t) * el.b;
+    catenary::Vec12 f = sign * catenary::cable_line_load(el.ref_length, el.unstressed_length, q);
+    PCSIM_PETSC(VecSetValues(F, 12, el.idx.data(), f.data(), ADD_VALUES));  // -1: fixed, ignored
+  }
+}
+
+void WindTurbulence::add_residual(const CoupledState& state, Vec F) {
+  add_loads(state.t, F, -1.0);  // a load lowers the residual (R = M a + ... - f)
+}
+
+TermPower WindTurbulence::power(const CoupledState& state) const {
+  TermPower p;
+  if (!state.V) return p;
+  if (!work_) PCSIM_PETSC(VecDuplicate(state.V, &work_));
+  PCSIM_PETSC(VecSet(work_, 0.0));
+  add_loads(state.t, work_, 1.0);
+  PCSIM_PETSC(VecAssemblyBegin(work_));
+  PCSIM_PETSC(VecAssemblyEnd(work_));
+  PCSIM_PETSC(VecDot(work_, state.V, &p.external));
+  return p;
+}
+
+}  // namespace pcsim::assembly
