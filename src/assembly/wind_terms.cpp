@@ -75,8 +75,14 @@ WindTurbulence::~WindTurbulence() {
 void WindTurbulence::add_loads(double t, Vec F, double sign) const {
   for (const auto& el : elements_) {
     const Eigen::Vector3d q = u_.interpolate(el.x, t) * el.a + w_.interpolate(el.x, t) * el.b;
-    catenary::Vec12 f = sign * catenary::cable_line_load(el.ref_length, el.unstressed_length, q);
-    PCSIM_PETSC(VecSetValues(F, 12, el.idx.data(), f.data(), ADD_VALUES));  // -1: fixed, ignored
+    const catenary::Vec12 f =
+        sign * catenary::cable_line_load(el.ref_length, el.unstressed_length, q);
+    PetscInt idx[12];
+    double values[12];
+    int n = 0;
+    for (int i = 0; i < 12; ++i)
+      if (el.idx[i] >= 0) idx[n] = el.idx[i], values[n++] = f[i];  // -1: a fixed DOF
+    PCSIM_PETSC(VecSetValues(F, n, idx, values, ADD_VALUES));
   }
 }
 

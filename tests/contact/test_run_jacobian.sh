@@ -8,8 +8,9 @@
 # Criterion ||J - Jfd||_F / ||J||_F < 1e-5: PETSc's one-sided differences
 # (step ~1.5e-8 |u|) leave ~1e-7 (measured 1.6e-7 DSA-380 full, 7.8e-8
 # DSA-380 cheap, 7.8e-9 lumped; with the base driven at 5 Hz, issue 25:
-# 7.2e-9 to 7.8e-9; under a turbulent wind, the mean drag a dead load and
-# the fluctuations a load of time only: see docs/conditions.md), a wrong
+# 7.2e-9 to 7.8e-9; under a turbulent wind of 25 m/s, its mean drag a dead
+# load and its fluctuations a load of time only, docs/conditions.md: 8.6e-9
+# to 9.0e-9), a wrong
 # tangent term gives >= 1e-4 (the
 # one-way damper's switch, crossed by the differences at the rest start,
 # shows 4e-4). On the cheap path the preconditioning matrix J0 (without
