@@ -20,8 +20,8 @@ void print_blow_off(const app::CommandContext& ctx, const catenary::BlowOff& b) 
   if (b.empty()) return;
   double support = 0, mid = 0;
   for (std::size_t i = 0; i < b.x.size(); ++i)
-    (b.at_support[i] ? support : mid) = std::max(b.at_support[i] ? support : mid,
-                                                 std::abs(b.lateral[i]));
+    (b.at_support[i] ? support : mid) =
+        std::max(b.at_support[i] ? support : mid, std::abs(b.lateral[i]));
   app::print0(ctx,
               "  blow-off: contact wire up to %.1f mm from the track centre at a support, %.1f "
               "mm at a mid-span, %.1f mm at x = %.1f m; permissible %.1f mm: %s\n",

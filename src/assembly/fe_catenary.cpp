@@ -1,9 +1,9 @@
 #include "pcsim/assembly/fe_catenary.hpp"
-#include "pcsim/assembly/wind_terms.hpp"
 
 #include <algorithm>
 
 #include "pcsim/assembly/catenary_terms.hpp"
+#include "pcsim/assembly/wind_terms.hpp"
 #include "pcsim/catenary/elements.hpp"
 #include "pcsim/contact/contact_kernel.hpp"
 #include "pcsim/core/error.hpp"

@@ -20,8 +20,8 @@ void turbulent_drag_gradients(const catenary::Wire& wire, const Eigen::Vector3d&
   const double speed = vn.norm();
   a.setZero(), b.setZero();
   if (speed == 0) return;  // wind along the wire: no drag, none linearised
-  const double k = 0.5 * air_density * catenary::wire_drag_coefficient(wire) *
-                   catenary::wire_diameter(wire);
+  const double k =
+      0.5 * air_density * catenary::wire_drag_coefficient(wire) * catenary::wire_diameter(wire);
   const Eigen::Matrix3d D = k * (speed * Eigen::Matrix3d::Identity() + vn * vn.transpose() / speed);
   a = D * P * velocity.normalized();
   b = D * P * Eigen::Vector3d::UnitZ();
@@ -60,8 +60,8 @@ WindTurbulence::WindTurbulence(FECatenary& catenary) {
                           p1 = mesh.nodes[el.nodes[1]].position;
     Element out;
     system.cable_indices(e, out.idx.data());
-    turbulent_drag_gradients(mesh.wires[el.wire], p1 - p0, wind.velocity(), wind.air_density,
-                             out.a, out.b);
+    turbulent_drag_gradients(mesh.wires[el.wire], p1 - p0, wind.velocity(), wind.air_density, out.a,
+                             out.b);
     out.x = 0.5 * (p0.x() + p1.x());
     out.ref_length = el.ref_length, out.unstressed_length = el.unstressed_length;
     elements_.push_back(out);

@@ -31,7 +31,8 @@ double WindSeries::interpolate(double x, double t) const {
   const int k = std::min(static_cast<int>(tau / dt), nt - 1);
   const double b = tau / dt - k;
   const int k1 = (k + 1) % nt, i1 = nx > 1 ? i + 1 : i;
-  return (1 - a) * ((1 - b) * at(i, k) + b * at(i, k1)) + a * ((1 - b) * at(i1, k) + b * at(i1, k1));
+  return (1 - a) * ((1 - b) * at(i, k) + b * at(i, k1)) +
+         a * ((1 - b) * at(i1, k) + b * at(i1, k1));
 }
 
 // u_j(t_p) = Re sum_l B_jl exp(2 pi i l p / nt), B_jl = sum_k H_jk(f_l)
@@ -61,7 +62,8 @@ WindSeries generate_turbulence(const TurbulenceSpec& s, double x0, double dx, in
   for (int i = 0; i < nx; ++i) {
     for (int k = 0; k < nt; ++k) in[k] = B(i, k);
     fft.inv(time, in);  // (1/nt) sum_l in_l exp(+2 pi i l p / nt)
-    for (int k = 0; k < nt; ++k) out.values[static_cast<std::size_t>(i) * nt + k] = nt * time[k].real();
+    for (int k = 0; k < nt; ++k)
+      out.values[static_cast<std::size_t>(i) * nt + k] = nt * time[k].real();
   }
   return out;
 }

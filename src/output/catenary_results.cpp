@@ -65,8 +65,9 @@ void write_blow_off(H5File& h5, const catenary::BlowOff& b) {
   h5.write_int("/blow_off/wire", std::vector<long>(b.wire.begin(), b.wire.end()),
                {"1", "contact wire (0-based, in the order of their first station)"});
   h5.write("/blow_off/lateral", b.lateral,
-           {"m", "contact wire's lateral position from the track centre line under the wind "
-                 "(+ to the left of the track)"});
+           {"m",
+            "contact wire's lateral position from the track centre line under the wind "
+            "(+ to the left of the track)"});
   h5.write("/blow_off/lateral_bare", b.lateral_bare,
            {"m", "the same before the conditions (the bare line)"});
   h5.write("/blow_off/max_excursion", std::vector<double>{b.max_excursion_m},

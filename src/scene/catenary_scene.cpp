@@ -111,8 +111,8 @@ WindLoad read_wind(const InputNode& w) {
   wind.speed = w.get_nonnegative("speed", limits::wind_speed);
   wind.direction_deg = w.get_double("direction_deg", wind.direction_deg);
   if (!(std::abs(wind.direction_deg) <= 360))
-    w.fail_key("direction_deg", "must lie within +-360 degrees (got " +
-                                    format_number(wind.direction_deg) + ")");
+    w.fail_key("direction_deg",
+               "must lie within +-360 degrees (got " + format_number(wind.direction_deg) + ")");
   wind.air_density = w.get_positive("air_density", limits::air_density, wind.air_density);
   wind.working_half_width =
       w.get_positive("working_half_width", limits::height, wind.working_half_width);

@@ -85,8 +85,8 @@ TEST(WindField, SamplesReproduceSpectrumAndCoherence) {
   // Coherence at separations 1, 2, 4 stations (5, 10, 20 m), bands of 64
   // bins: the real part of the normalised cross-spectrum summed over the
   // pairs (i, i + r) and bins, against exp(-C f dx / V) averaged likewise
-  // (weighted by S(f): the estimate's sums are). Scatter of such an estimate ~ (1 - coh^2) / sqrt(N), N >= 64 x 36: bound
-  // 0.06 absolute (~3 sigma for the worst band).
+  // (weighted by S(f): the estimate's sums are). Scatter of such an estimate ~ (1 - coh^2) /
+  // sqrt(N), N >= 64 x 36: bound 0.06 absolute (~3 sigma for the worst band).
   for (int r : {1, 2, 4})
     for (int first : {16, 64, 256}) {
       std::complex<double> cross = 0;
@@ -128,15 +128,17 @@ TEST(WindField, LinearisedDragAgainstFiniteDifferences) {
   catenary::Wire wire;
   wire.kind = catenary::WireKind::contact;
   const Eigen::Vector3d V(5, 24, 0), eV = V.normalized(), ez = Eigen::Vector3d::UnitZ();
-  for (const Eigen::Vector3d t : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, 0.3, 0),
-                                  Eigen::Vector3d(1, 0.1, 0.2)}) {
+  for (const Eigen::Vector3d t :
+       {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, 0.3, 0), Eigen::Vector3d(1, 0.1, 0.2)}) {
     Eigen::Vector3d a, b;
     assembly::turbulent_drag_gradients(wire, t, V, 1.25, a, b);
     const double h = 1e-4;
     const Eigen::Vector3d fa = (catenary::wire_drag(wire, t, V + h * eV, 1.25) -
-                                catenary::wire_drag(wire, t, V - h * eV, 1.25)) / (2 * h);
+                                catenary::wire_drag(wire, t, V - h * eV, 1.25)) /
+                               (2 * h);
     const Eigen::Vector3d fb = (catenary::wire_drag(wire, t, V + h * ez, 1.25) -
-                                catenary::wire_drag(wire, t, V - h * ez, 1.25)) / (2 * h);
+                                catenary::wire_drag(wire, t, V - h * ez, 1.25)) /
+                               (2 * h);
     // Central differences of a quadratic: exact but for rounding (~1e-12).
     EXPECT_LT((a - fa).norm(), 1e-9 * a.norm());
     EXPECT_LT((b - fb).norm(), 1e-9 * a.norm());

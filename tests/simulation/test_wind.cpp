@@ -76,7 +76,9 @@ catenary::CatenaryMesh wire(double L0) {
 }
 
 // Drag per length of the contact wire (13.2 mm, Cd 1.0) at V across.
-double drag(double V) { return 0.5 * 1.25 * 1.0 * 0.0132 * V * V; }
+double drag(double V) {
+  return 0.5 * 1.25 * 1.0 * 0.0132 * V * V;
+}
 
 }  // namespace
 
@@ -115,7 +117,8 @@ TEST(WindLoad, FixedSpanAgainstTheCatenaryAndTheParabola) {
   mesh.conditions.wind.speed = V;
   const auto blown = simulation::static_configuration(PETSC_COMM_WORLD, mesh, false);
   const int mid = kElements / 2;
-  const double y = blown.result.node_values[6 * mid + 1], z = -blown.result.node_values[6 * mid + 2];
+  const double y = blown.result.node_values[6 * mid + 1],
+               z = -blown.result.node_values[6 * mid + 2];
   GreenCatenary c{kT, std::hypot(w, q), L0};
   c.fit_span(kSpan);
   const double y_exact = c.sag() * q / c.w, z_exact = c.sag() * w / c.w;
@@ -158,10 +161,11 @@ TEST(WindLoad, WeightTensionedSpanAgainstTheClosedForm) {
   GreenCatenary c{bare.H, std::hypot(w, q), L0};  // the pull held
   const double y = blown.result.node_values[6 * (kElements / 2) + 1];
   const double parabola = q * kSpan * kSpan / (8 * bare.H);
-  std::printf("weight, %g m/s: lateral sag %.6f m (catenary %.6f, q L^2/(8T) %.6f), errors "
-              "%.2e %.2e\n",
-              V, y, c.sag() * q / c.w, parabola, std::abs(y / (c.sag() * q / c.w) - 1),
-              std::abs(y / parabola - 1));
+  std::printf(
+      "weight, %g m/s: lateral sag %.6f m (catenary %.6f, q L^2/(8T) %.6f), errors "
+      "%.2e %.2e\n",
+      V, y, c.sag() * q / c.w, parabola, std::abs(y / (c.sag() * q / c.w) - 1),
+      std::abs(y / parabola - 1));
   // The node at mid-station is at s = L0/2 only to ~1e-7 (the end moved):
   // bound 1e-5 on the catenary; the closed form as above, 2e-3.
   EXPECT_LT(std::abs(y / (c.sag() * q / c.w) - 1), 1e-5);

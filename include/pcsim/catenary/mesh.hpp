@@ -280,22 +280,22 @@ struct IceLoad {
 // time-dependent load in dynamic runs (assembly/wind_terms.hpp).
 struct TurbulenceSettings {
   bool on = false;
-  double intensity = 0;           // I_u = sigma_u / V [1]
-  double length_scale = 0;        // L_u [m]
-  double vertical_ratio = 0.5;    // sigma_w / sigma_u [1]
+  double intensity = 0;                // I_u = sigma_u / V [1]
+  double length_scale = 0;             // L_u [m]
+  double vertical_ratio = 0.5;         // sigma_w / sigma_u [1]
   double vertical_length_ratio = 0.1;  // L_w / L_u [1]
-  double coherence_decay = 10;    // C of exp(-C f dx / V) [1]
+  double coherence_decay = 10;         // C of exp(-C f dx / V) [1]
   unsigned long seed = 1;
-  double grid_spacing = 5;        // [m] stations of the field
-  double time_step = 0.05;        // [s] times of the field
-  int time_points = 2048;         // period time_points x time_step
+  double grid_spacing = 5;  // [m] stations of the field
+  double time_step = 0.05;  // [s] times of the field
+  int time_points = 2048;   // period time_points x time_step
 };
 
 struct WindLoad {
   TurbulenceSettings turbulence;
-  double speed = 0;             // [m/s]
-  double direction_deg = 90;    // [deg]
-  double air_density = 1.25;    // [kg/m^3]
+  double speed = 0;                  // [m/s]
+  double direction_deg = 90;         // [deg]
+  double air_density = 1.25;         // [kg/m^3]
   double working_half_width = 0.40;  // [m] (TSI ENE, 1600 mm head)
   double vehicle_sway = 0;           // [m]
   double track_tolerance = 0;        // [m]

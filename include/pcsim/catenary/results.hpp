@@ -13,14 +13,14 @@ namespace pcsim::catenary {
 // centre line (+ to the track's left, +y on straight track), under wind and
 // on the bare line.
 struct BlowOff {
-  std::vector<double> x;          // station [m]
-  std::vector<int> at_support;    // 1: a support, 0: a mid-span
-  std::vector<int> wire;          // index into mesh.contact_wire_list()
-  std::vector<double> lateral;    // under wind [m]
+  std::vector<double> x;             // station [m]
+  std::vector<int> at_support;       // 1: a support, 0: a mid-span
+  std::vector<int> wire;             // index into mesh.contact_wire_list()
+  std::vector<double> lateral;       // under wind [m]
   std::vector<double> lateral_bare;  // before the conditions [m]
-  double permissible_m = 0;       // working half width - sway - track tolerance
-  double max_excursion_m = 0;     // largest |lateral| at any node of a contact wire
-  double max_excursion_x = 0;     // its station
+  double permissible_m = 0;          // working half width - sway - track tolerance
+  double max_excursion_m = 0;        // largest |lateral| at any node of a contact wire
+  double max_excursion_x = 0;        // its station
   bool empty() const { return x.empty(); }
 };
 

@@ -18,10 +18,10 @@
 namespace pcsim::catenary {
 
 struct TurbulenceSpec {
-  double mean_speed = 0;         // V [m/s]
-  double sigma = 0;              // standard deviation of the component [m/s]
-  double length_scale = 0;       // L [m]
-  double coherence_decay = 10;   // C [1]
+  double mean_speed = 0;        // V [m/s]
+  double sigma = 0;             // standard deviation of the component [m/s]
+  double length_scale = 0;      // L [m]
+  double coherence_decay = 10;  // C [1]
   std::uint64_t seed = 1;
 };
 
