@@ -7,7 +7,8 @@
 #     work counted as external work (limit 0.006 of the turnover, as
 #     test_run_base_motion.sh and test_energy_starts.sh);
 #  2. that work is not negligible: a balance without it would fail;
-#  3. the same seed gives the same run, another seed another one.
+#  3. the same seed gives the same run, another seed another one;
+#  4. the nonlinear FE catenary (full Newton path) balances too.
 set -euo pipefail
 : "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:=/usr/bin/python3}"
 tmp=$(mktemp -d)
@@ -21,11 +22,13 @@ run mean --set "conditions.wind={speed: 25}"
 run seed3
 run seed3-again
 run seed4 --set conditions.wind.turbulence.seed=4
+run nonlinear --set effects.catenary_nonlinear=true
 grep -q "wind 25 m/s" "$tmp/seed3.log" || { cat "$tmp/seed3.log"; exit 1; }
 "$PCSIM_PYTHON" - "$tmp" <<'PY'
 import json, sys
 d = sys.argv[1]
-s = {k: json.load(open(f"{d}/{k}/summary.json")) for k in ("mean", "seed3", "seed3-again", "seed4")}
+s = {k: json.load(open(f"{d}/{k}/summary.json"))
+     for k in ("mean", "seed3", "seed3-again", "seed4", "nonlinear")}
 for k, v in s.items():
     e = v["energy"]
     ratio = abs(e["max_balance_residual_J"]) / e["turnover_J"]
