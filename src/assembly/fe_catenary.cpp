@@ -180,6 +180,7 @@ std::vector<std::unique_ptr<Term>> FECatenary::make_terms(const contact::Interac
   if (e.rayleigh_damping) terms.push_back(std::make_unique<RayleighDamping>(*this, e));
   if (!mesh().dashpots.empty()) terms.push_back(std::make_unique<NodeDashpots>(*this));
   if (!mesh().pins.empty()) terms.push_back(std::make_unique<NodePins>(*this));
+  if (mesh().conditions.wind.any()) terms.push_back(std::make_unique<AerodynamicDamping>(*this));
   if (mesh().conditions.wind.any() && mesh().conditions.wind.turbulence.on)
     terms.push_back(std::make_unique<WindTurbulence>(*this));
   return terms;

@@ -11,20 +11,65 @@
 
 namespace pcsim::assembly {
 
-void turbulent_drag_gradients(const catenary::Wire& wire, const Eigen::Vector3d& tangent,
-                              const Eigen::Vector3d& velocity, double air_density,
-                              Eigen::Vector3d& a, Eigen::Vector3d& b) {
+Eigen::Matrix3d aerodynamic_damping(const catenary::Wire& wire, const Eigen::Vector3d& tangent,
+                                    const Eigen::Vector3d& velocity, double air_density) {
   const Eigen::Vector3d t = tangent.normalized();
   const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - t * t.transpose();
   const Eigen::Vector3d vn = P * velocity;
   const double speed = vn.norm();
-  a.setZero(), b.setZero();
-  if (speed == 0) return;  // wind along the wire: no drag, none linearised
+  if (speed == 0) return Eigen::Matrix3d::Zero();  // wind along the wire: no drag
   const double k =
       0.5 * air_density * catenary::wire_drag_coefficient(wire) * catenary::wire_diameter(wire);
-  const Eigen::Matrix3d D = k * (speed * Eigen::Matrix3d::Identity() + vn * vn.transpose() / speed);
-  a = D * P * velocity.normalized();
-  b = D * P * Eigen::Vector3d::UnitZ();
+  return k * (speed * Eigen::Matrix3d::Identity() + vn * vn.transpose() / speed) * P;
+}
+
+void turbulent_drag_gradients(const catenary::Wire& wire, const Eigen::Vector3d& tangent,
+                              const Eigen::Vector3d& velocity, double air_density,
+                              Eigen::Vector3d& a, Eigen::Vector3d& b) {
+  const Eigen::Matrix3d DP = aerodynamic_damping(wire, tangent, velocity, air_density);
+  a = velocity.norm() > 0 ? Eigen::Vector3d(DP * velocity.normalized()) : Eigen::Vector3d::Zero();
+  b = DP * Eigen::Vector3d::UnitZ();
+}
+
+AerodynamicDamping::AerodynamicDamping(FECatenary& catenary) {
+  const auto& system = catenary.system();
+  const auto& mesh = catenary.mesh();
+  const auto& wind = mesh.conditions.wind;
+  C_ = system.layout().create_matrix();  // the catenary's pattern: element blocks in the Jacobian's
+  PetscInt idx[12];
+  for (int e : system.layout().local_cables()) {
+    const auto& el = mesh.cables[e];
+    const Eigen::Matrix3d DP = aerodynamic_damping(
+        mesh.wires[el.wire], mesh.nodes[el.nodes[1]].position - mesh.nodes[el.nodes[0]].position,
+        wind.velocity(), wind.air_density);
+    // (L0 / Lref) int S^T S dchi: the mass matrix of a unit mass per unstressed length.
+    const catenary::Mat12 m = catenary::cable_mass_matrix(
+        {1.0, 1.0, el.unstressed_length / el.ref_length}, el.ref_length);
+    Eigen::Matrix<double, 12, 12, Eigen::RowMajor> c;
+    for (int k = 0; k < 4; ++k)
+      for (int j = 0; j < 4; ++j) c.block<3, 3>(3 * k, 3 * j) = m(3 * k, 3 * j) * DP;
+    system.cable_indices(e, idx);  // negative (fixed) rows and columns are ignored
+    PCSIM_PETSC(MatSetValues(C_, 12, idx, 12, idx, c.data(), ADD_VALUES));
+  }
+  PCSIM_PETSC(MatAssemblyBegin(C_, MAT_FINAL_ASSEMBLY));
+  PCSIM_PETSC(MatAssemblyEnd(C_, MAT_FINAL_ASSEMBLY));
+}
+
+AerodynamicDamping::~AerodynamicDamping() {
+  MatDestroy(&C_);
+}
+
+TermPower AerodynamicDamping::power(const CoupledState& state) const {
+  TermPower p;
+  if (!state.V) return p;
+  Vec CV;
+  PCSIM_PETSC(VecDuplicate(state.V, &CV));
+  PCSIM_PETSC(MatMult(C_, state.V, CV));
+  PetscScalar vcv = 0;
+  PCSIM_PETSC(VecDot(state.V, CV, &vcv));
+  p.dissipative = -vcv;
+  PCSIM_PETSC(VecDestroy(&CV));
+  return p;
 }
 
 namespace {

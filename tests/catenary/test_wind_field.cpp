@@ -143,6 +143,19 @@ TEST(WindField, LinearisedDragAgainstFiniteDifferences) {
     EXPECT_LT((a - fa).norm(), 1e-9 * a.norm());
     EXPECT_LT((b - fb).norm(), 1e-9 * a.norm());
   }
+  // The aerodynamic damping D P: minus the derivative of the drag of the
+  // relative velocity V - r' with respect to the wire's velocity r'.
+  for (const Eigen::Vector3d t : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, 0.1, 0.2)}) {
+    const Eigen::Matrix3d DP = assembly::aerodynamic_damping(wire, t, V, 1.25);
+    for (int c = 0; c < 3; ++c) {
+      const Eigen::Vector3d e = Eigen::Vector3d::Unit(c), h = 1e-4 * e;
+      const Eigen::Vector3d fd =
+          -(catenary::wire_drag(wire, t, V - h, 1.25) - catenary::wire_drag(wire, t, V + h, 1.25)) /
+          2e-4;
+      EXPECT_LT((DP * e - fd).norm(), 1e-9 * DP.norm());
+    }
+    EXPECT_LT((DP - DP.transpose()).norm(), 1e-14 * DP.norm());  // symmetric: a damper
+  }
   // Across the track: rho Cd d V laterally per u', rho Cd d V / 2 vertically per w'.
   Eigen::Vector3d a, b;
   assembly::turbulent_drag_gradients(wire, {1, 0, 0}, {0, 25, 0}, 1.25, a, b);

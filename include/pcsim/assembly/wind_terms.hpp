@@ -45,8 +45,35 @@ class WindTurbulence : public Term {
   mutable Vec work_ = nullptr;
 };
 
+// The aerodynamic damping of the wires in the mean wind: the quasi-steady
+// drag of the relative velocity V - r', linearised about the mean wind,
+// changes by -D P r' per unstressed length (D, P as above): a constant
+// damper C = sum over the cable elements of (L0 / Lref) int S^T D P S dchi
+// (D P is symmetric and positive semi-definite), F += C V, power -V.C V
+// (dissipated). Across the track: rho Cd d V laterally, half that
+// vertically, per unit velocity.
+class AerodynamicDamping : public Term {
+ public:
+  explicit AerodynamicDamping(FECatenary& catenary);
+  ~AerodynamicDamping() override;
+  std::string name() const override { return "aerodynamic damping"; }
+  TangentKind tangent_kind() const override { return TangentKind::constant; }
+  std::vector<LinearPart> linear_parts() const override {
+    return {{C_, 0.0, 1.0, 0.0, SUBSET_NONZERO_PATTERN}};
+  }
+  TermPower power(const CoupledState& state) const override;  // -V.C V
+  Mat matrix() const { return C_; }
+
+ private:
+  Mat C_ = nullptr;
+};
+
 // The load per unstressed length per unit u' and w' on a wire of unit
 // tangent t in the mean wind V (horizontal): the columns a, b above.
+// D P of the aerodynamic damping (above) [N s/m^2].
+Eigen::Matrix3d aerodynamic_damping(const catenary::Wire& wire, const Eigen::Vector3d& tangent,
+                                    const Eigen::Vector3d& velocity, double air_density);
+
 void turbulent_drag_gradients(const catenary::Wire& wire, const Eigen::Vector3d& tangent,
                               const Eigen::Vector3d& velocity, double air_density,
                               Eigen::Vector3d& a, Eigen::Vector3d& b);
