@@ -67,11 +67,15 @@ int run_static(const app::CommandContext& ctx) {
 
 }  // namespace
 
-PCSIM_COMMAND_HELP(static_help, "static",
-                   "scene sections (docs/scene-format.md, \"Catenary scenes\"):\n"
-                   "  name         scene name: results go to out/<name>/ (default: the file name)\n"
-                   "  description  free text\n"
-                   "  catenary     design: FILE (docs/design-format.md), form_finding: true|false\n"
-                   "  base, set    composition: a base scene, keys set by path\n"
-                   "results: static.h5, static_mesh.h5 + static.xdmf (ParaView), summary.json\n");
+PCSIM_COMMAND_HELP(
+    static_help, "static",
+    "scene sections (docs/scene-format.md, \"Catenary scenes\"):\n"
+    "  name         scene name: results go to out/<name>/ (default: the file name)\n"
+    "  description  free text\n"
+    "  catenary     design: FILE (docs/design-format.md), form_finding: true|false\n"
+    "  conditions   ice, temperature, wind (docs/conditions.md); with a wind, the\n"
+    "               contact wire's blow-off against the working width\n"
+    "  base, set    composition: a base scene, keys set by path\n"
+    "results: static.h5 (with a wind: /blow_off), static_mesh.h5 + static.xdmf (ParaView),\n"
+    "  summary.json\n");
 PCSIM_COMMAND("static", "form-finding and static configuration of the catenary", run_static);
