@@ -6,7 +6,8 @@
 //    cross-wind: it hangs in the plane of the resultant of weight and drag,
 //    against the elastic catenary under that resultant and against the
 //    closed form of the lateral sag, q L^2 / (8 T);
-//  - the blow-off measure (supports and mid-span) of that span.
+//  - the blow-off measure (supports and mid-span) of that span;
+//  - the modal cache key includes the wind.
 // pcsim-test-ranks: 1 2
 #include <gtest/gtest.h>
 
@@ -16,6 +17,7 @@
 #include "../assembly/catenary_fixtures.hpp"
 #include "pcsim/catenary/elements.hpp"
 #include "pcsim/catenary/wind.hpp"
+#include "pcsim/output/modal_cache.hpp"
 #include "pcsim/simulation/statics.hpp"
 
 using namespace pcsim;
@@ -170,4 +172,30 @@ TEST(WindLoad, WeightTensionedSpanAgainstTheClosedForm) {
   // bound 1e-5 on the catenary; the closed form as above, 2e-3.
   EXPECT_LT(std::abs(y / (c.sag() * q / c.w) - 1), 1e-5);
   EXPECT_LT(std::abs(y / parabola - 1), 2e-3);
+}
+
+// The modal cache key (output/modal_cache.hpp) includes the wind: the
+// basis is computed about the blown line's equilibrium.
+TEST(WindLoad, ModalCacheKeyIncludesTheWind) {
+  const auto still = wire(kSpan);
+  const auto key = [](const catenary::CatenaryMesh& m) {
+    return output::modal_cache_key("design", m, false, false);
+  };
+  auto blown = still;
+  blown.conditions.wind.speed = 25;
+  auto other = blown;
+  other.conditions.wind.direction_deg = 60;
+  auto thicker = blown;
+  thicker.wires[0].diameter = 0.015;
+  auto calm = still;
+  calm.conditions.wind.working_half_width = 0.55;  // no wind: the check's widths change nothing
+  EXPECT_NE(key(still), key(blown));
+  EXPECT_NE(key(blown), key(other));
+  EXPECT_NE(key(blown), key(thicker));
+  EXPECT_EQ(key(still), key(calm));
+  auto iced = still;
+  iced.conditions.ice.contact = 0.5;
+  auto iced_calm = iced;
+  iced_calm.conditions.wind.direction_deg = 30;  // no speed: the ice key as before the wind
+  EXPECT_EQ(key(iced), key(iced_calm));
 }
