@@ -11,7 +11,10 @@
 #     -2.7 % and the wind's absence -100 %;
 #  2. the supports hold the stagger (+-0.2 m), the results carry the
 #     blow-off datasets with their unit, summary.json its entry;
-#  3. the two partitions agree to 1e-9 m.
+#  3. the two partitions agree to 1e-9 m;
+#  4. the mean speed from EN 1991-1-4's basic wind speed (conditions.wind.basic_speed):
+#     v_b 27 m/s at 6 m, category II: 0.19 ln(6/0.05) 27 = 24.5598 m/s; category IV
+#     (z_min 10 m): 0.19 (1/0.05)^0.07 ln(10/1) 27 = 14.5682 m/s.
 set -euo pipefail
 : "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:=/usr/bin/python3}"
 tmp=$(mktemp -d)
@@ -54,3 +57,11 @@ diff = np.max(np.abs(res["np1"] - res["np2"]))
 print(f"1 and 2 ranks: largest difference {diff:.2e} m")
 assert diff < 1e-9, diff
 PY
+for case in "II:24.5598" "IV:14.5682"; do
+  IFS=: read -r category speed <<< "$case"
+  "$PCSIM_BIN" static "$S/runs/en50318-static.yaml" -o "$tmp/vb-$category" \
+    --set "conditions.wind={basic_speed: 27, terrain_category: $category}" > "$tmp/vb.log" 2>&1 ||
+    { cat "$tmp/vb.log"; exit 1; }
+  grep -q "wind $speed m/s" "$tmp/vb.log" || { grep conditions: "$tmp/vb.log"; exit 1; }
+done
+echo "basic_speed: the EN 1991-1-4 mean speeds"
