@@ -1,6 +1,7 @@
 // `pcsim static SCENE.yaml`: form-finding and static configuration of the
 // catenary (thesis 3.1.3).
 #include <algorithm>
+#include <cmath>
 
 #include "command.hpp"
 #include "exit_status.hpp"
@@ -12,6 +13,23 @@
 namespace {
 
 using namespace pcsim;
+
+// The contact wires' lateral positions under wind against the permissible
+// excursion (docs/conditions.md, "Blow-off").
+void print_blow_off(const app::CommandContext& ctx, const catenary::BlowOff& b) {
+  if (b.empty()) return;
+  double support = 0, mid = 0;
+  for (std::size_t i = 0; i < b.x.size(); ++i)
+    (b.at_support[i] ? support : mid) =
+        std::max(b.at_support[i] ? support : mid, std::abs(b.lateral[i]));
+  app::print0(ctx,
+              "  blow-off: contact wire up to %.1f mm from the track centre at a support, %.1f "
+              "mm at a mid-span, %.1f mm at x = %.1f m; permissible %.1f mm: %s\n",
+              1e3 * support, 1e3 * mid, 1e3 * b.max_excursion_m, b.max_excursion_x,
+              1e3 * b.permissible_m,
+              b.max_excursion_m <= b.permissible_m ? "inside the working width"
+                                                   : "OUTSIDE the working width");
+}
 
 int run_static(const app::CommandContext& ctx) {
   const app::StaticInputs in = app::read_static_inputs(ctx);
@@ -26,6 +44,7 @@ int run_static(const app::CommandContext& ctx) {
   app::print_static_summary(ctx, statics.mesh, statics.result);
   const std::string conditions = simulation::conditions_summary(statics);
   if (!conditions.empty()) app::print0(ctx, "  %s\n", conditions.c_str());
+  print_blow_off(ctx, statics.result.blow_off);
   if (ctx.rank == 0)
     output::write_static_results(out, statics.mesh, statics.result,
                                  {ctx.scene_name(scene), static_cast<long>(statics.catenary_dofs),
@@ -48,11 +67,15 @@ int run_static(const app::CommandContext& ctx) {
 
 }  // namespace
 
-PCSIM_COMMAND_HELP(static_help, "static",
-                   "scene sections (docs/scene-format.md, \"Catenary scenes\"):\n"
-                   "  name         scene name: results go to out/<name>/ (default: the file name)\n"
-                   "  description  free text\n"
-                   "  catenary     design: FILE (docs/design-format.md), form_finding: true|false\n"
-                   "  base, set    composition: a base scene, keys set by path\n"
-                   "results: static.h5, static_mesh.h5 + static.xdmf (ParaView), summary.json\n");
+PCSIM_COMMAND_HELP(
+    static_help, "static",
+    "scene sections (docs/scene-format.md, \"Catenary scenes\"):\n"
+    "  name         scene name: results go to out/<name>/ (default: the file name)\n"
+    "  description  free text\n"
+    "  catenary     design: FILE (docs/design-format.md), form_finding: true|false\n"
+    "  conditions   ice, temperature, wind (docs/conditions.md); with a wind, the\n"
+    "               contact wire's blow-off against the working width\n"
+    "  base, set    composition: a base scene, keys set by path\n"
+    "results: static.h5 (with a wind: /blow_off), static_mesh.h5 + static.xdmf (ParaView),\n"
+    "  summary.json\n");
 PCSIM_COMMAND("static", "form-finding and static configuration of the catenary", run_static);

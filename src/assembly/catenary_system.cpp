@@ -161,6 +161,8 @@ void CatenarySystem::add_cable_forces(double* r, Mat J, bool cables, bool loads)
                            J ? &K12 : nullptr, nullptr);
     }
     if (loads) f12 -= cable_gravity_force(section, el.ref_length, mesh_.gravity);
+    if (loads && !el.wind_load.isZero())
+      f12 -= cable_line_load(el.ref_length, el.unstressed_length, el.wind_load);
     add_block(r, el.nodes.data(), 6, f12.data());
     if (J && cables) {
       cable_indices(e, idx12);
@@ -259,6 +261,8 @@ double CatenarySystem::local_potential_energy(unsigned terms) const {
     cable_values(e, q12.data());
     if (cables) energy += cable_strain_energy(section, el.ref_length, el.unstressed_length, q12);
     if (loads) energy -= cable_gravity_force(section, el.ref_length, mesh_.gravity).dot(q12);
+    if (loads && !el.wind_load.isZero())
+      energy -= cable_line_load(el.ref_length, el.unstressed_length, el.wind_load).dot(q12);
   }
   Vec6 q6;
   for (int b : L.local_bars()) {

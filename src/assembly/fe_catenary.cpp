@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "pcsim/assembly/catenary_terms.hpp"
+#include "pcsim/assembly/wind_terms.hpp"
 #include "pcsim/catenary/elements.hpp"
 #include "pcsim/contact/contact_kernel.hpp"
 #include "pcsim/core/error.hpp"
@@ -178,6 +179,9 @@ std::vector<std::unique_ptr<Term>> FECatenary::make_terms(const contact::Interac
   if (e.rayleigh_damping) terms.push_back(std::make_unique<RayleighDamping>(*this, e));
   if (!mesh().dashpots.empty()) terms.push_back(std::make_unique<NodeDashpots>(*this));
   if (!mesh().pins.empty()) terms.push_back(std::make_unique<NodePins>(*this));
+  if (mesh().conditions.wind.any()) terms.push_back(std::make_unique<AerodynamicDamping>(*this));
+  if (mesh().conditions.wind.any() && mesh().conditions.wind.turbulence.on)
+    terms.push_back(std::make_unique<WindTurbulence>(*this));
   return terms;
 }
 

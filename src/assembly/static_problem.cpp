@@ -187,6 +187,9 @@ void StaticProblem::add_form_finding_terms(Vec R, Mat J) {
     // Gravity rho (L0 / Lref) int S^T g: d/dL0 = gravity / L0 (mass per
     // unstressed length).
     df12 -= cable_gravity_force(section, el.ref_length, mesh.gravity) / el.unstressed_length;
+    if (!el.wind_load.isZero())  // the same for the wind's drag (per unstressed length)
+      df12 -=
+          cable_line_load(el.ref_length, el.unstressed_length, el.wind_load) / el.unstressed_length;
     system_.cable_indices(e, idx12);
     for (int i = 0; i < 12; ++i) {
       if (idx12[i] < 0) continue;

@@ -181,6 +181,16 @@ Vec12 cable_gravity_force(const CableSection& section, double Lref, const Eigen:
   return fg;
 }
 
+Vec12 cable_line_load(double Lref, double L0, const Eigen::Vector3d& q) {
+  // (L0 / Lref) int s dchi = L0 [1/2, Lref/12, 1/2, -Lref/12]
+  Vec12 f;
+  f.segment<3>(0) = (L0 / 2.0) * q;
+  f.segment<3>(3) = (L0 * Lref / 12.0) * q;
+  f.segment<3>(6) = (L0 / 2.0) * q;
+  f.segment<3>(9) = (-L0 * Lref / 12.0) * q;
+  return f;
+}
+
 // ------------------------------------------------------------------ bar ----
 
 namespace {

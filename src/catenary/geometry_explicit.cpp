@@ -136,6 +136,8 @@ class ExplicitBuilder {
     require_nonnegative(in_.file, key + ".tension", in.tension, limits::tension);
     w.mass_per_length = in.mass_per_length;
     w.thermal_expansion = in.thermal_expansion;
+    w.diameter = in.diameter;
+    w.drag_coefficient = in.drag_coefficient;
     w.EA = in.EA;
     w.EI = in.EI;
     w.tension = in.tension;

@@ -216,6 +216,8 @@ void SectionBuilder::add_wire(const std::string& name, WireKind kind, const Cabl
   w.kind = kind;
   w.mass_per_length = p.mass_per_length;
   w.thermal_expansion = p.thermal_expansion;
+  w.diameter = p.diameter;
+  w.drag_coefficient = p.drag_coefficient;
   w.EA = p.EA;
   w.EI = p.EI;
   w.tension = p.tension;

@@ -46,6 +46,7 @@ std::vector<Eigen::Vector3d> support_forces(const CatenaryMesh& mesh,
     cable_internal_force(section, el.ref_length, el.unstressed_length,
                          cable_dofs(mesh, values, static_cast<int>(e)), f);
     f -= cable_gravity_force(section, el.ref_length, mesh.gravity);
+    f -= cable_line_load(el.ref_length, el.unstressed_length, el.wind_load);
     add(el.nodes[0], f.segment<3>(0));
     add(el.nodes[1], f.segment<3>(6));
   }

@@ -39,6 +39,14 @@ nlohmann::json static_json(const catenary::CatenaryMesh& mesh, const catenary::S
          {"pull_N", d.pull},
          {"mass_kg", d.mass},
          {"stiffness_N_m", d.stiffness}});
+  if (!r.blow_off.empty()) {
+    const auto& b = r.blow_off;
+    j["blow_off"] = {{"max_excursion_m", b.max_excursion_m},
+                     {"max_excursion_x_m", b.max_excursion_x},
+                     {"permissible_m", b.permissible_m},
+                     {"margin_m", b.permissible_m - b.max_excursion_m},
+                     {"inside", b.max_excursion_m <= b.permissible_m}};
+  }
   j["wall_time_s"] = r.wall_time_s;
   j["provenance"] = provenance;
   return j;
@@ -47,6 +55,25 @@ nlohmann::json static_json(const catenary::CatenaryMesh& mesh, const catenary::S
 void write_json(const std::string& path, const nlohmann::json& j) {
   std::ofstream f(path);
   f << j.dump(2) << "\n";
+}
+
+// The contact wires' lateral positions under wind (docs/conditions.md).
+void write_blow_off(H5File& h5, const catenary::BlowOff& b) {
+  h5.write("/blow_off/x", b.x, {"m", "station of each support and mid-span"});
+  h5.write_int("/blow_off/at_support", std::vector<long>(b.at_support.begin(), b.at_support.end()),
+               {"1", "1: a support, 0: a mid-span"});
+  h5.write_int("/blow_off/wire", std::vector<long>(b.wire.begin(), b.wire.end()),
+               {"1", "contact wire (0-based, in the order of their first station)"});
+  h5.write("/blow_off/lateral", b.lateral,
+           {"m",
+            "contact wire's lateral position from the track centre line under the wind "
+            "(+ to the left of the track)"});
+  h5.write("/blow_off/lateral_bare", b.lateral_bare,
+           {"m", "the same before the conditions (the bare line)"});
+  h5.write("/blow_off/max_excursion", std::vector<double>{b.max_excursion_m},
+           {"m", "largest |lateral position| at any node of a contact wire"});
+  h5.write("/blow_off/permissible", std::vector<double>{b.permissible_m},
+           {"m", "working half width - vehicle sway - track tolerance"});
 }
 
 void write_static_h5(const std::string& path, const catenary::CatenaryMesh& mesh,
@@ -98,6 +125,7 @@ void write_static_h5(const std::string& path, const catenary::CatenaryMesh& mesh
     h5.write("/steady_arms/pull_off_force", r.registration_forces,
              {"N", "steady-arm pull-off force at the static configuration"});
   }
+  if (!r.blow_off.empty()) write_blow_off(h5, r.blow_off);
   h5.attribute("/", "max_height_error_m", r.max_height_error_m);
   h5.attribute("/", "max_tension_error_rel", r.max_tension_error_rel);
 }

@@ -84,6 +84,12 @@ void add_mesh(KeyBuffer& key, const catenary::CatenaryMesh& mesh) {
     key.add(std::string("conditions")), key.add(c.ice.contact), key.add(c.ice.messenger);
     key.add(c.ice.stitch), key.add(c.temperature_change_k);
     for (const auto& w : mesh.wires) key.add(w.thermal_expansion);
+    if (c.wind.any()) {  // (an ice or temperature key stays as it was)
+      key.add(std::string("wind")), key.add(c.wind.speed), key.add(c.wind.direction_deg);
+      key.add(c.wind.air_density);
+      for (const auto& w : mesh.wires)
+        key.add(catenary::wire_diameter(w)), key.add(catenary::wire_drag_coefficient(w));
+    }
   }
   for (const auto& s : mesh.springs) {
     key.add(s.node), key.add(s.dof), key.add(s.stiffness);

@@ -65,11 +65,99 @@ IceLoad read_ice(const InputNode& i, const CatenaryMesh& mesh) {
   return ice;
 }
 
+// EN 1991-1-4 terrain categories (Table 4.1): roughness length z0 and
+// minimum height zmin [m].
+struct Terrain {
+  const char* name;
+  double z0, zmin;
+};
+constexpr Terrain kTerrains[] = {
+    {"0", 0.003, 1}, {"I", 0.01, 1}, {"II", 0.05, 2}, {"III", 0.3, 5}, {"IV", 1.0, 10}};
+
+// The terrain (EN 1991-1-4) at the wires' height: 'conditions.wind.terrain_category',
+// 'height' (z, at least the category's zmin).
+struct Site {
+  const Terrain* terrain;
+  double z;
+};
+
+Site read_site(const InputNode& w) {
+  const std::string category =
+      w.get_choice("terrain_category", {"0", "I", "II", "III", "IV"}, "II");
+  const Terrain* terrain = kTerrains;
+  while (category != terrain->name) ++terrain;
+  return {terrain, std::max(w.get_positive("height", limits::height, 6.0), terrain->zmin)};
+}
+
+// The turbulence (docs/conditions.md, "Turbulence"); defaults of the
+// intensity and length scale from the site by EN 1991-1-4: I_v = 1 / ln(z / z0)
+// (4.7, k_I = c0 = 1), L = 300 (z / 200)^alpha with alpha = 0.67 + 0.05 ln z0 (B.2).
+TurbulenceSettings read_turbulence(const InputNode& t, const Site& site) {
+  t.allow_only({"intensity", "length_scale", "vertical_ratio", "coherence_decay", "seed",
+                "grid_spacing", "time_step"});
+  TurbulenceSettings s;
+  s.on = true;
+  const double z0 = site.terrain->z0;
+  s.intensity = t.get_positive("intensity", 1.0 / std::log(site.z / z0));
+  if (s.intensity > 1) t.fail_key("intensity", "must be at most 1 (sigma_u / V)");
+  s.length_scale = t.get_positive("length_scale", limits::distance,
+                                  300 * std::pow(site.z / 200, 0.67 + 0.05 * std::log(z0)));
+  s.vertical_ratio = t.get_nonnegative("vertical_ratio", limits::coefficient, s.vertical_ratio);
+  s.coherence_decay = t.get_positive("coherence_decay", limits::coefficient, s.coherence_decay);
+  const long seed = t.get_int("seed", 1);
+  if (seed < 0) t.fail_key("seed", "must not be negative");
+  s.seed = static_cast<unsigned long>(seed);
+  s.grid_spacing = t.get_positive("grid_spacing", limits::distance, s.grid_spacing);
+  s.time_step = t.get_positive("time_step", limits::time_step, s.time_step);
+  return s;
+}
+
+// The mean wind speed at the wires: 'speed', or from the basic wind speed
+// v_b by EN 1991-1-4 (4.3-4.5, c0 = 1): v_m = k_r ln(z / z0) v_b,
+// k_r = 0.19 (z0 / 0.05)^0.07.
+double read_mean_speed(const InputNode& w, const Site& site) {
+  if (w.has("speed") == w.has("basic_speed"))
+    w.fail(
+        "needs exactly one of 'speed' (the mean wind at the wires) and 'basic_speed' "
+        "(EN 1991-1-4's v_b)");
+  if (w.has("speed")) return w.get_nonnegative("speed", limits::wind_speed);
+  const double z0 = site.terrain->z0;
+  const double vb = w.get_nonnegative("basic_speed", limits::wind_speed);
+  return 0.19 * std::pow(z0 / 0.05, 0.07) * std::log(site.z / z0) * vb;
+}
+
+// The mean wind and the blow-off check's widths (docs/conditions.md).
+WindLoad read_wind(const InputNode& w) {
+  w.allow_only({"speed", "basic_speed", "terrain_category", "height", "direction_deg",
+                "air_density", "working_half_width", "vehicle_sway", "track_tolerance",
+                "turbulence"});
+  WindLoad wind;
+  const Site site = read_site(w);
+  if (w.has("turbulence")) wind.turbulence = read_turbulence(w["turbulence"], site);
+  wind.speed = read_mean_speed(w, site);
+  wind.direction_deg = w.get_double("direction_deg", wind.direction_deg);
+  if (!(std::abs(wind.direction_deg) <= 360))
+    w.fail_key("direction_deg",
+               "must lie within +-360 degrees (got " + format_number(wind.direction_deg) + ")");
+  wind.air_density = w.get_positive("air_density", limits::air_density, wind.air_density);
+  wind.working_half_width =
+      w.get_positive("working_half_width", limits::height, wind.working_half_width);
+  wind.vehicle_sway = w.get_nonnegative("vehicle_sway", limits::height, 0.0);
+  wind.track_tolerance = w.get_nonnegative("track_tolerance", limits::height, 0.0);
+  if (wind.turbulence.on && wind.speed == 0)
+    w.fail_key("turbulence", "needs a mean wind (speed > 0): the drag is linearised about it");
+  if (!(wind.permissible_m() > 0))
+    w.fail("working_half_width - vehicle_sway - track_tolerance must be positive (got " +
+           format_number(wind.permissible_m()) + " m)");
+  return wind;
+}
+
 // 'conditions' (docs/conditions.md).
 LineConditions read_conditions(const InputNode& c, const CatenaryMesh& mesh) {
-  c.allow_only({"ice", "temperature_change_k"});
+  c.allow_only({"ice", "temperature_change_k", "wind"});
   LineConditions out;
   if (c.has("ice")) out.ice = read_ice(c["ice"], mesh);
+  if (c.has("wind")) out.wind = read_wind(c["wind"]);
   out.temperature_change_k = c.get_double("temperature_change_k", 0.0);
   if (!(std::abs(out.temperature_change_k) <= kMaxTemperatureChange))
     c.fail_key("temperature_change_k", "must lie within +-100 K of the design temperature (got " +
@@ -137,6 +225,8 @@ CatenaryScene load_catenary_scene(const InputNode& scene, const MeshSizeCheck& s
   out.form_finding = section.get_bool("form_finding", out.mesh.form_finding_default);
   read_catenary_model(section, out);
   if (scene.has("conditions")) out.mesh.conditions = read_conditions(scene["conditions"], out.mesh);
+  if (out.mesh.conditions.wind.turbulence.on && out.fidelity == CatenaryFidelity::modal)
+    scene["conditions"]["wind"].fail_key("turbulence", "not available for model: modal yet");
   if (scene.has("elasticity")) out.elasticity = read_elasticity(scene["elasticity"], out.mesh);
   return out;
 }

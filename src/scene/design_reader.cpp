@@ -51,11 +51,15 @@ SlackCriterion read_slack(const InputNode& n, const char* fallback) {
 namespace {
 
 CableDesign read_cable(const InputNode& n) {
-  n.allow_only({"mass_per_length", "EA", "EI", "tension", "thermal_expansion"});
+  n.allow_only({"mass_per_length", "EA", "EI", "tension", "thermal_expansion", "diameter",
+                "drag_coefficient"});
   CableDesign p;
   p.mass_per_length = n.get_double("mass_per_length");
   p.thermal_expansion =
       n.get_nonnegative("thermal_expansion", limits::thermal_expansion, p.thermal_expansion);
+  if (n.has("diameter")) p.diameter = n.get_positive("diameter", limits::wire_diameter);
+  if (n.has("drag_coefficient"))
+    p.drag_coefficient = n.get_positive("drag_coefficient", limits::drag_coefficient);
   p.EA = n.get_double("EA");
   p.EI = n.get_double("EI");
   p.tension = n.get_double("tension");

@@ -51,7 +51,7 @@ std::optional<double> read_unstressed(const InputNode& wn) {
 
 ExplicitWire read_wire(const InputNode& wn, std::size_t index) {
   wn.allow_only({"name", "kind", "nodes", "mass_per_length", "EA", "EI", "tension", "unstressed",
-                 "thermal_expansion"});
+                 "thermal_expansion", "diameter", "drag_coefficient"});
   ExplicitWire w;
   w.name = wn.get_string("name", "wire" + std::to_string(index));
   const std::string kind =
@@ -63,6 +63,9 @@ ExplicitWire read_wire(const InputNode& wn, std::size_t index) {
   w.mass_per_length = wn.get_double("mass_per_length");
   w.thermal_expansion =
       wn.get_nonnegative("thermal_expansion", limits::thermal_expansion, w.thermal_expansion);
+  if (wn.has("diameter")) w.diameter = wn.get_positive("diameter", limits::wire_diameter);
+  if (wn.has("drag_coefficient"))
+    w.drag_coefficient = wn.get_positive("drag_coefficient", limits::drag_coefficient);
   w.EA = wn.get_double("EA");
   w.EI = wn.get_double("EI");
   w.tension = wn.get_double("tension", 0.0);

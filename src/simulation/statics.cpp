@@ -8,6 +8,7 @@
 #include "pcsim/assembly/catenary_system.hpp"
 #include "pcsim/assembly/static_problem.hpp"
 #include "pcsim/catenary/reactions.hpp"
+#include "pcsim/catenary/wind.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/core/format.hpp"
 #include "pcsim/solvers/modes.hpp"
@@ -18,8 +19,10 @@ namespace pcsim::simulation {
 namespace {
 
 // The conditions' changes of the bare line: ice on wires and stitch bars
-// (mass and weight), the wires' unstressed lengths stretched by alpha dT.
+// (mass and weight), the wires' unstressed lengths stretched by alpha dT,
+// the mean wind's drag on the wires (a dead load like the weight).
 void change_line(catenary::CatenaryMesh& mesh) {
+  catenary::set_wind_loads(mesh);
   const auto& c = mesh.conditions;
   for (auto& wire : mesh.wires) wire.mass_per_length += c.ice.on(wire.kind);
   for (auto& bar : mesh.bars)
@@ -38,6 +41,9 @@ void measure_change(const catenary::CatenaryMesh& mesh, const catenary::StaticRe
     for (int n : mesh.wires[w].nodes) {
       e.min_contact_dz_m = std::min(e.min_contact_dz_m, z(now, n) - z(bare, n));
       e.max_contact_dz_m = std::max(e.max_contact_dz_m, z(now, n) - z(bare, n));
+      const double dx = now.node_values[6 * n] - bare.node_values[6 * n];
+      const double dy = now.node_values[6 * n + 1] - bare.node_values[6 * n + 1];
+      e.max_contact_dy_m = std::max(e.max_contact_dy_m, std::hypot(dx, dy));
     }
   for (std::size_t k = 0; k < bare.segment_tensions.size() && k < now.segment_tensions.size(); ++k)
     e.max_tension_change_rel = std::max(
@@ -110,6 +116,8 @@ void apply_conditions(MPI_Comm comm, StaticConfiguration& config, const char* op
   now.max_height_error_m = bare.max_height_error_m;  // of the form-finding
   now.max_tension_error_rel = bare.max_tension_error_rel;
   now.registration_forces = catenary::registration_forces(system.mesh(), now.node_values);
+  if (system.mesh().conditions.wind.any())
+    now.blow_off = catenary::measure_blow_off(system.mesh(), bare.node_values, now.node_values);
   config.mesh = system.mesh();
   config.result = std::move(now);
 }
@@ -135,6 +143,21 @@ std::string conditions_summary(const StaticConfiguration& config) {
     on += text;
   }
   const auto& e = config.conditions;
+  if (c.wind.any()) {
+    std::snprintf(text, sizeof text,
+                  "%swind %g m/s at %g deg to the track (contact wires moved at most %.1f mm "
+                  "horizontally)",
+                  on.empty() ? "" : ", ", c.wind.speed, c.wind.direction_deg,
+                  1e3 * e.max_contact_dy_m);
+    on += text;
+    const auto& t = c.wind.turbulence;
+    if (t.on) {
+      std::snprintf(text, sizeof text,
+                    ", turbulence I_u %.3f, L_u %.1f m, seed %lu (dynamic runs on the FE levels)",
+                    t.intensity, t.length_scale, t.seed);
+      on += text;
+    }
+  }
   std::snprintf(text, sizeof text,
                 "conditions: %s (after form-finding, %d Newton iterations): contact wire %+.1f .. "
                 "%+.1f mm, tensions changed by at most %.2f %%, tensioning devices moved at most "

@@ -339,6 +339,21 @@ expect ice-stitch 2 "command line --set conditions.ice.stitch=0.5|key 'condition
   run good-run.yaml --set conditions.ice.stitch=0.5
 expect ice-key 2 "command line --set conditions.ice.dropper=0.5|key 'conditions.ice.dropper'|unknown key" yes \
   run good-run.yaml --set conditions.ice.dropper=0.5
+# issue 25: wind (docs/conditions.md "Wind")
+expect wind-negative 2 "command line --set conditions.wind.speed=-10|key 'conditions.wind.speed'|must not be negative" yes \
+  run good-run.yaml --set conditions.wind.speed=-10
+expect wind-key 2 "command line --set conditions.wind.gust=30|key 'conditions.wind.gust'|unknown key" yes \
+  run good-run.yaml --set conditions.wind.gust=30
+expect wind-type 2 "command line --set conditions.wind.speed=strong|key 'conditions.wind.speed'|number" yes \
+  run good-run.yaml --set conditions.wind.speed=strong
+expect wind-width 2 "command line --set conditions.wind|key 'conditions.wind'|must be positive" yes \
+  run good-run.yaml --set "conditions.wind={speed: 20, working_half_width: 0.3, vehicle_sway: 0.2, track_tolerance: 0.1}"
+expect wind-terrain 2 "command line --set conditions.wind.terrain_category=V|key 'conditions.wind.terrain_category'|must be one of" yes \
+  run good-run.yaml --set "conditions.wind={speed: 20, turbulence: {}}" --set conditions.wind.terrain_category=V
+expect wind-both 2 "command line --set conditions.wind|key 'conditions.wind'|needs exactly one of 'speed'" yes \
+  run good-run.yaml --set "conditions.wind={speed: 20, basic_speed: 25}"
+expect wind-modal 2 "key 'conditions.wind.turbulence'|not available for model: modal yet" yes \
+  run good-run.yaml --set "conditions.wind={speed: 20, turbulence: {seed: 2}}" --set catenary.model=modal
 # issue 25: the pantograph's base motion (docs/conditions.md "Vehicle excitation")
 base="pantographs[0].base_motion"
 expect base-key 2 "command line --set $base|key '$base.phase'|unknown key" yes \

@@ -88,6 +88,10 @@ Mat12 cable_mass_matrix(const CableSection& section, double Lref);
 // Gravity force fg = mass_per_length int S^T g dchi for gravity vector g.
 Vec12 cable_gravity_force(const CableSection& section, double Lref, const Eigen::Vector3d& g);
 
+// Consistent force of a dead line load q per unstressed length (the mean
+// wind's drag): f = (L0 / Lref) int S^T q dchi, as the weight; no tangent.
+Vec12 cable_line_load(double Lref, double L0, const Eigen::Vector3d& q);
+
 // ------------------------------------------------------------------ bar ----
 
 struct BarParameters {

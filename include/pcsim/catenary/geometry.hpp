@@ -42,6 +42,8 @@ struct CableDesign {
   double EI = 0;                                       // [N m^2] >= 0
   double tension = 0;                                  // design tension [N] > 0
   double thermal_expansion = kCopperThermalExpansion;  // [1/K] >= 0 (last: aggregate order)
+  double diameter = 0;                                 // [m] for wind; 0: the wire kind's default
+  double drag_coefficient = 0;                         // [1] for wind; 0: the wire kind's default
 };
 
 // Contact-wire presag in a span whose two supports hold the wire in service.
@@ -214,6 +216,8 @@ struct ExplicitWire {
   std::optional<WireRun> run;
   std::optional<double> unstressed_ratio;              // L0/Lref > 0; empty: taut at 'tension'
   double thermal_expansion = kCopperThermalExpansion;  // [1/K] >= 0
+  double diameter = 0;                                 // [m] for wind; 0: the wire kind's default
+  double drag_coefficient = 0;                         // [1] for wind; 0: the wire kind's default
 };
 
 struct ExplicitBar {

@@ -46,7 +46,33 @@ struct Wire {
   std::vector<int> nodes;      // node indices in order along the wire
   std::vector<int> elements;   // cable element indices in order
   double thermal_expansion = kCopperThermalExpansion;  // [1/K] (last: aggregate order)
+  // Wind (docs/conditions.md): outer diameter [m] and drag coefficient [1];
+  // 0: the default of the wire's kind (wire_diameter, wire_drag_coefficient).
+  double diameter = 0;
+  double drag_coefficient = 0;
 };
+
+// Default diameters [m] of the EN 50318 reference line's wires: an AC-120
+// grooved contact wire (13.2 mm) and a Bz 65 stranded messenger (10.5 mm);
+// stitch wires Bz 35 (7.5 mm); another wire 10 mm (docs/conditions.md).
+inline double default_wire_diameter(WireKind kind) {
+  return kind == WireKind::contact     ? 0.0132
+         : kind == WireKind::messenger ? 0.0105
+         : kind == WireKind::stitch    ? 0.0075
+                                       : 0.010;
+}
+// Default drag coefficients: a circular cylinder in the subcritical range
+// (Re = V d / nu ~ 1e4-4e4 for 10-40 m/s): 1.0 for the smooth contact
+// wire, 1.2 for stranded wires (docs/conditions.md).
+inline double default_drag_coefficient(WireKind kind) {
+  return kind == WireKind::contact ? 1.0 : 1.2;
+}
+inline double wire_diameter(const Wire& w) {
+  return w.diameter > 0 ? w.diameter : default_wire_diameter(w.kind);
+}
+inline double wire_drag_coefficient(const Wire& w) {
+  return w.drag_coefficient > 0 ? w.drag_coefficient : default_drag_coefficient(w.kind);
+}
 
 // Transverse wave speed sqrt(T / rho_T) of a wire at its design tension,
 // rho_T = rho / (1 + T/EA) the mass per stretched length [m/s].
@@ -64,6 +90,9 @@ struct CableElement {
   // Cross-section left (worn wire): EA and the mass scale with it, EI with its
   // square (a round section); 1 for a new wire.
   double section_factor = 1.0;
+  // Drag of the mean wind per unstressed length [N/m] (a dead load like the
+  // weight; set by simulation::static_configuration from conditions.wind).
+  Eigen::Vector3d wind_load = Eigen::Vector3d::Zero();
 };
 
 enum class BarKind { dropper, steady_arm, stitch, other };
@@ -238,13 +267,54 @@ struct IceLoad {
   }
 };
 
+// Mean wind on the wires (scene 'conditions.wind', docs/conditions.md):
+// horizontal, 'speed' at the wires' height, blowing at 'direction_deg' to
+// the x axis (the track on straight track): 90 = across the track towards
+// +y. Drag per length of a wire, from the wind's component normal to it,
+// q = rho Cd d |V_n| V_n / 2 (after form-finding, like ice). The blow-off
+// check of the contact wire (pcsim static) compares its lateral position
+// with the permissible one: working_half_width - vehicle_sway - track_tolerance.
+// Turbulence of the wind (scene 'conditions.wind.turbulence'): u' along the
+// mean wind and w' vertical, a seeded random field along x and time
+// (catenary/wind_field.hpp) whose drag, linearised about the mean wind, is a
+// time-dependent load in dynamic runs (assembly/wind_terms.hpp).
+struct TurbulenceSettings {
+  bool on = false;
+  double intensity = 0;                // I_u = sigma_u / V [1]
+  double length_scale = 0;             // L_u [m]
+  double vertical_ratio = 0.5;         // sigma_w / sigma_u [1]
+  double vertical_length_ratio = 0.1;  // L_w / L_u [1]
+  double coherence_decay = 10;         // C of exp(-C f dx / V) [1]
+  unsigned long seed = 1;
+  double grid_spacing = 5;  // [m] stations of the field
+  double time_step = 0.05;  // [s] times of the field
+  int time_points = 2048;   // period time_points x time_step
+};
+
+struct WindLoad {
+  TurbulenceSettings turbulence;
+  double speed = 0;                  // [m/s]
+  double direction_deg = 90;         // [deg]
+  double air_density = 1.25;         // [kg/m^3]
+  double working_half_width = 0.40;  // [m] (TSI ENE, 1600 mm head)
+  double vehicle_sway = 0;           // [m]
+  double track_tolerance = 0;        // [m]
+  bool any() const { return speed > 0; }
+  double permissible_m() const { return working_half_width - vehicle_sway - track_tolerance; }
+  Eigen::Vector3d velocity() const {
+    const double a = direction_deg * M_PI / 180;
+    return {speed * std::cos(a), speed * std::sin(a), 0.0};
+  }
+};
+
 // The conditions the line is under (scene 'conditions', docs/conditions.md):
-// ice, and the temperature's difference from the design temperature (the
-// wires' unstressed lengths grow by alpha dT).
+// ice, the temperature's difference from the design temperature (the
+// wires' unstressed lengths grow by alpha dT), the mean wind.
 struct LineConditions {
   IceLoad ice;
   double temperature_change_k = 0;  // [K]
-  bool any() const { return ice.any() || temperature_change_k != 0; }
+  WindLoad wind;
+  bool any() const { return ice.any() || temperature_change_k != 0 || wind.any(); }
 };
 
 struct CatenaryMesh {

@@ -8,6 +8,22 @@
 
 namespace pcsim::catenary {
 
+// The contact wires' lateral position under wind (docs/conditions.md,
+// "Blow-off"): at every support and mid-span, relative to the track's
+// centre line (+ to the track's left, +y on straight track), under wind and
+// on the bare line.
+struct BlowOff {
+  std::vector<double> x;             // station [m]
+  std::vector<int> at_support;       // 1: a support, 0: a mid-span
+  std::vector<int> wire;             // index into mesh.contact_wire_list()
+  std::vector<double> lateral;       // under wind [m]
+  std::vector<double> lateral_bare;  // before the conditions [m]
+  double permissible_m = 0;          // working half width - sway - track tolerance
+  double max_excursion_m = 0;        // largest |lateral| at any node of a contact wire
+  double max_excursion_x = 0;        // its station
+  bool empty() const { return x.empty(); }
+};
+
 struct StaticResult {
   bool converged = false;
   int snes_iterations = 0;
@@ -28,6 +44,7 @@ struct StaticResult {
   double residual_norm = 0;           // final ||R||_2 [N]
   int negative_eigenvalues = -1;      // of the static tangent (-1: not computed)
   std::vector<std::string> warnings;  // compression, unstable tangent (printed by the app)
+  BlowOff blow_off;                   // under conditions.wind only
 };
 
 // Static elasticity of the contact wire (EN 50119): the uplift of the

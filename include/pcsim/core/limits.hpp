@@ -30,6 +30,10 @@ inline constexpr Limit axial_stiffness{1e11, "N"};       // EA: steel rods ~1e8 
 inline constexpr Limit bending_stiffness{1e6, "N m^2"};  // EI: contact wires ~200
 inline constexpr Limit mass_per_length{1e4, "kg/m"};     // wires ~1 kg/m
 inline constexpr Limit thermal_expansion{1e-3, "1/K"};   // copper, bronze 1.7e-5; steel 1.2e-5
+inline constexpr Limit wire_diameter{1.0, "m"};          // wires 5-20 mm
+inline constexpr Limit drag_coefficient{10.0, ""};       // round wires 1.0-1.2
+inline constexpr Limit wind_speed{100.0, "m/s"};         // design gusts ~25-50 m/s
+inline constexpr Limit air_density{10.0, "kg/m^3"};      // 1.25 at sea level
 inline constexpr Limit stiffness{1e12, "N/m"};           // springs, droppers, contact
 inline constexpr Limit mass{1e5, "kg"};                  // clamps, arms, weights, stages
 inline constexpr Limit damping{1e8, "N s/m"};            // pantograph stages ~10-100

@@ -24,7 +24,8 @@ struct ConditionsEffect {
   double min_contact_dz_m = 0, max_contact_dz_m = 0;
   double max_tension_change_rel = 0;
   double max_device_travel_m = 0;
-  int snes_iterations = 0;  // of the second static solution
+  double max_contact_dy_m = 0;  // the contact wires' largest lateral move (wind)
+  int snes_iterations = 0;      // of the second static solution
 };
 
 // The design -> static configuration. The returned mesh has its tensioning

@@ -1,0 +1,81 @@
+// The wind's turbulence on the wires (docs/conditions.md, "Turbulence"): the
+// drag of the fluctuations u' (along the mean wind) and w' (vertical),
+// linearised about the mean wind (whose own drag is a dead load of the
+// catenary, catenary/wind.hpp),
+//   dq = (rho Cd d / 2) (|V_n| I + V_n V_n^T / |V_n|) P (u' e_V + w' e_z),
+// P = I - t t^T the projection normal to the wire: across the track,
+// rho Cd d V u' laterally and rho Cd d V w' / 2 vertically. A time-dependent
+// load on the FE catenary's cable elements, u' and w' interpolated from the
+// field's grid at the element's middle: residual only (no tangent), so the
+// cheap path stays; its power is external work in the energy balance.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include "pcsim/assembly/fe_catenary.hpp"
+#include "pcsim/assembly/term.hpp"
+#include "pcsim/catenary/wind_field.hpp"
+
+namespace pcsim::assembly {
+
+class WindTurbulence : public Term {
+ public:
+  explicit WindTurbulence(FECatenary& catenary);
+  ~WindTurbulence() override;
+  std::string name() const override { return "wind turbulence"; }
+  TangentKind tangent_kind() const override { return TangentKind::constant; }
+  bool adds_by_set_values() const override { return true; }
+  void add_residual(const CoupledState& state, Vec F) override;
+  TermPower power(const CoupledState& state) const override;
+
+  const catenary::WindSeries& lateral() const { return u_; }
+  const catenary::WindSeries& vertical() const { return w_; }
+
+ private:
+  struct Element {
+    std::array<PetscInt, 12> idx{};
+    Eigen::Vector3d a, b;  // load per unstressed length per unit u', w' [N s/m^2]
+    double x = 0, ref_length = 0, unstressed_length = 0;
+  };
+  void add_loads(double t, Vec F, double sign) const;
+  std::vector<Element> elements_;
+  catenary::WindSeries u_, w_;
+  mutable Vec work_ = nullptr;
+};
+
+// The aerodynamic damping of the wires in the mean wind: the quasi-steady
+// drag of the relative velocity V - r', linearised about the mean wind,
+// changes by -D P r' per unstressed length (D, P as above): a constant
+// damper C = sum over the cable elements of (L0 / Lref) int S^T D P S dchi
+// (D P is symmetric and positive semi-definite), F += C V, power -V.C V
+// (dissipated). Across the track: rho Cd d V laterally, half that
+// vertically, per unit velocity.
+class AerodynamicDamping : public Term {
+ public:
+  explicit AerodynamicDamping(FECatenary& catenary);
+  ~AerodynamicDamping() override;
+  std::string name() const override { return "aerodynamic damping"; }
+  TangentKind tangent_kind() const override { return TangentKind::constant; }
+  std::vector<LinearPart> linear_parts() const override {
+    return {{C_, 0.0, 1.0, 0.0, SUBSET_NONZERO_PATTERN}};
+  }
+  TermPower power(const CoupledState& state) const override;  // -V.C V
+  Mat matrix() const { return C_; }
+
+ private:
+  Mat C_ = nullptr;
+};
+
+// The load per unstressed length per unit u' and w' on a wire of unit
+// tangent t in the mean wind V (horizontal): the columns a, b above.
+// D P of the aerodynamic damping (above) [N s/m^2].
+Eigen::Matrix3d aerodynamic_damping(const catenary::Wire& wire, const Eigen::Vector3d& tangent,
+                                    const Eigen::Vector3d& velocity, double air_density);
+
+void turbulent_drag_gradients(const catenary::Wire& wire, const Eigen::Vector3d& tangent,
+                              const Eigen::Vector3d& velocity, double air_density,
+                              Eigen::Vector3d& a, Eigen::Vector3d& b);
+
+}  // namespace pcsim::assembly

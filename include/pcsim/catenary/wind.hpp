@@ -1,0 +1,31 @@
+// Wind on the wires (docs/conditions.md, issue 25): the mean wind's drag on
+// every cable element, and the contact wires' lateral position under it
+// (the static blow-off check).
+#pragma once
+
+#include <vector>
+
+#include "pcsim/catenary/mesh.hpp"
+#include "pcsim/catenary/results.hpp"
+
+namespace pcsim::catenary {
+
+// Drag per length of a wire in a wind of velocity V (horizontal) on an
+// element of unit design tangent t: the component of V normal to the wire,
+// V_n = V - (V.t) t, gives q = rho Cd d |V_n| V_n / 2 (the cross-flow
+// principle) [N/m].
+Eigen::Vector3d wire_drag(const Wire& wire, const Eigen::Vector3d& tangent,
+                          const Eigen::Vector3d& velocity, double air_density);
+
+// Sets every cable element's wind_load from mesh.conditions.wind (zero
+// without wind); the element's tangent is its design chord.
+void set_wind_loads(CatenaryMesh& mesh);
+
+// The contact wires' lateral position relative to the track's centre line
+// at every support and mid-span (mesh.support_x; a design without supports:
+// the contact wires' laterally held nodes), under 'now' and 'bare' node
+// values; permissible from mesh.conditions.wind.
+BlowOff measure_blow_off(const CatenaryMesh& mesh, const std::vector<double>& bare,
+                         const std::vector<double>& now);
+
+}  // namespace pcsim::catenary

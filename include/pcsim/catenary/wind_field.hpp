@@ -1,0 +1,47 @@
+// Turbulent wind along the line (docs/conditions.md, "Turbulence"): the
+// fluctuations u' (along the mean wind, horizontal) and w' (vertical) as a
+// seeded Gaussian random field on a coarse grid of stations along x and
+// times, by the spectral representation method (Shinozuka and Deodatis,
+// Appl. Mech. Rev. 44, 1991; Deodatis, J. Eng. Mech. 122, 1996): at every
+// frequency the cross-spectral matrix S(f) C(dx, f) of the stations is
+// factored (Cholesky) and the stations' series are sums of cosines with
+// random phases, evaluated by FFT. Periodic in time with the grid's period.
+//
+// Spectrum: EN 1991-1-4 Annex B (B.1), f S(f) / sigma^2 = 6.8 fL / (1 + 10.2 fL)^(5/3),
+// fL = f L / V (its integral over f is exactly sigma^2). Coherence along the
+// track: Davenport's exp(-C f dx / V).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace pcsim::catenary {
+
+struct TurbulenceSpec {
+  double mean_speed = 0;        // V [m/s]
+  double sigma = 0;             // standard deviation of the component [m/s]
+  double length_scale = 0;      // L [m]
+  double coherence_decay = 10;  // C [1]
+  std::uint64_t seed = 1;
+};
+
+// One-sided power spectral density of the EN 1991-1-4 form [m^2/s^2 per Hz].
+double turbulence_psd(const TurbulenceSpec& s, double f);
+// Davenport's coherence (root-coherence, real) between stations dx apart.
+double turbulence_coherence(const TurbulenceSpec& s, double f, double dx);
+
+// Samples of a component at stations x0 + i dx (i < nx) and times k dt
+// (k < nt, nt a power of two: period nt dt), row i = station.
+struct WindSeries {
+  double x0 = 0, dx = 1, dt = 1;
+  int nx = 0, nt = 0;
+  std::vector<double> values;  // values[i * nt + k]
+  double at(int i, int k) const { return values[static_cast<std::size_t>(i) * nt + k]; }
+  // Bilinear in x (held beyond the ends) and t (periodic).
+  double interpolate(double x, double t) const;
+};
+
+WindSeries generate_turbulence(const TurbulenceSpec& s, double x0, double dx, int nx, double dt,
+                               int nt);
+
+}  // namespace pcsim::catenary

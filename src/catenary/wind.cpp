@@ -1,0 +1,98 @@
+#include "pcsim/catenary/wind.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace pcsim::catenary {
+
+Eigen::Vector3d wire_drag(const Wire& wire, const Eigen::Vector3d& tangent,
+                          const Eigen::Vector3d& velocity, double air_density) {
+  const Eigen::Vector3d t = tangent.normalized();
+  const Eigen::Vector3d vn = velocity - velocity.dot(t) * t;
+  return 0.5 * air_density * wire_drag_coefficient(wire) * wire_diameter(wire) * vn.norm() * vn;
+}
+
+void set_wind_loads(CatenaryMesh& mesh) {
+  const auto& wind = mesh.conditions.wind;
+  const Eigen::Vector3d v = wind.velocity();
+  for (auto& el : mesh.cables) {
+    if (!wind.any()) {
+      el.wind_load.setZero();
+      continue;
+    }
+    const Eigen::Vector3d chord =
+        mesh.nodes[el.nodes[1]].position - mesh.nodes[el.nodes[0]].position;
+    el.wind_load = wire_drag(mesh.wires[el.wire], chord, v, wind.air_density);
+  }
+}
+
+namespace {
+
+// A wire's nodes as (station, lateral offset from the centre line), in the
+// order of their stations.
+std::vector<std::pair<double, double>> lateral_profile(const CatenaryMesh& mesh, const Wire& wire,
+                                                       const std::vector<double>& values) {
+  std::vector<std::pair<double, double>> out;
+  for (int n : wire.nodes) {
+    const Eigen::Vector2d p(values[6 * n], values[6 * n + 1]);
+    const double s = mesh.track.station(p);
+    out.emplace_back(s, (p - mesh.track.point(s)).dot(mesh.track.normal(s)));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// Linear interpolation in a profile; false outside it.
+bool lateral_at(const std::vector<std::pair<double, double>>& profile, double s, double& y) {
+  if (profile.size() < 2 || s < profile.front().first || s > profile.back().first) return false;
+  auto hi = std::lower_bound(profile.begin(), profile.end(), std::make_pair(s, -1e300));
+  if (hi == profile.begin()) ++hi;
+  if (hi == profile.end()) --hi;
+  const auto lo = hi - 1;
+  const double w = hi->first > lo->first ? (s - lo->first) / (hi->first - lo->first) : 0.0;
+  y = (1 - w) * lo->second + w * hi->second;
+  return true;
+}
+
+// The supports' stations: the design's, or the x of the contact wires'
+// nodes held laterally.
+std::vector<double> support_stations(const CatenaryMesh& mesh) {
+  if (!mesh.support_x.empty()) return mesh.support_x;
+  std::vector<double> x;
+  for (int w : mesh.contact_wire_list())
+    for (int n : mesh.wires[w].nodes)
+      if (mesh.nodes[n].fixed[1]) x.push_back(mesh.nodes[n].position.x());
+  std::sort(x.begin(), x.end());
+  x.erase(std::unique(x.begin(), x.end()), x.end());
+  return x;
+}
+
+}  // namespace
+
+BlowOff measure_blow_off(const CatenaryMesh& mesh, const std::vector<double>& bare,
+                         const std::vector<double>& now) {
+  BlowOff b;
+  b.permissible_m = mesh.conditions.wind.permissible_m();
+  const auto supports = support_stations(mesh);
+  std::vector<std::pair<double, int>> stations;  // (x, at support)
+  for (std::size_t k = 0; k < supports.size(); ++k) {
+    stations.emplace_back(supports[k], 1);
+    if (k + 1 < supports.size()) stations.emplace_back(0.5 * (supports[k] + supports[k + 1]), 0);
+  }
+  const auto wires = mesh.contact_wire_list();
+  for (std::size_t i = 0; i < wires.size(); ++i) {
+    const auto& wire = mesh.wires[wires[i]];
+    const auto p_now = lateral_profile(mesh, wire, now), p_bare = lateral_profile(mesh, wire, bare);
+    for (const auto& [s, support] : stations) {
+      double y = 0, y0 = 0;
+      if (!lateral_at(p_now, s, y) || !lateral_at(p_bare, s, y0)) continue;
+      b.x.push_back(s), b.at_support.push_back(support), b.wire.push_back(static_cast<int>(i));
+      b.lateral.push_back(y), b.lateral_bare.push_back(y0);
+    }
+    for (const auto& [s, y] : p_now)  // the largest at any node (between the points too)
+      if (std::abs(y) > b.max_excursion_m) b.max_excursion_m = std::abs(y), b.max_excursion_x = s;
+  }
+  return b;
+}
+
+}  // namespace pcsim::catenary

@@ -1,0 +1,59 @@
+#!/bin/bash
+# A run under a turbulent cross-wind (issue 25, docs/conditions.md "Wind"):
+# the three-span line with the EN 50318 two-mass model, mean wind 25 m/s
+# across the track (its drag a dead load in the static configuration the
+# run starts from), turbulence of terrain category II:
+#  1. the energy balance (output.energy) holds with the fluctuating drag's
+#     work counted as external work (limit 0.006 of the turnover, as
+#     test_run_base_motion.sh and test_energy_starts.sh);
+#  2. that work is not negligible: a balance without it would fail;
+#  3. the same seed gives the same run, another seed another one;
+#  4. the nonlinear FE catenary (full Newton path) balances too;
+#  5. on 2 ranks (the field generated on each rank from the seed, the load
+#     added by the rank that owns each element) the contact force is that of
+#     1 rank within 1e-8 of its maximum (test_run_ranks.sh's bound; measured
+#     7.5e-11 and 1.0e-10 in two runs).
+set -euo pipefail
+: "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:=/usr/bin/python3}"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+data=$PCSIM_SOURCE_DIR/tests/contact/data
+run() {
+  "$PCSIM_BIN" run "$data/three-span-lumped-wind.yaml" -o "$tmp/$1" --no-report \
+    --set output.energy=true "${@:2}" > "$tmp/$1.log" 2>&1 || { cat "$tmp/$1.log"; exit 1; }
+}
+run mean --set "conditions.wind={speed: 25}"
+run seed3
+run seed3-again
+run seed4 --set conditions.wind.turbulence.seed=4
+run nonlinear --set effects.catenary_nonlinear=true
+grep -q "wind 25 m/s" "$tmp/seed3.log" || { cat "$tmp/seed3.log"; exit 1; }
+"$PCSIM_SOURCE_DIR/scripts/mpirun.sh" -n 2 "$PCSIM_BIN" run "$data/three-span-lumped-wind.yaml" \
+  -o "$tmp/np2" --no-report --set output.energy=true > "$tmp/np2.log" 2>&1 ||
+  { cat "$tmp/np2.log"; exit 1; }
+"$PCSIM_PYTHON" - "$tmp" <<'PY'
+import json, sys
+d = sys.argv[1]
+s = {k: json.load(open(f"{d}/{k}/summary.json"))
+     for k in ("mean", "seed3", "seed3-again", "seed4", "nonlinear")}
+for k, v in s.items():
+    e = v["energy"]
+    ratio = abs(e["max_balance_residual_J"]) / e["turnover_J"]
+    print(f"{k}: max balance residual {e['max_balance_residual_J']:.3g} J, {ratio:.4f} of the "
+          f"turnover {e['turnover_J']:.3g} J, external work {e['work_external_J']:.4g} J")
+    assert ratio <= 0.006, (k, ratio)
+wind_work = s["seed3"]["energy"]["work_external_J"] - s["mean"]["energy"]["work_external_J"]
+print(f"the turbulence's work about {wind_work:.3g} J")
+assert abs(wind_work) > 5 * abs(s["seed3"]["energy"]["max_balance_residual_J"]), wind_work
+def sigma(v):
+    return json.dumps(v["pantographs"], sort_keys=True)
+assert sigma(s["seed3"]) == sigma(s["seed3-again"]), "the same seed gave another run"
+assert sigma(s["seed3"]) != sigma(s["seed4"]), "another seed gave the same run"
+import h5py
+import numpy as np
+f1, f2 = (np.array(h5py.File(f"{d}/{k}/results.h5")["/pantographs/lumped/contact_force"])
+          for k in ("seed3", "np2"))
+rel = np.max(np.abs(f1 - f2)) / np.max(np.abs(f1))
+print(f"1 and 2 ranks: contact forces within {rel:.2g} of their maximum")
+assert rel <= 1e-8, rel
+PY
