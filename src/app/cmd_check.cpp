@@ -55,19 +55,19 @@ std::string memory_text(const simulation::MemoryEstimate& m, int ranks) {
 std::string check_command(const app::CommandContext& ctx, const std::string& command) {
   if (command == "static") {
     const auto in = app::read_static_inputs(ctx);
-    check_output_request(ctx.comm, ctx.output_request(in.scene));
+    output::check_output_request(ctx.comm, ctx.output_request(in.scene));
     return "design " + in.catenary.design_path + ": " + memory_text(in.memory, ctx.size);
   }
   if (command == "modes") {
     const auto in = app::read_modes_inputs(ctx);
-    check_output_request(ctx.comm, ctx.output_request(in.statics.scene));
+    output::check_output_request(ctx.comm, ctx.output_request(in.statics.scene));
     return "design " + in.statics.catenary.design_path + ": " +
            memory_text(in.statics.memory, ctx.size);
   }
   if (command == "run") {
     const auto in = app::read_run_inputs(ctx);
     app::print_warnings(ctx, in.run.warnings);
-    check_output_request(ctx.comm, ctx.output_request(in.scene));
+    output::check_output_request(ctx.comm, ctx.output_request(in.scene));
     char text[160];
     std::snprintf(text, sizeof text,
                   "%zu pantograph(s), %.0f time steps of %g s (TS %s, %s path); ",
@@ -78,7 +78,7 @@ std::string check_command(const app::CommandContext& ctx, const std::string& com
   }
   if (command == "pantograph") {
     const auto in = app::read_pantograph_inputs(ctx);
-    check_output_request(ctx.comm, ctx.output_request(in.scene));
+    output::check_output_request(ctx.comm, ctx.output_request(in.scene));
     return in.study.model->kind() + " model, study " + in.study.study_type;
   }
   if (command == "model")

@@ -86,7 +86,7 @@ std::string output_refusal(const app::CommandContext& ctx, const std::string& di
     const auto [end, rest] = std::mismatch(target.begin(), target.end(), path.begin(), path.end());
     if (end == target.end()) return "'" + dir + "' is or holds " + input + ", an input";
   }
-  std::ifstream manifest(fs::path(dir) / OutputDir::kManifestName);
+  std::ifstream manifest(fs::path(dir) / output::OutputDir::kManifestName);
   if (!manifest) return "";
   const auto recorded = nlohmann::json::parse(manifest, nullptr, false);
   const std::string command =
@@ -96,8 +96,8 @@ std::string output_refusal(const app::CommandContext& ctx, const std::string& di
          ", not of pcsim compare: give another folder with -o";
 }
 
-OutputRequest output_request(const app::CommandContext& ctx) {
-  OutputRequest request;
+output::OutputRequest output_request(const app::CommandContext& ctx) {
+  output::OutputRequest request;
   request.dir = ctx.output_dir.empty() ? default_folder(ctx) : ctx.output_dir;
   request.given_in = "command line";
   request.given_by = ctx.output_dir.empty() ? "default output folder" : "-o";
@@ -124,7 +124,7 @@ std::string script_message(const std::string& why) {
 
 int compare(const app::CommandContext& ctx) {
   check_inputs(ctx);
-  OutputDir out(ctx.comm, output_request(ctx));
+  output::OutputDir out(ctx.comm, output_request(ctx));
   std::vector<std::string> args = {"-o", out.partial_dir()};
   args.insert(args.end(), ctx.operands.begin(), ctx.operands.end());
   if (ctx.has_option("--measurement"))

@@ -17,7 +17,7 @@ int run_modes(const app::CommandContext& ctx) {
   const InputNode& scene = in.statics.scene;
   const auto& cat = in.statics.catenary;
   const auto& request = in.request;
-  OutputDir out(ctx.comm, ctx.output_request(scene));
+  output::OutputDir out(ctx.comm, ctx.output_request(scene));
   app::print0(ctx, "pcsim modes: scene '%s', design %s\n", ctx.scene_name(scene).c_str(),
               cat.design_path.c_str());
   // 1. Static configuration (with form-finding if the scene asks for it).

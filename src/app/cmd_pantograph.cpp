@@ -23,7 +23,7 @@ int run_pantograph(const CommandContext& ctx) {
   pantograph::StudyScene& study = in.study;
   const std::string& name = in.name;
   if (study.study_type == "time") solvers::pantograph_ts_type();  // checked before any work
-  OutputDir out(ctx.comm, ctx.output_request(node));
+  output::OutputDir out(ctx.comm, ctx.output_request(node));
   app::print0(ctx, "pcsim pantograph: scene '%s', %s model, study %s\n", name.c_str(),
               study.model->kind().c_str(), study.study_type.c_str());
   // The pantograph alone is tiny: rank 0 does the work; the others wait for its outcome.

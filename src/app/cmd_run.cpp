@@ -130,7 +130,7 @@ void print_energy(const app::CommandContext& ctx, const output::EnergyBalance& b
 
 // An interrupted run keeps its partial folder: data up to this step, a
 // checkpoint, a summary saying it is incomplete.
-int report_interrupted(const app::CommandContext& ctx, const OutputDir& out,
+int report_interrupted(const app::CommandContext& ctx, const output::OutputDir& out,
                        const simulation::RunOutcome& outcome) {
   const char* signal = simulation::signal_name(outcome.signal);
   app::print0(ctx,
@@ -146,7 +146,7 @@ int report_interrupted(const app::CommandContext& ctx, const OutputDir& out,
 // report.html (postproc/report.py) in the result folder; a warning if it
 // cannot be made (no Python with matplotlib). Returns why it could not be
 // written (a full disk: the run's exit 5), "" otherwise.
-std::string write_report(const app::CommandContext& ctx, const OutputDir& out) {
+std::string write_report(const app::CommandContext& ctx, const output::OutputDir& out) {
   int status = 0;
   const std::string why = app::run_postproc("report.py", {"run", out.partial_dir()}, &status);
   if (why.empty())
@@ -158,7 +158,7 @@ std::string write_report(const app::CommandContext& ctx, const OutputDir& out) {
 }
 
 // A run that ended by itself: the tables, the report, the result in place.
-int report_complete(const app::CommandContext& ctx, OutputDir& out,
+int report_complete(const app::CommandContext& ctx, output::OutputDir& out,
                     const simulation::RunOutcome& outcome, bool energy) {
   const auto& facts = outcome.facts;
   if (ctx.rank == 0) {
@@ -192,7 +192,7 @@ int report_complete(const app::CommandContext& ctx, OutputDir& out,
 
 // The checkpoint of --restart DIR, or null.
 std::unique_ptr<simulation::RunCheckpoint> load_restart(
-    const app::CommandContext& ctx, const scene::RunScene& run, const OutputRequest& request,
+    const app::CommandContext& ctx, const scene::RunScene& run, const output::OutputRequest& request,
     const std::vector<simulation::InputFile>& inputs) {
   const std::string dir = app::restart_dir(ctx);
   if (dir.empty()) return nullptr;
@@ -207,7 +207,7 @@ std::unique_ptr<simulation::RunCheckpoint> load_restart(
 
 // A result that could not be written (exit 5, on every rank together): the
 // partial folder stays with what was written, not marked complete.
-void keep_partial_if_not_written(const app::CommandContext& ctx, OutputDir& out,
+void keep_partial_if_not_written(const app::CommandContext& ctx, output::OutputDir& out,
                                  std::exception_ptr error) {
   if (simulation::exit_status_of(error) != app::kExitOutput) return;
   out.keep_partial();
@@ -244,14 +244,14 @@ int run_dynamic(const app::CommandContext& ctx) {
   request.name = ctx.scene_name(scene);
   request.scene_path = ctx.scene_path;
   request.inputs = simulation::run_input_files(ctx.scene_path, scene);
-  const OutputRequest output = ctx.output_request(scene);
+  const output::OutputRequest output = ctx.output_request(scene);
   const auto restart = load_restart(ctx, run, output, request.inputs);
   request.restart = restart.get();
   request.restart_dir = app::restart_dir(ctx);
   PetscBool help = PETSC_FALSE;
   PCSIM_PETSC(PetscOptionsHasHelp(nullptr, &help));
   request.stop_before_stepping = help == PETSC_TRUE;
-  OutputDir out(ctx.comm, output);
+  output::OutputDir out(ctx.comm, output);
   app::print0(ctx, "pcsim run: scene '%s', design %s\n", request.name.c_str(),
               run.catenary.design_path.c_str());
   app::print_warnings(ctx, run.warnings);

@@ -35,7 +35,7 @@ int run_static(const app::CommandContext& ctx) {
   const app::StaticInputs in = app::read_static_inputs(ctx);
   const InputNode& scene = in.scene;
   const auto& cat = in.catenary;
-  OutputDir out(ctx.comm, ctx.output_request(scene));
+  output::OutputDir out(ctx.comm, ctx.output_request(scene));
   app::print0(ctx, "pcsim static: scene '%s', design %s\n", ctx.scene_name(scene).c_str(),
               cat.design_path.c_str());
   const auto statics = simulation::static_configuration(ctx.comm, cat.mesh, cat.form_finding);

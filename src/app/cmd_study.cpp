@@ -178,9 +178,9 @@ int study(const app::CommandContext& ctx) {
     app::print0(ctx,
                 "  note: the design is explicit (no element_length): -study_h_factors ignored\n");
   const std::string name = ctx.scene_name(scene);
-  OutputRequest request = ctx.output_request(scene);
+  output::OutputRequest request = ctx.output_request(scene);
   if (ctx.output_dir.empty()) request.dir = "out/" + name + "-accuracy";
-  OutputDir out(ctx.comm, request);
+  output::OutputDir out(ctx.comm, request);
   app::print0(ctx, "pcsim study accuracy: scene '%s', %zu runs on %d rank(s)\n", name.c_str(),
               list.size(), ctx.size);
   output::StudyTable table;

@@ -189,7 +189,7 @@ app::SweepBases check_cases(const CommandContext& ctx, const Plan& plan) {
 }
 
 // Plots of the figures against the swept values and report.html (warnings only).
-void write_plots_and_report(const CommandContext& ctx, const OutputDir& out) {
+void write_plots_and_report(const CommandContext& ctx, const output::OutputDir& out) {
   for (const auto& [script, args] : std::vector<std::pair<std::string, std::vector<std::string>>>{
            {"sweep_plots.py", {out.partial_dir()}}, {"report.py", {"sweep", out.partial_dir()}}}) {
     if (script == "report.py" && ctx.has_option("--no-report")) continue;
@@ -225,13 +225,13 @@ std::string sweep_definition(const CommandContext& ctx, const Plan& plan, const 
 
 // The output folder's request; a leftover partial folder of the same
 // definition is resumed (sweep_runner.hpp).
-OutputRequest sweep_request(const CommandContext& ctx, const Plan& plan, const InputNode& scene,
+output::OutputRequest sweep_request(const CommandContext& ctx, const Plan& plan, const InputNode& scene,
                             const std::string& definition) {
   // The scene with the overrides every case shares names the sweep; the
   // provenance lists every --set as given.
   CommandContext shared = ctx;
   shared.overrides = plan.fixed;
-  OutputRequest request = shared.output_request(scene);
+  output::OutputRequest request = shared.output_request(scene);
   request.provenance["overrides"] = ctx.overrides;
   std::string fingerprinted = "sweep";  // the fingerprint covers the swept values too
   for (const auto& o : ctx.overrides) fingerprinted += " --set " + o;
@@ -266,7 +266,7 @@ CommandContext without_ranks_per_case(const CommandContext& ctx) {
 // Under mpirun: -j and --ranks are the local mode's; the journal is opened on
 // rank 0 and the cases it holds are known to every rank; no accuracy pilot
 // per case unless asked for (as the local mode's case_command).
-std::size_t open_mpi_sweep(const CommandContext& ctx, Plan& plan, const OutputDir& out,
+std::size_t open_mpi_sweep(const CommandContext& ctx, Plan& plan, const output::OutputDir& out,
                            const std::string& definition) {
   std::size_t resumed = 0;
   app::on_rank0(ctx, [&] { resumed = app::open_sweep_journal(plan, out, definition); });
@@ -294,7 +294,7 @@ void refuse_local_options_under_mpirun(const CommandContext& ctx) {
 
 // The tables from the journal (rank 0), plots and report, the folder committed;
 // the exit status is the worst of the cases'.
-int finish_sweep(const CommandContext& ctx, Plan& plan, OutputDir& out) {
+int finish_sweep(const CommandContext& ctx, Plan& plan, output::OutputDir& out) {
   std::vector<std::pair<std::string, std::vector<std::string>>> swept;
   for (const auto& s : plan.swept) swept.emplace_back(s.key, s.values);
   nlohmann::json record = nlohmann::json::object();
@@ -326,7 +326,7 @@ int run_sweep(const CommandContext& given) {
   shared.overrides = plan.fixed;
   const InputNode scene = shared.load_scene();
   const std::string definition = sweep_definition(ctx, plan, scene);
-  OutputDir out(ctx.comm, sweep_request(ctx, plan, scene, definition));
+  output::OutputDir out(ctx.comm, sweep_request(ctx, plan, scene, definition));
   const std::size_t resumed = mpi ? open_mpi_sweep(ctx, plan, out, definition)
                                   : app::open_sweep_journal(plan, out, definition);
   if (mpi)

@@ -30,7 +30,7 @@ struct CommandContext : simulation::Context {
   std::vector<std::string> overrides;  // --set KEY=VALUE, in order
   std::vector<std::string> operands;   // commands without a scene: what they take instead
   bool overwrite = false;              // --overwrite: replace a result of other inputs
-  bool cleanup_on_signal = true;       // OutputRequest::cleanup_on_signal (false: MPI sweep cases)
+  bool cleanup_on_signal = true;       // output::OutputRequest::cleanup_on_signal (false: MPI sweep cases)
   std::vector<std::string> petsc_arguments;    // what went to PETSc's options database
   std::map<std::string, std::string> options;  // the command's own options ("" for a flag)
   bool has_option(const std::string& name) const { return options.count(name) > 0; }
@@ -43,8 +43,8 @@ struct CommandContext : simulation::Context {
   // What produced the results (output/provenance.hpp): version, command line,
   // scene text and its composed form, PETSc options, ranks, date, host.
   nlohmann::json provenance(const InputNode& scene) const;
-  // The output folder (-o, or out/<scene name>) with who gave it, for OutputDir.
-  OutputRequest output_request(const InputNode& scene) const;
+  // The output folder (-o, or out/<scene name>) with who gave it, for output::OutputDir.
+  output::OutputRequest output_request(const InputNode& scene) const;
 };
 
 struct CommandOption {

@@ -26,14 +26,14 @@ InputNode CommandContext::load_scene() const {
 std::string CommandContext::scene_name(const InputNode& scene) const {
   if (scene.has("name")) {
     const std::string name = scene.get_string("name");
-    const std::string why = invalid_folder_name_reason(name);
+    const std::string why = output::invalid_folder_name_reason(name);
     if (!why.empty()) scene.fail_key("name", why);
     return name;
   }
   std::string base = scene_path.substr(scene_path.find_last_of('/') + 1);
   auto dot = base.find_last_of('.');
   base = dot == std::string::npos ? base : base.substr(0, dot);
-  if (!invalid_folder_name_reason(base).empty())
+  if (!output::invalid_folder_name_reason(base).empty())
     throw InputError(scene_path, "name", "missing, and the file name gives no usable name");
   return base;
 }
@@ -52,9 +52,9 @@ nlohmann::json CommandContext::provenance(const InputNode& scene) const {
   return output::make_provenance(in);
 }
 
-OutputRequest CommandContext::output_request(const InputNode& scene) const {
+output::OutputRequest CommandContext::output_request(const InputNode& scene) const {
   const std::string name = scene_name(scene);  // validated even when -o is given
-  OutputRequest request;
+  output::OutputRequest request;
   request.dir = output_dir.empty() ? "out/" + name : output_dir;
   request.given_in = output_dir.empty() ? scene_path : "command line";
   request.given_by = output_dir.empty() ? "name" : "-o";

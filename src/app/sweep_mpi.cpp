@@ -77,7 +77,7 @@ struct CaseEnd {
 
 class GroupRunner {
  public:
-  GroupRunner(const CommandContext& ctx, SweepPlan& plan, const OutputDir& out, int ranks_per_case);
+  GroupRunner(const CommandContext& ctx, SweepPlan& plan, const output::OutputDir& out, int ranks_per_case);
   ~GroupRunner();
   GroupRunner(const GroupRunner&) = delete;
   GroupRunner& operator=(const GroupRunner&) = delete;
@@ -92,7 +92,7 @@ class GroupRunner {
 
   const CommandContext& ctx_;
   SweepPlan& plan_;
-  const OutputDir& out_;
+  const output::OutputDir& out_;
   MPI_Comm group_ = MPI_COMM_NULL;
   int group_index_ = 0, group_rank_ = 0;
   MPI_Win window_ = MPI_WIN_NULL;  // on world rank 0: {next case to claim, cases finished}
@@ -102,7 +102,7 @@ class GroupRunner {
   Clock::time_point start_ = Clock::now();
 };
 
-GroupRunner::GroupRunner(const CommandContext& ctx, SweepPlan& plan, const OutputDir& out,
+GroupRunner::GroupRunner(const CommandContext& ctx, SweepPlan& plan, const output::OutputDir& out,
                          int ranks_per_case)
     : ctx_(ctx), plan_(plan), out_(out) {
   group_index_ = ctx.rank / ranks_per_case;
@@ -248,7 +248,7 @@ int sweep_ranks_per_case(const CommandContext& ctx) {
   return static_cast<int>(k);
 }
 
-int run_sweep_cases_mpi(const CommandContext& ctx, SweepPlan& plan, const OutputDir& out,
+int run_sweep_cases_mpi(const CommandContext& ctx, SweepPlan& plan, const output::OutputDir& out,
                         int ranks_per_case) {
   on_rank0(ctx, [&] { std::filesystem::create_directories(out.file("cases")); });
   // As the local mode's case processes (case_command): no accuracy pilot per

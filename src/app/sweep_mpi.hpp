@@ -28,7 +28,7 @@ int sweep_ranks_per_case(const CommandContext& ctx);
 // plan's statuses must be the same on every rank). Returns the signal that
 // stopped the sweep (0: none); either way the finished cases are in
 // journal.jsonl (rank 0 merged the groups' files) when it returns.
-int run_sweep_cases_mpi(const CommandContext& ctx, SweepPlan& plan, const OutputDir& out,
+int run_sweep_cases_mpi(const CommandContext& ctx, SweepPlan& plan, const output::OutputDir& out,
                         int ranks_per_case);
 
 }  // namespace pcsim::app

@@ -110,7 +110,7 @@ json journal_entry(const SweepPlan& plan, std::size_t k) {
   if (summary.is_object()) summary.erase("provenance");  // in cases/<case>/summary.json
   return {{"case", c.name},         {"index", k},         {"values", values},
           {"overrides", overrides}, {"status", c.status}, {"error", c.error},
-          {"wall_s", c.wall_s},     {"cpu_s", c.cpu_s},   {"finished", utc_timestamp()},
+          {"wall_s", c.wall_s},     {"cpu_s", c.cpu_s},   {"finished", output::utc_timestamp()},
           {"summary", summary}};
 }
 
@@ -165,28 +165,28 @@ void discard_case_leftovers(const std::string& folder) {
   if (!held) fs::remove_all(partial, ec);
 }
 
-OutputRequest::Leftover sweep_leftover(const std::string& partial, const std::string& definition,
+output::OutputRequest::Leftover sweep_leftover(const std::string& partial, const std::string& definition,
                                        bool overwrite, std::string& why) {
   output::SweepJournal journal;
   std::string reason;
   if (!output::read_sweep_journal(partial + "/" + output::kSweepJournalName, journal, reason)) {
     why = "'" + partial + "' holds an interrupted pcsim result that cannot be resumed (" + reason +
           "); move it away or delete it, then run again";
-    return OutputRequest::Leftover::refuse;
+    return output::OutputRequest::Leftover::refuse;
   }
   if (journal.header.value("definition", std::string()) == definition)
-    return OutputRequest::Leftover::resume;
-  if (overwrite) return OutputRequest::Leftover::replace;
+    return output::OutputRequest::Leftover::resume;
+  if (overwrite) return output::OutputRequest::Leftover::replace;
   why = "'" + partial + "' holds an interrupted sweep of another definition (" +
         std::to_string(journal.entries.size()) + " of " +
         std::to_string(journal.header.value("cases", 0)) +
         " cases finished; the scene, the swept keys or values, the case table or the PETSc "
         "options differ), which a rerun of the same sweep would resume; give --overwrite to "
         "discard it, or another folder with -o";
-  return OutputRequest::Leftover::refuse;
+  return output::OutputRequest::Leftover::refuse;
 }
 
-std::size_t open_sweep_journal(SweepPlan& plan, const OutputDir& out,
+std::size_t open_sweep_journal(SweepPlan& plan, const output::OutputDir& out,
                                const std::string& definition) {
   const std::string file = out.file(output::kSweepJournalName);
   if (out.resumed()) output::merge_group_journals(file);  // an MPI sweep's group files
@@ -194,7 +194,7 @@ std::size_t open_sweep_journal(SweepPlan& plan, const OutputDir& out,
     output::append_sweep_journal(file, {{"pcsim_sweep_journal", output::kSweepJournalVersion},
                                         {"definition", definition},
                                         {"cases", plan.cases.size()},
-                                        {"started", utc_timestamp()}});
+                                        {"started", output::utc_timestamp()}});
     return 0;
   }
   output::SweepJournal journal = read_journal(file);
@@ -223,7 +223,7 @@ struct RunningCase {
 
 class Runner {
  public:
-  Runner(const CommandContext& ctx, SweepPlan& plan, const OutputDir& out)
+  Runner(const CommandContext& ctx, SweepPlan& plan, const output::OutputDir& out)
       : ctx_(ctx), plan_(plan), out_(out), journal_(out.file(output::kSweepJournalName)) {
     for (std::size_t k = 0; k < plan.cases.size(); ++k)
       if (plan.cases[k].status < 0) todo_.push_back(k);
@@ -242,7 +242,7 @@ class Runner {
 
   const CommandContext& ctx_;
   SweepPlan& plan_;
-  const OutputDir& out_;
+  const output::OutputDir& out_;
   std::string journal_;
   std::vector<std::size_t> todo_;
   std::map<pid_t, RunningCase> running_;
@@ -348,14 +348,14 @@ int Runner::run(int jobs) {
 
 }  // namespace
 
-int run_sweep_cases(const CommandContext& ctx, SweepPlan& plan, const OutputDir& out, int jobs) {
+int run_sweep_cases(const CommandContext& ctx, SweepPlan& plan, const output::OutputDir& out, int jobs) {
   Runner runner(ctx, plan, out);
   if (const int signal_number = runner.run(jobs)) return signal_number;
   fill_cases_from_journal(plan, out);
   return 0;
 }
 
-void fill_cases_from_journal(SweepPlan& plan, const OutputDir& out) {
+void fill_cases_from_journal(SweepPlan& plan, const output::OutputDir& out) {
   const std::size_t found = load_journal(plan, read_journal(out.file(output::kSweepJournalName)));
   if (found != plan.cases.size())
     throw OutputError(out.file(output::kSweepJournalName),

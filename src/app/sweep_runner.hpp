@@ -36,23 +36,23 @@ struct SweepPlan {
 // it if its journal was written for 'definition', replace it if not and
 // 'overwrite', else refuse ('why': the journal is missing or unreadable, or
 // the definition differs).
-OutputRequest::Leftover sweep_leftover(const std::string& partial, const std::string& definition,
+output::OutputRequest::Leftover sweep_leftover(const std::string& partial, const std::string& definition,
                                        bool overwrite, std::string& why);
 
 // Starts the journal of a new sweep, or reads that of a resumed one into the
 // plan's cases (the finished ones get their status); returns the number of
 // cases resumed.
-std::size_t open_sweep_journal(SweepPlan& plan, const OutputDir& out,
+std::size_t open_sweep_journal(SweepPlan& plan, const output::OutputDir& out,
                                const std::string& definition);
 
 // Runs the cases the journal does not hold, 'jobs' at a time; returns the
 // signal that stopped the sweep (0: none). Then fills the plan's cases from
 // the journal (when not stopped).
-int run_sweep_cases(const CommandContext& ctx, SweepPlan& plan, const OutputDir& out, int jobs);
+int run_sweep_cases(const CommandContext& ctx, SweepPlan& plan, const output::OutputDir& out, int jobs);
 
 // The plan's cases from the journal (the tables are the journal's); throws
 // OutputError if it lacks a case.
-void fill_cases_from_journal(SweepPlan& plan, const OutputDir& out);
+void fill_cases_from_journal(SweepPlan& plan, const output::OutputDir& out);
 
 // `pcsim run SCENE -o FOLDER --no-report --set ...` of case k with the
 // sweep's PETSc options (no accuracy pilot unless the sweep asks for one),

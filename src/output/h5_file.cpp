@@ -6,7 +6,7 @@
 #include "h5_series.hpp"
 #include "pcsim/core/error.hpp"
 
-namespace pcsim {
+namespace pcsim::output {
 
 H5File::H5File(const std::string& path, Mode mode)
     : path_(path), exceptions_(std::uncaught_exceptions()) {
@@ -176,4 +176,4 @@ void H5File::attribute(const std::string& object_path, const std::string& name,
   check(ok);
 }
 
-}  // namespace pcsim
+}  // namespace pcsim::output

@@ -14,7 +14,7 @@
 
 namespace fs = std::filesystem;
 
-namespace pcsim {
+namespace pcsim::output {
 
 namespace {
 
@@ -107,7 +107,7 @@ std::string target_refusal(const std::string& dir, const OutputRequest& request)
     return in_quotes(dir) + " exists and is not a folder";
   nlohmann::json existing;
   if (fs::is_empty(dir)) return "";
-  if (!output_guard::read_manifest(dir, existing))
+  if (!guard::read_manifest(dir, existing))
     return in_quotes(dir) + " is not empty and was not written by pcsim (it has no " +
            OutputDir::kManifestName + "); " + whole;
   return replacement_refusal(dir, existing, request);
@@ -121,9 +121,9 @@ std::string leftover_partial_refusal(const std::string& partial, bool remove = t
   const auto status = fs::symlink_status(partial, ec);
   if (status.type() == fs::file_type::not_found) return "";
   nlohmann::json m;
-  if (status.type() != fs::file_type::directory || !output_guard::read_manifest(partial, m))
+  if (status.type() != fs::file_type::directory || !guard::read_manifest(partial, m))
     return in_quotes(partial) + " exists and was not written by pcsim; move it away";
-  if (output_guard::holds_only_manifest(partial)) {
+  if (guard::holds_only_manifest(partial)) {
     if (remove) fs::remove_all(partial);
     return "";
   }
@@ -160,7 +160,7 @@ nlohmann::json manifest(const OutputRequest& request, const std::string& started
                       {"complete", complete},
                       {"inputs_fingerprint", fingerprint(request)}};
   if (complete) {
-    m["finished"] = output_guard::utc_now();
+    m["finished"] = guard::utc_now();
     m["files"] = files_below(dir);
   }
   return m;
@@ -169,7 +169,7 @@ nlohmann::json manifest(const OutputRequest& request, const std::string& started
 }  // namespace
 
 std::string utc_timestamp() {
-  return output_guard::utc_now();
+  return guard::utc_now();
 }
 
 std::string invalid_folder_name_reason(const std::string& name) {
@@ -229,19 +229,19 @@ std::string OutputDir::prepare() {
     }
     const std::string owner = "pcsim " + request_.command + " " + request_.scene_file + ", pid " +
                               std::to_string(getpid()) + " on " + host_name() + ", started " +
-                              output_guard::utc_now();
-    lock_fd_ = output_guard::acquire_lock(lock_path_, owner, why);
+                              guard::utc_now();
+    lock_fd_ = guard::acquire_lock(lock_path_, owner, why);
     // Under the lock: the folder may have changed since the check above.
     if (why.empty()) why = target_refusal(final_, request_);
     if (why.empty()) why = take_leftover();
     if (why.empty() && !resumed_) {
       fs::create_directory(partial_);
       owns_partial_ = true;
-      started_ = output_guard::utc_now();
-      output_guard::write_manifest(partial_, manifest(request_, started_, false, partial_));
+      started_ = guard::utc_now();
+      guard::write_manifest(partial_, manifest(request_, started_, false, partial_));
     }
     if (why.empty() && request_.cleanup_on_signal)
-      armed_ = output_guard::arm_interrupt_cleanup(partial_, lock_path_);
+      armed_ = guard::arm_interrupt_cleanup(partial_, lock_path_);
     if (!why.empty()) undo();
     return why;
   } catch (const OutputError& e) {
@@ -260,13 +260,13 @@ std::string OutputDir::take_leftover() {
   std::error_code ec;
   nlohmann::json m;
   if (!request_.leftover || !fs::is_directory(fs::symlink_status(partial_, ec)) ||
-      !output_guard::read_manifest(partial_, m) || output_guard::holds_only_manifest(partial_))
+      !guard::read_manifest(partial_, m) || guard::holds_only_manifest(partial_))
     return leftover_partial_refusal(partial_);
   std::string why;
   switch (request_.leftover(partial_, why)) {
     case OutputRequest::Leftover::resume:
       resumed_ = true;
-      started_ = m.value("started", output_guard::utc_now());
+      started_ = m.value("started", guard::utc_now());
       return "";
     case OutputRequest::Leftover::replace:
       fs::remove_all(partial_);
@@ -277,7 +277,7 @@ std::string OutputDir::take_leftover() {
 }
 
 void OutputDir::disarm() {
-  if (armed_) output_guard::disarm_interrupt_cleanup();
+  if (armed_) guard::disarm_interrupt_cleanup();
   armed_ = false;
 }
 
@@ -286,7 +286,7 @@ void OutputDir::undo() {
   disarm();
   std::error_code ec;
   if (owns_partial_ && !keep_partial_) fs::remove_all(partial_, ec);
-  output_guard::release_lock(lock_fd_, lock_path_);
+  guard::release_lock(lock_fd_, lock_path_);
   lock_fd_ = -1;
   if (!keep_partial_)
     for (auto p = created_parents_.rbegin(); p != created_parents_.rend(); ++p)
@@ -320,7 +320,7 @@ void OutputDir::commit() {
     if (why.empty()) {
       committed_ = true;
       disarm();
-      output_guard::release_lock(lock_fd_, lock_path_);
+      guard::release_lock(lock_fd_, lock_path_);
       lock_fd_ = -1;
     }
   }
@@ -335,7 +335,7 @@ void OutputDir::keep_partial() {
   if (rank_ == 0) {
     keep_partial_ = true;
     disarm();
-    output_guard::release_lock(lock_fd_, lock_path_);
+    guard::release_lock(lock_fd_, lock_path_);
     lock_fd_ = -1;
     created_parents_.clear();
   }
@@ -344,7 +344,7 @@ void OutputDir::keep_partial() {
 
 std::string OutputDir::swap_into_place() {
   const std::string kept = "; the new results are kept in " + partial_;
-  output_guard::write_manifest(partial_, manifest(request_, started_, true, partial_));
+  guard::write_manifest(partial_, manifest(request_, started_, true, partial_));
   // The folder may have been changed by hand during the run.
   std::string why = target_refusal(final_, request_);
   if (!why.empty()) {
@@ -390,4 +390,4 @@ void OutputDir::fail(const std::string& reason) const {
   throw InputError(request_.given_in, request_.given_by, reason);
 }
 
-}  // namespace pcsim
+}  // namespace pcsim::output

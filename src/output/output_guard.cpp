@@ -18,7 +18,7 @@
 #include "pcsim/core/error.hpp"
 #include "pcsim/output/output_dir.hpp"
 
-namespace pcsim::output_guard {
+namespace pcsim::output::guard {
 
 namespace {
 
@@ -214,4 +214,4 @@ void disarm_interrupt_cleanup() {
   if (g_previous_term.sa_handler != SIG_IGN) sigaction(SIGTERM, &g_previous_term, nullptr);
 }
 
-}  // namespace pcsim::output_guard
+}  // namespace pcsim::output::guard

@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-namespace pcsim::output_guard {
+namespace pcsim::output::guard {
 
 // The manifest of 'dir' (dir/.pcsim-result); false if it is missing or is not
 // a pcsim manifest.
@@ -32,4 +32,4 @@ void release_lock(int fd, const std::string& path);
 bool arm_interrupt_cleanup(const std::string& partial, const std::string& lock);
 void disarm_interrupt_cleanup();
 
-}  // namespace pcsim::output_guard
+}  // namespace pcsim::output::guard

@@ -100,7 +100,7 @@ nlohmann::json make_provenance(const ProvenanceInputs& in) {
       {"inputs_fingerprint", in.inputs_fingerprint},
       {"petsc_options", petsc_options()},
       {"ranks", in.ranks},
-      {"date", output_guard::utc_now()},
+      {"date", guard::utc_now()},
       {"host", host()},
       {"cpu_model", cpu_model()},
       {"compiler", std::string("g++ ") + __VERSION__},

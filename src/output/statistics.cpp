@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace pcsim {
+namespace pcsim::output {
 
 std::vector<Biquad> butterworth_lowpass(int order, double cutoff_hz, double sample_rate_hz) {
   if (order < 2 || order > 8 || order % 2 != 0)
@@ -160,4 +160,4 @@ ForceStatistics force_statistics(const std::vector<double>& position,
   return st;
 }
 
-}  // namespace pcsim
+}  // namespace pcsim::output

@@ -153,7 +153,7 @@ py::dict run(const Scene& s, const std::string& output, const std::string& optio
   const auto ctx = context(quiet);
   auto run_scene = scene::load_run_scene(s.composed);
   const std::string dir = output.empty() ? scratch_folder(ctx) : output;
-  OutputRequest request{dir, "pcsim.run", "output", "run", s.path, s.name, provenance(s, ctx.size)};
+  output::OutputRequest request{dir, "pcsim.run", "output", "run", s.path, s.name, provenance(s, ctx.size)};
   request.overwrite = overwrite;
   Recorder recorder;
   simulation::RunRequest what;
@@ -163,7 +163,7 @@ py::dict run(const Scene& s, const std::string& output, const std::string& optio
   what.stop_on_signal = false;
   simulation::RunOutcome outcome;
   {
-    OutputDir out(ctx.comm, request);
+    output::OutputDir out(ctx.comm, request);
     outcome = simulation::run(ctx, run_scene, what, out, &recorder);
     if (outcome.complete) out.commit();
   }

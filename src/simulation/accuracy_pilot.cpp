@@ -44,7 +44,7 @@ namespace {
 // The figures of one pilot run, per pantograph (rank 0).
 struct PilotFigures {
   std::vector<std::string> names;
-  std::vector<ForceStatistics> force;
+  std::vector<output::ForceStatistics> force;
   double uplift_m = 0;
 };
 
@@ -104,10 +104,10 @@ PilotFigures run_pilot(const Context& ctx, const SceneSource& source, const Stud
   apply_stretch(stretch, run);
   run.dt = dt;
   if (cutoff_hz > 0) run.catenary.modal.max_frequency_hz = cutoff_hz;
-  OutputRequest request{dir,         "command line",   "--cache",        "run (accuracy pilot)",
+  output::OutputRequest request{dir,         "command line",   "--cache",        "run (accuracy pilot)",
                         source.path, "accuracy pilot", source.provenance};
   request.overwrite = true;  // the pilot's own folder of an earlier, killed pilot
-  OutputDir out(ctx.comm, request);
+  output::OutputDir out(ctx.comm, request);
   RunRequest what;
   what.name = "accuracy-pilot";
   what.scene_path = source.path;

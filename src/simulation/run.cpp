@@ -80,7 +80,7 @@ output::RunLayout run_layout(const scene::RunScene& run, assembly::CoupledSystem
 
 // results.h5 on rank 0: new, or a copy of the restart folder's records up to
 // its checkpoint; the static mesh for the snapshots.
-std::unique_ptr<output::RunStream> open_stream(const Context& ctx, const OutputDir& out,
+std::unique_ptr<output::RunStream> open_stream(const Context& ctx, const output::OutputDir& out,
                                                const RunRequest& request,
                                                const output::RunSettings& settings,
                                                output::RunLayout layout,
@@ -103,7 +103,7 @@ std::unique_ptr<output::RunStream> open_stream(const Context& ctx, const OutputD
   return stream;
 }
 
-RunSession::Options session_options(const scene::RunScene& run, const OutputDir& out,
+RunSession::Options session_options(const scene::RunScene& run, const output::OutputDir& out,
                                     const RunRequest& request) {
   RunSession::Options options;
   options.duration = run.duration();
@@ -161,7 +161,7 @@ void assess_figures(const output::RunSettings& s, const output::RunStatistics& s
 
 // Rank 0: the statistics, line and energy results of a complete run and its
 // summary, read back from results.h5.
-void write_complete_results(const OutputDir& out, const catenary::CatenaryMesh& line, bool energy,
+void write_complete_results(const output::OutputDir& out, const catenary::CatenaryMesh& line, bool energy,
                             RunOutcome& outcome) {
   const auto& s = outcome.settings;
   outcome.stats = output::finish_run_results(out, line, s);
@@ -180,7 +180,7 @@ void write_complete_results(const OutputDir& out, const catenary::CatenaryMesh& 
 }
 
 // Rank 0: an interrupted run's summary and snapshot view; the folder stays partial.
-void write_interrupted_results(const OutputDir& out, const catenary::CatenaryMesh& line,
+void write_interrupted_results(const output::OutputDir& out, const catenary::CatenaryMesh& line,
                                RunOutcome& outcome) {
   outcome.facts["interrupted_by"] = signal_name(outcome.signal);
   outcome.facts["provenance"] = out.provenance();
@@ -193,7 +193,7 @@ void write_interrupted_results(const OutputDir& out, const catenary::CatenaryMes
 void finish(const Context& ctx, const scene::RunScene& scene, const RunRequest& request,
             const CatenarySetup& setup, const assembly::CoupledSystem& system,
             solvers::DynamicSolver& solver, RunSession& session, const MovingWindow* window,
-            const simulation::StaticConfiguration& statics, OutputDir& out, RunOutcome& outcome) {
+            const simulation::StaticConfiguration& statics, output::OutputDir& out, RunOutcome& outcome) {
   outcome.steps = session.steps();
   outcome.time = session.time();
   outcome.facts = session.facts();
@@ -236,7 +236,7 @@ bool cheap_path_possible(const scene::RunScene& scene) {
 }
 
 RunOutcome run(const Context& ctx, scene::RunScene& scene, const RunRequest& request,
-               OutputDir& out, RunObserver* observer) {
+               output::OutputDir& out, RunObserver* observer) {
   const double start = now_s();
   RunOutcome outcome;
   const auto& design = scene.catenary.mesh;

@@ -112,9 +112,9 @@ output::StudyRun run_variant(const Context& ctx, const SceneSource& source, cons
   out.vertical_only = v.vertical_only;
   reset_peak_memory();
   try {
-    OutputRequest request{run_dir,     "command line",   "-o", "study", source.path,
+    output::OutputRequest request{run_dir,     "command line",   "-o", "study", source.path,
                           out.label(), source.provenance};
-    OutputDir dir(ctx.comm, request);
+    output::OutputDir dir(ctx.comm, request);
     RunRequest what;
     what.name = out.label();
     what.scene_path = source.path;

@@ -1,6 +1,6 @@
 // Statistics over the zones of a line (output/line_results.hpp): a zone the
 // pantograph crossed gets the EN 50318 figures of the filtered force over its
-// stretch (the same as force_statistics over that window), loss of contact
+// stretch (the same as output::force_statistics over that window), loss of contact
 // counted on the raw force inside the zone only; a zone not crossed is
 // incomplete.
 #include <gtest/gtest.h>
@@ -38,7 +38,7 @@ TEST(LineResults, ZoneStatisticsOverEachStretch) {
   EXPECT_FALSE(stats[2].complete);  // the run ends at 400 m
   const auto filtered = output::filter_uniformly_sampled(h.time, h.force, 20.0);
   for (int z = 0; z < 2; ++z) {
-    const auto ref = force_statistics(h.x, filtered, h.force, zones[z].from_x, zones[z].to_x);
+    const auto ref = output::force_statistics(h.x, filtered, h.force, zones[z].from_x, zones[z].to_x);
     EXPECT_EQ(stats[z].force.samples, ref.samples);
     EXPECT_DOUBLE_EQ(stats[z].force.mean, ref.mean);
     EXPECT_DOUBLE_EQ(stats[z].force.std_dev, ref.std_dev);

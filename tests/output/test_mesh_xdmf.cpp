@@ -325,7 +325,7 @@ TEST(MeshOutput, ModesXdmfReferencesMeshAndModeFiles) {
   write_mesh_h5_xdmf(m, positions, (dir / "mesh.h5").string(), (dir / "mesh.xdmf").string());
   const std::vector<double> frequencies = {1.5, 2.5, 3.5};
   {
-    pcsim::H5File h5((dir / "modes.h5").string());
+    pcsim::output::H5File h5((dir / "modes.h5").string());
     h5.write("/frequencies_hz", frequencies);
     for (int mode = 0; mode < 2; ++mode)  // no shape for the third mode
       h5.write("/shapes/mode_" + std::to_string(mode), std::vector<double>(positions.size(), 0.1),

@@ -16,8 +16,8 @@
 
 namespace fs = std::filesystem;
 using pcsim::InputError;
-using pcsim::OutputDir;
-using pcsim::OutputRequest;
+using pcsim::output::OutputDir;
+using pcsim::output::OutputRequest;
 
 namespace {
 
@@ -90,9 +90,9 @@ class OutputDirTest : public ::testing::Test {
 
 TEST(FolderNames, OnlySingleFolderNamesAreAccepted) {
   for (const char* bad : {"", ".", "..", "a/b", "../../x", "a\\b", "/abs"})
-    EXPECT_NE(pcsim::invalid_folder_name_reason(bad), "") << bad;
+    EXPECT_NE(pcsim::output::invalid_folder_name_reason(bad), "") << bad;
   for (const char* good : {"en50318-300", "run 1", "a..b", ".hidden"})
-    EXPECT_EQ(pcsim::invalid_folder_name_reason(good), "") << good;
+    EXPECT_EQ(pcsim::output::invalid_folder_name_reason(good), "") << good;
 }
 
 TEST_F(OutputDirTest, NewFolderIsMarkedLockedAndCommitted) {

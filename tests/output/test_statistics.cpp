@@ -48,7 +48,7 @@ double rms(const std::vector<double>& y, std::size_t i0, std::size_t i1) {
 TEST(Statistics, FilterPassesConstantExactly) {
   for (int order : {2, 4}) {
     const std::vector<double> x(3000, 117.25);
-    const auto y = pcsim::zero_phase_lowpass(x, 1000.0, 20.0, order);
+    const auto y = pcsim::output::zero_phase_lowpass(x, 1000.0, 20.0, order);
     ASSERT_EQ(y.size(), x.size());
     for (double v : y) EXPECT_NEAR(v, 117.25, 1e-10);
   }
@@ -58,7 +58,7 @@ TEST(Statistics, FilterAttenuates100HzByMoreThan40dB) {
   for (int order : {2, 4}) {
     const double fs = 1000, fc = 20;
     const auto x = sine(100.0, fs, 5000);
-    const auto y = pcsim::zero_phase_lowpass(x, fs, fc, order);
+    const auto y = pcsim::output::zero_phase_lowpass(x, fs, fc, order);
     // Away from the ends (edge transients), the remaining amplitude ratio.
     const double gain_db = 20 * std::log10(rms(y, 500, 4500) / rms(x, 500, 4500));
     std::cout << "[ measured ] order " << order << ": 100 Hz gain " << gain_db << " dB\n";
@@ -74,7 +74,7 @@ TEST(Statistics, FilterHasZeroPhaseAtLowFrequency) {
   const double fs = 1000, f = 2.0;
   const auto x = sine(f, fs, 8000, 30.0);
   for (int order : {2, 4}) {
-    const auto y = pcsim::zero_phase_lowpass(x, fs, 20.0, order);
+    const auto y = pcsim::output::zero_phase_lowpass(x, fs, 20.0, order);
     double amplitude, phase;
     fit_sine(y, f, fs, 1000, 7000, &amplitude, &phase);
     EXPECT_LT(std::abs(amplitude - 30.0) / 30.0, 1e-3);
@@ -88,7 +88,7 @@ TEST(Statistics, CausalFilterHasLagZeroPhaseFilterNot) {
   // Guard that the phase test can fail: the causal (one-pass) filter lags a 2 Hz sine.
   const double fs = 1000, f = 2.0;
   const auto x = sine(f, fs, 8000);
-  const auto y = pcsim::sos_filter(pcsim::butterworth_lowpass(4, 20.0, fs), x);
+  const auto y = pcsim::output::sos_filter(pcsim::output::butterworth_lowpass(4, 20.0, fs), x);
   double amplitude, phase;
   fit_sine(y, f, fs, 1000, 7000, &amplitude, &phase);
   EXPECT_LT(phase, -0.05);
@@ -129,7 +129,7 @@ TEST(Statistics, MatchesScipyFiltfilt) {
         ref_sos.push_back(b);
       }
       ASSERT_EQ(ref_tf.size(), x.size());
-      const auto y = pcsim::zero_phase_lowpass(x, fs, fc, order);
+      const auto y = pcsim::output::zero_phase_lowpass(x, fs, fc, order);
       double diff_tf = 0, diff_sos = 0;
       for (std::size_t i = 0; i < x.size(); ++i) {
         diff_tf = std::max(diff_tf, std::abs(y[i] - ref_tf[i]));
@@ -150,12 +150,12 @@ TEST(Statistics, MatchesScipyFiltfilt) {
 }
 
 TEST(Statistics, RejectsBadParameters) {
-  EXPECT_THROW(pcsim::butterworth_lowpass(3, 20, 1000), std::invalid_argument);
-  EXPECT_THROW(pcsim::butterworth_lowpass(4, 600, 1000), std::invalid_argument);
-  EXPECT_THROW(pcsim::zero_phase_lowpass(std::vector<double>(10, 1.0), 1000, 20, 4),
+  EXPECT_THROW(pcsim::output::butterworth_lowpass(3, 20, 1000), std::invalid_argument);
+  EXPECT_THROW(pcsim::output::butterworth_lowpass(4, 600, 1000), std::invalid_argument);
+  EXPECT_THROW(pcsim::output::zero_phase_lowpass(std::vector<double>(10, 1.0), 1000, 20, 4),
                std::invalid_argument);
-  EXPECT_THROW(pcsim::force_statistics({0, 1}, {1, 2}, {1}, 0, 1), std::invalid_argument);
-  EXPECT_THROW(pcsim::force_statistics({0, 1}, {1, 2}, {1, 2}, 5, 6), std::invalid_argument);
+  EXPECT_THROW(pcsim::output::force_statistics({0, 1}, {1, 2}, {1}, 0, 1), std::invalid_argument);
+  EXPECT_THROW(pcsim::output::force_statistics({0, 1}, {1, 2}, {1, 2}, 5, 6), std::invalid_argument);
 }
 
 TEST(Statistics, SectionStatistics) {
@@ -168,7 +168,7 @@ TEST(Statistics, SectionStatistics) {
     raw.push_back(inside && (i == 25 || i == 30) ? 0.0 : (inside ? 50.0 : -5.0));
   }
   filt[40] = 100;  // one sample at the mean: mean 100.25, not symmetric any more
-  const auto st = pcsim::force_statistics(pos, filt, raw, 20.0, 59.0);
+  const auto st = pcsim::output::force_statistics(pos, filt, raw, 20.0, 59.0);
   EXPECT_EQ(st.samples, 40u);
   double mean = 0, var = 0;
   for (int i = 20; i <= 59; ++i) mean += filt[i] / 40;
@@ -193,8 +193,8 @@ TEST(Statistics, FilteredMinimumOfAClippedForceIsNegativeTheUnfilteredOneIsNot) 
     pos.push_back(0.1 * i);
     raw.push_back(std::max(0.0, 100 + 150 * std::sin(2 * M_PI * 5 * 1e-3 * i)));
   }
-  const auto filtered = pcsim::zero_phase_lowpass(raw, 1000.0, 20.0, 4);
-  const auto st = pcsim::force_statistics(pos, filtered, raw, 50.0, 350.0);
+  const auto filtered = pcsim::output::zero_phase_lowpass(raw, 1000.0, 20.0, 4);
+  const auto st = pcsim::output::force_statistics(pos, filtered, raw, 50.0, 350.0);
   EXPECT_EQ(st.unfiltered_min, 0.0);
   // Measured -2.26 N: the undershoot of the 4th-order Butterworth at the
   // clipped edges, a few newtons, not the unclipped sine's -50 N.
@@ -215,15 +215,15 @@ TEST(Statistics, LossOfContactWithAMinimumDuration) {
     for (int i = from; i < from + count; ++i) raw[i] = 0.0;
   };
   lose(200, 2), lose(300, 4), lose(400, 5), lose(500, 12), lose(97, 6);
-  const auto all = pcsim::force_statistics(pos, raw, raw, 100.0, 899.0);
-  // Every lost sample (min 0): 3 + 2 + 4 + 5 + 12 = 26 of 800; as force_statistics.
-  EXPECT_NEAR(pcsim::loss_of_contact_percent(pos, time, raw, 100.0, 899.0, 0.0),
+  const auto all = pcsim::output::force_statistics(pos, raw, raw, 100.0, 899.0);
+  // Every lost sample (min 0): 3 + 2 + 4 + 5 + 12 = 26 of 800; as output::force_statistics.
+  EXPECT_NEAR(pcsim::output::loss_of_contact_percent(pos, time, raw, 100.0, 899.0, 0.0),
               all.loss_of_contact_percent, 1e-12);
   EXPECT_NEAR(all.loss_of_contact_percent, 100.0 * 26 / 800, 1e-12);
   // From 5 ms on: the 5-, 12- and the 6-sample stretch (3 inside): 20 of 800.
-  EXPECT_NEAR(pcsim::loss_of_contact_percent(pos, time, raw, 100.0, 899.0, 5e-3), 100.0 * 20 / 800,
+  EXPECT_NEAR(pcsim::output::loss_of_contact_percent(pos, time, raw, 100.0, 899.0, 5e-3), 100.0 * 20 / 800,
               1e-12);
   // From 10 ms on: the 12-sample one only.
-  EXPECT_NEAR(pcsim::loss_of_contact_percent(pos, time, raw, 100.0, 899.0, 10e-3), 100.0 * 12 / 800,
+  EXPECT_NEAR(pcsim::output::loss_of_contact_percent(pos, time, raw, 100.0, 899.0, 10e-3), 100.0 * 12 / 800,
               1e-12);
 }

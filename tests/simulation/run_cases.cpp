@@ -24,9 +24,9 @@ void run_case(const std::string& path, const std::string& dir) {
   request.name = composed.has("name") ? composed.get_string("name") : "case";
   request.scene_path = path;
   request.inputs = simulation::run_input_files(path, composed);
-  OutputRequest output{dir,          "command line",          "-o", "run", path,
+  output::OutputRequest output{dir,          "command line",          "-o", "run", path,
                        request.name, nlohmann::json::object()};
-  OutputDir out(ctx.comm, output);
+  output::OutputDir out(ctx.comm, output);
   const auto outcome = simulation::run(ctx, scene, request, out);
   if (!outcome.complete) throw std::runtime_error("interrupted");
   out.commit();

@@ -35,7 +35,7 @@ std::pair<simulation::RunOutcome, double> run_with_model(const std::string& mode
   const std::string dir = "test-accuracy-estimate/" + name;
   if (ctx.rank == 0) std::filesystem::remove_all(dir);
   MPI_Barrier(ctx.comm);
-  OutputDir out(ctx.comm, {dir, "test", "-o", "run", file, name, nlohmann::json::object()});
+  output::OutputDir out(ctx.comm, {dir, "test", "-o", "run", file, name, nlohmann::json::object()});
   simulation::RunRequest request;
   request.name = name;
   request.stop_on_signal = false;

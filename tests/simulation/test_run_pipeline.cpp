@@ -30,15 +30,15 @@ simulation::Context test_context() {
 }
 
 // A fresh folder for one run's results (removed first: earlier test runs).
-OutputDir output_dir(const simulation::Context& ctx, const std::string& name) {
+output::OutputDir output_dir(const simulation::Context& ctx, const std::string& name) {
   const std::string dir = "test-run-pipeline/" + name;
   if (ctx.rank == 0) {
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories("test-run-pipeline");
   }
   MPI_Barrier(ctx.comm);
-  OutputRequest request{dir, "test", "-o", "run", "test", name, nlohmann::json::object()};
-  return OutputDir(ctx.comm, request);
+  output::OutputRequest request{dir, "test", "-o", "run", "test", name, nlohmann::json::object()};
+  return output::OutputDir(ctx.comm, request);
 }
 
 // Runs the scene file with the overrides (KEY=VALUE) into its own folder.

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace pcsim {
+namespace pcsim::output {
 
 // What a dataset holds. Units are SI, written as UDUNITS strings ("m", "N",
 // "m/s", "rad", "s", "Hz", "kg", "J"); "1" for dimensionless numbers, counts
@@ -80,4 +80,4 @@ class H5File {
   int fd_ = -1;  // its OS descriptor
 };
 
-}  // namespace pcsim
+}  // namespace pcsim::output

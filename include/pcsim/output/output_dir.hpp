@@ -29,7 +29,7 @@
 #include <string>
 #include <vector>
 
-namespace pcsim {
+namespace pcsim::output {
 
 // What to create, and who asked (for the manifest and the error messages).
 struct OutputRequest {
@@ -117,4 +117,4 @@ std::string invalid_folder_name_reason(const std::string& name);
 // The time now in UTC as the manifests write it (2026-11-27T09:30:00Z).
 std::string utc_timestamp();
 
-}  // namespace pcsim
+}  // namespace pcsim::output

@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <vector>
 
-namespace pcsim {
+namespace pcsim::output {
 
 // One second-order section y[n] = b0 x[n] + b1 x[n-1] + b2 x[n-2] - a1 y[n-1] - a2 y[n-2].
 struct Biquad {
@@ -62,4 +62,4 @@ double loss_of_contact_percent(const std::vector<double>& position, const std::v
                                const std::vector<double>& raw, double x_start, double x_end,
                                double min_duration);
 
-}  // namespace pcsim
+}  // namespace pcsim::output

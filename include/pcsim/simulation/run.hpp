@@ -75,6 +75,6 @@ bool cheap_path_possible(const scene::RunScene& scene);
 // Runs 'scene' (its pantograph models are moved out) into 'out'; collective
 // on ctx.comm.
 RunOutcome run(const Context& ctx, scene::RunScene& scene, const RunRequest& request,
-               OutputDir& out, RunObserver* observer = nullptr);
+               output::OutputDir& out, RunObserver* observer = nullptr);
 
 }  // namespace pcsim::simulation
