@@ -15,7 +15,7 @@ namespace {
 
 using namespace pcsim;
 
-std::string command_for(const app::CommandContext& ctx, const InputNode& file) {
+std::string command_for(const app::CommandContext& ctx, const scene::InputNode& file) {
   if (ctx.has_option("--as")) {
     const std::string& as = ctx.options.at("--as");
     for (const char* known : {"static", "modes", "run", "pantograph"})
@@ -88,7 +88,7 @@ std::string check_command(const app::CommandContext& ctx, const std::string& com
 }
 
 int check_scene(const app::CommandContext& ctx) {
-  const InputNode file = ctx.load_scene();
+  const scene::InputNode file = ctx.load_scene();
   const std::string command = command_for(ctx, file);
   const std::string summary = check_command(ctx, command);
   if (command == "design" || command == "model")

@@ -14,7 +14,7 @@ using namespace pcsim;
 
 int run_modes(const app::CommandContext& ctx) {
   const app::ModesInputs in = app::read_modes_inputs(ctx);
-  const InputNode& scene = in.statics.scene;
+  const scene::InputNode& scene = in.statics.scene;
   const auto& cat = in.statics.catenary;
   const auto& request = in.request;
   output::OutputDir out(ctx.comm, ctx.output_request(scene));

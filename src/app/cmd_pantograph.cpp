@@ -19,7 +19,7 @@ using pcsim::app::CommandContext;
 
 int run_pantograph(const CommandContext& ctx) {
   app::PantographInputs in = app::read_pantograph_inputs(ctx);
-  const InputNode& node = in.scene;
+  const scene::InputNode& node = in.scene;
   pantograph::StudyScene& study = in.study;
   const std::string& name = in.name;
   if (study.study_type == "time") solvers::pantograph_ts_type();  // checked before any work

@@ -217,7 +217,7 @@ void keep_partial_if_not_written(const app::CommandContext& ctx, output::OutputD
 // The estimate from the scene itself (and a modal run's cut-off), before the
 // run (not for -help or a restart: its cut-off is the checkpoint's); null if
 // a pilot run failed (a warning: the run goes on without it).
-nlohmann::json accuracy_pilot(const app::CommandContext& ctx, const InputNode& scene,
+nlohmann::json accuracy_pilot(const app::CommandContext& ctx, const scene::InputNode& scene,
                               scene::RunScene& run) {
   const simulation::SceneSource source{ctx.scene_path, ctx.overrides, scene, ctx.provenance(scene)};
   try {
@@ -237,7 +237,7 @@ nlohmann::json accuracy_pilot(const app::CommandContext& ctx, const InputNode& s
 
 int run_dynamic(const app::CommandContext& ctx) {
   app::RunInputs run_inputs = app::read_run_inputs(ctx);  // every input checked: exit 2 before work
-  const InputNode& scene = run_inputs.scene;
+  const scene::InputNode& scene = run_inputs.scene;
   if (ctx.has_option("--rerun")) app::check_rerun(ctx, scene);
   auto& run = run_inputs.run;
   simulation::RunRequest request;

@@ -33,7 +33,7 @@ void print_blow_off(const app::CommandContext& ctx, const catenary::BlowOff& b) 
 
 int run_static(const app::CommandContext& ctx) {
   const app::StaticInputs in = app::read_static_inputs(ctx);
-  const InputNode& scene = in.scene;
+  const scene::InputNode& scene = in.scene;
   const auto& cat = in.catenary;
   output::OutputDir out(ctx.comm, ctx.output_request(scene));
   app::print0(ctx, "pcsim static: scene '%s', design %s\n", ctx.scene_name(scene).c_str(),

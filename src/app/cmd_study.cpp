@@ -161,7 +161,7 @@ int study(const app::CommandContext& ctx) {
   if (ctx.subcommand != "accuracy")
     throw InputError("command line", "study",
                      "unknown study '" + ctx.subcommand + "' (pcsim study accuracy SCENE.yaml)");
-  const InputNode scene = ctx.load_scene();
+  const scene::InputNode scene = ctx.load_scene();
   const auto base = scene::load_run_scene(scene);  // checks the scene once
   if (base.window)
     throw InputError(scene.file(), "window",

@@ -142,7 +142,7 @@ void plan_table(Plan& plan, const app::CaseTable& table) {
 Plan make_plan(const CommandContext& ctx) {
   Plan plan;
   for (const auto& o : ctx.overrides) {
-    if (o.find('=') == std::string::npos) pcsim::parse_override(o, {"", "command line --set " + o});
+    if (o.find('=') == std::string::npos) pcsim::scene::parse_override(o, {"", "command line --set " + o});
     auto values = expand(o);
     if (values.empty())
       plan.fixed.push_back(o);
@@ -171,18 +171,18 @@ Plan make_plan(const CommandContext& ctx) {
 // Every case read and checked as `pcsim run` would; the modal bases they need.
 app::SweepBases check_cases(const CommandContext& ctx, const Plan& plan) {
   app::SweepBases bases;
-  std::vector<InputOverride> fixed;
+  std::vector<scene::InputOverride> fixed;
   for (const auto& o : plan.fixed)
-    fixed.push_back(parse_override(o, {"", "command line --set " + o}));
+    fixed.push_back(scene::parse_override(o, {"", "command line --set " + o}));
   for (std::size_t k = 0; k < plan.cases.size(); ++k) {
     auto overrides = fixed;
     for (std::size_t i = 0; i < plan.swept.size(); ++i) {
       const std::string origin =
           plan.origins.empty() ? "command line --set " + plan.swept[i].given : plan.origins[k];
-      overrides.push_back(parse_override(plan.assignments[k][i],
+      overrides.push_back(scene::parse_override(plan.assignments[k][i],
                                          {"", origin + " (case " + plan.cases[k].name + ")"}));
     }
-    const auto inputs = app::read_run_inputs(ctx, load_composed(ctx.scene_path, overrides));
+    const auto inputs = app::read_run_inputs(ctx, scene::load_composed(ctx.scene_path, overrides));
     bases.add(ctx, inputs.run, inputs.memory.dofs);
   }
   return bases;
@@ -211,7 +211,7 @@ int positive_option(const CommandContext& ctx, const std::string& name) {
 // (with the shared --set), the --set as given (swept values), the case table
 // and the PETSc options of the cases (command line and PETSC_OPTIONS). The
 // journal keeps it: a rerun resumes only the same definition.
-std::string sweep_definition(const CommandContext& ctx, const Plan& plan, const InputNode& scene) {
+std::string sweep_definition(const CommandContext& ctx, const Plan& plan, const scene::InputNode& scene) {
   std::string definition = "sweep";
   for (const auto& o : ctx.overrides) definition += " --set " + o;
   if (plan.table.is_object()) definition += " --cases " + plan.table_text;
@@ -225,7 +225,7 @@ std::string sweep_definition(const CommandContext& ctx, const Plan& plan, const 
 
 // The output folder's request; a leftover partial folder of the same
 // definition is resumed (sweep_runner.hpp).
-output::OutputRequest sweep_request(const CommandContext& ctx, const Plan& plan, const InputNode& scene,
+output::OutputRequest sweep_request(const CommandContext& ctx, const Plan& plan, const scene::InputNode& scene,
                             const std::string& definition) {
   // The scene with the overrides every case shares names the sweep; the
   // provenance lists every --set as given.
@@ -324,7 +324,7 @@ int run_sweep(const CommandContext& given) {
   const app::SweepBases bases = check_cases(ctx, plan);
   CommandContext shared = ctx;
   shared.overrides = plan.fixed;
-  const InputNode scene = shared.load_scene();
+  const scene::InputNode scene = shared.load_scene();
   const std::string definition = sweep_definition(ctx, plan, scene);
   output::OutputDir out(ctx.comm, sweep_request(ctx, plan, scene, definition));
   const std::size_t resumed = mpi ? open_mpi_sweep(ctx, plan, out, definition)

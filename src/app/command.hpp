@@ -36,15 +36,15 @@ struct CommandContext : simulation::Context {
   bool has_option(const std::string& name) const { return options.count(name) > 0; }
   // The scene: the file with its base files and 'set' entries, then the --set
   // overrides (pcsim/scene/composition.hpp).
-  InputNode load_scene() const;
+  scene::InputNode load_scene() const;
   // Scene name: 'name' key of the scene, else the file name without extension.
   // InputError (scene file, key 'name') if it cannot name a folder.
-  std::string scene_name(const InputNode& scene) const;
+  std::string scene_name(const scene::InputNode& scene) const;
   // What produced the results (output/provenance.hpp): version, command line,
   // scene text and its composed form, PETSc options, ranks, date, host.
-  nlohmann::json provenance(const InputNode& scene) const;
+  nlohmann::json provenance(const scene::InputNode& scene) const;
   // The output folder (-o, or out/<scene name>) with who gave it, for output::OutputDir.
-  output::OutputRequest output_request(const InputNode& scene) const;
+  output::OutputRequest output_request(const scene::InputNode& scene) const;
 };
 
 struct CommandOption {

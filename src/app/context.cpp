@@ -16,14 +16,14 @@ std::map<std::string, Command>& command_registry() {
   return registry;
 }
 
-InputNode CommandContext::load_scene() const {
-  std::vector<InputOverride> parsed;
+scene::InputNode CommandContext::load_scene() const {
+  std::vector<scene::InputOverride> parsed;
   for (const auto& o : overrides)
-    parsed.push_back(parse_override(o, {"", "command line --set " + o}));
-  return load_composed(scene_path, parsed);
+    parsed.push_back(scene::parse_override(o, {"", "command line --set " + o}));
+  return scene::load_composed(scene_path, parsed);
 }
 
-std::string CommandContext::scene_name(const InputNode& scene) const {
+std::string CommandContext::scene_name(const scene::InputNode& scene) const {
   if (scene.has("name")) {
     const std::string name = scene.get_string("name");
     const std::string why = output::invalid_folder_name_reason(name);
@@ -38,7 +38,7 @@ std::string CommandContext::scene_name(const InputNode& scene) const {
   return base;
 }
 
-nlohmann::json CommandContext::provenance(const InputNode& scene) const {
+nlohmann::json CommandContext::provenance(const scene::InputNode& scene) const {
   output::ProvenanceInputs in;
   in.command = command;
   in.arguments = arguments;
@@ -52,7 +52,7 @@ nlohmann::json CommandContext::provenance(const InputNode& scene) const {
   return output::make_provenance(in);
 }
 
-output::OutputRequest CommandContext::output_request(const InputNode& scene) const {
+output::OutputRequest CommandContext::output_request(const scene::InputNode& scene) const {
   const std::string name = scene_name(scene);  // validated even when -o is given
   output::OutputRequest request;
   request.dir = output_dir.empty() ? "out/" + name : output_dir;

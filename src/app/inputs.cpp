@@ -16,7 +16,7 @@ namespace {
 
 // Refuses, before it is built, a mesh that would not fit in this machine's
 // memory; keeps the estimate for the reports.
-catenary::MeshSizeCheck memory_check(const CommandContext& ctx, simulation::MemoryUse use,
+scene::MeshSizeCheck memory_check(const CommandContext& ctx, simulation::MemoryUse use,
                                      simulation::MemoryEstimate& estimate, int modes = 20) {
   return [&ctx, use, &estimate, modes](const catenary::MeshSize& size) {
     simulation::check_memory(size, use, ctx.size, simulation::machine_memory_bytes(), modes);
@@ -24,8 +24,8 @@ catenary::MeshSizeCheck memory_check(const CommandContext& ctx, simulation::Memo
   };
 }
 
-solvers::ModesRequest scene_modes(const InputNode& scene) {
-  const auto section = catenary::load_modes_section(scene);
+solvers::ModesRequest scene_modes(const scene::InputNode& scene) {
+  const auto section = scene::load_modes_section(scene);
   solvers::ModesRequest r;
   r.count = section.count;
   r.max_frequency_hz = section.max_frequency_hz;
@@ -37,18 +37,18 @@ solvers::ModesRequest scene_modes(const InputNode& scene) {
 StaticInputs read_static_inputs(const CommandContext& ctx) {
   StaticInputs in{ctx.load_scene(), "", {}, {}};
   in.name = ctx.scene_name(in.scene);
-  in.catenary = catenary::load_catenary_scene(
+  in.catenary = scene::load_catenary_scene(
       in.scene, memory_check(ctx, simulation::MemoryUse::statics, in.memory));
   return in;
 }
 
 ModesInputs read_modes_inputs(const CommandContext& ctx) {
-  const InputNode scene = ctx.load_scene();
+  const scene::InputNode scene = ctx.load_scene();
   // The count decides the eigensolver's memory: read it first.
   const auto request = solvers::modes_request_from_options(ctx.comm, scene_modes(scene));
   ModesInputs in{{scene, ctx.scene_name(scene), {}, {}}, request};
   const int modes = request.max_frequency_hz > 0 ? 20 : request.count;
-  in.statics.catenary = catenary::load_catenary_scene(
+  in.statics.catenary = scene::load_catenary_scene(
       scene, memory_check(ctx, simulation::MemoryUse::modes, in.statics.memory, modes));
   return in;
 }
@@ -57,7 +57,7 @@ RunInputs read_run_inputs(const CommandContext& ctx) {
   return read_run_inputs(ctx, ctx.load_scene());
 }
 
-RunInputs read_run_inputs(const CommandContext& ctx, const InputNode& scene) {
+RunInputs read_run_inputs(const CommandContext& ctx, const scene::InputNode& scene) {
   RunInputs in{scene, "", {}, {}, false, {}};
   in.name = ctx.scene_name(in.scene);
   in.numerics = solvers::read_time_integration_options(ctx.comm);
@@ -92,9 +92,9 @@ PantographInputs read_pantograph_inputs(const CommandContext& ctx) {
 
 DesignInputs read_design_inputs(const CommandContext& ctx) {
   DesignInputs in;
-  const InputNode design = ctx.load_scene();
+  const scene::InputNode design = ctx.load_scene();
   try {
-    in.mesh = catenary::build_catenary_design(
+    in.mesh = scene::build_catenary_design(
         design, memory_check(ctx, simulation::MemoryUse::statics, in.memory));
   } catch (const InputError& e) {
     design.rethrow_with_origin(e);

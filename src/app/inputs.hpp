@@ -21,9 +21,9 @@ namespace pcsim::app {
 
 // `static` (and the first half of `modes`).
 struct StaticInputs {
-  InputNode scene;
+  scene::InputNode scene;
   std::string name;  // the scene's name (output folder)
-  catenary::CatenaryScene catenary;
+  scene::CatenaryScene catenary;
   simulation::MemoryEstimate memory;
 };
 StaticInputs read_static_inputs(const CommandContext& ctx);
@@ -35,7 +35,7 @@ struct ModesInputs {
 ModesInputs read_modes_inputs(const CommandContext& ctx);
 
 struct RunInputs {
-  InputNode scene;
+  scene::InputNode scene;
   std::string name;
   scene::RunScene run;
   solvers::TimeIntegrationOptions numerics;  // -ts_dt, -ts_type, -ts_hht_alpha
@@ -44,13 +44,13 @@ struct RunInputs {
 };
 RunInputs read_run_inputs(const CommandContext& ctx);
 // The same for a scene composed by the caller (the cases of `pcsim sweep`).
-RunInputs read_run_inputs(const CommandContext& ctx, const InputNode& scene);
+RunInputs read_run_inputs(const CommandContext& ctx, const scene::InputNode& scene);
 
 // The folder given with `pcsim run --restart DIR`, or "".
 std::string restart_dir(const CommandContext& ctx);
 
 struct PantographInputs {
-  InputNode scene;
+  scene::InputNode scene;
   std::string name;
   pantograph::StudyScene study;
 };

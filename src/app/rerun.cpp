@@ -63,7 +63,7 @@ std::string prepare_rerun(const std::string& dir, CommandContext& ctx,
   return "";
 }
 
-void check_rerun(const CommandContext& ctx, const InputNode& scene) {
+void check_rerun(const CommandContext& ctx, const scene::InputNode& scene) {
   const std::string dir = ctx.options.at("--rerun");
   std::string why;
   const auto p = read_provenance(dir, why);

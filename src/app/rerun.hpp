@@ -23,6 +23,6 @@ std::string prepare_rerun(const std::string& dir, CommandContext& ctx,
 // After the scene is read: the recorded inputs against the files as they are
 // now (InputError naming DIR's summary.json and the changed file); warnings
 // for another version, commit or rank count (stderr, rank 0).
-void check_rerun(const CommandContext& ctx, const InputNode& scene);
+void check_rerun(const CommandContext& ctx, const scene::InputNode& scene);
 
 }  // namespace pcsim::app

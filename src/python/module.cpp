@@ -38,7 +38,7 @@ namespace {
 struct Scene {
   std::string path;                    // the file ("" for a scene given as text)
   std::vector<std::string> overrides;  // KEY=VALUE, in order
-  InputNode composed;
+  scene::InputNode composed;
   std::string name;
 };
 
@@ -49,13 +49,13 @@ std::string override_text(const py::handle& value) {
 
 Scene make_scene(const std::string& path, const std::string& text, const py::dict& set) {
   std::vector<std::string> overrides;
-  std::vector<InputOverride> parsed;
+  std::vector<scene::InputOverride> parsed;
   for (const auto& [key, value] : set) {
     overrides.push_back(py::str(key).cast<std::string>() + "=" + override_text(value));
-    parsed.push_back(parse_override(overrides.back(), {"", "pcsim.Scene set " + overrides.back()}));
+    parsed.push_back(scene::parse_override(overrides.back(), {"", "pcsim.Scene set " + overrides.back()}));
   }
-  InputNode composed =
-      text.empty() ? load_composed(path, parsed) : load_composed_text(text, path, parsed);
+  scene::InputNode composed =
+      text.empty() ? scene::load_composed(path, parsed) : scene::load_composed_text(text, path, parsed);
   scene::load_run_scene(composed);  // every check of `pcsim run`: InputError
   std::string name =
       composed.has("name") ? composed.get_string("name") : fs::path(path).stem().string();
@@ -338,7 +338,7 @@ PYBIND11_MODULE(pcsim, m) {
       .def_readonly("path", &Scene::path)
       .def_readonly("overrides", &Scene::overrides)
       .def(
-          "yaml", [](const Scene& s) { return to_yaml(s.composed); }, "the composed scene");
+          "yaml", [](const Scene& s) { return scene::to_yaml(s.composed); }, "the composed scene");
   m.def("run", &run, py::arg("scene"), py::arg("output") = "", py::arg("options") = "",
         py::arg("quiet") = true, py::arg("overwrite") = false,
         "Runs the scene through the run pipeline (as `pcsim run`); returns a dict: time, "

@@ -7,7 +7,9 @@
 #include "pcsim/core/format.hpp"
 #include "pcsim/scene/design_reader.hpp"
 
-namespace pcsim::catenary {
+namespace pcsim::scene {
+
+using namespace pcsim::catenary;
 
 void check_scene_sections(const InputNode& scene) {
   scene.allow_only({"name", "description", "catenary", "modes", "pantographs", "simulation",
@@ -249,4 +251,4 @@ std::vector<double> ElasticityRequest::stations() const {
   return x;
 }
 
-}  // namespace pcsim::catenary
+}  // namespace pcsim::scene

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <unordered_map>
 
-namespace pcsim {
+namespace pcsim::scene {
 
 namespace {
 
@@ -327,4 +327,4 @@ std::string to_yaml(const InputNode& node) {
   return std::string(out.c_str()) + "\n";
 }
 
-}  // namespace pcsim
+}  // namespace pcsim::scene

@@ -6,7 +6,9 @@
 #include "design_reader_internal.hpp"
 #include "pcsim/scene/composition.hpp"
 
-namespace pcsim::catenary {
+namespace pcsim::scene {
+
+using namespace pcsim::catenary;
 
 namespace reader {
 
@@ -188,4 +190,4 @@ CatenaryMesh load_catenary_design(const std::string& path, const MeshSizeCheck& 
   return mesh;
 }
 
-}  // namespace pcsim::catenary
+}  // namespace pcsim::scene

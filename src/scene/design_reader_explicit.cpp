@@ -4,7 +4,9 @@
 
 #include "design_reader_internal.hpp"
 
-namespace pcsim::catenary {
+namespace pcsim::scene {
+
+using namespace pcsim::catenary;
 
 namespace {
 
@@ -184,4 +186,4 @@ ExplicitDesign read_explicit_design(const InputNode& root) {
   return d;
 }
 
-}  // namespace pcsim::catenary
+}  // namespace pcsim::scene

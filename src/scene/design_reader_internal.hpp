@@ -5,7 +5,9 @@
 
 #include "pcsim/scene/design_reader.hpp"
 
-namespace pcsim::catenary::reader {
+namespace pcsim::scene::reader {
+
+using namespace pcsim::catenary;
 
 // File name without folder and extension (the default design name).
 std::string file_stem(const std::string& path);
@@ -29,4 +31,4 @@ void read_line(const InputNode& root, ParametricDesign& d);
 void read_supports(const InputNode& root, ParametricDesign& d);
 void read_irregularities(const InputNode& root, ParametricDesign& d);
 
-}  // namespace pcsim::catenary::reader
+}  // namespace pcsim::scene::reader

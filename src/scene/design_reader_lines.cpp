@@ -7,7 +7,9 @@
 
 #include "design_reader_internal.hpp"
 
-namespace pcsim::catenary::reader {
+namespace pcsim::scene::reader {
+
+using namespace pcsim::catenary;
 
 namespace {
 
@@ -227,4 +229,4 @@ void read_irregularities(const InputNode& root, ParametricDesign& d) {
   }
 }
 
-}  // namespace pcsim::catenary::reader
+}  // namespace pcsim::scene::reader

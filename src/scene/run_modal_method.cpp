@@ -43,7 +43,7 @@ std::string window_misfit(const InputNode& scene, const RunScene& run) {
 }  // namespace
 
 bool keep_auto_window(const InputNode& scene, RunScene& run,
-                      const catenary::MeshSizeCheck& size_check, std::string& why) {
+                      const scene::MeshSizeCheck& size_check, std::string& why) {
   why = window_misfit(scene, run);
   if (why.empty()) {
     check_window(scene, scene["catenary"], run, size_check);

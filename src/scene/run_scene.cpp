@@ -177,11 +177,11 @@ WindowChoice load_catenary_and_window(const InputNode& scene, const RunSceneOpti
   }
   choice.automatic = window && !scene.has("window") && choice.method.automatic();
   const InputNode where = scene.has("window") ? scene["window"] : scene["catenary"];
-  catenary::DesignBuilder builder;
+  scene::DesignBuilder builder;
   if (window)
     builder =
         choice.automatic ? auto_window_builder(*window) : window_design_builder(where, *window);
-  run.catenary = catenary::load_catenary_scene(scene, options.size_check, builder);
+  run.catenary = scene::load_catenary_scene(scene, options.size_check, builder);
   if (window && window->line_spans == 0) {  // auto: the line is no window's
     choice.declined = window->declined;
     window.reset();

@@ -46,7 +46,7 @@ void check_shorter_than_line(const InputNode& w, const RunWindow& window) {
 
 // Several pantographs: the window spans the train (train_spans), its mesh
 // rebuilt from the line's design with that many more spans.
-void fit_train(const InputNode& w, RunScene& run, const catenary::MeshSizeCheck& size_check) {
+void fit_train(const InputNode& w, RunScene& run, const scene::MeshSizeCheck& size_check) {
   auto& window = *run.window;
   window.train_spans = window_reach(run, window).train_spans;
   if (window.train_spans == 0) return;
@@ -93,7 +93,7 @@ namespace {
 // The window over the line of design d: the line's facts kept, the mesh of
 // spans() spans built (only that is checked against the memory).
 catenary::CatenaryMesh build_window(RunWindow& window, catenary::ParametricDesign d,
-                                    const catenary::MeshSizeCheck& size_check) {
+                                    const scene::MeshSizeCheck& size_check) {
   window.line_spans = static_cast<int>(d.span_count);
   window.span_length = d.span_length;
   window.design = d;
@@ -105,10 +105,10 @@ catenary::CatenaryMesh build_window(RunWindow& window, catenary::ParametricDesig
 }  // namespace
 
 // The line's design read as it is; the window's mesh built from it.
-catenary::DesignBuilder window_design_builder(const InputNode& w, RunWindow& window) {
-  return [w, &window](const InputNode& design, const catenary::MeshSizeCheck& size_check) {
+scene::DesignBuilder window_design_builder(const InputNode& w, RunWindow& window) {
+  return [w, &window](const InputNode& design, const scene::MeshSizeCheck& size_check) {
     if (design.get_string("type", "") != "parametric") w.fail("needs a parametric design");
-    catenary::ParametricDesign d = catenary::read_parametric_design(design);
+    catenary::ParametricDesign d = scene::read_parametric_design(design);
     check_periodic_line(w, d);
     RunWindow line = window;
     line.line_spans = static_cast<int>(d.span_count);
@@ -119,21 +119,21 @@ catenary::DesignBuilder window_design_builder(const InputNode& w, RunWindow& win
 
 // A window over a parametric line of identical spans long enough for it
 // (line_spans filled); any other line whole (line_spans 0, 'declined' says why).
-catenary::DesignBuilder auto_window_builder(RunWindow& window) {
-  return [&window](const InputNode& design, const catenary::MeshSizeCheck& size_check) {
+scene::DesignBuilder auto_window_builder(RunWindow& window) {
+  return [&window](const InputNode& design, const scene::MeshSizeCheck& size_check) {
     window.line_spans = 0;
     window.declined = "not a parametric design";
     if (design.get_string("type", "") != "parametric")
-      return catenary::build_catenary_design(design, size_check);
-    const catenary::ParametricDesign d = catenary::read_parametric_design(design);
+      return scene::build_catenary_design(design, size_check);
+    const catenary::ParametricDesign d = scene::read_parametric_design(design);
     const std::string why = not_periodic(d);
     window.declined = "not a line of identical spans (the design has " + why + ")";
-    if (!why.empty()) return catenary::build_catenary_design(design, size_check);
+    if (!why.empty()) return scene::build_catenary_design(design, size_check);
     window.declined = "the line (" + std::to_string(d.span_count) + " spans) is shorter than " +
                       std::to_string(kAutoWindowFactor) + " x a window (" +
                       std::to_string(window.spans()) + " spans)";
     if (d.span_count < kAutoWindowFactor * window.spans())
-      return catenary::build_catenary_design(design, size_check);
+      return scene::build_catenary_design(design, size_check);
     window.declined.clear();
     return build_window(window, d, size_check);
   };
@@ -162,7 +162,7 @@ WindowReach window_reach(const RunScene& run, const RunWindow& window) {
 // first shift_spans() spans and ends, when the first of the scene's reaches
 // end_x, before the window's front has reached the line's end.
 void check_window(const InputNode& scene, const InputNode& w, RunScene& run,
-                  const catenary::MeshSizeCheck& size_check) {
+                  const scene::MeshSizeCheck& size_check) {
   auto& window = *run.window;
   fit_train(w, run, size_check);
   check_outputs(scene);

@@ -9,7 +9,7 @@
 
 #include "pcsim/scene/composition.hpp"
 
-namespace pcsim {
+namespace pcsim::scene {
 
 namespace {
 std::string short_repr(const YAML::Node& n) {
@@ -355,4 +355,4 @@ void InputNode::rethrow_with_origin(const InputError& error) const {
   throw error;
 }
 
-}  // namespace pcsim
+}  // namespace pcsim::scene

@@ -207,22 +207,22 @@ std::string mismatch(const Context& ctx, const RunCheckpoint& c,
 
 }  // namespace
 
-std::vector<InputFile> run_input_files(const std::string& scene_path, const InputNode& scene) {
-  const InputNode catenary = scene["catenary"];
-  std::vector<InputFile> files = {{"scene", scene_path, sha256_hex(to_yaml(scene))},
+std::vector<InputFile> run_input_files(const std::string& scene_path, const scene::InputNode& scene) {
+  const scene::InputNode catenary = scene["catenary"];
+  std::vector<InputFile> files = {{"scene", scene_path, sha256_hex(scene::to_yaml(scene))},
                                   {"design", catenary.path_value("design"),
-                                   sha256_hex(to_yaml(catenary.load_referenced("design")))}};
-  const InputNode list = scene["pantographs"];
+                                   sha256_hex(scene::to_yaml(catenary.load_referenced("design")))}};
+  const scene::InputNode list = scene["pantographs"];
   for (std::size_t i = 0; i < list.size(); ++i)
     files.push_back({"pantograph model " + std::to_string(i + 1), list.at(i).path_value("model"),
-                     sha256_hex(to_yaml(list.at(i).load_referenced("model")))});
+                     sha256_hex(scene::to_yaml(list.at(i).load_referenced("model")))});
   // A criteria set the scene names by its file (not a built-in set: those are pcsim's).
   if (scene.has("assessment") && scene["assessment"].has("criteria")) {
-    const InputNode a = scene["assessment"];
+    const scene::InputNode a = scene["assessment"];
     const auto builtin = scene::builtin_criteria_sets();
     if (std::find(builtin.begin(), builtin.end(), a.get_string("criteria")) == builtin.end())
       files.push_back({"criteria set", a.path_value("criteria"),
-                       sha256_hex(to_yaml(InputNode::load_file(a.path_value("criteria"))))});
+                       sha256_hex(scene::to_yaml(scene::InputNode::load_file(a.path_value("criteria"))))});
   }
   return files;
 }
@@ -230,7 +230,7 @@ std::vector<InputFile> run_input_files(const std::string& scene_path, const Inpu
 namespace {
 
 // Files named by the reference keys below 'node' (key path 'path'), recursively.
-void add_referenced(const InputNode& node, const std::string& path,
+void add_referenced(const scene::InputNode& node, const std::string& path,
                     std::vector<RecordedInput>& out) {
   if (node.is_sequence()) {
     for (std::size_t i = 0; i < node.size(); ++i)
@@ -245,8 +245,8 @@ void add_referenced(const InputNode& node, const std::string& path,
     if (reference && node[key].is_scalar()) {
       std::error_code ec;
       if (!fs::is_regular_file(node.path_value(key), ec)) continue;  // a kind name, not a file
-      const InputNode file = node.load_referenced(key);
-      const std::string content = to_yaml(file);
+      const scene::InputNode file = node.load_referenced(key);
+      const std::string content = scene::to_yaml(file);
       out.push_back({child, node.path_value(key), sha256_hex(content), content});
       add_referenced(file, child, out);
     } else {
@@ -257,8 +257,8 @@ void add_referenced(const InputNode& node, const std::string& path,
 
 }  // namespace
 
-std::vector<RecordedInput> recorded_inputs(const std::string& scene_path, const InputNode& scene) {
-  const std::string content = to_yaml(scene);
+std::vector<RecordedInput> recorded_inputs(const std::string& scene_path, const scene::InputNode& scene) {
+  const std::string content = scene::to_yaml(scene);
   std::vector<RecordedInput> out = {{"scene", scene_path, sha256_hex(content), content}};
   add_referenced(scene, "", out);
   return out;
@@ -272,8 +272,8 @@ std::string inputs_fingerprint(const std::string& command,
 }
 
 void record_inputs(output::ProvenanceInputs& in, const std::string& command,
-                   const std::string& scene_path, const InputNode& scene) {
-  in.resolved_scene = to_yaml(scene);
+                   const std::string& scene_path, const scene::InputNode& scene) {
+  in.resolved_scene = scene::to_yaml(scene);
   const auto inputs = recorded_inputs(scene_path, scene);
   for (const auto& f : inputs)
     in.inputs.push_back(

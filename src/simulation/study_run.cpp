@@ -42,8 +42,8 @@ double peak_memory(MPI_Comm comm) {
 
 }  // namespace
 
-double design_element_length(const InputNode& scene) {
-  const InputNode design = scene["catenary"].load_referenced("design");
+double design_element_length(const scene::InputNode& scene) {
+  const scene::InputNode design = scene["catenary"].load_referenced("design");
   if (!design.has("type") || design.get_string("type") != "parametric") return 0.0;
   return design.get_double("element_length", 0.5);  // the design reader's default
 }
@@ -58,10 +58,10 @@ scene::RunScene variant_scene(const SceneSource& source, const StudyVariant& v, 
     std::snprintf(value, sizeof(value), "%.17g", h);
     overrides.push_back(std::string("catenary.design.element_length=") + value);
   }
-  std::vector<InputOverride> parsed;
+  std::vector<scene::InputOverride> parsed;
   for (const auto& o : overrides)
-    parsed.push_back(parse_override(o, {"", "pcsim study --set " + o}));
-  auto run = scene::load_run_scene(load_composed(source.path, parsed));
+    parsed.push_back(scene::parse_override(o, {"", "pcsim study --set " + o}));
+  auto run = scene::load_run_scene(scene::load_composed(source.path, parsed));
   run.catenary.fidelity = v.model;
   run.effects.catenary_nonlinear = v.model == catenary::CatenaryFidelity::nonlinear;
   run.dt *= v.dt_factor;

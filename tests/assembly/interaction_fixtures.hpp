@@ -33,7 +33,7 @@ inline std::string pantograph_model(const std::string& name) {
 // A run scene from YAML text, read as if it were a file in tests/contact/data
 // (relative paths resolve there).
 inline scene::RunScene scene_from_text(const std::string& text) {
-  return scene::load_run_scene(InputNode::load_string(text, contact_data("inline-scene.yaml")));
+  return scene::load_run_scene(scene::InputNode::load_string(text, contact_data("inline-scene.yaml")));
 }
 
 struct StaticCatenary {

@@ -81,7 +81,7 @@ double max_segment_tension_error(const catenary::CatenaryMesh& mesh,
 }  // namespace
 
 TEST(FormFinding, En50318HeightsTensionsAndQuadraticNewton) {
-  const auto mesh = catenary::load_catenary_design(kReferenceDesign);
+  const auto mesh = scene::load_catenary_design(kReferenceDesign);
   assembly::CatenarySystem system(PETSC_COMM_WORLD, mesh, assembly::form_finding_unknowns(mesh));
   Vec x = system.create_vector();
   system.design_state(x);
@@ -146,7 +146,7 @@ TEST(FormFinding, DesignLengthsWithoutFormFindingMissTheTargets) {
   // their geometric length, wires at the first-guess unstressed length).
   // Dropper stretch and the wires' weight move the contact wire far more
   // than the form-finding tolerance; the tensions miss the design too.
-  const auto mesh = catenary::load_catenary_design(kReferenceDesign);
+  const auto mesh = scene::load_catenary_design(kReferenceDesign);
   assembly::CatenarySystem system(PETSC_COMM_WORLD, mesh);
   Vec x = system.create_vector();
   system.design_state(x);

@@ -21,7 +21,7 @@ class StaticStart : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(StaticStart, IsAnEquilibriumOfTheDynamicModel) {
   auto run = pcsim::scene::load_run_scene(
-      pcsim::InputNode::load_file(contact_data(std::string(GetParam()) + ".yaml")));
+      pcsim::scene::InputNode::load_file(contact_data(std::string(GetParam()) + ".yaml")));
   const double vanishing_speed = 1e-6;  // [m/s]: 50 ms move the contact point by 50 nm
   std::vector<double> static_force;
   for (auto& p : run.pantographs) {
@@ -120,7 +120,7 @@ TEST(StaticStartInput, GapStartBesideStaticStartsIsRejected) {
   // A scene text placed beside the test data (not on disk): the three static pantographs,
   // the third one now with a gap start.
   const std::string file = contact_data("three-span-gap-beside-static.yaml");
-  const auto scene = pcsim::load_composed_text(
+  const auto scene = pcsim::scene::load_composed_text(
       "base: three-span-three-pantographs.yaml\nset: {pantographs.2.start: {gap: 0.02}}\n", file);
   std::string message;
   try {

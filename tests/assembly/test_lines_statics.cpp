@@ -78,7 +78,7 @@ double non_uniformity(const std::vector<double>& u) {
 
 TEST(LineStatics, OverlapWiresAtDesignHeightsAndDevicesInEquilibrium) {
   const auto design =
-      catenary::load_catenary_design(PCSIM_SOURCE_DIR "/meshes/lines/three-sections-short.yaml");
+      scene::load_catenary_design(PCSIM_SOURCE_DIR "/meshes/lines/three-sections-short.yaml");
   const auto st = simulation::static_configuration(PETSC_COMM_WORLD, design, true);
   const auto& v = st.result.node_values;
   // Both wires over both overlaps: every target of every contact wire

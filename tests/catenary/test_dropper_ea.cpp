@@ -18,6 +18,7 @@
 
 using namespace pcsim;
 using namespace pcsim::catenary;
+using namespace pcsim::scene;
 using namespace pcsim::design_test;
 
 namespace {

@@ -31,7 +31,7 @@ struct Wire {
 // The wire's coupled system (no pantograph, no damping) with its ends released
 // and dashpots of impedance_factor x Z on them.
 Wire make_wire(double impedance_factor) {
-  auto design = catenary::load_catenary_design(contact_data("window-wire.yaml"));
+  auto design = scene::load_catenary_design(contact_data("window-wire.yaml"));
   auto st = simulation::static_configuration(PETSC_COMM_WORLD, design, true, "static_");
   Wire w;
   w.ends = catenary::release_window_ends(st.mesh, st.result.node_values, impedance_factor);
@@ -64,7 +64,7 @@ const assembly::DofLayout& layout(Wire& w) {
 // alternating): every node has a partner two spans ahead at the same
 // lateral and vertical design position, except those of the last two spans.
 TEST(WindowShift, EveryNodeButTheLastTwoSpansHasAPartnerTwoSpansAhead) {
-  const auto mesh = catenary::load_catenary_design(std::string(PCSIM_SOURCE_DIR) +
+  const auto mesh = scene::load_catenary_design(std::string(PCSIM_SOURCE_DIR) +
                                                    "/meshes/en50318-reference.yaml");
   const double shift = 120.0, x_last = mesh.support_x.back();
   const auto partner = catenary::shifted_nodes(mesh, shift);

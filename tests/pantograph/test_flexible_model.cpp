@@ -265,7 +265,7 @@ TEST(FlexibleDsa380Reader, ErrorsNameFileAndKey) {
                            "  - {r_ext: 0.04}\n  - {r_ext: 0.025, r_int: 0.024}\n"
                            "  - {r_ext: 0.025, r_int: 0.018}\n";
   auto read = [](const std::string& text) {
-    return pcsim::scene::read_flexible_dsa380(pcsim::InputNode::load_string(text, "f.yaml"));
+    return pcsim::scene::read_flexible_dsa380(pcsim::scene::InputNode::load_string(text, "f.yaml"));
   };
   EXPECT_EQ(read(good).elements[0], 8);
   auto expect_error = [&](const std::string& text, const std::string& key) {

@@ -80,7 +80,7 @@ LinearModel rigid_linear(Dsa380Pantograph* rigid) {
 
 Dsa380Pantograph rigid_model() {
   return Dsa380Pantograph(
-      load_dsa380_parameters(pcsim::InputNode::load_file(kModels + "dsa380_rigid.yaml")),
+      load_dsa380_parameters(pcsim::scene::InputNode::load_file(kModels + "dsa380_rigid.yaml")),
       Dsa380Effects{}, 0.0);
 }
 

@@ -19,7 +19,7 @@ const std::string kModels = std::string(PCSIM_SOURCE_DIR) + "/meshes/pantographs
 
 std::unique_ptr<PantographModel> load(const std::string& file, const std::string& effects) {
   if (effects.empty()) return load_pantograph_model(kModels + file, nullptr, 83.33);
-  const auto e = pcsim::InputNode::load_string(effects, "effects.yaml");
+  const auto e = pcsim::scene::InputNode::load_string(effects, "effects.yaml");
   return load_pantograph_model(kModels + file, &e, 83.33);
 }
 
@@ -78,7 +78,7 @@ State dsa_state(PantographModel& m, double frame_rate) {
 }  // namespace
 
 TEST(PantographJet, LoopDerivativesMatchFiniteDifferences) {
-  const auto p = load_dsa380_parameters(pcsim::InputNode::load_file(kModels + "dsa380_rigid.yaml"));
+  const auto p = load_dsa380_parameters(pcsim::scene::InputNode::load_file(kModels + "dsa380_rigid.yaml"));
   const double th = 0.65, h = 1e-5;
   const auto k0 = dsa380_kinematics(p, th);
   const auto kp = dsa380_kinematics(p, th + h), km = dsa380_kinematics(p, th - h);
@@ -149,7 +149,7 @@ TEST(PantographTangents, Dsa380Restraints) {
 }
 
 TEST(PantographTangents, Dsa380HeadWithOffsetCentreOfGravity) {
-  auto p = load_dsa380_parameters(pcsim::InputNode::load_file(kModels + "dsa380_rigid.yaml"));
+  auto p = load_dsa380_parameters(pcsim::scene::InputNode::load_file(kModels + "dsa380_rigid.yaml"));
   p.LG[6] = 0.12;
   p.thetaG[6] = -M_PI / 2;
   p.kl3 = 2e5;
@@ -209,7 +209,7 @@ TEST(PantographInput, UnknownEffectIsRejected) {
 }
 
 TEST(PantographEffects, AerodynamicForceLiftsHeadAndCostsNothingWhenOff) {
-  auto p = load_dsa380_parameters(pcsim::InputNode::load_file(kModels + "dsa380_rigid.yaml"));
+  auto p = load_dsa380_parameters(pcsim::scene::InputNode::load_file(kModels + "dsa380_rigid.yaml"));
   p.aero_a = 5;
   p.aero_b = 0.1;
   p.aero_c = 0.004;

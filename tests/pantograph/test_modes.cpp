@@ -21,7 +21,7 @@ namespace {
 const std::string kModels = std::string(PCSIM_SOURCE_DIR) + "/meshes/pantographs/";
 
 Dsa380Parameters dsa_params() {
-  return load_dsa380_parameters(pcsim::InputNode::load_file(kModels + "dsa380_rigid.yaml"));
+  return load_dsa380_parameters(pcsim::scene::InputNode::load_file(kModels + "dsa380_rigid.yaml"));
 }
 
 LinearModel dsa_linear(Dsa380Effects e = {}) {

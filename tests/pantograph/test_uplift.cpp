@@ -24,7 +24,7 @@ constexpr double kF0 = 120.0, kH0 = 1.2;
 
 Dsa380Parameters rigid_params(double time_constant = 0) {
   auto p = pcsim::scene::load_dsa380_parameters(
-      pcsim::InputNode::load_file(kModels + "dsa380_rigid.yaml"));
+      pcsim::scene::InputNode::load_file(kModels + "dsa380_rigid.yaml"));
   p.bellows.time_constant = time_constant;
   p.bellows.valve_time_constant = time_constant > 0 ? 0.05 : 0.0;
   return p;

@@ -45,7 +45,7 @@ inline std::string replace_once(std::string text, const std::string& from, const
   return text;
 }
 inline CatenaryMesh build_text(const std::string& text, const std::string& name = "variant.yaml") {
-  return catenary::build_catenary_design(InputNode::load_string(text, name));
+  return scene::build_catenary_design(scene::InputNode::load_string(text, name));
 }
 
 const std::vector<double> kDropperPositions = {5.0, 10.5, 17.0, 23.5, 30.0, 36.5, 43.0, 49.5, 55.0};

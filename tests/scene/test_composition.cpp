@@ -12,8 +12,8 @@
 
 namespace fs = std::filesystem;
 using pcsim::InputError;
-using pcsim::InputNode;
-using pcsim::InputOverride;
+using pcsim::scene::InputNode;
+using pcsim::scene::InputOverride;
 
 namespace {
 
@@ -53,7 +53,7 @@ class Composition : public ::testing::Test {
     return "";
   }
   static InputOverride cli(const std::string& assignment) {
-    return pcsim::parse_override(assignment, {"", "command line --set " + assignment});
+    return pcsim::scene::parse_override(assignment, {"", "command line --set " + assignment});
   }
   fs::path dir_;
 };
@@ -65,7 +65,7 @@ TEST_F(Composition, IncludingFileWinsMapsMergeListsReplace) {
                           "base: base/run.yaml\nname: study\n"
                           "simulation: {speed_kmh: 250}\n"
                           "analysis: {to_span: 7}\n");
-  const auto scene = pcsim::load_composed(path);
+  const auto scene = pcsim::scene::load_composed(path);
   EXPECT_EQ(scene.get_string("name"), "study");
   EXPECT_EQ(scene["simulation"].get_double("speed_kmh"), 250);
   EXPECT_EQ(scene["simulation"].get_double("end_x"), 595.0);  // from the base
@@ -82,8 +82,8 @@ TEST_F(Composition, IncludingFileWinsMapsMergeListsReplace) {
   const auto two = write("two.yaml",
                          "base: base/run.yaml\npantographs:\n"
                          "  - {model: model.yaml}\n  - {model: model.yaml}\n");
-  EXPECT_EQ(pcsim::load_composed(two)["pantographs"].size(), 2u);
-  EXPECT_FALSE(pcsim::load_composed(two)["pantographs"].at(0).has("static_force"));
+  EXPECT_EQ(pcsim::scene::load_composed(two)["pantographs"].size(), 2u);
+  EXPECT_FALSE(pcsim::scene::load_composed(two)["pantographs"].at(0).has("static_force"));
 }
 
 TEST_F(Composition, SetEntriesAndOverridesApplyInOrder) {
@@ -91,7 +91,7 @@ TEST_F(Composition, SetEntriesAndOverridesApplyInOrder) {
                           "base: base/run.yaml\n"
                           "set:\n  pantographs[0].static_force: 100\n"
                           "  simulation.dt: 0.002\n");
-  const auto scene = pcsim::load_composed(
+  const auto scene = pcsim::scene::load_composed(
       path,
       {cli("simulation.dt=5e-4"), cli("pantographs.0.name=lead"), cli("output.snapshot_every=10")});
   EXPECT_EQ(scene["pantographs"].at(0).get_double("static_force"), 100);
@@ -106,7 +106,7 @@ TEST_F(Composition, ErrorsNameTheOverride) {
   const auto path = write("study.yaml", "base: base/run.yaml\n");
   auto read = [&](const std::string& assignment) {
     return message(
-        [&] { pcsim::scene::load_run_scene(pcsim::load_composed(path, {cli(assignment)})); });
+        [&] { pcsim::scene::load_run_scene(pcsim::scene::load_composed(path, {cli(assignment)})); });
   };
   EXPECT_EQ(read("simulation.speed_kmh=-3"),
             "command line --set simulation.speed_kmh=-3: key 'simulation.speed_kmh': must be "
@@ -136,10 +136,10 @@ TEST_F(Composition, DesignKeysThroughTheReference) {
   const auto path = write("study.yaml",
                           "base: base/run.yaml\n"
                           "set: {catenary.design.spans.count: 12}\n");
-  const auto cat = pcsim::catenary::load_catenary_scene(pcsim::load_composed(path));
+  const auto cat = pcsim::scene::load_catenary_scene(pcsim::scene::load_composed(path));
   EXPECT_EQ(cat.mesh.support_x.size(), 13u);
-  const auto more = pcsim::catenary::load_catenary_scene(
-      pcsim::load_composed(path, {cli("catenary.design.spans.count=14")}));
+  const auto more = pcsim::scene::load_catenary_scene(
+      pcsim::scene::load_composed(path, {cli("catenary.design.spans.count=14")}));
   EXPECT_EQ(more.mesh.support_x.size(), 15u);
 }
 
@@ -147,17 +147,17 @@ TEST_F(Composition, BadBaseChains) {
   write("a.yaml", "base: b.yaml\nname: a\n");
   write("b.yaml", "base: a.yaml\n");
   EXPECT_NE(message([&] {
-              pcsim::load_composed((dir_ / "a.yaml").string());
+              pcsim::scene::load_composed((dir_ / "a.yaml").string());
             }).find("key 'base': circular base chain"),
             std::string::npos);
   write("c.yaml", "base: missing.yaml\n");
   EXPECT_NE(message([&] {
-              pcsim::load_composed((dir_ / "c.yaml").string());
+              pcsim::scene::load_composed((dir_ / "c.yaml").string());
             }).find("cannot open base file"),
             std::string::npos);
   write("d.yaml", "base: base/run.yaml\nset: [1, 2]\n");
   EXPECT_NE(message([&] {
-              pcsim::load_composed((dir_ / "d.yaml").string());
+              pcsim::scene::load_composed((dir_ / "d.yaml").string());
             }).find("key 'set': must be a map"),
             std::string::npos);
 }

@@ -20,9 +20,9 @@ namespace fs = std::filesystem;
 const std::string kRuns = std::string(PCSIM_SOURCE_DIR) + "/runs/";
 
 scene::RunScene load(const std::string& scene, const std::vector<std::string>& overrides = {}) {
-  std::vector<InputOverride> parsed;
-  for (const auto& o : overrides) parsed.push_back(parse_override(o, {"", "test --set " + o}));
-  return scene::load_run_scene(load_composed(kRuns + scene, parsed));
+  std::vector<scene::InputOverride> parsed;
+  for (const auto& o : overrides) parsed.push_back(scene::parse_override(o, {"", "test --set " + o}));
+  return scene::load_run_scene(scene::load_composed(kRuns + scene, parsed));
 }
 
 // The InputError of reading 'text' as a criteria set file.
@@ -30,7 +30,7 @@ InputError set_error(const std::string& text) {
   const std::string file = (fs::temp_directory_path() / "pcsim-test-criteria.yaml").string();
   std::ofstream(file) << text;
   try {
-    scene::read_criteria_set(InputNode::load_file(file), {300, 300, "AC"});
+    scene::read_criteria_set(scene::InputNode::load_file(file), {300, 300, "AC"});
   } catch (const InputError& e) {
     fs::remove(file);
     return e;
@@ -84,8 +84,8 @@ TEST(CriteriaSets, BuiltInSetsAreReadable) {
 TEST(CriteriaSets, AUserSetIsReadAndItsRowsChosenBySpeed) {
   const std::string file = (fs::temp_directory_path() / "pcsim-test-good-set.yaml").string();
   std::ofstream(file) << kGoodSet;
-  const auto at300 = scene::read_criteria_set(InputNode::load_file(file), {300, 300, "AC"});
-  const auto at330 = scene::read_criteria_set(InputNode::load_file(file), {300, 330, "AC"});
+  const auto at300 = scene::read_criteria_set(scene::InputNode::load_file(file), {300, 300, "AC"});
+  const auto at330 = scene::read_criteria_set(scene::InputNode::load_file(file), {300, 330, "AC"});
   fs::remove(file);
   EXPECT_EQ(at300.name, "my-line");
   EXPECT_EQ(at300.criteria.size(), 4u);
@@ -207,7 +207,7 @@ TEST(Verdicts, SourcedCriteriaPassOrFail) {
   const std::string file = (fs::temp_directory_path() / "pcsim-test-good-set2.yaml").string();
   std::ofstream(file) << kGoodSet;
   Assessment a;
-  a.set = scene::read_criteria_set(InputNode::load_file(file), {300, 300, "AC"});
+  a.set = scene::read_criteria_set(scene::InputNode::load_file(file), {300, 300, "AC"});
   fs::remove(file);
   a.steady_arm_space_mm = 100;
   const nlohmann::json stats = {{"mean_N", 120.0}, {"std_N", 40.0}, {"stat_min_N", 0.0}};

@@ -9,6 +9,7 @@
 #include "design_test_helpers.hpp"
 
 using namespace pcsim::catenary;
+using namespace pcsim::scene;
 using namespace pcsim::design_test;
 
 // ---------------------------------------------------------------- errors ----
@@ -100,7 +101,7 @@ TEST(DesignFileErrors, ExplicitValidation) {
 // -------------------------------------------------------------- explicit ----
 
 TEST(ExplicitDesignFile, ReaderKeepsNodeReferences) {
-  const auto root = pcsim::InputNode::load_file(kMeshes + "two-wires-droppers.yaml");
+  const auto root = pcsim::scene::InputNode::load_file(kMeshes + "two-wires-droppers.yaml");
   const ExplicitDesign d = read_explicit_design(root);
   EXPECT_EQ(d.name, "two-wires-droppers");
   EXPECT_TRUE(d.form_finding);

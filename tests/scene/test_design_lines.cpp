@@ -38,14 +38,14 @@ TEST(LineDesignFiles, EveryCommittedDesignBuilds) {
                         Expect{"supports.yaml", 1}, Expect{"irregular-profile.yaml", 1},
                         Expect{"irregular-random.yaml", 1}, Expect{"curved.yaml", 3}}) {
     CatenaryMesh m;
-    ASSERT_NO_THROW(m = catenary::load_catenary_design(kLines + e.file)) << e.file;
+    ASSERT_NO_THROW(m = scene::load_catenary_design(kLines + e.file)) << e.file;
     EXPECT_EQ(m.contact_wire_list().size(), e.contact_wires) << e.file;
   }
 }
 
 TEST(LineDesignFiles, ReaderFillsTheNewKeys) {
-  const auto root = InputNode::load_file(kLines + "supports.yaml");
-  const auto d = catenary::read_parametric_design(root);
+  const auto root = scene::InputNode::load_file(kLines + "supports.yaml");
+  const auto d = scene::read_parametric_design(root);
   EXPECT_EQ(d.messenger_supports.model, catenary::MessengerSupportModel::spring_mass);
   EXPECT_EQ(d.messenger_supports.stiffness, 2.0e6);
   EXPECT_EQ(d.messenger_supports.mass, 8.0);
@@ -57,20 +57,20 @@ TEST(LineDesignFiles, ReaderFillsTheNewKeys) {
   EXPECT_EQ(d.tensioning.device, catenary::TensioningDeviceKind::spring);
   EXPECT_EQ(d.tensioning.stiffness, 2.0e5);
   const auto h =
-      catenary::read_parametric_design(InputNode::load_file(kLines + "presag-heights.yaml"));
+      scene::read_parametric_design(scene::InputNode::load_file(kLines + "presag-heights.yaml"));
   EXPECT_EQ(h.presag_profile, catenary::PresagProfile::heights);
   ASSERT_EQ(h.droppers.spans.size(), 1u);
   EXPECT_EQ(h.droppers.spans[0].spans, (std::vector<long>{3, 4}));
   EXPECT_EQ(h.droppers.spans[0].sags.size(), 5u);
   const auto p =
-      catenary::read_parametric_design(InputNode::load_file(kLines + "irregular-profile.yaml"));
+      scene::read_parametric_design(scene::InputNode::load_file(kLines + "irregular-profile.yaml"));
   EXPECT_EQ(p.irregularities.profile_x.size(), 801u);  // 100..300 m every 0.25 m
   EXPECT_EQ(p.irregularities.wear.size(), 1u);
-  const auto c = catenary::read_parametric_design(InputNode::load_file(kLines + "curved.yaml"));
+  const auto c = scene::read_parametric_design(scene::InputNode::load_file(kLines + "curved.yaml"));
   ASSERT_EQ(c.sections.size(), 3u);
   EXPECT_EQ(c.sections[1].radius, 1200.0);
   // overlap.anchor_raise defaults to twice the raise.
-  const auto o = catenary::read_parametric_design(InputNode::load_string(
+  const auto o = scene::read_parametric_design(scene::InputNode::load_string(
       replace_once(text_of(kLines + "three-sections-short.yaml"),
                    "overlap: {spans: 2, raise: 0.3, anchor_raise: 0.6, separation: 0.2}",
                    "overlap: {raise: 0.25}"),
@@ -238,7 +238,7 @@ TEST(LineDesignFiles, ProfileFileErrorsNameTheLine) {
     write("design.yaml", text_of(kLines + "three-sections-short.yaml") +
                              "irregularities: {profile: " + name + "}\n");
     const std::string msg =
-        message_of([&] { catenary::load_catenary_design(dir + "/design.yaml"); });
+        message_of([&] { scene::load_catenary_design(dir + "/design.yaml"); });
     EXPECT_TRUE(contains(msg, "design.yaml") && contains(msg, "'irregularities.profile'") &&
                 contains(msg, name) && contains(msg, "needs at least two (x, dz) points"))
         << msg;
@@ -246,11 +246,11 @@ TEST(LineDesignFiles, ProfileFileErrorsNameTheLine) {
   write("decreasing.csv", "0,0\n10,0.001\n5,0\n");
   write("design.yaml", text_of(kLines + "three-sections-short.yaml") +
                            "irregularities: {profile: bad-line.csv}\n");
-  std::string msg = message_of([&] { catenary::load_catenary_design(dir + "/design.yaml"); });
+  std::string msg = message_of([&] { scene::load_catenary_design(dir + "/design.yaml"); });
   EXPECT_TRUE(contains(msg, "'irregularities.profile'") && contains(msg, "line 3")) << msg;
   write("design.yaml", text_of(kLines + "three-sections-short.yaml") +
                            "irregularities: {profile: decreasing.csv}\n");
-  msg = message_of([&] { catenary::load_catenary_design(dir + "/design.yaml"); });
+  msg = message_of([&] { scene::load_catenary_design(dir + "/design.yaml"); });
   EXPECT_TRUE(contains(msg, "'irregularities.profile'") && contains(msg, "increase strictly"))
       << msg;
   std::filesystem::remove_all(dir);

@@ -9,6 +9,7 @@
 #include "design_test_helpers.hpp"
 
 using namespace pcsim::catenary;
+using namespace pcsim::scene;
 using namespace pcsim::design_test;
 
 // ------------------------------------------------------------ reference ----
@@ -309,7 +310,7 @@ TEST(ParametricDesignFile, StitchWireCarriesDroppersNearSupports) {
 // ---------------------------------------------------------------- reader ----
 
 TEST(ParametricDesignFile, ReaderFillsTheParameters) {
-  const auto root = pcsim::InputNode::load_file(kMeshes + "en50318-reference.yaml");
+  const auto root = pcsim::scene::InputNode::load_file(kMeshes + "en50318-reference.yaml");
   const ParametricDesign d = read_parametric_design(root);
   EXPECT_EQ(d.file, kMeshes + "en50318-reference.yaml");
   EXPECT_EQ(d.name, "en50318-reference");
@@ -332,7 +333,7 @@ TEST(ParametricDesignFile, ReaderFillsTheParameters) {
 
 TEST(ParametricDesignFile, RangesAreCheckedByTheBuilder) {
   // The reader takes any number; the builder names the key of the bad one.
-  const auto root = pcsim::InputNode::load_string(
+  const auto root = pcsim::scene::InputNode::load_string(
       replace_once(reference_text(), "tension: 20000.0}", "tension: -20000.0}"), "v.yaml");
   const ParametricDesign d = read_parametric_design(root);
   EXPECT_EQ(d.contact.tension, -20000.0);

@@ -66,7 +66,7 @@ TEST(PantographReader, UnknownOrMissingKindNamesFileAndKey) {
 }
 
 TEST(PantographReader, EffectOfAnotherKindRejected) {
-  const auto effects = InputNode::load_string("head_restraint: rotation\n", "scene.yaml");
+  const auto effects = scene::InputNode::load_string("head_restraint: rotation\n", "scene.yaml");
   const auto msg = message_of(
       [&] { scene::load_pantograph_model(kModels + "en50318_two_mass.yaml", &effects, 0); });
   EXPECT_NE(msg.find("scene.yaml"), std::string::npos) << msg;
@@ -74,7 +74,7 @@ TEST(PantographReader, EffectOfAnotherKindRejected) {
 }
 
 TEST(PantographReader, RegisteredKindIsUsed) {
-  scene::register_pantograph_kind("test_single_mass", [](const InputNode& model, const InputNode*,
+  scene::register_pantograph_kind("test_single_mass", [](const scene::InputNode& model, const scene::InputNode*,
                                                          double speed) {
     model.allow_only({"kind", "mass", "stiffness"});
     pantograph::LumpedParameters p;
@@ -94,13 +94,13 @@ TEST(PantographScene, CalibrationNeedsDsa380AndTypeIsRequired) {
       "pantograph_scene_calibrate.yaml",
       "pantograph: {model: " + kModels + "en50318_two_mass.yaml}\nstudy: {type: calibrate}\n");
   const auto msg =
-      message_of([&] { scene::load_pantograph_study_scene(InputNode::load_file(calib.path)); });
+      message_of([&] { scene::load_pantograph_study_scene(scene::InputNode::load_file(calib.path)); });
   EXPECT_NE(msg.find(calib.path), std::string::npos) << msg;
   EXPECT_NE(msg.find("calibrate needs a dsa380 model"), std::string::npos) << msg;
   const TempFile untyped("pantograph_scene_untyped.yaml",
                          "pantograph: {model: " + kModels + "dsa380_rigid.yaml}\nstudy: {}\n");
   const auto msg2 =
-      message_of([&] { scene::load_pantograph_study_scene(InputNode::load_file(untyped.path)); });
+      message_of([&] { scene::load_pantograph_study_scene(scene::InputNode::load_file(untyped.path)); });
   EXPECT_NE(msg2.find("'study.type'"), std::string::npos) << msg2;
 }
 
@@ -112,7 +112,7 @@ TEST(PantographScene, TimeStudyRead) {
                           "study: {type: time, schemes: [hht], dt: 2.0e-3, t_end: 0.5,\n"
                           "        force: {type: harmonic, mean: 120, amplitude: 30,"
                           " frequency_hz: 2}}\n");
-  const auto s = scene::load_pantograph_study_scene(InputNode::load_file(file.path));
+  const auto s = scene::load_pantograph_study_scene(scene::InputNode::load_file(file.path));
   EXPECT_EQ(s.study_type, "time");
   EXPECT_EQ(s.contact_force, 100.0);
   EXPECT_EQ(s.working_height, 1.1);
@@ -136,7 +136,7 @@ TEST(PantographReader, BellowsCharacteristicReadAndChecked) {
   auto model_with = [&](const std::string& name, const std::string& bellows) {
     return TempFile(name, text.substr(0, begin) + bellows + text.substr(end));
   };
-  const auto on = InputNode::load_string("uplift_characteristic: true\n", "scene.yaml");
+  const auto on = scene::InputNode::load_string("uplift_characteristic: true\n", "scene.yaml");
   const auto dsa = scene::load_pantograph_model(kModels + "dsa380_rigid.yaml", &on, 0);
   EXPECT_EQ(dsa->dof_count(), 4);  // the set's characteristic acts at once
   const auto loop = model_with("pantograph_reader_bellows_loop.yaml",

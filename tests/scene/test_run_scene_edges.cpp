@@ -15,10 +15,10 @@ using namespace pcsim;
 // from 5 m, 20 Hz filter: transient length 3 / 20 Hz x 83.3 m/s = 12.5 m)
 // with the overrides.
 std::vector<InputWarning> warnings(const std::vector<std::string>& overrides) {
-  std::vector<InputOverride> parsed;
-  for (const auto& o : overrides) parsed.push_back(parse_override(o, {"", "test --set " + o}));
+  std::vector<scene::InputOverride> parsed;
+  for (const auto& o : overrides) parsed.push_back(scene::parse_override(o, {"", "test --set " + o}));
   const auto scene =
-      load_composed(std::string(PCSIM_SOURCE_DIR) + "/runs/en50318-300.yaml", parsed);
+      scene::load_composed(std::string(PCSIM_SOURCE_DIR) + "/runs/en50318-300.yaml", parsed);
   return scene::load_run_scene(scene).warnings;
 }
 

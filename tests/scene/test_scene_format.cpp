@@ -1,7 +1,7 @@
 // docs/scene-format.md lists exactly the keys the scene readers accept.
 //
 // The readers record the allowed keys of every map they check
-// (InputNode::allow_only -> allowed_keys_seen()). This test reads the
+// (InputNode::allow_only -> scene::allowed_keys_seen()). This test reads the
 // complete examples of the page ("# example: <kind>" blocks) and every scene
 // in runs/, so that every map of every scene kind is checked at least once,
 // then compares the recorded key paths with the keys of the page's tables:
@@ -21,7 +21,7 @@
 #include "pcsim/scene/run_scene.hpp"
 
 namespace fs = std::filesystem;
-using pcsim::InputNode;
+using pcsim::scene::InputNode;
 
 namespace {
 
@@ -75,8 +75,8 @@ void read_scene(const InputNode& scene, const std::string& kind) {
   } else if (kind == "pantograph") {
     pcsim::scene::load_pantograph_study_scene(scene);
   } else {
-    pcsim::catenary::load_catenary_scene(scene);
-    pcsim::catenary::load_modes_section(scene);
+    pcsim::scene::load_catenary_scene(scene);
+    pcsim::scene::load_modes_section(scene);
   }
 }
 
@@ -101,7 +101,7 @@ std::vector<std::string> repository_scenes() {
 // The key paths the readers allowed in the given files: "a.b" for key b of map a.
 std::set<std::string> allowed_keys(const std::set<std::string>& files) {
   std::set<std::string> out;
-  for (const auto& [file, maps] : pcsim::allowed_keys_seen()) {
+  for (const auto& [file, maps] : pcsim::scene::allowed_keys_seen()) {
     if (!files.count(file)) continue;
     for (const auto& [path, keys] : maps)
       for (const auto& key : keys) out.insert(path.empty() ? key : path + "." + key);
@@ -125,7 +125,7 @@ TEST(SceneFormat, ExamplesAndRepositoryScenesAreReadable) {
     const std::string file =
         std::string(PCSIM_SOURCE_DIR) + "/runs/scene-format-example-" + std::to_string(i) + ".yaml";
     SCOPED_TRACE("example " + std::to_string(i) + " (" + kind + ") of docs/scene-format.md");
-    EXPECT_NO_THROW(read_scene(pcsim::load_composed_text(text, file), kind));
+    EXPECT_NO_THROW(read_scene(pcsim::scene::load_composed_text(text, file), kind));
     kinds.insert(kind);
   }
   EXPECT_EQ(kinds, (std::set<std::string>{"modes", "run", "pantograph"}));
@@ -134,7 +134,7 @@ TEST(SceneFormat, ExamplesAndRepositoryScenesAreReadable) {
   for (const auto& path : scenes) {
     SCOPED_TRACE(path);
     EXPECT_NO_THROW({
-      const auto scene = pcsim::load_composed(path);
+      const auto scene = pcsim::scene::load_composed(path);
       read_scene(scene, kind_of(scene));
     });
   }
@@ -146,11 +146,11 @@ TEST(SceneFormat, DocumentedKeysAreTheKeysTheReadersAccept) {
   for (std::size_t i = 0; i < page.examples.size(); ++i) {
     const std::string file =
         std::string(PCSIM_SOURCE_DIR) + "/runs/scene-format-example-" + std::to_string(i) + ".yaml";
-    read_scene(pcsim::load_composed_text(page.examples[i].second, file), page.examples[i].first);
+    read_scene(pcsim::scene::load_composed_text(page.examples[i].second, file), page.examples[i].first);
     files.insert(file);
   }
   for (const auto& path : repository_scenes()) {
-    const auto scene = pcsim::load_composed(path);
+    const auto scene = pcsim::scene::load_composed(path);
     read_scene(scene, kind_of(scene));
     files.insert(path);
   }

@@ -11,7 +11,7 @@
 #include "pcsim/scene/yaml_input.hpp"
 
 using pcsim::InputError;
-using pcsim::InputNode;
+using pcsim::scene::InputNode;
 
 namespace {
 std::string message_of(const std::function<void()>& f) {
@@ -68,7 +68,7 @@ TEST(YamlInput, DuplicateKeyNamesKeyAndLines) {
   EXPECT_NE(msg.find("s.yaml: key 'a.dt'"), std::string::npos) << msg;
   EXPECT_NE(msg.find("duplicate key (first at line 2, again at line 4)"), std::string::npos) << msg;
   const auto in_list =
-      message_of([] { pcsim::load_composed_text("l: [{x: 1, x: 2}]\n", "s.yaml"); });
+      message_of([] { pcsim::scene::load_composed_text("l: [{x: 1, x: 2}]\n", "s.yaml"); });
   EXPECT_NE(in_list.find("key 'l[0].x'"), std::string::npos) << in_list;
 }
 
@@ -81,12 +81,12 @@ TEST(YamlInput, SecondDocumentRejected) {
 
 TEST(YamlInput, EmptyValueRejected) {
   for (const char* text : {"sim:\n  dt:\n", "sim: {dt: ~}\n", "sim: {dt: null}\n"}) {
-    const auto msg = message_of([&] { pcsim::load_composed_text(text, "s.yaml"); });
+    const auto msg = message_of([&] { pcsim::scene::load_composed_text(text, "s.yaml"); });
     EXPECT_NE(msg.find("key 'sim.dt': has no value"), std::string::npos) << text << msg;
   }
   const auto set = message_of([] {
-    pcsim::load_composed_text("a: 1\n", "s.yaml",
-                              {pcsim::parse_override("sim.dt=~", {"", "command line"})});
+    pcsim::scene::load_composed_text("a: 1\n", "s.yaml",
+                              {pcsim::scene::parse_override("sim.dt=~", {"", "command line"})});
   });
   EXPECT_NE(set.find("key 'sim.dt'"), std::string::npos) << set;
 }
@@ -112,7 +112,7 @@ TEST(YamlInput, ThousandsOfKeysComposeFast) {
   for (int i = 0; i < 20000; ++i)
     text += "  n.k" + std::to_string(i) + ": " + std::to_string(i) + "\n";
   const auto start = std::chrono::steady_clock::now();
-  const InputNode root = pcsim::load_composed_text(text, "big.yaml");
+  const InputNode root = pcsim::scene::load_composed_text(text, "big.yaml");
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_EQ(root["m"].size(), 20000u);

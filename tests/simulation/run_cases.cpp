@@ -18,7 +18,7 @@ namespace {
 void run_case(const std::string& path, const std::string& dir) {
   using namespace pcsim;
   const auto ctx = simulation::Context::of(PETSC_COMM_WORLD);
-  const InputNode composed = load_composed(path, {});
+  const scene::InputNode composed = scene::load_composed(path, {});
   auto scene = scene::load_run_scene(composed);
   simulation::RunRequest request;
   request.name = composed.has("name") ? composed.get_string("name") : "case";

@@ -26,9 +26,9 @@ std::pair<simulation::RunOutcome, double> run_with_model(const std::string& mode
       std::string(PCSIM_SOURCE_DIR) + "/tests/contact/data/three-span-dsa380.yaml";
   const std::string set =
       "pantographs[0].model=" + std::string(PCSIM_SOURCE_DIR) + "/meshes/pantographs/" + model;
-  auto scene = scene::load_run_scene(load_composed(
-      file, {parse_override(set, {"", "test --set " + set}),
-             parse_override("simulation.end_x=62", {"", "test --set simulation.end_x=62"})}));
+  auto scene = scene::load_run_scene(scene::load_composed(
+      file, {scene::parse_override(set, {"", "test --set " + set}),
+             scene::parse_override("simulation.end_x=62", {"", "test --set simulation.end_x=62"})}));
   const auto& mesh = scene.catenary.mesh;
   const double band = catenary::doppler_frequency(
       scene.cutoff_hz, scene.speed, catenary::wave_speed(mesh.wires[mesh.contact_wire]));

@@ -45,9 +45,9 @@ output::OutputDir output_dir(const simulation::Context& ctx, const std::string& 
 simulation::RunOutcome run_scene(const std::string& file, const std::string& name,
                                  const std::vector<std::string>& overrides = {}) {
   const auto ctx = test_context();
-  std::vector<InputOverride> parsed;
-  for (const auto& o : overrides) parsed.push_back(parse_override(o, {"", "test --set " + o}));
-  auto scene = scene::load_run_scene(load_composed(scene_file(file), parsed));
+  std::vector<scene::InputOverride> parsed;
+  for (const auto& o : overrides) parsed.push_back(scene::parse_override(o, {"", "test --set " + o}));
+  auto scene = scene::load_run_scene(scene::load_composed(scene_file(file), parsed));
   simulation::RunRequest request;
   request.name = name;
   request.scene_path = scene_file(file);

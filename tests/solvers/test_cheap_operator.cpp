@@ -55,7 +55,7 @@ double relative_error(pcsim::testing::Problem& problem, Mat op, double t, Vec U,
 
 TEST(CheapPath, OperatorIsTheJacobianAfterDroppersSwitch) {
   auto run =
-      pcsim::scene::load_run_scene(pcsim::InputNode::load_file(contact_data("en50318-short.yaml")));
+      pcsim::scene::load_run_scene(pcsim::scene::InputNode::load_file(contact_data("en50318-short.yaml")));
   auto problem = make_problem(run);
   Vec U0 = problem->create_vector(), V0 = problem->create_vector();
   problem->initial_state(U0, V0);

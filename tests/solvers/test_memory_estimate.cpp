@@ -65,7 +65,7 @@ TEST(MeshSize, CountedEqualsBuiltForLines) {
         "presag-droppers.yaml", "presag-heights.yaml", "supports.yaml", "irregular-profile.yaml",
         "irregular-random.yaml", "curved.yaml"}) {
     SCOPED_TRACE(file);
-    const auto design = catenary::read_parametric_design(load_composed(lines + file));
+    const auto design = scene::read_parametric_design(scene::load_composed(lines + file));
     expect_same_size(catenary::mesh_size(design), catenary::mesh_size(build_parametric(design)));
   }
 }

@@ -96,7 +96,7 @@ TEST(StaticChecks, TautWireIsStable) {
 // 10 N: its lower half must push (down to -4.4e3 N). No tension distribution
 // exists: an input error on the design's wires.
 TEST(StaticChecks, CompressedCableAfterFormFindingIsAnInputError) {
-  const auto mesh = catenary::build_catenary_design(InputNode::load_string(R"(
+  const auto mesh = scene::build_catenary_design(scene::InputNode::load_string(R"(
 type: explicit
 gravity: 9.81
 form_finding: true

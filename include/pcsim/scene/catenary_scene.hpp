@@ -19,7 +19,7 @@
 #include "pcsim/scene/design_reader.hpp"
 #include "pcsim/scene/yaml_input.hpp"
 
-namespace pcsim::catenary {
+namespace pcsim::scene {
 
 // 'elasticity' (pcsim static): uplift under 'force' at from_x, from_x + step,
 // ..., to_x (stations on the line).
@@ -32,10 +32,10 @@ struct ElasticityRequest {
 struct CatenaryScene {
   std::string design_path;
   bool form_finding = false;
-  CatenaryMesh mesh;
-  CatenaryFidelity fidelity = CatenaryFidelity::linear;
+  catenary::CatenaryMesh mesh;
+  catenary::CatenaryFidelity fidelity = catenary::CatenaryFidelity::linear;
   bool fidelity_given = false;      // the scene has catenary.model
-  ModalSettings modal;              // model: modal
+  catenary::ModalSettings modal;              // model: modal
   bool modal_cutoff_given = false;  // catenary.max_frequency_hz (else the run scene sets it)
   std::string scene_file;           // for messages about these keys
   std::optional<ElasticityRequest> elasticity;
@@ -44,7 +44,7 @@ struct CatenaryScene {
 // 'size_check' sees the design's mesh size before the mesh is built.
 // 'build', when given, builds the mesh from the design's node instead of
 // build_catenary_design (a moving window builds part of the line; run_scene.hpp).
-using DesignBuilder = std::function<CatenaryMesh(const InputNode& design, const MeshSizeCheck&)>;
+using DesignBuilder = std::function<catenary::CatenaryMesh(const InputNode& design, const MeshSizeCheck&)>;
 CatenaryScene load_catenary_scene(const InputNode& scene, const MeshSizeCheck& size_check = {},
                                   const DesignBuilder& build = {});
 // The fidelity keys of a catenary section (model, max_frequency_hz, modal).
@@ -61,4 +61,4 @@ ModesSection load_modes_section(const InputNode& scene);
 // same scene format and rejects unknown sections).
 void check_scene_sections(const InputNode& scene);
 
-}  // namespace pcsim::catenary
+}  // namespace pcsim::scene

@@ -20,7 +20,7 @@
 
 #include "pcsim/scene/yaml_input.hpp"
 
-namespace pcsim {
+namespace pcsim::scene {
 
 // "KEY=VALUE": KEY a key path (list entries as [N] or .N), VALUE YAML (a
 // number, true/false, a string, [a, b], {k: v}). InputError(origin.label,
@@ -38,4 +38,4 @@ InputNode load_composed_text(const std::string& text, const std::string& file,
 // The composed tree as YAML text (provenance).
 std::string to_yaml(const InputNode& node);
 
-}  // namespace pcsim
+}  // namespace pcsim::scene

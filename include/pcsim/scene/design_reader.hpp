@@ -14,21 +14,21 @@
 #include "pcsim/catenary/mesh.hpp"
 #include "pcsim/scene/yaml_input.hpp"
 
-namespace pcsim::catenary {
+namespace pcsim::scene {
 
 // Called with the size of a design's mesh after the design's checks and before
 // the mesh is built; throws (InputError naming size.file and size.key) to refuse it.
-using MeshSizeCheck = std::function<void(const MeshSize&)>;
+using MeshSizeCheck = std::function<void(const catenary::MeshSize&)>;
 
 // Loads and builds the design in 'path'; mesh.source_file = path.
-CatenaryMesh load_catenary_design(const std::string& path, const MeshSizeCheck& check = {});
+catenary::CatenaryMesh load_catenary_design(const std::string& path, const MeshSizeCheck& check = {});
 
 // Builds a design from an already-parsed YAML root (key 'type' selects the kind).
-CatenaryMesh build_catenary_design(const pcsim::InputNode& root, const MeshSizeCheck& check = {});
+catenary::CatenaryMesh build_catenary_design(const InputNode& root, const MeshSizeCheck& check = {});
 
 // The parameters of a design root of type parametric / explicit (the key
 // 'type' is accepted, not checked); range checks are left to the builders.
-ParametricDesign read_parametric_design(const pcsim::InputNode& root);
-ExplicitDesign read_explicit_design(const pcsim::InputNode& root);
+catenary::ParametricDesign read_parametric_design(const InputNode& root);
+catenary::ExplicitDesign read_explicit_design(const InputNode& root);
 
-}  // namespace pcsim::catenary
+}  // namespace pcsim::scene

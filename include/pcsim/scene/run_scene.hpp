@@ -64,7 +64,7 @@ struct RunWindow {
 // never built, and the checks, records and statistics see its stations.
 
 struct RunScene {
-  catenary::CatenaryScene catenary;
+  scene::CatenaryScene catenary;
   std::vector<contact::PantographRun> pantographs;
   std::vector<std::unique_ptr<pantograph::PantographModel>> models;  // one per pantograph
   double speed = 0;                                                  // [m/s]
@@ -91,7 +91,7 @@ struct RunScene {
 
 // What the reader needs from outside the scene to check it completely.
 struct RunSceneOptions {
-  catenary::MeshSizeCheck size_check;     // sees the design's mesh size before it is built
+  scene::MeshSizeCheck size_check;     // sees the design's mesh size before it is built
   std::optional<double> command_line_dt;  // -ts_dt, already checked; replaces simulation.dt
 };
 
@@ -137,9 +137,9 @@ struct WindowReach {
   double lead_start = 0, start_limit = 0, lead_end = 0, end_limit = 0;
 };
 WindowReach window_reach(const RunScene& run, const RunWindow& window);
-catenary::DesignBuilder window_design_builder(const InputNode& w, RunWindow& window);
+scene::DesignBuilder window_design_builder(const InputNode& w, RunWindow& window);
 void check_window(const InputNode& scene, const InputNode& w, RunScene& run,
-                  const catenary::MeshSizeCheck& size_check);
+                  const scene::MeshSizeCheck& size_check);
 // The modal level's choice of method (run_modal_method.cpp): a window where
 // the scene has one or catenary.modal.method is window; with auto (the
 // default) where the line is a parametric line of identical spans at least
@@ -152,10 +152,10 @@ struct ModalMethodRequest {
   bool automatic() const { return method == "auto"; }
 };
 ModalMethodRequest modal_method_request(const InputNode& scene);
-catenary::DesignBuilder auto_window_builder(RunWindow& window);
+scene::DesignBuilder auto_window_builder(RunWindow& window);
 // After the scene is read: keeps the window if it fits (true) or rebuilds
 // the whole line's mesh and drops it; 'why' says which and why.
 bool keep_auto_window(const InputNode& scene, RunScene& run,
-                      const catenary::MeshSizeCheck& size_check, std::string& why);
+                      const scene::MeshSizeCheck& size_check, std::string& why);
 
 }  // namespace pcsim::scene

@@ -24,7 +24,7 @@
 #include "pcsim/core/error.hpp"
 #include "pcsim/core/limits.hpp"
 
-namespace pcsim {
+namespace pcsim::scene {
 
 // Why 'path' cannot be read as an input file ("" if it can): missing, a
 // folder, not a regular file, or unreadable.
@@ -173,4 +173,4 @@ class InputNode {
 using AllowedKeys = std::map<std::string, std::map<std::string, std::set<std::string>>>;
 const AllowedKeys& allowed_keys_seen();
 
-}  // namespace pcsim
+}  // namespace pcsim::scene

@@ -24,7 +24,7 @@ struct InputFile {
 
 // The scene (composed), its design, every pantograph's model and the
 // criteria set file it names, if any (every rank).
-std::vector<InputFile> run_input_files(const std::string& scene_path, const InputNode& scene);
+std::vector<InputFile> run_input_files(const std::string& scene_path, const scene::InputNode& scene);
 
 // Every input file of a scene as the command reads it, with its content: the
 // scene (composed), and every file it names under a key 'design', 'model',
@@ -37,7 +37,7 @@ struct RecordedInput {
   std::string role, path, sha256;
   std::string content;  // the composed YAML the command read
 };
-std::vector<RecordedInput> recorded_inputs(const std::string& scene_path, const InputNode& scene);
+std::vector<RecordedInput> recorded_inputs(const std::string& scene_path, const scene::InputNode& scene);
 
 // One SHA-256 (hex) over the command and the contents of its inputs: two
 // results with the same fingerprint were made from the same inputs.
@@ -48,7 +48,7 @@ std::string inputs_fingerprint(const std::string& command,
 // composed, every input file [{role, path, sha256, content}] and the
 // fingerprint over 'command' and them.
 void record_inputs(output::ProvenanceInputs& in, const std::string& command,
-                   const std::string& scene_path, const InputNode& scene);
+                   const std::string& scene_path, const scene::InputNode& scene);
 
 // Where the run stands besides the solver's state.
 struct RunProgress {

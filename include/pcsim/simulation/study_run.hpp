@@ -26,7 +26,7 @@ struct StudyVariant {
 struct SceneSource {
   std::string path;                    // the scene file
   std::vector<std::string> overrides;  // KEY=VALUE, in order (--set)
-  InputNode scene;                     // composed from both
+  scene::InputNode scene;                     // composed from both
   nlohmann::json provenance;           // of the study (output/provenance.hpp)
 };
 
@@ -43,6 +43,6 @@ output::StudyRun run_variant(const Context& ctx, const SceneSource& source,
 
 // The element length of the scene's catenary design (0 for an explicit
 // design, which has none: the study leaves its mesh alone).
-double design_element_length(const InputNode& scene);
+double design_element_length(const scene::InputNode& scene);
 
 }  // namespace pcsim::simulation

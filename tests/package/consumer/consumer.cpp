@@ -13,7 +13,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    const auto mesh = pcsim::catenary::load_catenary_design(argv[1]);
+    const auto mesh = pcsim::scene::load_catenary_design(argv[1]);
     std::printf("pcsim %s: design %s, %zu nodes, %zu spans\n", pcsim::version(), mesh.name.c_str(),
                 mesh.nodes.size(), mesh.support_x.size() - 1);
   } catch (const pcsim::InputError& e) {
