@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <map>
+#include <set>
 #include <sstream>
 
 #include "pcsim/core/error.hpp"
@@ -22,6 +24,7 @@ struct Row {
   const SweepCase* c;
   std::string pantograph;
   std::vector<AssessedFigure> figures;
+  std::string criteria, verdict;  // the case's criteria set and its overall verdict
 };
 
 std::vector<Row> rows_of(const std::vector<SweepCase>& cases) {
@@ -35,10 +38,18 @@ std::vector<Row> rows_of(const std::vector<SweepCase>& cases) {
     // EN 50318's ranges only for a case judged against them (docs/assessment.md).
     const auto assessment = c.summary.value("assessment", nlohmann::json::object());
     const bool ranges = assessment.value("criteria", std::string("en50318-2002")) == "en50318-2002";
-    for (const auto& p : c.summary.value("pantographs", nlohmann::json::array()))
-      rows.push_back({&c, p.value("name", std::string()),
+    const std::string set = assessment.value("criteria", std::string());
+    const auto judged = assessment.value("pantographs", nlohmann::json::object());
+    for (const auto& p : c.summary.value("pantographs", nlohmann::json::array())) {
+      const std::string name = p.value("name", std::string());
+      const auto it = judged.find(name);
+      const std::string verdict =
+          it != judged.end() ? it->value("verdict", std::string()) : std::string();
+      rows.push_back({&c, name,
                       p.value("complete", true) ? assess_en50318(c.summary, p, speed, ranges)
-                                                : std::vector<AssessedFigure>{}});
+                                                : std::vector<AssessedFigure>{},
+                      set, verdict});
+    }
   }
   return rows;
 }
@@ -60,7 +71,7 @@ std::string csv(const Swept& swept, const std::vector<Row>& rows) {
   for (const auto& [key, values] : swept) s << "," << key;
   s << ",pantograph,status,speed_kmh";
   for (const auto& f : en50318_reference().figures) s << "," << f.key << "," << f.key << "_verdict";
-  s << "\n";
+  s << ",criteria,criteria_verdict\n";
   for (const auto& r : rows) {
     s << r.c->name;
     for (const auto& v : r.c->values) s << "," << v.second;
@@ -73,7 +84,7 @@ std::string csv(const Swept& swept, const std::vector<Row>& rows) {
       s << "," << (a ? number(a->value) : "") << ","
         << (a && a->has_range ? (a->inside ? "pass" : "fail") : "");
     }
-    s << "\n";
+    s << "," << r.criteria << "," << r.verdict << "\n";
   }
   return s.str();
 }
@@ -84,8 +95,8 @@ std::string markdown(const Swept& swept, const std::vector<Row>& rows) {
   for (const auto& [key, values] : swept) s << " " << key << " |";
   s << " pantograph | status |";
   for (const auto& f : en50318_reference().figures) s << " " << f.label << " (" << f.unit << ") |";
-  s << "\n|";
-  for (std::size_t k = 0; k < swept.size() + 3 + en50318_reference().figures.size(); ++k)
+  s << " criteria: verdict |\n|";
+  for (std::size_t k = 0; k < swept.size() + 4 + en50318_reference().figures.size(); ++k)
     s << "---|";
   s << "\n";
   for (const auto& r : rows) {
@@ -99,9 +110,46 @@ std::string markdown(const Swept& swept, const std::vector<Row>& rows) {
           cell = number(a.value) + (a.has_range ? (a.inside ? " pass" : " **fail**") : "");
       s << " " << cell << " |";
     }
-    s << "\n";
+    s << " " << (r.criteria.empty() ? "" : r.criteria + ": ")
+      << (r.verdict == "fail" ? "**fail**" : r.verdict) << " |\n";
   }
   return s.str();
+}
+
+// Per pantograph, the highest swept speed up to which every case passes its
+// criteria set (every case at that speed or below: pass), when the cases
+// run at two speeds or more; null where the lowest speed does not pass.
+nlohmann::json highest_passing_speeds(const std::vector<Row>& rows) {
+  std::map<std::string, std::map<double, bool>> passes;  // pantograph -> speed -> all pass
+  std::set<double> speeds;
+  for (const auto& r : rows) {
+    if (r.pantograph.empty()) continue;
+    const double v = r.c->summary.value("speed_kmh", 0.0);
+    speeds.insert(v);
+    auto [it, fresh] = passes[r.pantograph].emplace(v, true);
+    it->second = it->second && r.verdict == "pass";
+  }
+  if (speeds.size() < 2) return nullptr;
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& [pantograph, by_speed] : passes) {
+    nlohmann::json highest = nullptr;
+    for (const auto& [v, pass] : by_speed) {
+      if (!pass) break;
+      highest = v;
+    }
+    j[pantograph] = highest;
+  }
+  return j;
+}
+
+std::string speed_line(const nlohmann::json& highest) {
+  if (highest.is_null()) return "";
+  std::string s = "\nHighest speed up to which every case passes its criteria set:";
+  for (const auto& [pantograph, v] : highest.items())
+    s += " " + pantograph + " " +
+         (v.is_null() ? std::string("none") : number(v.get<double>()) + " km/h") + ";";
+  s.back() = '\n';
+  return s;
 }
 
 nlohmann::json summary_json(const OutputDir& out, const Swept& swept,
@@ -180,6 +228,11 @@ void write_h5_table(const std::string& file, const Swept& swept, const std::vect
   h5.write_int("/exit_status", exit_statuses, DatasetInfo("1", "exit status of the case's run"));
   h5.write_strings("/error", errors, DatasetInfo("none", "a failed case's error"));
   h5.write("/speed_kmh", speeds, DatasetInfo("km/h", "train speed (NaN: failed case)"));
+  std::vector<std::string> sets, verdicts;
+  for (const auto& r : rows) sets.push_back(r.criteria), verdicts.push_back(r.verdict);
+  h5.write_strings("/criteria", sets, DatasetInfo("none", "the case's criteria set"));
+  h5.write_strings("/criteria_verdict", verdicts,
+                   DatasetInfo("none", "overall verdict under it: pass, fail, unverified, none"));
   for (const auto& f : en50318_reference().figures) write_figure_columns(h5, f, rows);
   h5.close();
 }
@@ -189,11 +242,13 @@ void write_h5_table(const std::string& file, const Swept& swept, const std::vect
 std::string write_sweep_results(const OutputDir& out, const Swept& swept,
                                 const std::vector<SweepCase>& cases, const nlohmann::json& record) {
   const auto rows = rows_of(cases);
-  const std::string table = markdown(swept, rows);
+  const nlohmann::json highest = highest_passing_speeds(rows);
+  const std::string table = markdown(swept, rows) + speed_line(highest);
   std::ofstream(out.file("sweep.csv")) << csv(swept, rows);
   std::ofstream(out.file("sweep.md")) << table;
-  std::ofstream(out.file("summary.json"))
-      << summary_json(out, swept, cases, record).dump(2) << "\n";
+  nlohmann::json summary = summary_json(out, swept, cases, record);
+  summary["highest_passing_speed_kmh"] = highest;
+  std::ofstream(out.file("summary.json")) << summary.dump(2) << "\n";
   // sweep.h5 whole or not at all: written under another name, then renamed.
   const std::string h5 = out.file(kSweepH5Name), tmp = h5 + ".tmp";
   write_h5_table(tmp, swept, rows);

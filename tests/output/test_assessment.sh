@@ -77,6 +77,33 @@ roles = {f["role"]: f["path"] for f in s["provenance"]["inputs"]}
 assert roles.get("assessment.criteria") == sys.argv[1], roles
 PY
 
+# A speed sweep judged against a set: the criteria set and its verdict per
+# row (sweep.csv, sweep.h5), the highest speed up to which every case passes
+# (sigma <= 30 N: sigma 26.3 N at 200 km/h, 32.1 N at 250 on this short line).
+cat > sigma-30.yaml <<'YAML'
+name: sigma-30
+title: sigma at most 30 N
+criteria:
+  - {key: sigma, figure: std_N, label: sigma, unit: N, upper: {constant: 30},
+     clause: "spec 2.1", source: "our spec", sourced: true}
+YAML
+"$PCSIM_BIN" sweep "$PCSIM_SOURCE_DIR/tests/contact/data/en50318-short.yaml" -j 1 -o speeds \
+  --set "assessment.criteria=$tmp/sigma-30.yaml" --set "simulation.speed_kmh=200,250,300" \
+  > speeds.log 2>&1 || { cat speeds.log; fail "speed sweep"; }
+grep -q "Highest speed up to which every case passes its criteria set: pantograph 200 km/h" \
+  speeds.log || { cat speeds.log; fail "highest passing speed"; }
+"$PCSIM_PYTHON" - <<'PY'
+import csv, json, h5py
+rows = list(csv.DictReader(open("speeds/sweep.csv")))
+assert [r["criteria_verdict"] for r in rows] == ["pass", "fail", "fail"], rows
+assert {r["criteria"] for r in rows} == {"sigma-30"}, rows
+with h5py.File("speeds/sweep.h5") as f:
+    assert [v.decode() for v in f["criteria_verdict"][:]] == ["pass", "fail", "fail"]
+    assert f["criteria"].attrs["unit"] == "none"
+s = json.load(open("speeds/summary.json"))
+assert s["highest_passing_speed_kmh"] == {"pantograph": 200.0}, s["highest_passing_speed_kmh"]
+PY
+
 scene=$PCSIM_SOURCE_DIR/tests/contact/data/en50318-short.yaml
 printf 'name: bad\ncriteria:\n  - {key: a, figure: mean_force, clause: c, source: s, sourced: true}\n' > bad-set.yaml
 check() {  # expected key, then the arguments
