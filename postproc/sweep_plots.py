@@ -43,7 +43,10 @@ def series(summary, x_key, ref):
                 continue
             label = ", ".join(t for t in (others, p["name"] if len(s["pantographs"]) > 1 else "") if t)
             figures = {f["key"]: f["value"] for f in pcsim_post.assess(s, p, ref)}
-            out.setdefault(label, []).append((case["values"][x_key], s.get("speed_kmh", 0.0), figures))
+            judged = s.get("assessment", {}).get("pantographs", {}).get(p["name"], {})
+            failed = {c["figure"] for c in judged.get("criteria", []) if c.get("verdict") == "fail"}
+            out.setdefault(label, []).append((case["values"][x_key], s.get("speed_kmh", 0.0), figures,
+                                              failed))
     return out
 
 
@@ -70,7 +73,7 @@ def sweep_figure(summary, x_key=None, ref=None):
     lines = series(summary, x_key, ref)
     fig, axes = plt.subplots(2, 3, figsize=(14, 7.5))
     for ax, (title, fig_keys) in zip(axes.flat, PANELS):
-        drawn = set()
+        drawn, fail_shown = set(), False
         for k, (label, points) in enumerate(sorted(lines.items())):
             points.sort(key=lambda p: position(p[0]))
             xs = [position(p[0]) for p in points]
@@ -79,7 +82,12 @@ def sweep_figure(summary, x_key=None, ref=None):
                 style = ("o" if j == 0 else "s") if "cases_table" in summary else ("o-" if j == 0 else "s--")
                 ax.plot(xs, ys, style, ms=4, color="C%d" % k,
                         label=(label or "pcsim") if j == 0 else None)
-                for x, (_, speed, _) in zip(xs, points):
+                bad = [(x, y) for x, y, p in zip(xs, ys, points) if key in p[3] and y is not None]
+                if bad:  # a criterion of the case's set fails on this figure
+                    ax.plot(*zip(*bad), "x", ms=9, mew=2, color="red", ls="none",
+                            label=None if fail_shown else "fails its criteria set")
+                    fail_shown = True
+                for x, (_, speed, _, _) in zip(xs, points):
                     rng = (pcsim_post.ranges_at(ref, speed) or {}).get(key)
                     if rng and (x, key) not in drawn:
                         draw_range(ax, x, rng, None if drawn else "%s range" % ref["edition"])
@@ -91,7 +99,12 @@ def sweep_figure(summary, x_key=None, ref=None):
             ax.set_xticks(range(len(order)), order)
     handles, labels = axes.flat[0].get_legend_handles_labels()
     axes.flat[0].legend(handles, labels, fontsize=7)
-    fig.suptitle("EN 50318 figures of the sweep of %s" % ", ".join(keys))
+    title = "EN 50318 figures of the sweep of %s" % ", ".join(keys)
+    highest = summary.get("highest_passing_speed_kmh")
+    if highest:
+        title += "; highest speed every case passes up to: " + ", ".join(
+            "%s %s" % (p, "none" if v is None else "%g km/h" % v) for p, v in highest.items())
+    fig.suptitle(title)
     fig.tight_layout()
     return fig
 
