@@ -97,16 +97,18 @@ RayleighDamping::RayleighDamping(FECatenary& catenary, const contact::Interactio
 TermPower RayleighDamping::power(const CoupledState& state) const {
   TermPower p;
   if (!state.V) return p;
-  Vec CV;
-  PCSIM_PETSC(VecDuplicate(state.V, &CV));
-  for (const auto& part : parts_) {
-    PCSIM_PETSC(MatMult(part.matrix, state.V, CV));
-    PetscScalar vcv = 0;
-    PCSIM_PETSC(VecDot(state.V, CV, &vcv));
-    p.dissipative -= part.cv * vcv;
-  }
-  PCSIM_PETSC(VecDestroy(&CV));
+  for (const auto& part : parts_) p.dissipative -= part.cv * quadratic_form(part.matrix, state.V);
   return p;
+}
+
+double quadratic_form(Mat C, Vec v) {
+  Vec Cv;
+  PCSIM_PETSC(VecDuplicate(v, &Cv));
+  PCSIM_PETSC(MatMult(C, v, Cv));
+  PetscScalar vcv = 0;
+  PCSIM_PETSC(VecDot(v, Cv, &vcv));
+  PCSIM_PETSC(VecDestroy(&Cv));
+  return vcv;
 }
 
 }  // namespace pcsim::assembly

@@ -61,14 +61,7 @@ AerodynamicDamping::~AerodynamicDamping() {
 
 TermPower AerodynamicDamping::power(const CoupledState& state) const {
   TermPower p;
-  if (!state.V) return p;
-  Vec CV;
-  PCSIM_PETSC(VecDuplicate(state.V, &CV));
-  PCSIM_PETSC(MatMult(C_, state.V, CV));
-  PetscScalar vcv = 0;
-  PCSIM_PETSC(VecDot(state.V, CV, &vcv));
-  p.dissipative = -vcv;
-  PCSIM_PETSC(VecDestroy(&CV));
+  if (state.V) p.dissipative = -quadratic_form(C_, state.V);
   return p;
 }
 

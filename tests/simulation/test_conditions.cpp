@@ -12,6 +12,7 @@
 #include <functional>
 
 #include "../assembly/catenary_fixtures.hpp"
+#include "green_catenary.hpp"
 #include "pcsim/simulation/statics.hpp"
 
 using namespace pcsim;
@@ -21,47 +22,7 @@ namespace {
 constexpr double kSpan = 60, kMass = 1.35, kIce = 0.5, kG = 9.81, kEA = 1.44e7;
 constexpr int kElements = 120;
 
-// Elastic catenary of unstressed length L0, weight w per unstressed length,
-// horizontal force H, supports level; unstressed coordinate s.
-struct GreenCatenary {
-  double H, w, L0;
-  double stretch(double T) const {  // lambda from T = EA lambda (lambda^2 - 1) / 2
-    double lambda = 1 + T / kEA;
-    for (int it = 0; it < 30; ++it)
-      lambda -= (0.5 * kEA * lambda * (lambda * lambda - 1) - T) /
-                (0.5 * kEA * (3 * lambda * lambda - 1));
-    return lambda;
-  }
-  // int_0^upto f(s) ds by Simpson's rule on 4000 intervals.
-  double integral(double upto, const std::function<double(double)>& f) const {
-    const int n = 4000;
-    const double h = upto / n;
-    double sum = f(0) + f(upto);
-    for (int i = 1; i < n; ++i) sum += (i % 2 ? 4 : 2) * f(i * h);
-    return sum * h / 3;
-  }
-  double span() const {  // x(L0) = int lambda H / T ds
-    return integral(L0, [&](double s) {
-      const double T = std::hypot(H, 0.5 * w * L0 - w * s);
-      return stretch(T) * H / T;
-    });
-  }
-  double sag() const {  // -z(L0 / 2) = int lambda (V - w s) / T ds
-    return integral(0.5 * L0, [&](double s) {
-      const double T = std::hypot(H, 0.5 * w * L0 - w * s);
-      return stretch(T) * (0.5 * w * L0 - w * s) / T;
-    });
-  }
-  void fit_span(double span) {  // H such that x(L0) = span (secant)
-    double h0 = H, h1 = 1.01 * H, f0 = this->span() - span;
-    for (int it = 0; it < 40 && std::abs(f0) > 1e-13 * span; ++it) {
-      H = h1;
-      const double f1 = this->span() - span;
-      h1 = h1 - f1 * (h1 - h0) / (f1 - f0);
-      h0 = H, f0 = f1;
-    }
-  }
-};
+using test::GreenCatenary;
 
 // A 60 m contact wire (EN 50318's: 1.35 kg/m, EA 1.44e7 N) of unstressed
 // length for ~20 kN, 120 elements; EI 1 N m^2 (bending ~1e-8 of the tension's

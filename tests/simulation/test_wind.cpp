@@ -15,6 +15,7 @@
 #include <functional>
 
 #include "../assembly/catenary_fixtures.hpp"
+#include "green_catenary.hpp"
 #include "pcsim/catenary/elements.hpp"
 #include "pcsim/catenary/wind.hpp"
 #include "pcsim/output/modal_cache.hpp"
@@ -27,47 +28,7 @@ namespace {
 constexpr double kSpan = 60, kMass = 1.35, kG = 9.81, kEA = 1.44e7, kT = 20000;
 constexpr int kElements = 120;
 
-// Elastic catenary (Green strain, as the elements) of unstressed length L0
-// under a load w per unstressed length, horizontal force H, level supports
-// (as in test_conditions.cpp).
-struct GreenCatenary {
-  double H, w, L0;
-  double stretch(double T) const {
-    double lambda = 1 + T / kEA;
-    for (int it = 0; it < 30; ++it)
-      lambda -= (0.5 * kEA * lambda * (lambda * lambda - 1) - T) /
-                (0.5 * kEA * (3 * lambda * lambda - 1));
-    return lambda;
-  }
-  double integral(double upto, const std::function<double(double)>& f) const {
-    const int n = 4000;
-    const double h = upto / n;
-    double sum = f(0) + f(upto);
-    for (int i = 1; i < n; ++i) sum += (i % 2 ? 4 : 2) * f(i * h);
-    return sum * h / 3;
-  }
-  double span() const {
-    return integral(L0, [&](double s) {
-      const double T = std::hypot(H, 0.5 * w * L0 - w * s);
-      return stretch(T) * H / T;
-    });
-  }
-  double sag() const {
-    return integral(0.5 * L0, [&](double s) {
-      const double T = std::hypot(H, 0.5 * w * L0 - w * s);
-      return stretch(T) * (0.5 * w * L0 - w * s) / T;
-    });
-  }
-  void fit_span(double span) {
-    double h0 = H, h1 = 1.01 * H, f0 = this->span() - span;
-    for (int it = 0; it < 40 && std::abs(f0) > 1e-13 * span; ++it) {
-      H = h1;
-      const double f1 = this->span() - span;
-      h1 = h1 - f1 * (h1 - h0) / (f1 - f0);
-      h0 = H, f0 = f1;
-    }
-  }
-};
+using test::GreenCatenary;
 
 catenary::CatenaryMesh wire(double L0) {
   auto mesh = fixtures::single_wire(kSpan, kElements, kMass, kEA, 1.0, kT, 0.3, 1.0);

@@ -87,6 +87,9 @@ struct TermPower {
   double external = 0;     // work rate of prescribed forces (moving contact, uplift)
 };
 
+// v^T C v over the ranks (a constant damping matrix C dissipates -v^T C v).
+double quadratic_form(Mat C, Vec v);
+
 class Term {
  public:
   virtual ~Term() = default;
