@@ -249,7 +249,7 @@ def bar_figure(rows, figures, keys, title):
             hi = np.array([by_key[k][name + "_high"] if k in by_key else np.nan for k in keys], float)
             err = np.vstack([np.clip(vals - lo, 0, None), np.clip(hi - vals, 0, None)])
             ax.bar(pos + (j - 0.5) * 0.38, vals, 0.36, yerr=err, capsize=3, color=color, label=name)
-        ax.set_xticks(pos, [k.split(".")[-1] for k in keys], fontsize=8)
+        ax.set_xticks(pos, short_names(keys), fontsize=8, rotation=30, ha="right")
         ax.axhline(0, color="0.3", lw=0.6)
         ax.set_title("%s (%s)" % figures[f], fontsize=9)
         ax.grid(axis="y", alpha=0.3)
@@ -258,6 +258,17 @@ def bar_figure(rows, figures, keys, title):
     fig.suptitle(title, fontsize=10)
     fig.tight_layout()
     return fig
+
+
+def short_names(keys):
+    """The shortest trailing parts of the keys that tell them apart
+    (pantographs[0].model.stages[1].mass -> stages[1].mass beside stages[0].mass)."""
+    parts = [k.split(".") for k in keys]
+    for n in range(1, max(len(p) for p in parts) + 1):
+        names = [".".join(p[-n:]) for p in parts]
+        if len(set(names)) == len(names):
+            return names
+    return list(keys)
 
 
 def scatter_figure(x, table, figures, keys, title):
