@@ -31,7 +31,7 @@ std::vector<Row> rows_of(const std::vector<SweepCase>& cases) {
   std::vector<Row> rows;
   for (const auto& c : cases) {
     if (c.status != 0 || !c.summary.is_object()) {
-      rows.push_back({&c, "", {}});
+      rows.push_back({&c, "", {}, "", ""});
       continue;
     }
     const double speed = c.summary.value("speed_kmh", 0.0);
