@@ -12,28 +12,19 @@
 #include <functional>
 
 #include "../assembly/catenary_fixtures.hpp"
-#include "green_catenary.hpp"
 #include "pcsim/simulation/statics.hpp"
+#include "single_wire.hpp"
 
 using namespace pcsim;
 
 namespace {
 
-constexpr double kSpan = 60, kMass = 1.35, kIce = 0.5, kG = 9.81, kEA = 1.44e7;
-constexpr int kElements = 120;
+constexpr double kSpan = test::kWireSpan, kMass = test::kWireMass, kEA = test::kWireEA;
+constexpr double kIce = 0.5, kG = 9.81;
+constexpr int kElements = test::kWireElements;
 
 using test::GreenCatenary;
-
-// A 60 m contact wire (EN 50318's: 1.35 kg/m, EA 1.44e7 N) of unstressed
-// length for ~20 kN, 120 elements; EI 1 N m^2 (bending ~1e-8 of the tension's
-// stiffness over the span).
-catenary::CatenaryMesh wire(double L0) {
-  auto mesh = fixtures::single_wire(kSpan, kElements, kMass, kEA, 1.0, 20000, 0.3, 1.0);
-  double ref_total = 0;
-  for (const auto& e : mesh.cables) ref_total += e.ref_length;
-  for (auto& e : mesh.cables) e.unstressed_length = e.ref_length * L0 / ref_total;
-  return mesh;
-}
+using test::single_wire_mesh;
 
 // The right end held by a weight (released with the bare wire's pull).
 void add_weight(catenary::CatenaryMesh& mesh, double travel) {
@@ -53,7 +44,7 @@ double mid_sag(const simulation::StaticConfiguration& c) {
 
 TEST(Ice, FixedTerminationsRaiseTheTension) {
   const double L0 = kSpan / (1 + 20000 / kEA);
-  auto mesh = wire(L0);
+  auto mesh = single_wire_mesh(L0);
   const auto bare = simulation::static_configuration(PETSC_COMM_WORLD, mesh, false);
   mesh.conditions.ice.contact = kIce;
   const auto iced = simulation::static_configuration(PETSC_COMM_WORLD, mesh, false);
@@ -76,7 +67,7 @@ TEST(Ice, FixedTerminationsRaiseTheTension) {
 
 TEST(Ice, TensioningWeightHoldsThePull) {
   const double L0 = kSpan / (1 + 20000 / kEA);
-  auto mesh = wire(L0);
+  auto mesh = single_wire_mesh(L0);
   add_weight(mesh, 0.0);
   const auto bare = simulation::static_configuration(PETSC_COMM_WORLD, mesh, false);
   mesh.conditions.ice.contact = kIce;
@@ -104,7 +95,7 @@ TEST(Ice, TensioningWeightHoldsThePull) {
 // default), the tension rises, the sag falls.
 TEST(Temperature, FixedTerminationsTightenWhenCold) {
   const double L0 = kSpan / (1 + 20000 / kEA), dT = -30;
-  auto mesh = wire(L0);
+  auto mesh = single_wire_mesh(L0);
   mesh.conditions.temperature_change_k = dT;
   const auto cold = simulation::static_configuration(PETSC_COMM_WORLD, mesh, false);
   GreenCatenary before{20000, kMass * kG, L0};
@@ -126,7 +117,7 @@ TEST(Temperature, FixedTerminationsTightenWhenCold) {
 // (41 mm), beyond a travel of 30 mm: a warning names the device.
 TEST(Temperature, WeightMovesAndRunsOutOfTravel) {
   const double L0 = kSpan / (1 + 20000 / kEA), dT = 40;
-  auto mesh = wire(L0);
+  auto mesh = single_wire_mesh(L0);
   add_weight(mesh, 0.03);
   mesh.conditions.temperature_change_k = dT;
   const auto warm = simulation::static_configuration(PETSC_COMM_WORLD, mesh, false);
@@ -148,7 +139,7 @@ TEST(Temperature, WeightMovesAndRunsOutOfTravel) {
 // A hold along the track at mid-span (a fixed support): the left half lies
 // between the anchored end and the hold, no device: one warning.
 TEST(Temperature, HeldStretchIsNamed) {
-  auto mesh = wire(kSpan / (1 + 20000 / kEA));
+  auto mesh = single_wire_mesh(kSpan / (1 + 20000 / kEA));
   add_weight(mesh, 0.0);
   mesh.nodes[kElements / 2].fixed[0] = true;
   mesh.conditions.temperature_change_k = -20;

@@ -15,28 +15,22 @@
 #include <functional>
 
 #include "../assembly/catenary_fixtures.hpp"
-#include "green_catenary.hpp"
 #include "pcsim/catenary/elements.hpp"
 #include "pcsim/catenary/wind.hpp"
 #include "pcsim/output/modal_cache.hpp"
 #include "pcsim/simulation/statics.hpp"
+#include "single_wire.hpp"
 
 using namespace pcsim;
 
 namespace {
 
-constexpr double kSpan = 60, kMass = 1.35, kG = 9.81, kEA = 1.44e7, kT = 20000;
-constexpr int kElements = 120;
+constexpr double kSpan = test::kWireSpan, kMass = test::kWireMass, kEA = test::kWireEA;
+constexpr double kG = 9.81, kT = 20000;
+constexpr int kElements = test::kWireElements;
 
 using test::GreenCatenary;
-
-catenary::CatenaryMesh wire(double L0) {
-  auto mesh = fixtures::single_wire(kSpan, kElements, kMass, kEA, 1.0, kT, 0.3, 1.0);
-  double ref_total = 0;
-  for (const auto& e : mesh.cables) ref_total += e.ref_length;
-  for (auto& e : mesh.cables) e.unstressed_length = e.ref_length * L0 / ref_total;
-  return mesh;
-}
+using test::single_wire_mesh;
 
 // Drag per length of the contact wire (13.2 mm, Cd 1.0) at V across.
 double drag(double V) {
@@ -76,7 +70,7 @@ TEST(WindLoad, ElementLoadIsConsistentAndConservative) {
 // atan(q / w) and sags under sqrt(w^2 + q^2), its tension rising.
 TEST(WindLoad, FixedSpanAgainstTheCatenaryAndTheParabola) {
   const double L0 = kSpan / (1 + kT / kEA), V = 30, q = drag(V), w = kMass * kG;
-  auto mesh = wire(L0);
+  auto mesh = single_wire_mesh(L0);
   mesh.conditions.wind.speed = V;
   const auto blown = simulation::static_configuration(PETSC_COMM_WORLD, mesh, false);
   const int mid = kElements / 2;
@@ -113,7 +107,7 @@ TEST(WindLoad, FixedSpanAgainstTheCatenaryAndTheParabola) {
 // q L^2 / (8 T) with T the bare wire's horizontal pull.
 TEST(WindLoad, WeightTensionedSpanAgainstTheClosedForm) {
   const double L0 = kSpan / (1 + kT / kEA), V = 25, q = drag(V), w = kMass * kG;
-  auto mesh = wire(L0);
+  auto mesh = single_wire_mesh(L0);
   catenary::TensioningDevice weight;
   weight.node = kElements, weight.wire = 0, weight.mass = kT / kG;
   mesh.tensioning_devices.push_back(weight);
@@ -138,7 +132,7 @@ TEST(WindLoad, WeightTensionedSpanAgainstTheClosedForm) {
 // The modal cache key (output/modal_cache.hpp) includes the wind: the
 // basis is computed about the blown line's equilibrium.
 TEST(WindLoad, ModalCacheKeyIncludesTheWind) {
-  const auto still = wire(kSpan);
+  const auto still = single_wire_mesh(kSpan);
   const auto key = [](const catenary::CatenaryMesh& m) {
     return output::modal_cache_key("design", m, false, false);
   };

@@ -1,14 +1,33 @@
-// The elastic catenary with the elements' Green strain, as an independent
-// reference for the statics tests (test_conditions.cpp, test_wind.cpp): a
-// wire of unstressed length L0 under a load w per unstressed length, with
-// horizontal force H between level supports; unstressed coordinate s, axial
-// rigidity EA (T = EA lambda (lambda^2 - 1) / 2), integrated numerically.
+// The single wire of the statics tests (test_conditions.cpp, test_wind.cpp)
+// and its independent reference:
+//  - single_wire_mesh(L0): a 60 m contact wire (EN 50318's: 1.35 kg/m, EA
+//    1.44e7 N) of unstressed length L0, 120 elements, EI 1 N m^2 (bending
+//    ~1e-8 of the tension's stiffness over the span), built for ~20 kN;
+//  - GreenCatenary: the elastic catenary with the elements' Green strain, a
+//    wire of unstressed length L0 under a load w per unstressed length, with
+//    horizontal force H between level supports; unstressed coordinate s,
+//    axial rigidity EA (T = EA lambda (lambda^2 - 1) / 2), integrated
+//    numerically.
 #pragma once
 
 #include <cmath>
 #include <functional>
 
+#include "../assembly/catenary_fixtures.hpp"
+
 namespace pcsim::test {
+
+constexpr double kWireSpan = 60, kWireMass = 1.35, kWireEA = 1.44e7;  // m, kg/m, N
+constexpr int kWireElements = 120;
+
+inline catenary::CatenaryMesh single_wire_mesh(double L0) {
+  auto mesh =
+      fixtures::single_wire(kWireSpan, kWireElements, kWireMass, kWireEA, 1.0, 20000, 0.3, 1.0);
+  double ref_total = 0;
+  for (const auto& e : mesh.cables) ref_total += e.ref_length;
+  for (auto& e : mesh.cables) e.unstressed_length = e.ref_length * L0 / ref_total;
+  return mesh;
+}
 
 struct GreenCatenary {
   double H, w, L0;
