@@ -169,18 +169,6 @@ Mat12 cable_mass_matrix(const CableSection& section, double Lref) {
   return M;
 }
 
-Vec12 cable_gravity_force(const CableSection& section, double Lref, const Eigen::Vector3d& g) {
-  // int s dchi = [L/2, L^2/12, L/2, -L^2/12]
-  const double mu = section.mass_per_length;
-  const double L = Lref;
-  Vec12 fg;
-  fg.segment<3>(0) = (mu * L / 2.0) * g;
-  fg.segment<3>(3) = (mu * L * L / 12.0) * g;
-  fg.segment<3>(6) = (mu * L / 2.0) * g;
-  fg.segment<3>(9) = (-mu * L * L / 12.0) * g;
-  return fg;
-}
-
 Vec12 cable_line_load(double Lref, double L0, const Eigen::Vector3d& q) {
   // (L0 / Lref) int s dchi = L0 [1/2, Lref/12, 1/2, -Lref/12]
   Vec12 f;
@@ -189,6 +177,12 @@ Vec12 cable_line_load(double Lref, double L0, const Eigen::Vector3d& q) {
   f.segment<3>(6) = (L0 / 2.0) * q;
   f.segment<3>(9) = (-L0 * Lref / 12.0) * q;
   return f;
+}
+
+// The weight mu g per reference length: the line load with L0 -> mu Lref
+// (the same products, in the same order, as the gravity load had of its own).
+Vec12 cable_gravity_force(const CableSection& section, double Lref, const Eigen::Vector3d& g) {
+  return cable_line_load(Lref, section.mass_per_length * Lref, g);
 }
 
 // ------------------------------------------------------------------ bar ----
