@@ -307,8 +307,17 @@ void ModalCatenary::update_slack_set() {
 // The weights of contact wire 'wire' at station x: z = z0 + w . eta with
 // w = S_z(chi) Phi_e (thesis 3.13), and the parts of the slope dz/dx.
 ModalCatenary::CachedPoint& ModalCatenary::cached_point(double x, int wire) const {
-  CachedPoint& c = cached_[wire];
-  if (x == c.x) return c;
+  auto& entries = cached_[wire];
+  CachedPoint* oldest = &entries[0];
+  for (CachedPoint& e : entries) {
+    if (e.x == x) {
+      e.last_use = ++point_uses_;
+      return e;
+    }
+    if (e.last_use < oldest->last_use) oldest = &e;
+  }
+  CachedPoint& c = *oldest;
+  c.last_use = ++point_uses_;
   c.eta_version = -1;
   WirePoint& p = c.point;  // its vectors keep their storage from x to x
   int element;

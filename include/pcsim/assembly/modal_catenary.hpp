@@ -29,6 +29,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -142,8 +143,9 @@ class ModalCatenary : public CatenaryModel {
   void single_precision_anchor(double step);
   void find_candidates(double step, double step_omega);
   bool line_candidates(std::size_t few);
-  // Wire-point weights of the last x of each contact wire (they depend on x
-  // only): the point, its static height and the slope's parts.
+  // Wire-point weights of the last few x of each contact wire (they depend
+  // on x only): the point, its static height and the slope's parts. Several
+  // per wire, so that pantographs on one wire do not evict each other.
   struct CachedPoint {
     double x = -1e300;
     WirePoint point;
@@ -151,8 +153,11 @@ class ModalCatenary : public CatenaryModel {
     Eigen::RowVectorXd z_chi;  // d(dz/dchi)/d eta
     double z_chi0 = 0;         // static dz/dchi
     long eta_version = -1;     // point.z and point.slope belong to this eta_version_
+    long last_use = 0;         // for replacing the least recently used
   };
-  mutable std::vector<CachedPoint> cached_;
+  static constexpr std::size_t kCachedPointsPerWire = 8;
+  mutable std::vector<std::array<CachedPoint, kCachedPointsPerWire>> cached_;
+  mutable long point_uses_ = 0;
   CachedPoint& cached_point(double x, int wire) const;
 };
 
