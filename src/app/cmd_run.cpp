@@ -192,8 +192,8 @@ int report_complete(const app::CommandContext& ctx, output::OutputDir& out,
 
 // The checkpoint of --restart DIR, or null.
 std::unique_ptr<simulation::RunCheckpoint> load_restart(
-    const app::CommandContext& ctx, const scene::RunScene& run, const output::OutputRequest& request,
-    const std::vector<simulation::InputFile>& inputs) {
+    const app::CommandContext& ctx, const scene::RunScene& run,
+    const output::OutputRequest& request, const std::vector<simulation::InputFile>& inputs) {
   const std::string dir = app::restart_dir(ctx);
   if (dir.empty()) return nullptr;
   if (run.window)
@@ -291,7 +291,8 @@ PCSIM_COMMAND_HELP(
     "  pantographs  list of {name, model, start_x, static_force, start, ramp_distance,\n"
     "               working_height, effects}\n"
     "  simulation   speed_kmh, end_x [m], dt [s]\n"
-    "  effects      catenary_nonlinear, dropper_slack, rayleigh_damping\n"
+    "  effects      dropper_slack, rayleigh_damping (catenary_nonlinear: the older\n"
+    "               key of catenary.model)\n"
     "  contact      stiffness [N/m]\n"
     "  analysis     from_span, to_span, cutoff_hz\n"
     "  output       dropper_forces, snapshot_every, energy, checkpoint_every\n"

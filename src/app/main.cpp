@@ -66,6 +66,8 @@ void print_usage() {
       "  -ts_dt, -ts_type hht|alpha2, -ts_hht_alpha [0, 1/3], -pcsim_path auto|full|cheap (run);\n"
       "  -pcsim_accuracy_pilot auto|true|false: the pilot runs of the accuracy estimate\n"
       "  (run; auto: runs of the modal level; docs/fidelity.md);\n"
+      "  -pc_type pcsimwoodbury|pcsimschur: pcsim's step solvers as PETSc PC types (run;\n"
+      "  pcsimwoodbury is the cheap path's; docs/architecture.md);\n"
       "  -eps_nev N, -modes_fmax F (modes); -pcsim_debug_* (tests).\n"
       "Scene files: docs/scene-format.md; catenary designs: docs/design-format.md.\n");
 }

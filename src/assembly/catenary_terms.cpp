@@ -81,7 +81,7 @@ RayleighDamping::RayleighDamping(FECatenary& catenary, const contact::Interactio
   const unsigned taut = e.dropper_slack ? 0u : CatenarySystem::kTautBars;
   // Every constant matrix holds a subset of the Jacobian's pattern (FECatenary).
   parts_.push_back({catenary.mass_matrix(), 0.0, alpha, 0.0, SUBSET_NONZERO_PATTERN});
-  if (e.catenary_nonlinear) {
+  if (catenary.fidelity() == catenary::CatenaryFidelity::nonlinear) {
     parts_.push_back({catenary.static_tangent(CatenarySystem::kAllTerms | taut), 0.0, beta, 0.0,
                       SUBSET_NONZERO_PATTERN});
   } else {

@@ -14,8 +14,10 @@ using catenary::BarKind;
 
 FECatenary::FECatenary(MPI_Comm comm, catenary::CatenaryMesh mesh,
                        std::vector<double> static_node_values, PetscInt extra_dofs,
-                       const std::vector<int>* node_owner)
-    : static_values_(std::move(static_node_values)) {
+                       catenary::CatenaryFidelity fidelity, const std::vector<int>* node_owner)
+    : static_values_(std::move(static_node_values)), fidelity_(fidelity) {
+  if (fidelity_ == catenary::CatenaryFidelity::modal)
+    throw SolverError("FE catenary: the modal level is the modal catenary's, not the FE one's");
   system_ = std::make_unique<CatenarySystem>(comm, std::move(mesh), extra_dofs, node_owner);
   const auto& m = system_->mesh();
   const auto wires = m.contact_wire_list();
@@ -170,7 +172,7 @@ std::vector<std::unique_ptr<Term>> FECatenary::make_terms(const contact::Interac
                                                           Mat /*pattern*/) {
   dropper_slack_ = e.dropper_slack;
   std::vector<std::unique_ptr<Term>> terms;
-  if (e.catenary_nonlinear)
+  if (fidelity_ == catenary::CatenaryFidelity::nonlinear)
     terms.push_back(std::make_unique<NonlinearCableForces>(*this));
   else
     terms.push_back(std::make_unique<LinearisedCableForces>(*this));

@@ -248,7 +248,6 @@ RunScene load_run_scene(const InputNode& scene, const RunSceneOptions& options) 
                           "the gap)");
   read_effects_and_output(scene, run);
   read_analysis(scene, run);
-  run.effects.catenary_nonlinear = run.catenary.fidelity == catenary::CatenaryFidelity::nonlinear;
   // Default modal cut-off: the modes the contact force shows below the filter
   // cut-off, cutoff_hz / (1 - v/c) (docs/fidelity.md).
   if (!run.catenary.modal_cutoff_given) {

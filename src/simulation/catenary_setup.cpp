@@ -190,8 +190,9 @@ CatenarySetup make_catenary_model(const Context& ctx, const scene::RunScene& run
                                   PetscInt extra_dofs) {
   CatenarySetup out;
   if (run.catenary.fidelity != catenary::CatenaryFidelity::modal) {
-    out.model = std::make_unique<assembly::FECatenary>(
-        ctx.comm, statics.mesh, statics.result.node_values, extra_dofs, &statics.node_owner);
+    out.model = std::make_unique<assembly::FECatenary>(ctx.comm, statics.mesh,
+                                                       statics.result.node_values, extra_dofs,
+                                                       run.catenary.fidelity, &statics.node_owner);
     return out;
   }
   constexpr PetscInt kMaxAllModes = 4000;

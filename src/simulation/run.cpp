@@ -161,8 +161,8 @@ void assess_figures(const output::RunSettings& s, const output::RunStatistics& s
 
 // Rank 0: the statistics, line and energy results of a complete run and its
 // summary, read back from results.h5.
-void write_complete_results(const output::OutputDir& out, const catenary::CatenaryMesh& line, bool energy,
-                            RunOutcome& outcome) {
+void write_complete_results(const output::OutputDir& out, const catenary::CatenaryMesh& line,
+                            bool energy, RunOutcome& outcome) {
   const auto& s = outcome.settings;
   outcome.stats = output::finish_run_results(out, line, s);
   assess_figures(s, outcome.stats, outcome.facts);
@@ -193,7 +193,8 @@ void write_interrupted_results(const output::OutputDir& out, const catenary::Cat
 void finish(const Context& ctx, const scene::RunScene& scene, const RunRequest& request,
             const CatenarySetup& setup, const assembly::CoupledSystem& system,
             solvers::DynamicSolver& solver, RunSession& session, const MovingWindow* window,
-            const simulation::StaticConfiguration& statics, output::OutputDir& out, RunOutcome& outcome) {
+            const simulation::StaticConfiguration& statics, output::OutputDir& out,
+            RunOutcome& outcome) {
   outcome.steps = session.steps();
   outcome.time = session.time();
   outcome.facts = session.facts();
@@ -232,7 +233,7 @@ bool has_block_terms(const assembly::CoupledSystem& system) {
 // A nonlinear pantograph's tangent stays in its own block (refactored per
 // iteration on the cheap path): only the catenary decides.
 bool cheap_path_possible(const scene::RunScene& scene) {
-  return !scene.effects.catenary_nonlinear;
+  return scene.catenary.fidelity != catenary::CatenaryFidelity::nonlinear;
 }
 
 RunOutcome run(const Context& ctx, scene::RunScene& scene, const RunRequest& request,
@@ -253,7 +254,8 @@ RunOutcome run(const Context& ctx, scene::RunScene& scene, const RunRequest& req
     window = std::make_unique<MovingWindow>(*scene.window, *system, design.support_x);
   Vec U0 = system->create_vector(), V0 = system->create_vector();
   initial_state(*system, U0, V0);
-  solvers::DynamicSolver solver(*system, scene.dt, scene.duration(), scene.hht_alpha);
+  const auto solver_owner = make_run_solver(scene, *system);
+  solvers::DynamicSolver& solver = *solver_owner;
   if (request.scene_dt) PCSIM_PETSC(TSSetTimeStep(solver.ts(), scene.dt));
   // With the pilot's estimate, the calibrated rules only when one is broken.
   const bool pilot = !request.accuracy_pilot.is_null();

@@ -49,4 +49,10 @@ RunSetup set_up_run(const Context& ctx, scene::RunScene& scene, LogStage* stage)
   return s;
 }
 
+std::unique_ptr<solvers::DynamicSolver> make_run_solver(const scene::RunScene& scene,
+                                                        assembly::CoupledSystem& system) {
+  return std::make_unique<solvers::DynamicSolver>(system, scene.dt, scene.duration(),
+                                                  scene.hht_alpha);
+}
+
 }  // namespace pcsim::simulation

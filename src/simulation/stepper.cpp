@@ -38,8 +38,7 @@ Stepper::Stepper(const Context& ctx, scene::RunScene& scene)
       std::make_unique<assembly::PrescribedHeadForces>(s.system->pantographs())));
   Vec U0 = s.system->create_vector(), V0 = s.system->create_vector();
   initial_state(*s.system, U0, V0);
-  s.solver = std::make_unique<solvers::DynamicSolver>(*s.system, scene.dt, scene.duration(),
-                                                      scene.hht_alpha);
+  s.solver = make_run_solver(scene, *s.system);
   s.solver->set_initial_state(U0, V0);
   PCSIM_PETSC(VecDestroy(&U0));
   PCSIM_PETSC(VecDestroy(&V0));

@@ -63,7 +63,6 @@ scene::RunScene variant_scene(const SceneSource& source, const StudyVariant& v, 
     parsed.push_back(scene::parse_override(o, {"", "pcsim study --set " + o}));
   auto run = scene::load_run_scene(scene::load_composed(source.path, parsed));
   run.catenary.fidelity = v.model;
-  run.effects.catenary_nonlinear = v.model == catenary::CatenaryFidelity::nonlinear;
   run.dt *= v.dt_factor;
   if (v.cutoff_factor > 0) {
     const auto& mesh = run.catenary.mesh;
@@ -113,7 +112,7 @@ output::StudyRun run_variant(const Context& ctx, const SceneSource& source, cons
   reset_peak_memory();
   try {
     output::OutputRequest request{run_dir,     "command line",   "-o", "study", source.path,
-                          out.label(), source.provenance};
+                                  out.label(), source.provenance};
     output::OutputDir dir(ctx.comm, request);
     RunRequest what;
     what.name = out.label();

@@ -8,23 +8,56 @@
 #include "pcsim/core/error.hpp"
 #include "pcsim/solvers/direct.hpp"
 #include "pcsim/solvers/hht.hpp"
+#include "pcsim/solvers/low_rank.hpp"
+#include "pcsim/solvers/schur_dd.hpp"
 
 namespace pcsim::solvers {
 
+namespace {
+
+// The step's -pc_type, if given: checked against the registered PC types
+// (pcsim's included) before any work; "" when not given.
+std::string step_pc_type() {
+  LowRankStepSolver::register_pc();
+  register_schur_pc();
+  char type[256] = "";
+  PetscBool given = PETSC_FALSE;
+  PCSIM_PETSC(PetscOptionsGetString(nullptr, nullptr, "-pc_type", type, sizeof type, &given));
+  if (!given) return "";
+  PetscErrorCode (*create)(PC) = nullptr;
+  PCSIM_PETSC(PetscFunctionListFind(PCList, type, &create));
+  if (!create)
+    throw InputError("command line", "-pc_type",
+                     "unknown preconditioner '" + std::string(type) +
+                         "' (pcsim's own: " + kPCWoodbury + ", the cheap path's step solver; " +
+                         kPCSchur + ", the exact domain decomposition)");
+  return type;
+}
+
+}  // namespace
+
+// -pc_type pcsimwoodbury asks for the cheap path as -pcsim_path cheap does.
 bool choose_cheap_path(MPI_Comm comm, bool possible) {
   const std::string path = read_choice_option(
       comm, {"-pcsim_path",
              "pcsim dynamic run",
              "Jacobian path: auto (cheap when every term allows it), full (exact Newton at every "
              "iteration), cheap (J0 factored once + exact low-rank terms + nonlinear "
-             "pantographs' blocks refactored per iteration)",
+             "pantographs' blocks refactored per iteration; its step solver is the PC type "
+             "pcsimwoodbury)",
              "auto",
              {"auto", "full", "cheap"}});
-  if (path == "cheap" && !possible)
-    throw InputError("command line", "-pcsim_path",
+  const bool woodbury = step_pc_type() == kPCWoodbury;
+  if (woodbury && path == "full")
+    throw InputError("command line", "-pc_type",
+                     std::string(kPCWoodbury) +
+                         " is the cheap path's step solver, and -pcsim_path full asks for the "
+                         "full Newton path");
+  if ((path == "cheap" || woodbury) && !possible)
+    throw InputError("command line", woodbury ? "-pc_type" : "-pcsim_path",
                      "the cheap path needs a linearised or modal catenary (a term of this scene "
                      "changes its tangent with the state)");
-  return path == "auto" ? possible : path == "cheap";
+  return path == "auto" ? possible : path == "cheap" || woodbury;
 }
 
 DynamicSolver::DynamicSolver(assembly::CoupledSystem& system, double dt, double duration,

@@ -1,5 +1,7 @@
 #include "pcsim/solvers/low_rank.hpp"
 
+#include <petsc/private/pcimpl.h>  // a PC type of our own: its ops and data
+
 #include <Eigen/LU>
 #include <algorithm>
 #include <set>
@@ -33,12 +35,60 @@ LowRankStepSolver::~LowRankStepSolver() {
   MatDestroy(&op_);
 }
 
+namespace {
+
+constexpr const char* kDescription = "pcsim: J0 factored once + Woodbury low-rank terms";
+
+// The PC type pcsimwoodbury: its data is the LowRankStepSolver that install()
+// attaches (owned by the dynamic solver, never by the PC).
+PetscErrorCode pc_destroy(PC pc) {
+  PetscFunctionBeginUser;
+  pc->data = nullptr;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode pc_view(PC pc, PetscViewer viewer) {
+  PetscBool ascii = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscCall(
+      PetscObjectTypeCompare(reinterpret_cast<PetscObject>(viewer), PETSCVIEWERASCII, &ascii));
+  if (ascii) PetscCall(PetscViewerASCIIPrintf(viewer, "  %s\n", kDescription));
+  PetscFunctionReturn(0);
+}
+
+}  // namespace
+
+PetscErrorCode LowRankStepSolver::pc_create(PC pc) {
+  PetscFunctionBeginUser;
+  pc->data = nullptr;
+  pc->ops->setup = pc_setup;
+  pc->ops->apply = pc_apply;
+  pc->ops->destroy = pc_destroy;
+  pc->ops->view = pc_view;
+  PetscFunctionReturn(0);
+}
+
+void LowRankStepSolver::register_pc() {
+  PCSIM_PETSC(PCInitializePackage());
+  PetscErrorCode (*existing)(PC) = nullptr;
+  PCSIM_PETSC(PetscFunctionListFind(PCList, kPCWoodbury, &existing));
+  if (!existing) PCSIM_PETSC(PCRegister(kPCWoodbury, pc_create));
+}
+
 void LowRankStepSolver::install(PC pc) {
-  PCSIM_PETSC(PCSetType(pc, PCSHELL));
-  PCSIM_PETSC(PCShellSetContext(pc, this));
-  PCSIM_PETSC(PCShellSetSetUp(pc, pc_setup));
-  PCSIM_PETSC(PCShellSetApply(pc, pc_apply));
-  PCSIM_PETSC(PCShellSetName(pc, "pcsim: J0 factored once + Woodbury low-rank terms"));
+  register_pc();
+  PCSIM_PETSC(PCSetType(pc, kPCWoodbury));
+  pc->data = this;
+}
+
+LowRankStepSolver* LowRankStepSolver::attached(PC pc) {
+  auto* self = static_cast<LowRankStepSolver*>(pc->data);
+  if (!self)
+    throw InputError("command line", "-pc_type",
+                     std::string(kPCWoodbury) +
+                         " is the cheap path's step solver: it needs the run's low-rank terms "
+                         "(-pcsim_path auto or cheap, not a KSP of its own)");
+  return self;
 }
 
 void LowRankStepSolver::invalidate() {
@@ -186,8 +236,7 @@ void LowRankStepSolver::solve_j0(Vec r, Vec x) const {
 
 PetscErrorCode LowRankStepSolver::pc_setup(PC pc) {
   PCSIM_CALLBACK_BEGIN
-  LowRankStepSolver* self;
-  PCSIM_PETSC(PCShellGetContext(pc, &self));
+  LowRankStepSolver* self = attached(pc);
   Mat A, P;
   PCSIM_PETSC(PCGetOperators(pc, &A, &P));
   if (!self->inner_chosen_) self->choose_inner(P);
@@ -232,8 +281,7 @@ void LowRankStepSolver::update_capacitance() {
 // x = (J0 + U C U^T)^-1 r = y - Z (C^-1 + U^T Z)^-1 U^T y,  y = J0^-1 r.
 PetscErrorCode LowRankStepSolver::pc_apply(PC pc, Vec r, Vec x) {
   PCSIM_CALLBACK_BEGIN
-  LowRankStepSolver* self;
-  PCSIM_PETSC(PCShellGetContext(pc, &self));
+  LowRankStepSolver* self = attached(pc);
   self->solve_j0(r, x);
   const ScopedEvent timed(log_events().woodbury);
   if (self->capacitance_dirty_) self->update_capacitance();

@@ -1,5 +1,7 @@
 #include "pcsim/solvers/schur_dd.hpp"
 
+#include <petsc/private/pcimpl.h>  // a PC type of our own: its ops and data
+
 #include <Eigen/LU>
 #include <algorithm>
 #include <cstring>
@@ -12,7 +14,7 @@ namespace pcsim::solvers {
 
 namespace {
 
-constexpr const char* kShellName = "pcsim: exact domain decomposition (interior LU + Schur)";
+constexpr const char* kDescription = "pcsim exact domain decomposition (interior LU + Schur)";
 
 // The matrix's diagonal block (owned rows and columns), its off-diagonal
 // block and the global numbers of that block's columns.
@@ -400,59 +402,79 @@ void SchurDomainSolver::apply(Vec r, Vec x) {
   PCSIM_PETSC(VecRestoreArray(x, &xx));
 }
 
-PetscErrorCode shell_setup(PC pc) {
+// The PC type pcsimschur: its data is the solver, made at the first set-up
+// (the interior KSP reads its options then) and freed with the PC.
+SchurDomainSolver* data_of(PC pc) {
+  return static_cast<SchurDomainSolver*>(pc->data);
+}
+
+PetscErrorCode pc_setup(PC pc) {
   PCSIM_CALLBACK_BEGIN
-  SchurDomainSolver* self;
-  PCSIM_PETSC(PCShellGetContext(pc, &self));
-  Mat A, P;
-  PCSIM_PETSC(PCGetOperators(pc, &A, &P));
-  self->set_up(P);
+  if (!pc->data)
+    pc->data = new SchurDomainSolver(PetscObjectComm(reinterpret_cast<PetscObject>(pc)));
+  data_of(pc)->set_up(pc->pmat);
   PCSIM_CALLBACK_END
 }
 
-PetscErrorCode shell_apply(PC pc, Vec r, Vec x) {
+PetscErrorCode pc_apply(PC pc, Vec r, Vec x) {
   PCSIM_CALLBACK_BEGIN
-  SchurDomainSolver* self;
-  PCSIM_PETSC(PCShellGetContext(pc, &self));
-  self->apply(r, x);
+  data_of(pc)->apply(r, x);
   PCSIM_CALLBACK_END
 }
 
-PetscErrorCode shell_destroy(PC pc) {
+PetscErrorCode pc_destroy(PC pc) {
   PCSIM_CALLBACK_BEGIN
-  SchurDomainSolver* self;
-  PCSIM_PETSC(PCShellGetContext(pc, &self));
-  delete self;
+  delete data_of(pc);
+  pc->data = nullptr;
   PCSIM_CALLBACK_END
+}
+
+PetscErrorCode pc_view(PC pc, PetscViewer viewer) {
+  PetscBool ascii = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscCall(
+      PetscObjectTypeCompare(reinterpret_cast<PetscObject>(viewer), PETSCVIEWERASCII, &ascii));
+  if (ascii) {
+    const DomainDecompositionInfo info = pc->data ? data_of(pc)->info() : DomainDecompositionInfo{};
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  %s: interface of %" PetscInt_FMT " unknowns\n",
+                                     kDescription, info.interface_size));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode pc_create(PC pc) {
+  PetscFunctionBeginUser;
+  pc->data = nullptr;
+  pc->ops->setup = pc_setup;
+  pc->ops->apply = pc_apply;
+  pc->ops->destroy = pc_destroy;
+  pc->ops->view = pc_view;
+  PetscFunctionReturn(0);
 }
 
 SchurDomainSolver* solver_of(KSP ksp) {
   PC pc;
   PCSIM_PETSC(KSPGetPC(ksp, &pc));
-  PetscBool shell = PETSC_FALSE;
-  PCSIM_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCSHELL, &shell));
-  if (!shell) return nullptr;
-  const char* name = nullptr;
-  PCSIM_PETSC(PCShellGetName(pc, &name));
-  if (!name || std::strcmp(name, kShellName) != 0) return nullptr;
-  SchurDomainSolver* self;
-  PCSIM_PETSC(PCShellGetContext(pc, &self));
-  return self;
+  PetscBool schur = PETSC_FALSE;
+  PCSIM_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), kPCSchur, &schur));
+  return schur ? data_of(pc) : nullptr;
 }
 
 }  // namespace
 
+void register_schur_pc() {
+  PCSIM_PETSC(PCInitializePackage());
+  PetscErrorCode (*existing)(PC) = nullptr;
+  PCSIM_PETSC(PetscFunctionListFind(PCList, kPCSchur, &existing));
+  if (!existing) PCSIM_PETSC(PCRegister(kPCSchur, pc_create));
+}
+
 void use_schur_domain_decomposition(KSP ksp) {
+  register_schur_pc();
   PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
   PC pc;
   PCSIM_PETSC(KSPGetPC(ksp, &pc));
-  PCSIM_PETSC(PCSetType(pc, PCSHELL));
-  auto* self = new SchurDomainSolver(PetscObjectComm(reinterpret_cast<PetscObject>(ksp)));
-  PCSIM_PETSC(PCShellSetContext(pc, self));
-  PCSIM_PETSC(PCShellSetSetUp(pc, shell_setup));
-  PCSIM_PETSC(PCShellSetApply(pc, shell_apply));
-  PCSIM_PETSC(PCShellSetDestroy(pc, shell_destroy));
-  PCSIM_PETSC(PCShellSetName(pc, kShellName));
+  PCSIM_PETSC(PCSetType(pc, kPCSchur));
 }
 
 DomainDecompositionInfo domain_decomposition_info(KSP ksp) {

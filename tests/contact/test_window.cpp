@@ -36,8 +36,9 @@ Wire make_wire(double impedance_factor) {
   Wire w;
   w.ends = catenary::release_window_ends(st.mesh, st.result.node_values, impedance_factor);
   w.mesh = st.mesh;
-  auto fe = std::make_unique<assembly::FECatenary>(PETSC_COMM_WORLD, st.mesh, st.result.node_values,
-                                                   0, &st.node_owner);
+  auto fe =
+      std::make_unique<assembly::FECatenary>(PETSC_COMM_WORLD, st.mesh, st.result.node_values, 0,
+                                             catenary::CatenaryFidelity::linear, &st.node_owner);
   contact::InteractionEffects effects;
   effects.dropper_slack = false;
   effects.rayleigh_damping = false;
@@ -64,8 +65,8 @@ const assembly::DofLayout& layout(Wire& w) {
 // alternating): every node has a partner two spans ahead at the same
 // lateral and vertical design position, except those of the last two spans.
 TEST(WindowShift, EveryNodeButTheLastTwoSpansHasAPartnerTwoSpansAhead) {
-  const auto mesh = scene::load_catenary_design(std::string(PCSIM_SOURCE_DIR) +
-                                                   "/meshes/en50318-reference.yaml");
+  const auto mesh =
+      scene::load_catenary_design(std::string(PCSIM_SOURCE_DIR) + "/meshes/en50318-reference.yaml");
   const double shift = 120.0, x_last = mesh.support_x.back();
   const auto partner = catenary::shifted_nodes(mesh, shift);
   ASSERT_EQ(partner.size(), mesh.nodes.size());

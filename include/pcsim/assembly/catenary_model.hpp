@@ -20,6 +20,7 @@
 
 #include "pcsim/assembly/term.hpp"
 #include "pcsim/catenary/mesh.hpp"
+#include "pcsim/catenary/reduced_basis.hpp"
 #include "pcsim/contact/pantograph_run.hpp"
 
 namespace pcsim::assembly {
@@ -49,6 +50,9 @@ class CatenaryModel {
   virtual ~CatenaryModel() = default;
   virtual MPI_Comm comm() const = 0;
   virtual const catenary::CatenaryMesh& mesh() const = 0;
+  // The fidelity level the model is (the scene's catenary.model): its terms
+  // follow from it.
+  virtual catenary::CatenaryFidelity fidelity() const = 0;
 
   // Unknowns: the catenary's, then the extras (owned by the last rank).
   virtual PetscInt catenary_dofs() const = 0;
@@ -95,7 +99,8 @@ class CatenaryModel {
   // (field snapshots; collective).
   virtual std::vector<double> node_positions_to_root(Vec U) const = 0;
 
-  // The catenary's terms for these effects: forces, inertia, damping, bars.
+  // The catenary's terms at its fidelity for these effects: forces,
+  // inertia, damping, bars.
   // Their constant matrices are duplicated from 'pattern' (the Jacobian's
   // final pattern, assembled; the model keeps a reference).
   virtual std::vector<std::unique_ptr<Term>> make_terms(const contact::InteractionEffects& e,

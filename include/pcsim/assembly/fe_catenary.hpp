@@ -1,8 +1,8 @@
 // The finite-element catenary (thesis 3.1) as a CatenaryModel: ANCF cables,
 // bars, point masses and springs of a CatenaryMesh on the METIS-distributed
 // CatenarySystem. Its terms (catenary_terms.hpp):
-//  - cable forces: full nonlinear ANCF (effects.catenary_nonlinear), else
-//    linearised about the static configuration, f ~ b0 + K0 (U - U0);
+//  - cable forces: full nonlinear ANCF (fidelity nonlinear: the scene's
+//    catenary.model), else linearised about the static configuration, f ~ b0 + K0 (U - U0);
 //  - bar forces (droppers, steady arms, stitch wires) with their slack
 //    criteria when dropper slack is on;
 //  - inertia M A and Rayleigh damping C = alpha M + beta K_static (eq. 3.1).
@@ -27,10 +27,13 @@ class FECatenary : public CatenaryModel {
   // pattern; the flag keeps the bars' matrix apart from K0 of the same terms).
   static constexpr unsigned kOwnPattern = 0x100;
 
-  // static_node_values: the static configuration (6 per node). node_owner:
-  // a partition to reuse (see DofLayout), or null.
+  // static_node_values: the static configuration (6 per node); fidelity:
+  // nonlinear (full ANCF cable forces) or linear (cables linearised about
+  // the static configuration). node_owner: a partition to reuse (see
+  // DofLayout), or null.
   FECatenary(MPI_Comm comm, catenary::CatenaryMesh mesh, std::vector<double> static_node_values,
-             PetscInt extra_dofs, const std::vector<int>* node_owner = nullptr);
+             PetscInt extra_dofs, catenary::CatenaryFidelity fidelity,
+             const std::vector<int>* node_owner = nullptr);
   ~FECatenary() override;
 
   CatenarySystem& system() { return *system_; }
@@ -49,6 +52,7 @@ class FECatenary : public CatenaryModel {
 
   MPI_Comm comm() const override { return system_->comm(); }
   const catenary::CatenaryMesh& mesh() const override { return system_->mesh(); }
+  catenary::CatenaryFidelity fidelity() const override { return fidelity_; }
   PetscInt catenary_dofs() const override { return system_->layout().catenary_dofs(); }
   PetscInt extra_global(PetscInt k) const override { return system_->layout().extra_global(k); }
   Vec create_vector() const override { return system_->create_vector(); }
@@ -77,6 +81,7 @@ class FECatenary : public CatenaryModel {
  private:
   std::unique_ptr<CatenarySystem> system_;
   std::vector<double> static_values_;
+  catenary::CatenaryFidelity fidelity_;
   std::vector<std::unique_ptr<contact::ContactWireLocator>> locators_;
   mutable std::vector<WirePoint> points_;  // the last wire_point() of each wire
   std::vector<int> droppers_;              // dropper bars in mesh order (records)

@@ -50,6 +50,7 @@ class ModalCatenary : public CatenaryModel {
 
   MPI_Comm comm() const override { return comm_; }
   const catenary::CatenaryMesh& mesh() const override { return mesh_; }
+  catenary::CatenaryFidelity fidelity() const override { return catenary::CatenaryFidelity::modal; }
   PetscInt catenary_dofs() const override { return m_; }
   PetscInt extra_global(PetscInt k) const override { return m_ + k; }
   Vec create_vector() const override;

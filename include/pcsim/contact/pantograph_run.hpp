@@ -9,9 +9,9 @@
 namespace pcsim::contact {
 
 struct InteractionEffects {
-  bool catenary_nonlinear = false;  // full ANCF forces; else cables linearised (constant K0)
-  bool dropper_slack = true;        // the bars' slack criteria; else linear bars
-  bool rayleigh_damping = true;     // C = alpha M + beta K_static (thesis eq. 3.1)
+  // (The catenary's fidelity is the scene's catenary.model, held by the model.)
+  bool dropper_slack = true;     // the bars' slack criteria; else linear bars
+  bool rayleigh_damping = true;  // C = alpha M + beta K_static (thesis eq. 3.1)
 };
 
 struct PantographRun {

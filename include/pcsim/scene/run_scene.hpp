@@ -15,7 +15,8 @@
 //     speed_kmh: 300
 //     end_x: 590                # the run ends when the first pantograph reaches end_x
 //     dt: 0.001                 # default time step [s] (-ts_dt overrides)
-//   effects: {catenary_nonlinear: false, dropper_slack: true, rayleigh_damping: true}
+//   effects: {dropper_slack: true, rayleigh_damping: true}   # (catenary_nonlinear: the older
+//                                                            #  key of catenary.model)
 //   contact: {stiffness: 50000}
 //   analysis: {from_span: 5, to_span: 6, cutoff_hz: 20}   # 1-based spans
 //   output: {dropper_forces: true, snapshot_every: 0, energy: false, checkpoint_every: 0}
@@ -91,7 +92,7 @@ struct RunScene {
 
 // What the reader needs from outside the scene to check it completely.
 struct RunSceneOptions {
-  scene::MeshSizeCheck size_check;     // sees the design's mesh size before it is built
+  scene::MeshSizeCheck size_check;        // sees the design's mesh size before it is built
   std::optional<double> command_line_dt;  // -ts_dt, already checked; replaces simulation.dt
 };
 
@@ -155,7 +156,7 @@ ModalMethodRequest modal_method_request(const InputNode& scene);
 scene::DesignBuilder auto_window_builder(RunWindow& window);
 // After the scene is read: keeps the window if it fits (true) or rebuilds
 // the whole line's mesh and drops it; 'why' says which and why.
-bool keep_auto_window(const InputNode& scene, RunScene& run,
-                      const scene::MeshSizeCheck& size_check, std::string& why);
+bool keep_auto_window(const InputNode& scene, RunScene& run, const scene::MeshSizeCheck& size_check,
+                      std::string& why);
 
 }  // namespace pcsim::scene

@@ -1,7 +1,7 @@
 // A step matrix J = J0 + sum_k c_k u_k u_k^T with J0 factored once: the
 // operator (a MATSHELL, so that the SNES holds the true Jacobian and
 // -snes_test_jacobian or any -ksp_type work) and its exact inverse by the
-// Woodbury formula in a PCSHELL:
+// Woodbury formula in a PC of its own type (pcsimwoodbury):
 //   J^-1 r = y - Z (C^-1 + U^T Z)^-1 U^T y,  y = J0^-1 r,  Z = J0^-1 U.
 // The rank-one terms come from the coupled system's terms (contact, switched
 // droppers); this class never knows what they are. A term whose u keeps
@@ -30,6 +30,9 @@
 
 namespace pcsim::solvers {
 
+// The PC type of the cheap path's step solver (-pc_type pcsimwoodbury).
+inline constexpr const char* kPCWoodbury = "pcsimwoodbury";
+
 class BlockDiagonalInverse;
 class VaryingBlocks;
 
@@ -42,8 +45,10 @@ class LowRankStepSolver {
   LowRankStepSolver& operator=(const LowRankStepSolver&) = delete;
 
   Mat op() const { return op_; }  // J0 + sum c u u^T
-  // Makes pc the Woodbury preconditioner (exact inverse of op()).
+  // Makes pc the Woodbury preconditioner (exact inverse of op()): the PC
+  // type pcsimwoodbury (-pc_type) with this solver attached.
   void install(PC pc);
+  static void register_pc();  // PCRegister once (idempotent)
   // J0 changed (reassembled): the factorisation and every J0^-1 u are stale
   // until the PC is set up again.
   void invalidate();
@@ -62,6 +67,8 @@ class LowRankStepSolver {
     Vec u = nullptr, z = nullptr;
     bool z_valid = false;
   };
+  static PetscErrorCode pc_create(PC pc);
+  static LowRankStepSolver* attached(PC pc);  // the solver install() attached
   static PetscErrorCode pc_setup(PC pc);
   static PetscErrorCode pc_apply(PC pc, Vec r, Vec x);
   static PetscErrorCode op_mult(Mat A, Vec x, Vec y);

@@ -20,8 +20,13 @@
 
 namespace pcsim::solvers {
 
+// The PC type of this solve (-pc_type pcsimschur, -cheap_pc_type ...): it
+// owns its factors (freed with the PC).
+inline constexpr const char* kPCSchur = "pcsimschur";
+void register_schur_pc();  // PCRegister once (idempotent)
+
 // Makes the KSP apply the exact domain-decomposition solve: KSPPREONLY + a
-// PCSHELL that owns its factors (freed with the PC). Options given later win.
+// pcsimschur PC. Options given later win.
 void use_schur_domain_decomposition(KSP ksp);
 
 // Nonzeros of the interior factors summed over the ranks, and the size of the
