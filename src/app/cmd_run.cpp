@@ -108,11 +108,13 @@ void print_line_zones(const app::CommandContext& ctx, const nlohmann::json& zone
   for (const auto& p : zones)
     for (const auto& z : p["zones"]) {
       if (!z["complete"].get<bool>()) continue;
-      app::print0(ctx,
-                  "  %-12s %-12s mean %7.2f N  std %6.2f N  max %7.2f  min %7.2f  loss %.2f%%\n",
-                  p["name"].get<std::string>().c_str(), z["name"].get<std::string>().c_str(),
-                  z["mean_N"].get<double>(), z["std_N"].get<double>(), z["max_N"].get<double>(),
-                  z["min_N"].get<double>(), z["loss_of_contact_percent"].get<double>());
+      const std::string verdict = z.value("criteria_verdict", std::string());
+      app::print0(
+          ctx, "  %-12s %-12s mean %7.2f N  std %6.2f N  max %7.2f  min %7.2f  loss %.2f%%%s%s\n",
+          p["name"].get<std::string>().c_str(), z["name"].get<std::string>().c_str(),
+          z["mean_N"].get<double>(), z["std_N"].get<double>(), z["max_N"].get<double>(),
+          z["min_N"].get<double>(), z["loss_of_contact_percent"].get<double>(),
+          verdict.empty() ? "" : "  criteria: ", verdict == "fail" ? "FAIL" : verdict.c_str());
     }
 }
 

@@ -159,4 +159,25 @@ std::string assessment_table(const Assessment& a, const std::vector<JudgedCriter
   return out + line;
 }
 
+// Each complete tension section (not the overlaps) of every pantograph:
+// its statistics against the set, the uplift judged over the analysis
+// section only (the zones have no support uplift of their own).
+void judge_line_zones(const Assessment& a, double speed_kmh, nlohmann::json& line_zones) {
+  for (auto& pantograph : line_zones)
+    for (auto& zone : pantograph["zones"]) {
+      if (!zone.value("complete", false) || zone.value("overlap", false)) continue;
+      auto values = criteria_values(zone, 0.0, a);
+      values.erase("uplift_mm");
+      const auto judged = judge(a, values, speed_kmh);
+      zone["criteria_verdict"] = overall_verdict(judged);
+      nlohmann::json list = nlohmann::json::array();
+      for (const auto& c : judged)
+        list.push_back({{"key", c.criterion.key},
+                        {"value", c.value},
+                        {"limit", limit_text(c)},
+                        {"verdict", c.verdict}});
+      zone["criteria"] = list;
+    }
+}
+
 }  // namespace pcsim::output

@@ -167,9 +167,12 @@ void write_complete_results(const output::OutputDir& out, const catenary::Catena
   outcome.stats = output::finish_run_results(out, line, s);
   assess_figures(s, outcome.stats, outcome.facts);
   outcome.facts["provenance"] = out.provenance();
-  if (line.zones.size() >= 2)
-    outcome.facts["line_zones"] =
+  if (line.zones.size() >= 2) {
+    auto zones =
         output::write_line_results(out, line, output::read_contact_histories(out, s), s.cutoff_hz);
+    output::judge_line_zones(s.assessment, s.speed * 3.6, zones);
+    outcome.facts["line_zones"] = zones;
+  }
   if (energy) {
     const auto history = output::read_energy_history(out);
     outcome.energy = output::energy_balance(history);

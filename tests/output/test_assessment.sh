@@ -4,7 +4,7 @@
 # (never pass or FAIL) on the console, in summary.json and report.html; the
 # shortened EN 50318 reference case against en50318-2002 with pass/FAIL; a
 # user's set file with sourced values gives pass and FAIL and is recorded in
-# the provenance;
+# the provenance; every tension section of a line judged on its own;
 # wrong 'assessment' values and a broken set file give one line naming the
 # file and key, exit 2, and no output folder.
 set -euo pipefail
@@ -102,6 +102,33 @@ with h5py.File("speeds/sweep.h5") as f:
     assert f["criteria"].attrs["unit"] == "none"
 s = json.load(open("speeds/summary.json"))
 assert s["highest_passing_speed_kmh"] == {"pantograph": 200.0}, s["highest_passing_speed_kmh"]
+PY
+
+# Every tension section judged as its own assessed section (summary.json
+# line_zones, console): the short three-section line at 250 km/h against
+# sigma <= 28 N: section 1 has sigma 29.68 N (fail), sections 2 and 3 26.44
+# and 26.32 N (pass), each 1.6 N or more from the limit; overlaps not judged.
+cat > sigma-28.yaml <<'YAML'
+name: sigma-28
+title: sigma at most 28 N
+criteria:
+  - {key: sigma, figure: std_N, label: sigma, unit: N, upper: {constant: 28},
+     clause: "spec 2.2", source: "our spec", sourced: true}
+YAML
+"$PCSIM_BIN" run "$PCSIM_SOURCE_DIR/runs/lines/three-sections-short-250.yaml" -o sections \
+  --no-report --set "assessment.criteria=$tmp/sigma-28.yaml" > sections.log 2>&1 ||
+  { cat sections.log; fail "three sections"; }
+grep -qE "section 1 .*criteria: FAIL$" sections.log || { cat sections.log; fail "section 1"; }
+grep -qE "section 3 .*criteria: pass$" sections.log || { cat sections.log; fail "section 3"; }
+"$PCSIM_PYTHON" - <<'PY'
+import json
+zones = json.load(open("sections/summary.json"))["line_zones"][0]["zones"]
+verdicts = {z["name"]: z.get("criteria_verdict") for z in zones}
+assert verdicts == {"section 1": "fail", "overlap 1-2": None, "section 2": "pass",
+                    "overlap 2-3": None, "section 3": "pass"}, verdicts
+s1 = next(z for z in zones if z["name"] == "section 1")
+assert s1["criteria"] == [{"key": "sigma", "value": s1["std_N"], "limit": "<= 28",
+                           "verdict": "fail"}], s1["criteria"]
 PY
 
 scene=$PCSIM_SOURCE_DIR/tests/contact/data/en50318-short.yaml

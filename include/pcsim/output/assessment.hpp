@@ -48,6 +48,13 @@ std::string limit_text(const JudgedCriterion& judged);
 nlohmann::json assessment_json(const Assessment& assessment,
                                const std::map<std::string, std::vector<JudgedCriterion>>& judged);
 
+// summary.json's 'line_zones' (output/line_results.hpp): every complete
+// tension section of every pantograph judged against the set as its own
+// assessed section ('criteria_verdict' and 'criteria': key, value, limit,
+// verdict); overlaps are not judged, the uplift only over the analysis
+// section.
+void judge_line_zones(const Assessment& assessment, double speed_kmh, nlohmann::json& line_zones);
+
 // The console table of one pantograph (lines, each "\n"-ended, indented 4).
 std::string assessment_table(const Assessment& assessment,
                              const std::vector<JudgedCriterion>& judged);
