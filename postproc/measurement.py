@@ -56,11 +56,12 @@ def correlation(run_on_grid, grid, x, force, lag):
     return float(np.corrcoef(run_on_grid[inside], np.interp(grid[inside] + lag, x, force))[0, 1])
 
 
-def find_lag(pairs, section, max_lag, step):
+def find_lag(pairs, section, max_lag, step, path):
     """The lag L (m) for which every measured force(x - L) correlates best with its run's force
     over 'section': the mean of the pantographs' correlation coefficients, candidates every
     'step' over [-max_lag, max_lag], refined by a parabola through the best three.
-    pairs: [(run_x, run_force, x, force)], one per pantograph. Returns (lag, mean coefficient)."""
+    pairs: [(run_x, run_force, x, force)], one per pantograph; path: the measurement's, for an
+    error. Returns (lag, mean coefficient)."""
     grid = np.arange(section[0], section[1] + 1e-9, step)
     runs_on_grid = [np.interp(grid, p[0], p[1]) for p in pairs]
     lags = np.arange(-max_lag, max_lag + 1e-9, step)
@@ -71,8 +72,9 @@ def find_lag(pairs, section, max_lag, step):
             scores[k] = float(np.mean(each))
     best = int(np.argmax(scores))
     if scores[best] < -1.5:
-        pcsim_post.fail("the measurement does not cover the analysis section %g-%g m at any "
-                        "lag within %g m" % (section[0], section[1], max_lag))
+        pcsim_post.fail("%s: does not cover the run's analysis section %g-%g m at any lag within "
+                        "%g m (x is the position of the first force column's pantograph)"
+                        % (path, section[0], section[1], max_lag))
     lag = lags[best]
     if 0 < best < len(lags) - 1 and min(scores[best - 1], scores[best + 1]) > -1.5:
         a, b, c = scores[best - 1: best + 2]
@@ -155,9 +157,10 @@ def align(measurement, run, max_lag=None):
         p = run.pantographs[name]
         distance = float(np.median(p["position"] - reference))
         pairs.append((p["position"], p["contact_force_filtered"], x + distance, filtered))
+        alone = find_lag(pairs[-1:], section, max_lag, step, measurement.path)[0]
         out.append({"name": name, "column": text, "distance_m": distance, "force": raw,
-                    "filtered": filtered, "lag_alone_m": find_lag(pairs[-1:], section, max_lag, step)[0]})
-    lag, mean_correlation = find_lag(pairs, section, max_lag, step)
+                    "filtered": filtered, "lag_alone_m": alone})
+    lag, mean_correlation = find_lag(pairs, section, max_lag, step, measurement.path)
     for o, (run_x, run_force, measured_x, filtered) in zip(out, pairs):
         o["x"] = measured_x - lag
         o["offset_N"] = (force_figures(o["x"], filtered, o["force"], *section)["mean_N"]

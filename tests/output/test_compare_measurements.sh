@@ -63,6 +63,17 @@ assert "Pantograph 'trailing' (column 'force trailing [N]'): force offset" in te
 image = Image.open("rm/force_uplift.png")  # three panels: leading, trailing, uplift
 assert image.size[1] >= 3 * 3.2 * 110 - 2, image.size
 
+# The trailing pantograph alone: x is then its own position (100 m behind), and the run's
+# leading pantograph is left out; the same lag and offset as with both (the same tolerances).
+with open("trailing.csv", "w") as f:
+    f.write("x [m],force trailing [N]\n")
+    f.writelines("%.3f,%s\n" % (float(l.split(",")[0]) - 100, l.split(",")[2])
+                 for l in open("two.csv").read().splitlines()[3:])
+alone = measurement.align(measurement.Measurement("trailing.csv"), interaction_plots.Run("r"))
+p = alone["pantographs"][0]
+assert p["name"] == "trailing" and p["distance_m"] == 0 and len(alone["pantographs"]) == 1, p
+assert abs(alone["lag_m"] - 3.7) <= 0.05 and abs(p["offset_N"] + 6.0) <= 0.75, (alone["lag_m"], p)
+
 # The same rows by time, the speed varying +-25 % (240-400 km/h) every 70 m: t from the
 # trapezoid rule, t0 = x0 / v0, so that x = v0 t0 + the trapezoid integral of v dt is the
 # file's x again.
@@ -104,6 +115,8 @@ header "x [m],force [N],force trailing [N],uplift 110 [mm],uplift 165 [mm]" unna
   for i in $(seq 1 100); do echo "$i.0,320,120"; done; } > speed-twice.csv
 { echo "t [s],speed [km/h],force leading [N]";
   for i in $(seq 1 100); do echo "$i.0,$((60 - i)),120"; done; } > standstill.csv
+{ echo "x [m],speed [km/h],force leading [N]";
+  for i in $(seq 1 100); do echo "$i.0,320,120"; done; } > speed-by-x.csv
 before=$(ls -A)
 bad() {  # bad EXPECTED_TEXT ARGS...: pcsim compare ARGS fails as it should
   local expected=$1 status=0
@@ -126,4 +139,10 @@ bad "speed-twice.csv: the speed is given twice, by column 'speed \[km/h\]' and b
   r --measurement speed-twice.csv -o x
 bad "standstill.csv: line 61: column 'speed \[km/h\]' is 0: the speed must be positive" \
   r --measurement standstill.csv -o x
+bad "speed-by-x.csv: header column 'speed \[km/h\]' goes with a time column 't \[s\]', not with a position column" \
+  r --measurement speed-by-x.csv -o x
+head -3 two.csv > short.csv && tail -n +4 two.csv | head -200 >> short.csv  # 50 m of rows, 109-159 m
+before=$(ls -A)
+bad "short.csv: does not cover the run's analysis section 165-275 m at any lag within 27.5 m" \
+  r --measurement short.csv -o x
 echo "compare measurement checks passed"
