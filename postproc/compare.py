@@ -17,7 +17,8 @@
   inputs.diff              the composed inputs that differ (scene, design, pantograph models)
   report.html              all of it in one page
 A measurement (docs/assessment.md "Measurements") is filtered like the first run, aligned to
-its first pantograph by cross-correlation and compared with it.
+its pantographs by cross-correlation (one lag for the file) and compared with them: each force
+column with the run's pantograph it names ('force [N]': the first), each with its offset.
 """
 import argparse
 import difflib
@@ -72,10 +73,11 @@ def pantograph_names(sources):
     return names
 
 
-def figures_of(source, name, ref):
-    """{key: assessed figure} of pantograph 'name' of a source ({} if it has no statistics)."""
+def figures_of(source, name, ref, single):
+    """{key: assessed figure} of pantograph 'name' of a source ({} if it has no statistics);
+    single: every source has one pantograph, compared whatever its name."""
     for p in source.summary["pantographs"]:
-        if (p["name"] == name or len(source.summary["pantographs"]) == 1) and p.get("complete") is not False:
+        if (p["name"] == name or single) and p.get("complete") is not False:
             return {f["key"]: f for f in pcsim_post.assess(source.summary, p, ref)}
     return {}
 
@@ -90,7 +92,7 @@ def figure_rows(sources, ref):
     """[{pantograph, key, label, unit, values: [per source], differences: [(abs, %) per other]}]"""
     rows = []
     for name in pantograph_names(sources):
-        by_source = [figures_of(s, name, ref) for s in sources]
+        by_source = [figures_of(s, name, ref, single_pantographs(sources)) for s in sources]
         for f in ref["figures"]:
             values = [b[f["key"]]["value"] if f["key"] in b else None for b in by_source]
             if all(v is None for v in values):
@@ -166,12 +168,16 @@ def measurement_lines(sources):
     m = getattr(sources[-1], "alignment", None)
     if not m:
         return []
-    return ["Measurement %s against %s, pantograph '%s': lag %.3f m (searched within %.1f m; "
-            "correlation %.4f of the filtered forces), force offset %+.2f N (mean measured minus "
-            "mean computed over the analysis section)%s."
-            % (sources[-1].folder, sources[0].label, m["pantograph"], m["lag_m"], m["max_lag_m"],
-               m["correlation"], m["offset_N"],
-               "" if m["covers_section"] else "; it does not cover the whole analysis section")]
+    lines = ["Measurement %s against %s: lag %.3f m (searched within %.1f m; mean correlation %.4f of "
+             "the filtered forces)%s. Force offset: mean measured minus mean computed over the "
+             "analysis section." % (sources[-1].folder, sources[0].label, m["lag_m"], m["max_lag_m"],
+                                    m["correlation"], "" if m["covers_section"] else
+                                    "; it does not cover the whole analysis section")]
+    for p in m["pantographs"]:
+        lines.append("Pantograph '%s' (column '%s'): force offset %+.2f N, correlation %.4f, "
+                     "its own best lag %.3f m." % (p["name"], p["column"], p["offset_N"],
+                                                   p["correlation"], p["lag_alone_m"]))
+    return lines
 
 
 def markdown_page(sources, header, body, inputs):
@@ -180,8 +186,9 @@ def markdown_page(sources, header, body, inputs):
             "Sources: %s." % "; ".join("%s = %s" % (s.label, s.folder) for s in sources),
             "Analysis section %.0f-%.0f m, contact force low-pass %g Hz (of %s)."
             % (s0["analysis"]["from_x"], s0["analysis"]["to_x"], s0["analysis"]["cutoff_hz"],
-               sources[0].label), ""] + measurement_lines(sources) + ["", "## EN 50318 figures", "",
-                                                                    markdown(header, body)]
+               sources[0].label), ""]
+    text += ["- " + l for l in measurement_lines(sources)]
+    text += ["", "## EN 50318 figures", "", markdown(header, body)]
     text += ["## Inputs", "", markdown(["input", "differs"] + [s.label for s in runs_of(sources)],
                                        [[r["role"], "yes" if r["differs"] else "no"] + r["cells"]
                                         for r in inputs])]

@@ -4,28 +4,21 @@
     measurement.py FILE.csv [--run RUN] [--max-lag M]
 
 Prints what the file holds (columns, rows, range, spacing); with --run, the measurement
-filtered like the run (zero-phase 4th-order Butterworth at the run's analysis.cutoff_hz),
-aligned by position to the run's first pantograph (the lag of largest cross-correlation of
-the filtered forces over the run's analysis section), the lag and the force offset found.
-
-Format (docs/assessment.md "Measurements"): comma-separated, '#' lines are comments; the
-first other line is the header, every column with its unit in brackets:
-  x [m] (or [km])       contact point position along the track, increasing; or
-  t [s]                 time, increasing, with a comment line '# speed [km/h]: V' (x = V t)
-  force [N] (or [kN])   measured contact force
-  uplift X [mm] (or [m]) optional, any number: contact-wire uplift at the support at X m
+filtered like the run (zero-phase 4th-order Butterworth at the run's analysis.cutoff_hz, on
+the measurement's time axis), aligned by position to the run's pantographs (one lag for the
+file: the largest mean over the pantographs of the correlation coefficients of the filtered
+forces over the run's analysis section), the lag and each pantograph's force offset found.
 """
 import argparse
-import re
 
 import numpy as np
 
 import interaction_plots
+import measurement_csv
 import pcsim_post
 
-UNITS = {"x": {"m": 1.0, "km": 1000.0}, "t": {"s": 1.0}, "force": {"N": 1.0, "kN": 1000.0},
-         "uplift": {"mm": 1e-3, "m": 1.0}}
-MIN_ROWS = 64
+Measurement = measurement_csv.Measurement  # the CSV read there, aligned here
+__doc__ += "\n" + measurement_csv.__doc__.split("\n", 2)[2]
 FILTER_ORDER = 4  # pcsim's zero_phase_lowpass (src/output/statistics.cpp)
 
 
@@ -54,100 +47,34 @@ def filter_like_run(time, signal, cutoff_hz):
     return filtered[np.minimum(m - 1, np.floor((time - time[0]) / dt_min + 0.5).astype(int))]
 
 
-def parse_header(path, header):
-    """{'axis': 'x'|'t', 'scale': {column: factor}, 'uplift_x': [support x per uplift column]}"""
-    columns = []
-    for i, cell in enumerate(c.strip() for c in header.split(",")):
-        m = re.fullmatch(r"(x|t|force|uplift\s+(-?[0-9.]+))\s*(\[([^\]]*)\])?", cell)
-        if not m:
-            pcsim_post.fail("%s: header column %d '%s' is none of x [m], t [s], force [N], "
-                            "uplift X [mm]" % (path, i + 1, cell))
-        kind = "uplift" if m.group(1).startswith("uplift") else m.group(1)
-        if m.group(3) is None:
-            pcsim_post.fail("%s: header column '%s' has no unit (write e.g. '%s [%s]')"
-                            % (path, cell, cell, next(iter(UNITS[kind]))))
-        if m.group(4).strip() not in UNITS[kind]:
-            pcsim_post.fail("%s: header column '%s': unit '%s' is not one of %s"
-                            % (path, cell, m.group(4), ", ".join(UNITS[kind])))
-        columns.append((kind, UNITS[kind][m.group(4).strip()],
-                        float(m.group(2)) if kind == "uplift" else None))
-    kinds = [c[0] for c in columns]
-    if kinds.count("force") != 1 or kinds.count("x") + kinds.count("t") != 1:
-        pcsim_post.fail("%s: the header needs one position column 'x [m]' or time column "
-                        "'t [s]' and one 'force [N]' (it has: %s)" % (path, header.strip()))
-    return columns
-
-
-class Measurement:
-    """A measurement CSV: position (m), force (N), uplift histories at supports (m)."""
-
-    def __init__(self, path):
-        self.path = pcsim_post.need_file(path, "measurement")
-        with open(path, errors="replace") as f:
-            lines = [(n + 1, l) for n, l in enumerate(f) if l.strip()]
-        comments = [l for _, l in lines if l.lstrip().startswith("#")]
-        data = [(n, l) for n, l in lines if not l.lstrip().startswith("#")]
-        if not data:
-            pcsim_post.fail("%s: no header line" % path)
-        columns = parse_header(path, data[0][1])
-        rows = [self.row(n, l, len(columns)) for n, l in data[1:]]
-        if len(rows) < MIN_ROWS:
-            pcsim_post.fail("%s: %d rows, at least %d needed" % (path, len(rows), MIN_ROWS))
-        table = np.array(rows) * np.array([c[1] for c in columns])
-        kinds = [c[0] for c in columns]
-        axis = "x" if "x" in kinds else "t"
-        self.speed_kmh = self.speed_comment(comments)
-        along = table[:, kinds.index(axis)]
-        if np.any(np.diff(along) <= 0):
-            pcsim_post.fail("%s: column %s does not increase strictly" % (path, axis))
-        if axis == "t" and self.speed_kmh is None:
-            pcsim_post.fail("%s: a time column needs the speed in a comment line "
-                            "'# speed [km/h]: V'" % path)
-        self.x = along * self.speed_kmh / 3.6 if axis == "t" else along
-        self.force = table[:, kinds.index("force")]
-        self.support_x = np.array([c[2] for c in columns if c[0] == "uplift"])
-        self.uplift = table[:, [i for i, c in enumerate(columns) if c[0] == "uplift"]]
-        self.comments = [c.lstrip("# ").rstrip() for c in comments]
-
-    def row(self, number, line, width):
-        cells = line.split(",")
-        try:
-            values = [float(c) for c in cells]
-        except ValueError:
-            values = []
-        if len(values) != width or not np.all(np.isfinite(values)):
-            pcsim_post.fail("%s: line %d: %d numbers expected: %s"
-                            % (self.path, number, width, line.strip()[:60]))
-        return values
-
-    def speed_comment(self, comments):
-        for c in comments:
-            m = re.match(r"#\s*speed\s*\[km/h\]\s*[:=]\s*([0-9.eE+-]+)\s*$", c.strip())
-            if m:
-                return float(m.group(1))
+def correlation(run_on_grid, grid, x, force, lag):
+    """The correlation coefficient of force(grid + lag) with run_on_grid where the measurement
+    covers grid + lag, or None if it covers less than half of the grid (too little to judge)."""
+    inside = (grid + lag >= x[0]) & (grid + lag <= x[-1])
+    if inside.sum() < 0.5 * len(grid):
         return None
-
-    def spacing(self):
-        return float(np.median(np.diff(self.x)))
+    return float(np.corrcoef(run_on_grid[inside], np.interp(grid[inside] + lag, x, force))[0, 1])
 
 
-def find_lag(run_x, run_force, x, force, section, max_lag, step):
-    """The lag L (m) for which force(x - L) correlates best with run_force over 'section':
-    candidates every 'step' over [-max_lag, max_lag], refined by a parabola through the best
-    three. Returns (lag, correlation coefficient)."""
+def find_lag(pairs, section, max_lag, step, path):
+    """The lag L (m) for which every measured force(x - L) correlates best with its run's force
+    over 'section': the mean of the pantographs' correlation coefficients, candidates every
+    'step' over [-max_lag, max_lag], refined by a parabola through the best three.
+    pairs: [(run_x, run_force, x, force)], one per pantograph; path: the measurement's, for an
+    error. Returns (lag, mean coefficient)."""
     grid = np.arange(section[0], section[1] + 1e-9, step)
-    run_on_grid = np.interp(grid, run_x, run_force)
+    runs_on_grid = [np.interp(grid, p[0], p[1]) for p in pairs]
     lags = np.arange(-max_lag, max_lag + 1e-9, step)
     scores = np.full(len(lags), -2.0)
     for k, lag in enumerate(lags):
-        inside = (grid + lag >= x[0]) & (grid + lag <= x[-1])
-        if inside.sum() < 0.5 * len(grid):  # too little overlap to judge
-            continue
-        scores[k] = np.corrcoef(run_on_grid[inside], np.interp(grid[inside] + lag, x, force))[0, 1]
+        each = [correlation(r, grid, p[2], p[3], lag) for r, p in zip(runs_on_grid, pairs)]
+        if None not in each:
+            scores[k] = float(np.mean(each))
     best = int(np.argmax(scores))
     if scores[best] < -1.5:
-        pcsim_post.fail("the measurement does not cover the analysis section %g-%g m at any "
-                        "lag within %g m" % (section[0], section[1], max_lag))
+        pcsim_post.fail("%s: does not cover the run's analysis section %g-%g m at any lag within "
+                        "%g m (x is the position of the first force column's pantograph)"
+                        % (path, section[0], section[1], max_lag))
     lag = lags[best]
     if 0 < best < len(lags) - 1 and min(scores[best - 1], scores[best + 1]) > -1.5:
         a, b, c = scores[best - 1: best + 2]
@@ -156,34 +83,93 @@ def find_lag(run_x, run_force, x, force, section, max_lag, step):
     return float(lag), float(scores[best])
 
 
-def align(measurement, run, max_lag=None):
-    """The measurement filtered like the run and aligned to its first pantograph: a dict with
-    x (aligned positions), time, force, filtered, lag_m, correlation, offset_N (mean measured
-    minus mean computed filtered force over the analysis section), speed."""
-    name, p = run.pantograph()
-    speed = measurement.speed_kmh / 3.6 if measurement.speed_kmh else run.speed
-    step = measurement.spacing()
+def pantograph_columns(measurement, run):
+    """[(pantograph name, force column text)] of the measurement, every name one of the run's
+    ('force [N]': the run's first pantograph)."""
+    out = []
+    for name, text in measurement.force_columns.items():
+        pantograph = name if name is not None else next(iter(run.pantographs))
+        if pantograph not in run.pantographs:
+            pcsim_post.fail("%s: column '%s': the run %s has no pantograph '%s' (it has: %s)"
+                            % (measurement.path, text, run.folder, pantograph, ", ".join(run.pantographs)))
+        out.append((pantograph, text))
+    return out
+
+
+def run_mean_force(run, name):
+    """The run's mean filtered contact force of pantograph 'name' over the analysis section:
+    its summary.json figure (pcsim's own section bounds), else from results.h5."""
+    figures = next((p for p in run.summary.get("pantographs", []) if p.get("name") == name), {})
+    if "mean_N" in figures:
+        return float(figures["mean_N"])
+    p = run.pantographs[name]
+    return force_figures(p["position"], p["contact_force_filtered"], p["contact_force"],
+                         run.x_from, run.x_to)["mean_N"]
+
+
+def filtered_on_time_grid(measurement, run):
+    """Each force low-pass filtered like the run on a uniform time grid (the median step), then
+    read on a uniform grid of positions (the median spacing; the statistics weigh the line
+    evenly, as a run's at its constant speed): (time, x of the first force column's pantograph,
+    mean speed, {column name: (raw, filtered)}) on that grid. A position file's time is x / v
+    (v: its comment's speed, else the run's)."""
     cutoff = run.summary["analysis"]["cutoff_hz"]
-    if step > speed / (2.5 * cutoff):
-        pcsim_post.fail("%s: samples every %.3g m do not resolve the %g Hz cut-off at %.0f km/h "
-                        "(at most %.3g m)" % (measurement.path, step, cutoff, 3.6 * speed,
-                                              speed / (2.5 * cutoff)))
-    grid = np.arange(measurement.x[0], measurement.x[-1] + 1e-9, step)
-    time = (grid - grid[0]) / speed
-    filtered = zero_phase_lowpass(np.interp(grid, measurement.x, measurement.force), speed / step,
-                                  cutoff)
+    time = measurement.time
+    if time is None:
+        speed = measurement.speed_kmh / 3.6 if measurement.speed_kmh else run.speed
+        time = (measurement.x - measurement.x[0]) / speed
+    dt = float(np.median(np.diff(time)))
+    if dt > 1.0 / (2.5 * cutoff):
+        if measurement.time is None:
+            pcsim_post.fail("%s: samples every %.3g m do not resolve the %g Hz cut-off at %.0f km/h "
+                            "(at most %.3g m)" % (measurement.path, dt * speed, cutoff, 3.6 * speed,
+                                                  speed / (2.5 * cutoff)))
+        pcsim_post.fail("%s: samples every %.3g s do not resolve the %g Hz cut-off (at most %.3g s)"
+                        % (measurement.path, dt, cutoff, 1.0 / (2.5 * cutoff)))
+    time_grid = np.arange(time[0], time[-1] + 1e-9 * dt, dt)
+    x_on_time_grid = np.interp(time_grid, time, measurement.x)
+    step = measurement.spacing()
+    x = np.arange(measurement.x[0], x_on_time_grid[-1] + 1e-9 * step, step)
+    at = np.interp(x, x_on_time_grid, time_grid)
+    forces = {}
+    for name, force in measurement.forces.items():
+        filtered = zero_phase_lowpass(np.interp(time_grid, time, force), 1.0 / dt, cutoff)
+        forces[name] = (np.interp(x, measurement.x, force), np.interp(at, time_grid, filtered))
+    return at, x, (x[-1] - x[0]) / (at[-1] - at[0]), forces
+
+
+def align(measurement, run, max_lag=None):
+    """The measurement filtered like the run and aligned by position to its pantographs, one lag
+    for the file (the pantographs move together): a dict with time, lag_m, correlation (mean
+    over the pantographs), max_lag_m, speed (mean, m/s), covers_section and per pantograph
+    (list 'pantographs') name, column, distance_m (from the first force column's pantograph in
+    the run), x (aligned), force, filtered, offset_N (mean measured minus mean computed filtered
+    force over the analysis section), correlation, lag_alone_m (its own best lag), covers_section."""
+    columns = pantograph_columns(measurement, run)
+    time, x, speed, forces = filtered_on_time_grid(measurement, run)
+    reference = run.pantographs[columns[0][0]]["position"]
+    step = min(measurement.spacing(), 0.1)
+    section = (run.x_from, run.x_to)
     if max_lag is None:  # spans repeat: beyond half a span the lag is ambiguous
         max_lag = 0.5 * float(np.median(np.diff(run.support_x)))
-    lag, correlation = find_lag(p["position"], p["contact_force_filtered"], grid, filtered,
-                                (run.x_from, run.x_to), max_lag, min(step, 0.1))
-    x = grid - lag
-    inside = (x >= run.x_from - 1e-9) & (x <= run.x_to + 1e-9)
-    run_inside = (p["position"] >= run.x_from - 1e-9) & (p["position"] <= run.x_to + 1e-9)
-    offset = filtered[inside].mean() - p["contact_force_filtered"][run_inside].mean()
-    return {"pantograph": name, "x": x, "time": time, "filtered": filtered,
-            "force": np.interp(grid, measurement.x, measurement.force), "lag_m": lag,
-            "correlation": correlation, "offset_N": float(offset), "speed": speed,
-            "max_lag_m": max_lag, "covers_section": bool(x[0] <= run.x_from and x[-1] >= run.x_to)}
+    pairs, out = [], []
+    for (name, text), (raw, filtered) in zip(columns, forces.values()):
+        p = run.pantographs[name]
+        distance = float(np.median(p["position"] - reference))
+        pairs.append((p["position"], p["contact_force_filtered"], x + distance, filtered))
+        alone = find_lag(pairs[-1:], section, max_lag, step, measurement.path)[0]
+        out.append({"name": name, "column": text, "distance_m": distance, "force": raw,
+                    "filtered": filtered, "lag_alone_m": alone})
+    lag, mean_correlation = find_lag(pairs, section, max_lag, step, measurement.path)
+    for o, (run_x, run_force, measured_x, filtered) in zip(out, pairs):
+        o["x"] = measured_x - lag
+        o["offset_N"] = (force_figures(o["x"], filtered, o["force"], *section)["mean_N"]
+                         - run_mean_force(run, o["name"]))
+        grid = np.arange(section[0], section[1] + 1e-9, step)
+        o["correlation"] = correlation(np.interp(grid, run_x, run_force), grid, o["x"], filtered, 0.0)
+        o["covers_section"] = bool(o["x"][0] <= run.x_from and o["x"][-1] >= run.x_to)
+    return {"time": time, "row_x": x, "lag_m": lag, "correlation": mean_correlation, "max_lag_m": max_lag,
+            "speed": speed, "covers_section": all(o["covers_section"] for o in out), "pantographs": out}
 
 
 def force_figures(x, filtered, raw, x_from, x_to):
@@ -206,20 +192,22 @@ class MeasuredRun(interaction_plots.Run):
 
     def __init__(self, measurement, run, label, max_lag=None):
         a = align(measurement, run, max_lag)
-        self.alignment = {k: a[k] for k in ("pantograph", "lag_m", "correlation", "offset_N",
-                                            "max_lag_m", "covers_section")}
+        self.alignment = {k: a[k] for k in ("lag_m", "correlation", "max_lag_m", "covers_section")}
+        self.alignment["pantographs"] = [{k: p[k] for k in ("name", "column", "distance_m", "offset_N",
+                                                            "correlation", "lag_alone_m", "covers_section")}
+                                         for p in a["pantographs"]]
         self.folder, self.label, self.time, self.speed = measurement.path, label, a["time"], a["speed"]
         self.x_from, self.x_to = run.x_from, run.x_to
         self.support_x = measurement.support_x
-        grid = a["x"] + a["lag_m"]  # the measurement's own positions
-        self.uplift = np.array([np.interp(grid, measurement.x, u) for u in measurement.uplift.T]).T
-        self.pantographs = {a["pantograph"]: {"position": a["x"], "contact_force": a["force"],
-                                              "contact_force_filtered": a["filtered"]}}
-        figures = force_figures(a["x"], a["filtered"], a["force"], run.x_from, run.x_to)
-        figures["name"] = a["pantograph"]
-        figures["complete"] = a["covers_section"]
+        self.uplift = np.array([np.interp(a["row_x"], measurement.x, u) for u in measurement.uplift.T]).T
+        self.pantographs, figures = {}, []
+        for p in a["pantographs"]:
+            self.pantographs[p["name"]] = {"position": p["x"], "contact_force": p["force"],
+                                           "contact_force_filtered": p["filtered"]}
+            figures.append(force_figures(p["x"], p["filtered"], p["force"], run.x_from, run.x_to))
+            figures[-1].update(name=p["name"], complete=p["covers_section"])
         self.summary = {"speed_kmh": run.summary["speed_kmh"], "analysis": run.summary["analysis"],
-                        "pantographs": [figures]}
+                        "pantographs": figures}
         section = [i for i, x in enumerate(self.support_x) if self.in_section(x)]
         if section:
             self.summary["max_uplift_at_support_m"] = float(max(0.0, self.uplift[:, section].max()))
@@ -233,15 +221,20 @@ def main():
     ap.add_argument("--max-lag", type=float, metavar="M",
                     help="largest position lag searched (m; default half a span)")
     a = ap.parse_args()
-    m = Measurement(a.file)
-    print("%s: %d rows, x %.2f-%.2f m every %.3g m, force %.1f-%.1f N, uplift at %s"
-          % (a.file, len(m.x), m.x[0], m.x[-1], m.spacing(), m.force.min(), m.force.max(),
+    m = measurement_csv.Measurement(a.file)
+    print("%s: %d rows, x %.2f-%.2f m every %.3g m%s, uplift at %s"
+          % (a.file, len(m.x), m.x[0], m.x[-1], m.spacing(),
+             "".join(", %s %.1f-%.1f N" % (text, m.forces[name].min(), m.forces[name].max())
+                     for name, text in m.force_columns.items()),
              ", ".join("%g m" % x for x in m.support_x) or "no support"))
     if a.run:
         r = align(m, interaction_plots.Run(a.run), a.max_lag)
-        print("against %s, pantograph '%s': lag %.3f m (correlation %.4f), force offset %+.2f N"
-              % (a.run, r["pantograph"], r["lag_m"], r["correlation"], r["offset_N"]))
-
+        print("against %s: lag %.3f m (mean correlation %.4f)" % (a.run, r["lag_m"], r["correlation"]))
+        for p in r["pantographs"]:
+            print("  pantograph '%s' (column '%s', %+.2f m from the first): force offset %+.2f N, "
+                  "correlation %.4f, its own best lag %.3f m"
+                  % (p["name"], p["column"], p["distance_m"], p["offset_N"], p["correlation"],
+                     p["lag_alone_m"]))
 
 if __name__ == "__main__":
     pcsim_post.main(main, error_status=2)

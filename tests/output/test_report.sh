@@ -105,10 +105,12 @@ gif = Image.open(os.path.join(tmp, "run.gif"))
 assert gif.format == "GIF" and gif.n_frames == 15, gif.n_frames  # snapshots at steps 0, 100, ..., 1400
 
 # Every postproc script: --help describes every argument; a missing folder gives one line.
+# The helper modules say "(not a script itself)" on their first line (pcsim_post.py,
+# measurement_csv.py).
 for script in sorted(os.listdir(postproc)):
-    if not script.endswith(".py") or script == "pcsim_post.py":
-        continue
     path = os.path.join(postproc, script)
+    if not script.endswith(".py") or "(not a script itself)" in open(path).read(300):
+        continue
     help_text = subprocess.run([sys.executable, path, "--help"], capture_output=True, text=True, check=True).stdout
     sections = help_text.split("\n\n")
     entries = [l for s in sections if s.startswith(("positional arguments:", "options:"))
