@@ -2,6 +2,8 @@
 // studies' force, a vehicle's roof motion) and the base motion of a pantograph (issue 25):
 //   base_motion: {type: harmonic, amplitude: A, frequency_hz: f}   z_b = A sin(2π f t)
 //   base_motion: {type: file, file: <t, z_b rows>}                 piecewise linear
+//   base_motion: {type: psd, frequency_hz: [..], psd: [.. m^2/Hz], seed: 1, components: 1024}
+//                a seeded random motion with that one-sided PSD (sum of cosines)
 #pragma once
 
 #include <vector>
