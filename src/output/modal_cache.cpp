@@ -1,7 +1,9 @@
 #include "pcsim/output/modal_cache.hpp"
 
+#include <fcntl.h>
 #include <hdf5.h>
 #include <openssl/evp.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -301,6 +303,33 @@ void write_modal_data(const std::string& file, const std::string& key,
     std::remove(tmp.c_str());
     throw OutputError(file, write_failure_reason(file, saved));
   }
+}
+
+CacheLock::CacheLock(const std::string& file, const std::function<void()>& on_wait) {
+  std::error_code ignored;
+  std::filesystem::create_directories(std::filesystem::path(file).parent_path(), ignored);
+  fd_ = ::open((file + ".lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0) return;
+  if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return;
+  if (errno != EWOULDBLOCK) {
+    ::close(fd_);
+    fd_ = -1;
+    return;
+  }
+  waited_ = true;
+  if (on_wait) on_wait();
+  while (::flock(fd_, LOCK_EX) != 0)
+    if (errno != EINTR) {
+      ::close(fd_);
+      fd_ = -1;
+      return;
+    }
+}
+
+CacheLock::~CacheLock() {
+  if (fd_ < 0) return;
+  ::flock(fd_, LOCK_UN);
+  ::close(fd_);
 }
 
 }  // namespace pcsim::output

@@ -103,8 +103,22 @@ catenary::ModalData cached_data(const Context& ctx, const scene::RunScene& run,
                                 CatenarySetup& out) {
   catenary::ModalData data;
   int hit = 0;
-  if (ctx.rank == 0)
+  // Rank 0 of each process group: a miss takes the entry's lock, and looks
+  // again once it has it (another group may have computed the data meanwhile).
+  std::unique_ptr<output::CacheLock> lock;
+  if (ctx.rank == 0) {
     hit = output::find_modal_data(ctx.cache_dir, key, cutoff_hz, data, out.cache_file) ? 1 : 0;
+    if (!hit) {
+      const std::string file = output::modal_cache_file(ctx.cache_dir, key, cutoff_hz);
+      lock = std::make_unique<output::CacheLock>(file, [&] {
+        std::printf("  waiting for another process computing the same modes (%s.lock)\n",
+                    file.c_str());
+        std::fflush(stdout);
+      });
+      if (lock->waited())
+        hit = output::find_modal_data(ctx.cache_dir, key, cutoff_hz, data, out.cache_file) ? 1 : 0;
+    }
+  }
   MPI_Bcast(&hit, 1, MPI_INT, 0, ctx.comm);
   out.cache_hit = hit != 0;
   if (out.cache_hit) {

@@ -14,6 +14,7 @@
 // differs is a miss.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -46,5 +47,25 @@ bool read_modal_data(const std::string& file, const std::string& key, catenary::
 // writes file.tmp-<pid> and renames it to file.
 void write_modal_data(const std::string& file, const std::string& key,
                       const catenary::ModalData& data);
+
+// An exclusive lock on the cache entry 'file' between processes (flock on
+// file.lock, created in the folder and left there; released by the
+// destructor or when the process ends, even by SIGKILL): the first process
+// that misses computes the data, the others wait and then read its file
+// instead of computing the same modes. on_wait is called once, before
+// waiting, when another process holds the lock. A folder or lock file that
+// cannot be made gives no lock (nothing waits; the data are computed).
+class CacheLock {
+ public:
+  CacheLock(const std::string& file, const std::function<void()>& on_wait);
+  ~CacheLock();
+  CacheLock(const CacheLock&) = delete;
+  CacheLock& operator=(const CacheLock&) = delete;
+  bool waited() const { return waited_; }
+
+ private:
+  int fd_ = -1;
+  bool waited_ = false;
+};
 
 }  // namespace pcsim::output
