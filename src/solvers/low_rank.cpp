@@ -1,12 +1,11 @@
 #include "pcsim/solvers/low_rank.hpp"
 
-#include <petsc/private/pcimpl.h>  // a PC type of our own: its ops and data
-
 #include <Eigen/LU>
 #include <algorithm>
 #include <set>
 
 #include "block_diagonal.hpp"
+#include "pc_types.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/core/profiling.hpp"
 #include "varying_blocks.hpp"
@@ -60,19 +59,12 @@ PetscErrorCode pc_view(PC pc, PetscViewer viewer) {
 
 PetscErrorCode LowRankStepSolver::pc_create(PC pc) {
   PetscFunctionBeginUser;
-  pc->data = nullptr;
-  pc->ops->setup = pc_setup;
-  pc->ops->apply = pc_apply;
-  pc->ops->destroy = pc_destroy;
-  pc->ops->view = pc_view;
+  set_pc_type_ops(pc, {pc_setup, pc_apply, pc_destroy, pc_view});
   PetscFunctionReturn(0);
 }
 
 void LowRankStepSolver::register_pc() {
-  PCSIM_PETSC(PCInitializePackage());
-  PetscErrorCode (*existing)(PC) = nullptr;
-  PCSIM_PETSC(PetscFunctionListFind(PCList, kPCWoodbury, &existing));
-  if (!existing) PCSIM_PETSC(PCRegister(kPCWoodbury, pc_create));
+  register_pc_type(kPCWoodbury, pc_create);
 }
 
 void LowRankStepSolver::install(PC pc) {

@@ -1,12 +1,11 @@
 #include "pcsim/solvers/schur_dd.hpp"
 
-#include <petsc/private/pcimpl.h>  // a PC type of our own: its ops and data
-
 #include <Eigen/LU>
 #include <algorithm>
 #include <cstring>
 #include <vector>
 
+#include "pc_types.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/core/profiling.hpp"
 
@@ -444,11 +443,7 @@ PetscErrorCode pc_view(PC pc, PetscViewer viewer) {
 
 PetscErrorCode pc_create(PC pc) {
   PetscFunctionBeginUser;
-  pc->data = nullptr;
-  pc->ops->setup = pc_setup;
-  pc->ops->apply = pc_apply;
-  pc->ops->destroy = pc_destroy;
-  pc->ops->view = pc_view;
+  set_pc_type_ops(pc, {pc_setup, pc_apply, pc_destroy, pc_view});
   PetscFunctionReturn(0);
 }
 
@@ -463,10 +458,7 @@ SchurDomainSolver* solver_of(KSP ksp) {
 }  // namespace
 
 void register_schur_pc() {
-  PCSIM_PETSC(PCInitializePackage());
-  PetscErrorCode (*existing)(PC) = nullptr;
-  PCSIM_PETSC(PetscFunctionListFind(PCList, kPCSchur, &existing));
-  if (!existing) PCSIM_PETSC(PCRegister(kPCSchur, pc_create));
+  register_pc_type(kPCSchur, pc_create);
 }
 
 void use_schur_domain_decomposition(KSP ksp) {

@@ -98,15 +98,8 @@ mkdir notrun mine && touch mine/notes.txt
 printf 'x,force [N]\n' > nounits.csv
 seq 0 1 100 | sed 's/$/,120/' >> nounits.csv
 before=$(ls -A)
-bad() {  # bad EXPECTED_TEXT ARGS...: pcsim compare ARGS fails as it should
-  local expected=$1 status=0
-  shift
-  "$PCSIM_BIN" compare "$@" > bad.log 2>&1 || status=$?
-  [ $status -eq 2 ] && [ "$(grep -c . bad.log)" -eq 1 ] && grep -q "^pcsim: error: .*$expected" bad.log ||
-    { cat bad.log; fail "compare $* (exit $status)"; }
-  rm bad.log
-  [ "$(ls -A)" == "$before" ] || { ls -A; fail "compare $* left something behind"; }
-}
+# shellcheck source=tests/output/compare_checks.sh
+source "$PCSIM_SOURCE_DIR/tests/output/compare_checks.sh"
 bad "notrun: not a pcsim run result folder: it has no summary.json" a notrun -o x
 bad "missing: not found" a missing -o x
 bad "missing.csv: not found" a --measurement missing.csv -o x

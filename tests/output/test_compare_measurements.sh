@@ -118,15 +118,8 @@ header "x [m],force [N],force trailing [N],uplift 110 [mm],uplift 165 [mm]" unna
 { echo "x [m],speed [km/h],force leading [N]";
   for i in $(seq 1 100); do echo "$i.0,320,120"; done; } > speed-by-x.csv
 before=$(ls -A)
-bad() {  # bad EXPECTED_TEXT ARGS...: pcsim compare ARGS fails as it should
-  local expected=$1 status=0
-  shift
-  "$PCSIM_BIN" compare "$@" > bad.log 2>&1 || status=$?
-  [ $status -eq 2 ] && [ "$(grep -c . bad.log)" -eq 1 ] && grep -q "^pcsim: error: .*$expected" bad.log ||
-    { cat bad.log; fail "compare $* (exit $status)"; }
-  rm bad.log
-  [ "$(ls -A)" == "$before" ] || { ls -A; fail "compare $* left something behind"; }
-}
+# shellcheck source=tests/output/compare_checks.sh
+source "$PCSIM_SOURCE_DIR/tests/output/compare_checks.sh"
 bad "unknown.csv: column 'force middle \[N\]': the run r has no pantograph 'middle' (it has: leading, trailing)" \
   r --measurement unknown.csv -o x
 bad "twice.csv: header column 3 'force leading \[N\]' repeats column 2 'force leading \[N\]'" \
