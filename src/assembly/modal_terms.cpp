@@ -14,17 +14,24 @@ namespace {
 
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-// The modal part of a vector (every rank: it lives on the last one).
-Eigen::VectorXd modal_part(const ModalCatenary& catenary, Vec v) {
+// The modal part of a vector into x (every rank: it lives on the last one).
+void modal_part(const ModalCatenary& catenary, Vec v, Eigen::VectorXd& x) {
   const PetscInt m = catenary.catenary_dofs();
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(m);
+  x.resize(m);
   if (catenary.on_owner()) {
     const PetscScalar* a;
     PCSIM_PETSC(VecGetArrayRead(v, &a));
     std::copy(a, a + m, x.data());
     PCSIM_PETSC(VecRestoreArrayRead(v, &a));
+  } else {
+    x.setZero();
   }
   MPI_Allreduce(MPI_IN_PLACE, x.data(), static_cast<int>(m), MPI_DOUBLE, MPI_SUM, catenary.comm());
+}
+
+Eigen::VectorXd modal_part(const ModalCatenary& catenary, Vec v) {
+  Eigen::VectorXd x;
+  modal_part(catenary, v, x);
   return x;
 }
 
@@ -185,8 +192,10 @@ void add_modal_rows(const ModalCatenary& catenary, const Items& items, const Eig
   PCSIM_PETSC(VecGetArray(F, &a));
   Eigen::Map<Eigen::VectorXd> f(a, catenary.catenary_dofs());
   for (const auto& item : items) {
+    const double c = coefficient(item);
+    if (c == 0) continue;  // an inactive pin adds nothing
     const auto phi = catenary.row(item.node, item.dof);
-    f += coefficient(item) * phi.dot(x) * phi.transpose();
+    f += c * phi.dot(x) * phi.transpose();
   }
   PCSIM_PETSC(VecRestoreArray(F, &a));
 }
@@ -214,9 +223,9 @@ ModalNodeDashpots::ModalNodeDashpots(ModalCatenary& catenary)
 
 void ModalNodeDashpots::add_residual(const CoupledState& state, Vec F) {
   if (!state.V) return;
-  const Eigen::VectorXd v = modal_part(catenary_, state.V);
+  modal_part(catenary_, state.V, rates_);
   add_modal_rows(
-      catenary_, catenary_.mesh().dashpots, v, [](const auto& d) { return d.coefficient; }, F);
+      catenary_, catenary_.mesh().dashpots, rates_, [](const auto& d) { return d.coefficient; }, F);
 }
 
 void ModalNodeDashpots::add_tangent(const CoupledState&, Shifts shifts, Mat J) {
