@@ -285,7 +285,10 @@ void ModalCatenary::update_slack_set() {
     at_anchor = anchor_version_ == eta_version_;  // eta has not changed since the anchor
     if (at_anchor) {
       find_candidates(0, 0);
-    } else if (!line_valid_ || !line_candidates(kFewCandidates)) {
+    } else if (!records_anchor_ || !line_valid_ || !line_candidates(kFewCandidates)) {
+      // No line without records of the dropper forces (a moving window): it
+      // would join the error resets' anchors, steps apart, and leave no fewer
+      // candidates than the anchor alone (window scene: same counts, same results).
       work_ = eta_ - anchor_;
       const double step = work_.norm();
       const double step_omega = (work_.array() * omega_.array()).matrix().norm();
@@ -436,6 +439,7 @@ std::vector<double> ModalCatenary::support_heights() const {
 std::vector<double> ModalCatenary::dropper_forces() const {
   std::vector<double> forces(droppers_.size(), 0.0);
   exact_anchor();  // every rank: the records' states anchor the bounded set
+  records_anchor_ = true;
   if (!on_owner()) return forces;
   for (std::size_t i = 0; i < droppers_.size(); ++i) {
     const auto d = static_cast<std::size_t>(droppers_[i]);

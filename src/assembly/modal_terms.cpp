@@ -185,8 +185,8 @@ RankOne modal_rank_one(const ModalCatenary& catenary, int key, const std::vector
 
 // Adds sum over the rows of coefficient(row) (phi . x) phi^T to F's modal part (owner).
 template <class Items, class Coefficient>
-void add_modal_rows(const ModalCatenary& catenary, const Items& items, const Eigen::VectorXd& x,
-                    Coefficient coefficient, Vec F) {
+void add_modal_rows(const ModalCatenary& catenary, const Items& items,
+                    Eigen::Ref<const Eigen::VectorXd> x, Coefficient coefficient, Vec F) {
   if (!catenary.on_owner()) return;
   PetscScalar* a;
   PCSIM_PETSC(VecGetArray(F, &a));
@@ -223,9 +223,19 @@ ModalNodeDashpots::ModalNodeDashpots(ModalCatenary& catenary)
 
 void ModalNodeDashpots::add_residual(const CoupledState& state, Vec F) {
   if (!state.V) return;
-  modal_part(catenary_, state.V, rates_);
-  add_modal_rows(
-      catenary_, catenary_.mesh().dashpots, rates_, [](const auto& d) { return d.coefficient; }, F);
+  const auto coefficient = [](const auto& d) { return d.coefficient; };
+  int size = 1;
+  MPI_Comm_size(catenary_.comm(), &size);
+  if (size > 1) {
+    modal_part(catenary_, state.V, rates_);
+    add_modal_rows(catenary_, catenary_.mesh().dashpots, rates_, coefficient, F);
+    return;
+  }
+  const PetscScalar* v;  // one rank: V read in place
+  PCSIM_PETSC(VecGetArrayRead(state.V, &v));
+  add_modal_rows(catenary_, catenary_.mesh().dashpots,
+                 Eigen::Map<const Eigen::VectorXd>(v, catenary_.catenary_dofs()), coefficient, F);
+  PCSIM_PETSC(VecRestoreArrayRead(state.V, &v));
 }
 
 void ModalNodeDashpots::add_tangent(const CoupledState&, Shifts shifts, Mat J) {
