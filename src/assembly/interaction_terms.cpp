@@ -200,8 +200,11 @@ bool PenaltyContact::low_rank_change(const CoupledState& state, std::vector<Rank
   if (!e.wire->on_wire) return true;
   RankOne term;
   term.key = 0;
-  term.index = e.wire->index;
-  term.weight = e.wire->weight;
+  const std::size_t size = e.wire->index.size() + 1;  // room for the head: no reallocation
+  term.index.reserve(size);
+  term.weight.reserve(size);
+  term.index.assign(e.wire->index.begin(), e.wire->index.end());
+  term.weight.assign(e.wire->weight.begin(), e.wire->weight.end());
   term.index.push_back(slot_.contact_dof());
   term.weight.push_back(-1.0);
   term.coefficient = in_contact > 0.5 ? e.stiffness : 0.0;

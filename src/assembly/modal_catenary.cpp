@@ -157,22 +157,29 @@ void ModalCatenary::reference_state(Vec U) const {
 // state) keeps the slack set, unless an anchor changed since: the set and
 // the elongations are those a new evaluation would give, bit for bit.
 void ModalCatenary::load_state(Vec U) {
-  incoming_.resize(m_);
-  if (on_owner()) {
+  const auto bytes = sizeof(double) * static_cast<std::size_t>(m_);
+  bool same = false;
+  if (size_ == 1) {  // compared in place, copied only when changed
     const PetscScalar* a;
     PCSIM_PETSC(VecGetArrayRead(U, &a));
-    std::copy(a, a + m_, incoming_.data());
+    same = std::memcmp(a, eta_.data(), bytes) == 0;
+    if (!same) std::copy(a, a + m_, eta_.data());
     PCSIM_PETSC(VecRestoreArrayRead(U, &a));
+  } else {
+    incoming_.resize(m_);
+    if (on_owner()) {
+      const PetscScalar* a;
+      PCSIM_PETSC(VecGetArrayRead(U, &a));
+      std::copy(a, a + m_, incoming_.data());
+      PCSIM_PETSC(VecRestoreArrayRead(U, &a));
+    }
+    MPI_Bcast(incoming_.data(), static_cast<int>(m_), MPI_DOUBLE, size_ - 1, comm_);
+    same = std::memcmp(incoming_.data(), eta_.data(), bytes) == 0;
+    if (!same) eta_.swap(incoming_);
   }
-  if (size_ > 1) MPI_Bcast(incoming_.data(), static_cast<int>(m_), MPI_DOUBLE, size_ - 1, comm_);
   ++loads_;
-  const bool same = std::memcmp(incoming_.data(), eta_.data(),
-                                sizeof(double) * static_cast<std::size_t>(m_)) == 0;
   if (same && slack_set_current_) return;
-  if (!same) {
-    eta_.swap(incoming_);
-    ++eta_version_;
-  }
+  if (!same) ++eta_version_;
   update_slack_set();
   slack_set_current_ = true;
 }
@@ -278,7 +285,10 @@ void ModalCatenary::update_slack_set() {
     at_anchor = anchor_version_ == eta_version_;  // eta has not changed since the anchor
     if (at_anchor) {
       find_candidates(0, 0);
-    } else if (!line_valid_ || !line_candidates(kFewCandidates)) {
+    } else if (!records_anchor_ || !line_valid_ || !line_candidates(kFewCandidates)) {
+      // No line without records of the dropper forces (a moving window): it
+      // would join the error resets' anchors, steps apart, and leave no fewer
+      // candidates than the anchor alone (window scene: same counts, same results).
       work_ = eta_ - anchor_;
       const double step = work_.norm();
       const double step_omega = (work_.array() * omega_.array()).matrix().norm();
@@ -329,9 +339,10 @@ ModalCatenary::CachedPoint& ModalCatenary::cached_point(double x, int wire) cons
   p.contiguous = true;
   c.z0 = c.z_chi0 = 0;
   c.x_chi = 1;
-  p.index.clear();
-  p.weight.clear();
-  if (p.on_wire) {
+  if (!p.on_wire) {
+    p.index.clear();
+    p.weight.clear();
+  } else {  // index and weight keep their size m: rewritten, not zeroed first
     const auto& el = mesh_.cables[element];
     const auto h = catenary::hermite(chi, el.ref_length);
     const auto& s = h.s;
@@ -428,6 +439,7 @@ std::vector<double> ModalCatenary::support_heights() const {
 std::vector<double> ModalCatenary::dropper_forces() const {
   std::vector<double> forces(droppers_.size(), 0.0);
   exact_anchor();  // every rank: the records' states anchor the bounded set
+  records_anchor_ = true;
   if (!on_owner()) return forces;
   for (std::size_t i = 0; i < droppers_.size(); ++i) {
     const auto d = static_cast<std::size_t>(droppers_[i]);

@@ -14,17 +14,24 @@ namespace {
 
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-// The modal part of a vector (every rank: it lives on the last one).
-Eigen::VectorXd modal_part(const ModalCatenary& catenary, Vec v) {
+// The modal part of a vector into x (every rank: it lives on the last one).
+void modal_part(const ModalCatenary& catenary, Vec v, Eigen::VectorXd& x) {
   const PetscInt m = catenary.catenary_dofs();
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(m);
+  x.resize(m);
   if (catenary.on_owner()) {
     const PetscScalar* a;
     PCSIM_PETSC(VecGetArrayRead(v, &a));
     std::copy(a, a + m, x.data());
     PCSIM_PETSC(VecRestoreArrayRead(v, &a));
+  } else {
+    x.setZero();
   }
   MPI_Allreduce(MPI_IN_PLACE, x.data(), static_cast<int>(m), MPI_DOUBLE, MPI_SUM, catenary.comm());
+}
+
+Eigen::VectorXd modal_part(const ModalCatenary& catenary, Vec v) {
+  Eigen::VectorXd x;
+  modal_part(catenary, v, x);
   return x;
 }
 
@@ -178,15 +185,17 @@ RankOne modal_rank_one(const ModalCatenary& catenary, int key, const std::vector
 
 // Adds sum over the rows of coefficient(row) (phi . x) phi^T to F's modal part (owner).
 template <class Items, class Coefficient>
-void add_modal_rows(const ModalCatenary& catenary, const Items& items, const Eigen::VectorXd& x,
-                    Coefficient coefficient, Vec F) {
+void add_modal_rows(const ModalCatenary& catenary, const Items& items,
+                    Eigen::Ref<const Eigen::VectorXd> x, Coefficient coefficient, Vec F) {
   if (!catenary.on_owner()) return;
   PetscScalar* a;
   PCSIM_PETSC(VecGetArray(F, &a));
   Eigen::Map<Eigen::VectorXd> f(a, catenary.catenary_dofs());
   for (const auto& item : items) {
+    const double c = coefficient(item);
+    if (c == 0) continue;  // an inactive pin adds nothing
     const auto phi = catenary.row(item.node, item.dof);
-    f += coefficient(item) * phi.dot(x) * phi.transpose();
+    f += c * phi.dot(x) * phi.transpose();
   }
   PCSIM_PETSC(VecRestoreArray(F, &a));
 }
@@ -214,9 +223,19 @@ ModalNodeDashpots::ModalNodeDashpots(ModalCatenary& catenary)
 
 void ModalNodeDashpots::add_residual(const CoupledState& state, Vec F) {
   if (!state.V) return;
-  const Eigen::VectorXd v = modal_part(catenary_, state.V);
-  add_modal_rows(
-      catenary_, catenary_.mesh().dashpots, v, [](const auto& d) { return d.coefficient; }, F);
+  const auto coefficient = [](const auto& d) { return d.coefficient; };
+  int size = 1;
+  MPI_Comm_size(catenary_.comm(), &size);
+  if (size > 1) {
+    modal_part(catenary_, state.V, rates_);
+    add_modal_rows(catenary_, catenary_.mesh().dashpots, rates_, coefficient, F);
+    return;
+  }
+  const PetscScalar* v;  // one rank: V read in place
+  PCSIM_PETSC(VecGetArrayRead(state.V, &v));
+  add_modal_rows(catenary_, catenary_.mesh().dashpots,
+                 Eigen::Map<const Eigen::VectorXd>(v, catenary_.catenary_dofs()), coefficient, F);
+  PCSIM_PETSC(VecRestoreArrayRead(state.V, &v));
 }
 
 void ModalNodeDashpots::add_tangent(const CoupledState&, Shifts shifts, Mat J) {

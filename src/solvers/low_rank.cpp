@@ -178,8 +178,13 @@ void LowRankStepSolver::set_terms(const std::vector<assembly::RankOne>& terms,
     Entry& e = it->second;
     const bool same_u = !added && e.term.index == term.index && e.term.weight == term.weight;
     if (e.term.coefficient != term.coefficient || !same_u) capacitance_dirty_ = true;
-    e.term = term;
-    if (!same_u) {
+    if (same_u) {  // u kept: its index and weight are not copied again
+      e.term.key = term.key;
+      e.term.coefficient = term.coefficient;
+      e.term.reuse_columns = term.reuse_columns;
+      e.term.contiguous = term.contiguous;
+    } else {
+      e.term = term;
       build_u(e);
       e.z_valid = false;
     }

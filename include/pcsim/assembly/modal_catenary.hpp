@@ -134,6 +134,7 @@ class ModalCatenary : public CatenaryModel {
   mutable Eigen::VectorXd exact_eta_, exact_elongation_, line_, line_elongation_;
   mutable long exact_count_ = 0;
   mutable bool line_valid_ = false;
+  mutable bool records_anchor_ = false;  // dropper_forces() anchors each recorded state
   mutable double line_norm2_ = 0, exact_norm_ = 0, previous_exact_norm_ = 0;
   std::vector<double> elongation_;
   std::vector<std::size_t> slack_now_;

@@ -80,6 +80,7 @@ class ModalNodeDashpots : public Term {
   ModalCatenary& catenary_;
   std::vector<PetscInt> modes_;
   double shift_v_ = 0;
+  Eigen::VectorXd rates_;  // the modal part of V (kept storage)
 };
 
 // A window's active end pins (mesh.pins, switched by the run between steps):
