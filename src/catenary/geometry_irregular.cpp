@@ -7,16 +7,11 @@
 #include <random>
 
 #include "geometry_line.hpp"
+#include "pcsim/core/random.hpp"
 
 namespace pcsim::catenary::detail {
 
 namespace {
-
-// Uniform in [0, 1) from a 64-bit Mersenne twister, the same on every
-// platform (std::uniform_real_distribution is not).
-double unit_random(std::mt19937_64& gen) {
-  return static_cast<double>(gen() >> 11) * (1.0 / 9007199254740992.0);
-}
 
 double linear(const std::vector<double>& x, const std::vector<double>& y, double at) {
   if (x.empty() || at <= x.front()) return x.empty() ? 0.0 : y.front();

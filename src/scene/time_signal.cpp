@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "pcsim/core/limits.hpp"
+#include "pcsim/core/random.hpp"
 
 namespace pcsim::scene {
 
@@ -53,12 +54,6 @@ Samples load_samples(const InputNode& node, const std::string& what) {
 }
 
 namespace {
-
-// Uniform in [0, 1) from a 64-bit Mersenne twister, the same on every
-// platform (std::uniform_real_distribution is not).
-double unit_random(std::mt19937_64& gen) {
-  return static_cast<double>(gen() >> 11) * (1.0 / 9007199254740992.0);
-}
 
 // The frequencies f_k (strictly increasing, > 0) and one-sided PSD S_k >= 0
 // [m^2/Hz] of a `type: psd` node, checked.

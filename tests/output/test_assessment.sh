@@ -80,13 +80,16 @@ PY
 # A speed sweep judged against a set: the criteria set and its verdict per
 # row (sweep.csv, sweep.h5), the highest speed up to which every case passes
 # (sigma <= 30 N: sigma 26.3 N at 200 km/h, 32.1 N at 250 on this short line).
-cat > sigma-30.yaml <<'YAML'
-name: sigma-30
-title: sigma at most 30 N
+sigma_set() {  # sigma_set LIMIT CLAUSE: a sourced set sigma <= LIMIT N in sigma-LIMIT.yaml
+  cat > "sigma-$1.yaml" <<YAML
+name: sigma-$1
+title: sigma at most $1 N
 criteria:
-  - {key: sigma, figure: std_N, label: sigma, unit: N, upper: {constant: 30},
-     clause: "spec 2.1", source: "our spec", sourced: true}
+  - {key: sigma, figure: std_N, label: sigma, unit: N, upper: {constant: $1},
+     clause: "spec $2", source: "our spec", sourced: true}
 YAML
+}
+sigma_set 30 2.1
 "$PCSIM_BIN" sweep "$PCSIM_SOURCE_DIR/tests/contact/data/en50318-short.yaml" -j 1 -o speeds \
   --set "assessment.criteria=$tmp/sigma-30.yaml" --set "simulation.speed_kmh=200,250,300" \
   > speeds.log 2>&1 || { cat speeds.log; fail "speed sweep"; }
@@ -108,13 +111,7 @@ PY
 # line_zones, console): the short three-section line at 250 km/h against
 # sigma <= 28 N: section 1 has sigma 29.68 N (fail), sections 2 and 3 26.44
 # and 26.32 N (pass), each 1.6 N or more from the limit; overlaps not judged.
-cat > sigma-28.yaml <<'YAML'
-name: sigma-28
-title: sigma at most 28 N
-criteria:
-  - {key: sigma, figure: std_N, label: sigma, unit: N, upper: {constant: 28},
-     clause: "spec 2.2", source: "our spec", sourced: true}
-YAML
+sigma_set 28 2.2
 "$PCSIM_BIN" run "$PCSIM_SOURCE_DIR/runs/lines/three-sections-short-250.yaml" -o sections \
   --no-report --set "assessment.criteria=$tmp/sigma-28.yaml" > sections.log 2>&1 ||
   { cat sections.log; fail "three sections"; }
