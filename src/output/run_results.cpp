@@ -16,7 +16,8 @@ namespace pcsim::output {
 std::vector<double> filter_uniformly_sampled(const std::vector<double>& time,
                                              const std::vector<double>& signal, double cutoff_hz) {
   const std::size_t n = time.size();
-  if (n < 8) return signal;
+  constexpr std::size_t kFilterExtension = 3 * (2 * 2 + 1);  // zero_phase_filter, order 4
+  if (n <= kFilterExtension) return signal;
   const double dt = (time.back() - time.front()) / (n - 1);
   bool uniform = true;
   for (std::size_t i = 1; i < n && uniform; ++i)

@@ -52,10 +52,11 @@ Scene make_scene(const std::string& path, const std::string& text, const py::dic
   std::vector<scene::InputOverride> parsed;
   for (const auto& [key, value] : set) {
     overrides.push_back(py::str(key).cast<std::string>() + "=" + override_text(value));
-    parsed.push_back(scene::parse_override(overrides.back(), {"", "pcsim.Scene set " + overrides.back()}));
+    parsed.push_back(
+        scene::parse_override(overrides.back(), {"", "pcsim.Scene set " + overrides.back()}));
   }
-  scene::InputNode composed =
-      text.empty() ? scene::load_composed(path, parsed) : scene::load_composed_text(text, path, parsed);
+  scene::InputNode composed = text.empty() ? scene::load_composed(path, parsed)
+                                           : scene::load_composed_text(text, path, parsed);
   scene::load_run_scene(composed);  // every check of `pcsim run`: InputError
   std::string name =
       composed.has("name") ? composed.get_string("name") : fs::path(path).stem().string();
@@ -111,8 +112,7 @@ py::dict series(const Recorder& rec, const output::RunSettings& settings, int ra
     py::dict d;
     d["position"] = array(x);
     d["contact_force"] = array(f);
-    d["contact_force_filtered"] =
-        array(t.size() > 8 ? output::filter_uniformly_sampled(t, f, settings.cutoff_hz) : f);
+    d["contact_force_filtered"] = array(output::filter_uniformly_sampled(t, f, settings.cutoff_hz));
     d["head_z"] = array(z);
     pantographs[py::str(settings.pantograph_names[p])] = d;
   }
@@ -153,7 +153,8 @@ py::dict run(const Scene& s, const std::string& output, const std::string& optio
   const auto ctx = context(quiet);
   auto run_scene = scene::load_run_scene(s.composed);
   const std::string dir = output.empty() ? scratch_folder(ctx) : output;
-  output::OutputRequest request{dir, "pcsim.run", "output", "run", s.path, s.name, provenance(s, ctx.size)};
+  output::OutputRequest request{
+      dir, "pcsim.run", "output", "run", s.path, s.name, provenance(s, ctx.size)};
   request.overwrite = overwrite;
   Recorder recorder;
   simulation::RunRequest what;

@@ -39,6 +39,11 @@ run 0 "$PCSIM_BIN" run "$scene" -o r2 --no-report -ts_max_steps 5 -ts_dtt 1e-3
 grep -qF "warning: option -ts_dtt was not read" err.log || fail "no warning: $(cat err.log)"
 ! grep -qF "ts_max_steps" err.log || fail "-ts_max_steps was read, yet warned about"
 echo "ok   -ts_dtt: warned on stderr"
+# A run too short for the statistics' filter (9 to 15 samples once threw an
+# internal error): the run ends normally and says why there are no figures.
+run 0 "$PCSIM_BIN" run "$scene" -o r2b --no-report -ts_max_steps 12
+grep -qF "did not cross the analysis section" out.log || fail "12 steps: $(cat out.log err.log)"
+echo "ok   -ts_max_steps 12: no statistics, said so"
 
 # 3. -help: the options listed, no time step, nothing written.
 run 0 "$PCSIM_BIN" run "$scene" -o r3 -help

@@ -45,7 +45,9 @@ struct RunStatistics {
 
 // Zero-phase low-pass of a signal sampled at the accepted time steps; when
 // the step size changed (rejected steps) the signal is interpolated linearly
-// onto a uniform grid of the smallest step first.
+// onto a uniform grid of the smallest step first. A record of at most 15
+// samples (the order-4 filter's odd extension) is returned unfiltered: such a
+// run is far too short for statistics (e.g. `-ts_max_steps 10`).
 std::vector<double> filter_uniformly_sampled(const std::vector<double>& time,
                                              const std::vector<double>& signal, double cutoff_hz);
 
