@@ -166,6 +166,69 @@ void write_matrix(H5File& h5, const char* path, const std::vector<double>& data,
   h5.write(path, data, rows, data.size() / rows);
 }
 
+// Runs read(h5) on 'file' opened read-only with HDF5's error printing off
+// (a broken file is a miss, not noise); false if it is missing, cannot be
+// opened or read returns false.
+template <typename Read>
+bool read_quietly(const std::string& file, Read read) {
+  if (!std::filesystem::exists(file)) return false;
+  H5E_auto2_t handler;
+  void* client;
+  H5Eget_auto2(H5E_DEFAULT, &handler, &client);
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  const hid_t h5 = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const bool ok = h5 >= 0 && read(h5);
+  if (h5 >= 0) H5Fclose(h5);
+  H5Eset_auto2(H5E_DEFAULT, handler, client);
+  return ok;
+}
+
+// Creates the folder if needed (InputError on key --cache if it cannot), has
+// write(h5) fill file.tmp-<pid> and renames it to 'file' (a reader never sees
+// half a file).
+template <typename Write>
+void write_atomically(const std::string& file, Write write) {
+  const std::filesystem::path path(file);
+  std::error_code ec;
+  std::filesystem::create_directories(path.parent_path(), ec);
+  if (ec)
+    throw InputError(
+        "command line", "--cache",
+        "cannot create the cache folder '" + path.parent_path().string() + "': " + ec.message());
+  const std::string tmp = file + ".tmp-" + std::to_string(getpid());
+  try {
+    H5File h5(tmp);
+    write(h5);
+    h5.close();
+  } catch (...) {
+    std::remove(tmp.c_str());
+    throw;
+  }
+  if (std::rename(tmp.c_str(), file.c_str()) != 0) {
+    const int saved = errno;
+    std::remove(tmp.c_str());
+    throw OutputError(file, write_failure_reason(file, saved));
+  }
+}
+
+bool read_basis_file(hid_t file, const std::string& key, catenary::ReducedBasis& b) {
+  std::string stored;
+  double eigenmodes = 0, dropped = 0;
+  if (!read_key(file, stored) || stored != key) return false;
+  if (!read_attribute(file, "cutoff_hz", b.cutoff_hz) ||
+      !read_attribute(file, "eigenmodes", eigenmodes) ||
+      !read_attribute(file, "dropped_modes", dropped) || !read_dataset(file, "/omega2", b.omega2) ||
+      !read_dataset(file, "/row_keys", b.row_keys) || !read_dataset(file, "/rows", b.rows))
+    return false;
+  for (auto [path, v] :
+       {std::pair{"/contact_flexibility", &b.contact_flexibility}, std::pair{"/shift", &b.shift}})
+    if (H5Lexists(file, path, H5P_DEFAULT) > 0 && !read_dataset(file, path, *v)) return false;
+  b.eigenmodes = static_cast<int>(eigenmodes);
+  b.dropped_modes = static_cast<int>(dropped);
+  const std::size_t n = b.size();
+  return b.rows.size() == b.row_keys.size() * n && (b.shift.empty() || b.shift.size() == n * n);
+}
+
 bool read_file(hid_t file, const std::string& key, catenary::ModalData& d) {
   std::string stored;
   if (!read_key(file, stored) || stored != key) return false;
@@ -254,32 +317,15 @@ bool find_modal_data(const std::string& dir, const std::string& key, double max_
 }
 
 bool read_modal_data(const std::string& file, const std::string& key, catenary::ModalData& data) {
-  if (!std::filesystem::exists(file)) return false;
-  H5E_auto2_t handler;
-  void* client;
-  H5Eget_auto2(H5E_DEFAULT, &handler, &client);
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // a broken file is a miss, not noise
   catenary::ModalData read;
-  const hid_t h5 = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  const bool ok = h5 >= 0 && read_file(h5, key, read);
-  if (h5 >= 0) H5Fclose(h5);
-  H5Eset_auto2(H5E_DEFAULT, handler, client);
+  const bool ok = read_quietly(file, [&](hid_t h5) { return read_file(h5, key, read); });
   if (ok) data = std::move(read);
   return ok;
 }
 
 void write_modal_data(const std::string& file, const std::string& key,
                       const catenary::ModalData& d) {
-  const std::filesystem::path path(file);
-  std::error_code ec;
-  std::filesystem::create_directories(path.parent_path(), ec);
-  if (ec)
-    throw InputError(
-        "command line", "--cache",
-        "cannot create the cache folder '" + path.parent_path().string() + "': " + ec.message());
-  const std::string tmp = file + ".tmp-" + std::to_string(getpid());
-  try {
-    H5File h5(tmp);
+  write_atomically(file, [&](H5File& h5) {
     h5.write("/omega2", d.omega2);
     h5.write_int("/row_keys", std::vector<long>(d.row_keys.begin(), d.row_keys.end()));
     write_matrix(h5, "/mode_rows", d.mode_rows, d.row_keys.size());
@@ -293,16 +339,36 @@ void write_modal_data(const std::string& file, const std::string& key,
     h5.attribute("/", "cutoff_hz", d.cutoff_hz);
     h5.attribute("/", "max_relative_residual", d.max_relative_residual);
     h5.attribute("/", "computed_in_s", d.wall_time_s);
-    h5.close();
-  } catch (...) {
-    std::remove(tmp.c_str());
-    throw;
-  }
-  if (std::rename(tmp.c_str(), file.c_str()) != 0) {
-    const int saved = errno;
-    std::remove(tmp.c_str());
-    throw OutputError(file, write_failure_reason(file, saved));
-  }
+  });
+}
+
+std::string basis_cache_file(const std::string& dir, const std::string& key) {
+  KeyBuffer hashed;
+  hashed.add(std::string("pcsim " PCSIM_VERSION " assembled basis"));
+  hashed.add(kCacheFormat);
+  hashed.add(key);
+  return dir + "/basis-" + hashed.sha256_hex().substr(0, 24) + ".h5";
+}
+
+bool read_basis(const std::string& file, const std::string& key, catenary::ReducedBasis& basis) {
+  catenary::ReducedBasis read;
+  const bool ok = read_quietly(file, [&](hid_t h5) { return read_basis_file(h5, key, read); });
+  if (ok) basis = std::move(read);
+  return ok;
+}
+
+void write_basis(const std::string& file, const std::string& key, const catenary::ReducedBasis& b) {
+  write_atomically(file, [&](H5File& h5) {
+    h5.write("/omega2", b.omega2);
+    h5.write_int("/row_keys", b.row_keys);
+    write_matrix(h5, "/rows", b.rows, b.row_keys.size());
+    if (!b.contact_flexibility.empty()) h5.write("/contact_flexibility", b.contact_flexibility);
+    write_matrix(h5, "/shift", b.shift, b.size());
+    h5.attribute("/", "key", key);
+    h5.attribute("/", "cutoff_hz", b.cutoff_hz);
+    h5.attribute("/", "eigenmodes", static_cast<double>(b.eigenmodes));
+    h5.attribute("/", "dropped_modes", static_cast<double>(b.dropped_modes));
+  });
 }
 
 CacheLock::CacheLock(const std::string& file, const std::function<void()>& on_wait) {

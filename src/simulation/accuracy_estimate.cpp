@@ -223,9 +223,10 @@ void print_catenary_setup(const Context& ctx, const scene::RunScene& run,
   if (setup.modal)
     print0(ctx, ", %d basis vectors (%d modes below %.1f Hz, %d left out), %s in %.2f s",
            setup.basis_size, setup.eigenmodes, setup.cutoff_hz, setup.dropped_modes,
-           setup.basis_kept  ? "kept in memory from an earlier run"
-           : setup.cache_hit ? "read from the cache"
-                             : "computed",
+           setup.basis_kept                            ? "kept in memory from an earlier run"
+           : setup.cache_hit && !setup.basis_assembled ? "read from the cache (assembled)"
+           : setup.cache_hit                           ? "read from the cache"
+                                                       : "computed",
            setup.setup_seconds);
   print0(ctx, "\n");
   if (setup.modal && !run.modal_method_note.empty())

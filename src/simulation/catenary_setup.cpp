@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <optional>
 
 #include "pcsim/assembly/fe_catenary.hpp"
 #include "pcsim/assembly/modal_catenary.hpp"
@@ -39,6 +40,16 @@ void broadcast(catenary::ModalData& d, MPI_Comm comm) {
   d.cutoff_hz = scalars[0];
   d.max_relative_residual = scalars[1];
   d.wall_time_s = scalars[2];
+}
+
+void broadcast(catenary::ReducedBasis& b, MPI_Comm comm) {
+  for (auto* v : {&b.omega2, &b.rows, &b.contact_flexibility, &b.shift}) broadcast(*v, comm);
+  broadcast(b.row_keys, comm);
+  int counts[2] = {b.eigenmodes, b.dropped_modes};
+  MPI_Bcast(counts, 2, MPI_INT, 0, comm);
+  MPI_Bcast(&b.cutoff_hz, 1, MPI_DOUBLE, 0, comm);
+  b.eigenmodes = counts[0];
+  b.dropped_modes = counts[1];
 }
 
 // A moving window's shift (catenary/window.hpp) as a matrix over the
@@ -155,10 +166,44 @@ std::string cache_file_served(const Context& ctx, const std::string& key, double
   return broadcast_text(ctx.comm, served);
 }
 
+// The assembled basis of 'kept_key' from the data file 'served' (its name,
+// time and size), stored in the cache folder by an earlier process
+// (output::read_basis; rank 0 reads, every rank gets it); none if there is
+// none or no data file is served.
+std::optional<catenary::ReducedBasis> stored_basis(const Context& ctx, const std::string& kept_key,
+                                                   const std::string& served, CatenarySetup& out) {
+  if (served.empty()) return std::nullopt;
+  const std::string file = output::basis_cache_file(ctx.cache_dir, kept_key + " from " + served);
+  catenary::ReducedBasis basis;
+  int hit = ctx.rank == 0 && output::read_basis(file, kept_key + " from " + served, basis) ? 1 : 0;
+  MPI_Bcast(&hit, 1, MPI_INT, 0, ctx.comm);
+  if (!hit) return std::nullopt;
+  broadcast(basis, ctx.comm);
+  out.cache_hit = true;
+  out.cache_file = served.substr(0, served.rfind('@'));
+  out.basis_file = file;
+  return basis;
+}
+
+// Stores an assembled basis for later processes (rank 0; a cache that cannot
+// be written costs a warning, not the run).
+void store_basis(const Context& ctx, const std::string& kept_key, const std::string& served,
+                 const catenary::ReducedBasis& basis, CatenarySetup& out) {
+  if (served.empty() || ctx.rank != 0) return;
+  const std::string file = output::basis_cache_file(ctx.cache_dir, kept_key + " from " + served);
+  try {
+    output::write_basis(file, kept_key + " from " + served, basis);
+    out.basis_file = file;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "pcsim: warning: the assembled basis is not cached: %s\n", e.what());
+  }
+}
+
 // The run's basis: kept in this process's memory by an earlier run
 // (setup_memory.hpp) if the cache folder still serves it from the same file
-// (every rank must have it), else assembled from the cache's data or from
-// data computed now, and kept.
+// (every rank must have it), else read as assembled by an earlier process
+// from that file, else assembled from the cache's data or from data computed
+// now, kept and stored.
 catenary::ReducedBasis modal_basis(const Context& ctx, const scene::RunScene& run,
                                    const simulation::StaticConfiguration& statics,
                                    const catenary::ModalSettings& settings, CatenarySetup& out) {
@@ -175,10 +220,17 @@ catenary::ReducedBasis modal_basis(const Context& ctx, const scene::RunScene& ru
     out.cache_file = served.substr(0, served.rfind('@'));
     return std::move(*kept);
   }
+  if (auto stored = stored_basis(ctx, kept_key, served, out)) {
+    keep_basis(kept_key, served, *stored);
+    return std::move(*stored);
+  }
   auto basis = catenary::assemble_basis(
       cached_data(ctx, run, statics, key, settings.max_frequency_hz, settings.full_shapes, out),
       statics.mesh, settings);
-  keep_basis(kept_key, cache_file_served(ctx, key, settings.max_frequency_hz), basis);
+  out.basis_assembled = true;
+  const std::string now_served = cache_file_served(ctx, key, settings.max_frequency_hz);
+  keep_basis(kept_key, now_served, basis);
+  store_basis(ctx, kept_key, now_served, basis, out);
   return basis;
 }
 
@@ -193,6 +245,8 @@ nlohmann::json CatenarySetup::facts() const {
   j["dropped_modes"] = dropped_modes;
   j["cache_hit"] = cache_hit;
   j["cache_file"] = cache_file;
+  j["basis_file"] = basis_file;
+  j["basis_assembled"] = basis_assembled;
   j["basis_kept_in_memory"] = basis_kept;
   j["basis_compute_s"] = basis_seconds;
   j["basis_setup_s"] = setup_seconds;

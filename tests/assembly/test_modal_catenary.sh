@@ -11,9 +11,10 @@
 #    force by ~0.025 r, dynamics.cpp), so 1e-9 leaves a margin of ~30. The ramp start is used because the static start of an FE
 #    catenary places the pantograph from a nonlinear guess (~2e-4 N off the
 #    linear equilibrium) while the modal one is exact.
-# 2. The cache: the first run computes the modes and stores them, a second
-#    run reads them and gives the same contact force bit for bit; a lower
-#    cut-off reuses them. The bounded dropper check equals evaluating every
+# 2. The cache: the first run computes the modes and stores them with the
+#    basis it assembled, a second run reads that basis and gives the same
+#    contact force bit for bit, as does a run whose stored basis was broken
+#    (a miss: assembled again from the data); a lower cut-off reuses the data. The bounded dropper check equals evaluating every
 #    dropper at every state (the correction of a taut dropper is exactly 0,
 #    only the order of sums differs): measured 3.3e-13 of max Fc, asserted
 #    1e-11, with fewer exact evaluations (12.3 against 48.0 per step, each
@@ -66,6 +67,12 @@ for name in again every lower; do
   grep -q "read from the cache" "$tmp/$name.log" || { cat "$tmp/$name.log"; exit 1; }
 done
 ls "$tmp/cache"/modal-*.h5 > /dev/null
+# The first run stored its assembled basis; the second read it (not the data).
+grep -q "read from the cache (assembled)" "$tmp/again.log" || { cat "$tmp/again.log"; exit 1; }
+# A broken assembled basis is a miss: assembled again from the data, stored anew.
+for f in "$tmp/cache"/basis-*.h5; do head -c 1000 "$f" > "$f.cut" && mv "$f.cut" "$f"; done
+run broken "$tmp/base.yaml"
+grep -q "read from the cache in" "$tmp/broken.log" || { cat "$tmp/broken.log"; exit 1; }
 
 # 3. Truncated against the linearised FE run.
 run linear "$PCSIM_SOURCE_DIR/tests/app/data/study-tiny.yaml"
@@ -103,6 +110,9 @@ assert rel <= 1e-9, rel
 
 a, b, every = force("modal"), force("again"), force("every")
 assert np.array_equal(a, b), "a cached basis gives another result"
+assert np.array_equal(a, force("broken")), "a basis assembled again gives another result"
+assert summary("modal")["modal"]["basis_assembled"] and not summary("again")["modal"]["basis_assembled"]
+assert summary("again")["modal"]["basis_file"] == summary("modal")["modal"]["basis_file"] != ""
 rel = np.max(np.abs(a - every)) / np.max(np.abs(a))
 bounded = summary("modal")["modal"]["dropper_evaluations_per_step"]
 checked = summary("every")["modal"]["dropper_evaluations_per_step"]

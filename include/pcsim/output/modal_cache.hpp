@@ -48,6 +48,19 @@ bool read_modal_data(const std::string& file, const std::string& key, catenary::
 void write_modal_data(const std::string& file, const std::string& key,
                       const catenary::ModalData& data);
 
+// The bases assembled from a data file (catenary::assemble_basis: the kept
+// modes, the droppers' Ritz vectors, a moving window's shift in the basis;
+// seconds for a window of 4400 vectors) are kept in the same folder as
+// basis-<hash>.h5, the hash of 'key' (the data's key, the settings the
+// assembly reads, the data file's name, time and size), so that a later
+// process reads the basis instead of assembling it again. The same atomic
+// write as the data; a file that cannot be read or whose key differs is a
+// miss.
+std::string basis_cache_file(const std::string& dir, const std::string& key);
+bool read_basis(const std::string& file, const std::string& key, catenary::ReducedBasis& basis);
+void write_basis(const std::string& file, const std::string& key,
+                 const catenary::ReducedBasis& basis);
+
 // An exclusive lock on the cache entry 'file' between processes (flock on
 // file.lock, created in the folder and left there; released by the
 // destructor or when the process ends, even by SIGKILL): the first process

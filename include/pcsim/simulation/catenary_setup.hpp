@@ -24,8 +24,10 @@ struct CatenarySetup {
   bool cache_hit = false;
   bool basis_kept = false;  // the basis kept in memory by an earlier run of this process
   std::string cache_file;
-  double basis_seconds = 0;  // computing the basis (0 when read from the cache)
-  double setup_seconds = 0;  // reading or computing it
+  std::string basis_file;        // the assembled basis read or stored (output::basis_cache_file)
+  bool basis_assembled = false;  // assembled by this run (not read as assembled)
+  double basis_seconds = 0;      // computing the basis (0 when read from the cache)
+  double setup_seconds = 0;      // reading or computing it
   int basis_size = 0, eigenmodes = 0, dropped_modes = 0;
   double cutoff_hz = 0;
   // For summary.json and the console.
