@@ -92,6 +92,15 @@ void print_statistics(const app::CommandContext& ctx, const output::RunSettings&
                                                       statistics, stats.max_uplift_m, s.assessment),
                                                   speed_kmh))
                       .c_str());
+    if (s.permissible_lateral_m > 0)
+      app::print0(ctx,
+                  "    contact point up to %.1f mm from the track centre (x = %.1f m)%s; "
+                  "permissible %.1f mm: %s\n",
+                  1e3 * p.max_lateral_m, p.max_lateral_x,
+                  s.lateral_static ? " (the wire's static position: modal level)" : "",
+                  1e3 * s.permissible_lateral_m,
+                  p.max_lateral_m <= s.permissible_lateral_m ? "inside the working width"
+                                                             : "OUTSIDE the working width");
     if (p.force.actual_min < 0)
       app::print0(ctx,
                   "    the filtered minimum is negative: the contact force is zero while the "

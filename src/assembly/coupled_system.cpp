@@ -237,19 +237,22 @@ contact::StepRecord CoupledSystem::record(double t, Vec U) {
   const auto supports = catenary_->support_heights();
   const auto droppers =
       record_dropper_forces_ ? catenary_->dropper_forces() : std::vector<double>();
-  const std::size_t ns = supports.size(), nc = np * (1 + 3 * nw);
-  // Reduction buffer: per pantograph [x, per wire (Fc, z, on wire)],
+  constexpr std::size_t kPerWire = 4;  // Fc, z, on wire, y
+  const std::size_t ns = supports.size(), nc = np * (1 + kPerWire * nw);
+  // Reduction buffer: per pantograph [x, per wire (Fc, z, on wire, y)],
   // supports, droppers.
   std::vector<double> buffer(nc + ns + droppers.size(), 0.0);
   for (std::size_t p = 0; p < np; ++p) {
-    double* b = &buffer[p * (1 + 3 * nw)];
+    double* b = &buffer[p * (1 + kPerWire * nw)];
     for (std::size_t w = 0; w < nw; ++w) {
       const auto e = contacts_[p][w]->evaluate(state_);
       if (state_.rank() == 0) b[0] = e.x;
       if (!e.wire->owned) continue;
-      b[1 + 3 * w] = e.force;
-      b[2 + 3 * w] = e.wire->z;
-      b[3 + 3 * w] = 1.0;
+      double* bw = b + 1 + kPerWire * w;
+      bw[0] = e.force;
+      bw[1] = e.wire->z;
+      bw[2] = 1.0;
+      bw[3] = e.wire->y;
     }
   }
   std::copy(supports.begin(), supports.end(), buffer.begin() + nc);
@@ -260,19 +263,21 @@ contact::StepRecord CoupledSystem::record(double t, Vec U) {
   rec.t = t;
   if (state_.rank() != 0) return rec;
   for (std::size_t p = 0; p < np; ++p) {
-    const double* b = &buffer[p * (1 + 3 * nw)];
-    double total = 0, z = 0, pressed = 0, lowest = HUGE_VAL;
+    const double* b = &buffer[p * (1 + kPerWire * nw)];
+    double total = 0, z = 0, y = 0, pressed = 0, lowest = HUGE_VAL;
     rec.wire_force.emplace_back();
     for (std::size_t w = 0; w < nw; ++w) {
-      const double f = b[1 + 3 * w], zw = b[2 + 3 * w];
+      const double* bw = b + 1 + kPerWire * w;
+      const double f = bw[0], zw = bw[1];
       total += f;
       rec.wire_force.back().push_back(f);
-      if (f > pressed) pressed = f, z = zw;
-      if (pressed == 0 && b[3 + 3 * w] > 0.5 && zw < lowest) lowest = zw, z = zw;
+      if (f > pressed) pressed = f, z = zw, y = bw[3];
+      if (pressed == 0 && bw[2] > 0.5 && zw < lowest) lowest = zw, z = zw, y = bw[3];
     }
     rec.contact_force.push_back(total);
     rec.contact_x.push_back(b[0]);
     rec.wire_z.push_back(z);
+    rec.wire_y.push_back(y);
     rec.head_z.push_back(state_.head_height(p));
     const Eigen::VectorXd q = state_.q(p);
     rec.q.emplace_back(q.data(), q.data() + q.size());

@@ -118,7 +118,7 @@ Vec FECatenary::static_forces(unsigned mask) {
 const WirePoint& FECatenary::wire_point(double x, int wire) const {
   WirePoint& point = points_[wire];
   point.on_wire = point.owned = false;
-  point.z = point.slope = 0;
+  point.z = point.slope = point.y = 0;
   point.index.clear();
   point.weight.clear();
   int element;
@@ -140,8 +140,9 @@ const WirePoint& FECatenary::wire_point(double x, int wire) const {
     system_->cable_values(element, q.data());
     point.owned = true;
     point.z = S.dot(q);
-    const Eigen::Vector3d r_chi = catenary::cable_point(el.ref_length, q, chi).r_chi;
-    point.slope = r_chi[2] / r_chi[0];
+    const catenary::CablePoint at = catenary::cable_point(el.ref_length, q, chi);
+    point.slope = at.r_chi[2] / at.r_chi[0];
+    point.y = at.r[1];
     if (!mesh().contact_gap_offsets.empty()) {
       point.z += mesh().contact_gap_offsets[wire].at(x);
       point.slope += mesh().contact_gap_offsets[wire].slope_at(x);

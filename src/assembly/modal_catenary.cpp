@@ -337,7 +337,7 @@ ModalCatenary::CachedPoint& ModalCatenary::cached_point(double x, int wire) cons
   p.z = p.slope = p.residual_flexibility = 0;
   p.reuse_columns = false;
   p.contiguous = true;
-  c.z0 = c.z_chi0 = 0;
+  c.z0 = c.z_chi0 = c.y0 = 0;
   c.x_chi = 1;
   if (!p.on_wire) {
     p.index.clear();
@@ -360,6 +360,7 @@ ModalCatenary::CachedPoint& ModalCatenary::cached_point(double x, int wire) cons
       c.z0 += s[k] * static_values_[6 * node[k] + comp[k]];
       c.z_chi0 += ds[k] * static_values_[6 * node[k] + comp[k]];
       c.x_chi += ds[k] * static_values_[6 * node[k] + comp[k] - 2];  // x, x' (static)
+      c.y0 += s[k] * static_values_[6 * node[k] + comp[k] - 1];      // y, y' (static)
     }
     if (!mesh_.contact_gap_offsets.empty()) c.z0 += mesh_.contact_gap_offsets[wire].at(x);
     p.index.resize(m_);
@@ -379,6 +380,7 @@ const WirePoint& ModalCatenary::wire_point(double x, int wire) const {
   WirePoint& p = c.point;
   if (p.on_wire && on_owner() && c.eta_version != eta_version_) {
     p.owned = true;
+    p.y = c.y0;
     p.z = c.z0 + Eigen::Map<const Eigen::VectorXd>(p.weight.data(), m_).dot(eta_);
     // dz/dx with x(chi) static (the contact point moves along the track).
     p.slope = (c.z_chi0 + c.z_chi.dot(eta_)) / c.x_chi;

@@ -101,6 +101,12 @@ PantographStatistics pantograph_results(hid_t file, const RunSettings& s,
   st.complete = !x.empty() && x.front() <= s.analysis_from_x && x.back() >= s.analysis_to_x;
   if (st.complete)
     st.force = force_statistics(x, filtered, force, s.analysis_from_x, s.analysis_to_x);
+  if (st.complete && h5::exists(file, g + "/wire_lateral")) {
+    const auto y = h5::read(file, g + "/wire_lateral");
+    for (std::size_t i = 0; i < y.size() && i < x.size(); ++i)
+      if (x[i] >= s.analysis_from_x && x[i] <= s.analysis_to_x && std::abs(y[i]) > st.max_lateral_m)
+        st.max_lateral_m = std::abs(y[i]), st.max_lateral_x = x[i];
+  }
   if (st.complete && s.loss_min_duration_s > 0)
     st.force.loss_of_contact_percent = loss_of_contact_percent(
         x, time, force, s.analysis_from_x, s.analysis_to_x, s.loss_min_duration_s);
@@ -208,6 +214,13 @@ void write_run_summary(const OutputDir& out, const RunSettings& s, const RunStat
       }
       nlohmann::json figures = force_statistics_json(p.force);
       figures["name"] = p.name;
+      figures["lateral"] = {{"max_abs_m", p.max_lateral_m},
+                            {"at_x_m", p.max_lateral_x},
+                            {"static_only", s.lateral_static}};
+      if (s.permissible_lateral_m > 0) {
+        figures["lateral"]["permissible_m"] = s.permissible_lateral_m;
+        figures["lateral"]["inside"] = p.max_lateral_m <= s.permissible_lateral_m;
+      }
       summary["pantographs"].push_back(figures);
     }
     summary["max_uplift_at_support_m"] = stats->max_uplift_m;

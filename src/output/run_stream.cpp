@@ -213,6 +213,12 @@ void RunStream::open_pantograph_series(bool create, const std::string& name, std
              [p](const auto& r, const auto&, auto& out) { out.push_back(r.contact_force[p]); });
   add_column(create, g + "/wire_height", {}, "m", "contact-wire height at the contact point",
              [p](const auto& r, const auto&, auto& out) { out.push_back(r.wire_z[p]); });
+  add_column(create, g + "/wire_lateral", {}, "m",
+             "lateral position of that contact wire at the contact point from the track centre "
+             "line (+y; the modal level: its static position)",
+             [p](const auto& r, const auto&, auto& out) {
+               out.push_back(p < r.wire_y.size() ? r.wire_y[p] : 0.0);
+             });
   add_column(create, g + "/q", {layout_.q_sizes[p]}, "m or rad",
              "generalised coordinates of the pantograph model (attribute labels)",
              [p](const auto& r, const auto&, auto& out) {

@@ -28,11 +28,13 @@ namespace pcsim::assembly {
 // A contact wire at station x: z(U) = z0 + sum_i weight_i (U[index_i] - U_ref[index_i])
 // near the current state, i.e. weight = dz/dU (chi fixed, thesis 3.9-3.13).
 struct WirePoint {
-  bool on_wire = false;         // x lies on the contact wire
-  bool owned = false;           // this rank holds the state of the point: z is set
-  double z = 0;                 // height the contact sees at x at the loaded state [m]
-                                // (the wire + its contact-gap offset, mesh.hpp)
-  double slope = 0;             // dz/dx of the wire at x at the loaded state
+  bool on_wire = false;  // x lies on the contact wire
+  bool owned = false;    // this rank holds the state of the point: z is set
+  double z = 0;          // height the contact sees at x at the loaded state [m]
+                         // (the wire + its contact-gap offset, mesh.hpp)
+  double slope = 0;      // dz/dx of the wire at x at the loaded state
+  double y = 0;  // lateral position at x from the track centre line [m]: at the loaded state
+                 // (FE), the static one (modal: its basis has no lateral rows)
   std::vector<PetscInt> index;  // global unknowns z depends on (every rank)
   std::vector<double> weight;   // dz/dU for those unknowns (every rank)
   // Static compliance at x that the unknowns leave out (a reduced model's

@@ -13,6 +13,7 @@ struct StepRecord {
   // pressed hardest, else the lowest one at x).
   std::vector<double> contact_force, contact_x, wire_z;
   std::vector<double> head_z;  // per pantograph: height of the head's contact point [m]
+  std::vector<double> wire_y;  // per pantograph: that wire's lateral position at x [m]
   std::vector<std::vector<double>> wire_force;  // per pantograph: force on each contact wire
   std::vector<std::vector<double>> q;           // per pantograph: generalised coordinates
   std::vector<double> support_z;                // contact-wire height at every support

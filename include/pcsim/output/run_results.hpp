@@ -28,6 +28,10 @@ struct RunSettings {
   double cutoff_hz = 20;
   double loss_min_duration_s = 0;  // a loss of contact counts from this duration on
   bool dropper_forces = true;
+  // With a wind (conditions.wind): the contact point's lateral position is
+  // judged against this (working half width - sway - tolerance) [m].
+  double permissible_lateral_m = 0;
+  bool lateral_static = false;  // the modal level: the wires' static lateral position
   std::vector<std::string> pantograph_names;
   Assessment assessment;  // the criteria set the figures are judged against
 };
@@ -36,6 +40,9 @@ struct PantographStatistics {
   std::string name;
   bool complete = false;  // crossed the whole analysis section
   ForceStatistics force;
+  // The contact point's largest |lateral position| over the analysis section
+  // (the wire's y at the contact point) and its station [m].
+  double max_lateral_m = 0, max_lateral_x = 0;
 };
 
 struct RunStatistics {

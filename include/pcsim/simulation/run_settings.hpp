@@ -20,6 +20,9 @@ inline output::RunSettings run_settings(const scene::RunScene& run, const std::s
   s.cutoff_hz = run.cutoff_hz;
   s.loss_min_duration_s = run.loss_min_duration_s;
   s.dropper_forces = run.dropper_forces;
+  const auto& wind = run.catenary.mesh.conditions.wind;
+  if (wind.any()) s.permissible_lateral_m = wind.permissible_m();
+  s.lateral_static = run.catenary.fidelity == catenary::CatenaryFidelity::modal;
   for (const auto& p : run.pantographs) s.pantograph_names.push_back(p.name);
   s.assessment = run.assessment;
   return s;
