@@ -50,8 +50,11 @@ void read_pantograph(const InputNode& p, std::size_t i, RunScene& run) {
   contact::PantographRun pr;
   pr.name = p.get_string("name", "pantograph" + std::to_string(i + 1));
   const InputNode effects = p.has("effects") ? p["effects"] : InputNode(YAML::Node(), p.file(), "");
+  // The aerodynamic force's air speed: the train's plus a head wind (the
+  // mean wind's component against the x axis; docs/conditions.md).
+  const double air_speed = run.speed - run.catenary.mesh.conditions.wind.velocity().x();
   auto model = load_pantograph_model(p.load_referenced("model"),
-                                     p.has("effects") ? &effects : nullptr, run.speed);
+                                     p.has("effects") ? &effects : nullptr, air_speed);
   apply_base_motion(p, *model);
   pr.start_x = p.get_double("start_x", x_first + 5.0);
   if (pr.start_x < x_first || pr.start_x >= run.end_x)
