@@ -224,9 +224,20 @@ catenary::ReducedBasis modal_basis(const Context& ctx, const scene::RunScene& ru
     keep_basis(kept_key, served, *stored);
     return std::move(*stored);
   }
-  auto basis = catenary::assemble_basis(
-      cached_data(ctx, run, statics, key, settings.max_frequency_hz, settings.full_shapes, out),
-      statics.mesh, settings);
+  // Assembled once, on rank 0, and broadcast: every rank holds the same bits
+  // (Eigen's sums depend on the data's alignment in memory), those stored.
+  const auto data =
+      cached_data(ctx, run, statics, key, settings.max_frequency_hz, settings.full_shapes, out);
+  catenary::ReducedBasis basis;
+  std::string failure;  // an error on rank 0 fails every rank (none waits)
+  if (ctx.rank == 0) try {
+      basis = catenary::assemble_basis(data, statics.mesh, settings);
+    } catch (const std::exception& e) {
+      failure = e.what();
+    }
+  failure = broadcast_text(ctx.comm, failure);
+  if (!failure.empty()) throw SolverError("the modal basis: " + failure);
+  broadcast(basis, ctx.comm);
   out.basis_assembled = true;
   const std::string now_served = cache_file_served(ctx, key, settings.max_frequency_hz);
   keep_basis(kept_key, now_served, basis);
