@@ -36,6 +36,7 @@ const LogEvents& log_events() {
     e.record = register_event("pcsimRecord");
     e.dd_setup = register_event("pcsimDDSetUp");
     e.dd_apply = register_event("pcsimDDApply");
+    e.dd_interface = register_event("pcsimDDInterface");
     return e;
   }();
   return events;

@@ -128,8 +128,9 @@ nlohmann::json fidelity_facts(const scene::RunScene& run, const RunRequest& requ
   if (!request.accuracy_pilot.is_null())
     fidelity["accuracy_estimate"]["pilot"] = request.accuracy_pilot;
   fidelity["step_factor_nonzeros"] = solvers::step_factor_nonzeros(solver.step_ksp());
-  fidelity["step_interface_unknowns"] =
-      solvers::domain_decomposition_info(solver.step_ksp()).interface_size;
+  const auto dd = solvers::domain_decomposition_info(solver.step_ksp());
+  fidelity["step_interface_unknowns"] = dd.interface_size;
+  fidelity["step_interface_bandwidth"] = dd.interface_bandwidth;
   fidelity.erase("steps");
   if (window) fidelity["window_shifts"] = window->shifts();
   return fidelity;

@@ -1,10 +1,10 @@
 #include "pcsim/solvers/schur_dd.hpp"
 
-#include <Eigen/LU>
 #include <algorithm>
-#include <cstring>
+#include <utility>
 #include <vector>
 
+#include "interface_solve.hpp"
 #include "pc_types.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/core/profiling.hpp"
@@ -45,15 +45,9 @@ std::vector<int> all_counts(MPI_Comm comm, int mine) {
   return counts;
 }
 
-std::vector<int> offsets_of(const std::vector<int>& counts) {
-  std::vector<int> offsets(counts.size() + 1, 0);
-  for (std::size_t r = 0; r < counts.size(); ++r) offsets[r + 1] = offsets[r] + counts[r];
-  return offsets;
-}
-
 class SchurDomainSolver {
  public:
-  explicit SchurDomainSolver(MPI_Comm comm) : comm_(comm) {
+  explicit SchurDomainSolver(MPI_Comm comm) : comm_(comm), interface_system_(comm) {
     MPI_Comm_rank(comm_, &rank_);
     PCSIM_PETSC(KSPCreate(PETSC_COMM_SELF, &interior_ksp_));
     PCSIM_PETSC(KSPSetOptionsPrefix(interior_ksp_, "pcsim_dd_"));
@@ -88,6 +82,8 @@ class SchurDomainSolver {
   void extract_blocks(Mat diagonal, MatReuse reuse);
   void factor_interior();
   void assemble_schur(const LocalBlocks& blocks);
+  std::vector<std::pair<PetscInt, PetscScalar>> couplings(const LocalBlocks& blocks,
+                                                          PetscInt row) const;
   void refill_blocks(Mat diagonal);
 
   MPI_Comm comm_;
@@ -98,7 +94,8 @@ class SchurDomainSolver {
   std::vector<int> counts_, offsets_;           // |G_r| and their offsets in G
   Mat A_II_ = nullptr, A_IG_ = nullptr, A_GI_ = nullptr, X_ = nullptr, F_ = nullptr;
   Vec r_I_ = nullptr, y_I_ = nullptr, t_I_ = nullptr, g_r_ = nullptr, x_G_r_ = nullptr;
-  Eigen::PartialPivLU<Eigen::MatrixXd> schur_;
+  InterfaceSystem interface_system_;  // S, gathered and factored on every rank
+  std::vector<PetscScalar> x_G_;      // the interface solution, all ranks'
   DomainDecompositionInfo info_;
   Mat source_ = nullptr;             // the diagonal block the blocks were taken from
   PetscInt diagonal_nonzeros_ = -1;  // and its number of stored values
@@ -294,46 +291,71 @@ void SchurDomainSolver::factor_interior() {
   info_.factor_nonzeros = mi.nz_used;
 }
 
+// Interface row i's couplings to other ranks' interface (A_GG's off-diagonal
+// block): (G number, value), ascending; stored zeros are not couplings.
+std::vector<std::pair<PetscInt, PetscScalar>> SchurDomainSolver::couplings(
+    const LocalBlocks& blocks, PetscInt i) const {
+  std::vector<std::pair<PetscInt, PetscScalar>> found;
+  if (!blocks.off_diagonal) return found;
+  PetscInt n;
+  const PetscInt* cols;
+  const PetscScalar* vals;
+  PCSIM_PETSC(MatGetRow(blocks.off_diagonal, interface_[i], &n, &cols, &vals));
+  for (PetscInt k = 0; k < n; ++k) {
+    if (vals[k] == 0.0) continue;  // not a coupling (split_unknowns)
+    const PetscInt g = blocks.off_columns[cols[k]];
+    const auto at = std::lower_bound(interface_global_.begin(), interface_global_.end(), g);
+    found.emplace_back(static_cast<PetscInt>(at - interface_global_.begin()), vals[k]);
+  }
+  PCSIM_PETSC(MatRestoreRow(blocks.off_diagonal, interface_[i], &n, &cols, &vals));
+  return found;
+}
+
 // S: every rank writes its rows (A_GG - A_GI X within the rank, A_GG
-// couplings to other ranks' interface), one MPI_Allreduce sums them.
+// couplings to other ranks' interface), their nonzeros and diagonal only;
+// the interface system gathers and factors them.
 void SchurDomainSolver::assemble_schur(const LocalBlocks& blocks) {
-  const int n_G = offsets_.back(), first = offsets_[rank_];
-  const int m = static_cast<int>(interface_.size());
-  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(n_G, n_G);
-  Mat A_GG = nullptr;
+  const PetscInt first = offsets_[rank_], m = static_cast<PetscInt>(interface_.size());
+  Mat A_GG = nullptr, C = nullptr;
   sub_matrix(blocks.diagonal, interface_, interface_, MAT_INITIAL_MATRIX, &A_GG);
-  Mat C = nullptr;
-  if (!interior_.empty() && m > 0)
+  const PetscScalar* c = nullptr;
+  PetscInt ldc = 0;
+  if (!interior_.empty() && m > 0) {
     PCSIM_PETSC(MatMatMult(A_GI_, X_, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &C));
-  for (int i = 0; i < m; ++i) {
+    PCSIM_PETSC(MatDenseGetArrayRead(C, &c));
+    PCSIM_PETSC(MatDenseGetLDA(C, &ldc));
+  }
+  InterfaceRows rows;
+  std::vector<PetscScalar> own(static_cast<std::size_t>(m));
+  const auto put = [&rows](PetscInt col, PetscScalar v) {
+    rows.columns.push_back(col);
+    rows.values.push_back(v);
+  };
+  for (PetscInt i = 0; i < m; ++i) {
+    std::fill(own.begin(), own.end(), 0.0);
     PetscInt n;
     const PetscInt* cols;
     const PetscScalar* vals;
     PCSIM_PETSC(MatGetRow(A_GG, i, &n, &cols, &vals));
-    for (PetscInt k = 0; k < n; ++k) S(first + i, first + cols[k]) += vals[k];
+    for (PetscInt k = 0; k < n; ++k) own[cols[k]] += vals[k];
     PCSIM_PETSC(MatRestoreRow(A_GG, i, &n, &cols, &vals));
-    if (C)
-      for (int j = 0; j < m; ++j) {
-        PetscScalar c;
-        const PetscInt row = i, col = j;
-        PCSIM_PETSC(MatGetValues(C, 1, &row, 1, &col, &c));
-        S(first + i, first + j) -= c;
-      }
-    if (!blocks.off_diagonal) continue;
-    PCSIM_PETSC(MatGetRow(blocks.off_diagonal, interface_[i], &n, &cols, &vals));
-    for (PetscInt k = 0; k < n; ++k) {
-      if (vals[k] == 0.0) continue;  // not a coupling (split_unknowns)
-      const PetscInt g = blocks.off_columns[cols[k]];
-      const auto at = std::lower_bound(interface_global_.begin(), interface_global_.end(), g);
-      S(first + i, at - interface_global_.begin()) += vals[k];
-    }
-    PCSIM_PETSC(MatRestoreRow(blocks.off_diagonal, interface_[i], &n, &cols, &vals));
+    if (c)
+      for (PetscInt j = 0; j < m; ++j) own[j] -= c[i + j * ldc];
+    const auto off = couplings(blocks, i);  // ascending: before and after this rank's G
+    auto k = off.begin();
+    for (; k != off.end() && k->first < first; ++k) put(k->first, k->second);
+    for (PetscInt j = 0; j < m; ++j)
+      if (own[j] != 0.0 || j == i) put(first + j, own[j]);
+    for (; k != off.end(); ++k) put(k->first, k->second);
+    rows.starts.push_back(static_cast<PetscInt>(rows.columns.size()));
   }
+  if (c) PCSIM_PETSC(MatDenseRestoreArrayRead(C, &c));
   PCSIM_PETSC(MatDestroy(&C));
   PCSIM_PETSC(MatDestroy(&A_GG));
-  MPI_Allreduce(MPI_IN_PLACE, S.data(), n_G * n_G, MPI_DOUBLE, MPI_SUM, comm_);
-  schur_.compute(S);
-  info_.interface_size = n_G;
+  interface_system_.factor(rows, counts_);
+  info_.interface_size = offsets_.back();
+  info_.interface_bandwidth = interface_system_.lu().bandwidth();
+  info_.interface_nonzeros = interface_system_.lu().nonzeros();
 }
 
 void SchurDomainSolver::set_up(Mat A) {
@@ -378,14 +400,12 @@ void SchurDomainSolver::apply(Vec r, Vec x) {
     PCSIM_PETSC(VecGetArray(g_r_, &gr));
   }
   PCSIM_PETSC(VecRestoreArrayRead(r, &rr));
-  Eigen::VectorXd g(offsets_.back());
-  MPI_Allgatherv(gr, counts_[rank_], MPI_DOUBLE, g.data(), counts_.data(), offsets_.data(),
-                 MPI_DOUBLE, comm_);
+  interface_system_.solve(gr, x_G_);
   PCSIM_PETSC(VecRestoreArray(g_r_, &gr));
-  const Eigen::VectorXd x_G = offsets_.back() > 0 ? schur_.solve(g) : g;
+  const PetscScalar* x_G = x_G_.data() + offsets_[rank_];  // this rank's
   PetscScalar* xs;
   PCSIM_PETSC(VecGetArray(x_G_r_, &xs));
-  for (std::size_t j = 0; j < interface_.size(); ++j) xs[j] = x_G(offsets_[rank_] + j);
+  std::copy(x_G, x_G + interface_.size(), xs);
   PCSIM_PETSC(VecRestoreArray(x_G_r_, &xs));
   if (F_ && !interface_.empty()) {  // x_I = y - X x_G
     PCSIM_PETSC(MatMult(X_, x_G_r_, t_I_));
@@ -396,7 +416,7 @@ void SchurDomainSolver::apply(Vec r, Vec x) {
   PCSIM_PETSC(VecGetArray(x, &xx));
   PCSIM_PETSC(VecGetArrayRead(y_I_, &yi));
   for (std::size_t k = 0; k < interior_.size(); ++k) xx[interior_[k]] = F_ ? yi[k] : 0.0;
-  for (std::size_t j = 0; j < interface_.size(); ++j) xx[interface_[j]] = x_G(offsets_[rank_] + j);
+  for (std::size_t j = 0; j < interface_.size(); ++j) xx[interface_[j]] = x_G[j];
   PCSIM_PETSC(VecRestoreArrayRead(y_I_, &yi));
   PCSIM_PETSC(VecRestoreArray(x, &xx));
 }
@@ -435,8 +455,11 @@ PetscErrorCode pc_view(PC pc, PetscViewer viewer) {
       PetscObjectTypeCompare(reinterpret_cast<PetscObject>(viewer), PETSCVIEWERASCII, &ascii));
   if (ascii) {
     const DomainDecompositionInfo info = pc->data ? data_of(pc)->info() : DomainDecompositionInfo{};
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  %s: interface of %" PetscInt_FMT " unknowns\n",
-                                     kDescription, info.interface_size));
+    PetscCall(PetscViewerASCIIPrintf(viewer,
+                                     "  %s: interface of %" PetscInt_FMT " unknowns, %" PetscInt_FMT
+                                     " entries, bandwidth %" PetscInt_FMT "\n",
+                                     kDescription, info.interface_size, info.interface_nonzeros,
+                                     info.interface_bandwidth));
   }
   PetscFunctionReturn(0);
 }

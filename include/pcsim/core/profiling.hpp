@@ -18,6 +18,7 @@ struct LogEvents {
   PetscLogEvent record;           // a step's record (contact force, supports, droppers)
   PetscLogEvent dd_setup;         // the domain-decomposition factorisation and Schur complement
   PetscLogEvent dd_apply;         // one domain-decomposition solve
+  PetscLogEvent dd_interface;     // its interface solve x_G = S^-1 g (replicated)
 };
 
 // Registered on the first call (collective on PETSC_COMM_WORLD the first time).

@@ -9,8 +9,10 @@
 // is small (a few unknowns per cut of the quasi-1D catenary). Set-up, once per
 // matrix: each rank factors A_{I_r I_r} (sequential LU, options prefix
 // pcsim_dd_: -pcsim_dd_pc_factor_mat_ordering_type ...), forms
-// X_r = A_{I_r I_r}^-1 A_{I_r G_r} and its block of S; the blocks are summed
-// into a dense S replicated on every rank (one MPI_Allreduce) and LU-factored.
+// X_r = A_{I_r I_r}^-1 A_{I_r G_r} and its rows of S (their nonzeros); one
+// MPI_Allgatherv of those rows puts the sparse S on every rank, ordered
+// banded (reverse Cuthill-McKee: the cuts follow each other along the track)
+// and LU-factored by PETSc (src/solvers/interface_solve.hpp).
 // Solve: y = A_II^-1 r_I (local), g = r_G - A_GI y (local), one
 // MPI_Allgatherv of g, x_G = S^-1 g (replicated), x_I = y - X x_G (local).
 // The result is the exact solution (round-off only).
@@ -29,12 +31,14 @@ void register_schur_pc();  // PCRegister once (idempotent)
 // pcsimschur PC. Options given later win.
 void use_schur_domain_decomposition(KSP ksp);
 
-// Nonzeros of the interior factors summed over the ranks, and the size of the
-// Schur complement, of a KSP set up with use_schur_domain_decomposition
-// (zeros for any other KSP).
+// Nonzeros of the interior factors summed over the ranks, and the Schur
+// complement's size, bandwidth (in the order it is factored in) and entries,
+// of a KSP set up with use_schur_domain_decomposition (zeros for any other).
 struct DomainDecompositionInfo {
   double factor_nonzeros = 0;
   PetscInt interface_size = 0;
+  PetscInt interface_bandwidth = 0;  // max |i - j| over S's entries, ordered
+  PetscInt interface_nonzeros = 0;   // S's entries (gathered at each set-up)
 };
 DomainDecompositionInfo domain_decomposition_info(KSP ksp);
 
