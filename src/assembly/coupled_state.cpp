@@ -24,7 +24,7 @@ Eigen::VectorXd CoupledState::slice(const std::vector<double>& values, std::size
 double CoupledState::head_height(std::size_t p) const {
   const auto& slot = pantographs_[p];
   return u_[slot.state_first + slot.model->contact_dof()] + slot.model->contact_offset() +
-         slot.head_offset;
+         slot.head_offset + slot.model->frame_height(t);
 }
 
 void CoupledState::load(double time, Vec U_, Vec V_, Vec A_) {

@@ -219,10 +219,11 @@ bool PenaltyContact::low_rank_change(const CoupledState& state, std::vector<Rank
 
 // The contact point moves along the wire: at fixed state the penalty energy
 // 1/2 kH dz^2 changes at the rate kH dz (dz_wire/dx) v (work of the moving
-// contact on the system).
+// contact on the system); a moving frame's head rises with its base: + Fc v_b.
 TermPower PenaltyContact::power(const CoupledState& state) const {
   const Evaluation e = evaluate(state);
-  const double local = e.force > 0 ? kH_ * e.gap * e.wire->slope * slot_.run.speed : 0.0;
+  double local = e.force > 0 ? kH_ * e.gap * e.wire->slope * slot_.run.speed : 0.0;
+  if (e.force > 0) local += e.force * slot_.model->frame_velocity(state.t);
   TermPower p;
   p.external = sum_over_ranks(state.catenary().comm(), local);
   return p;

@@ -89,7 +89,7 @@ void write_history(H5File& h5, const std::string& group, const TimeHistory& h,
   std::vector<double> q(n * d), qd(n * d), height(n);
   for (size_t k = 0; k < n; ++k) {
     for (size_t i = 0; i < d; ++i) q[k * d + i] = h.q[k][i], qd[k * d + i] = h.qd[k][i];
-    height[k] = h.q[k][m.contact_dof()] + m.contact_offset();
+    height[k] = h.q[k][m.contact_dof()] + m.contact_offset() + m.frame_height(h.t[k]);
   }
   const auto names = m.dof_names();
   h5.write(group + "/t", h.t, {"s", "time"});

@@ -130,6 +130,7 @@ void Dsa380Pantograph::residual(double t, const Eigen::VectorXd& q, const Eigen:
     R[2] += Ff;
   }
   bellows_.add_residual(p_, 0, bellows_dof(), q, qd, qdd, R);  // torque beyond M0
+  add_base_residual(t, k, q, R);                               // moving frame (dsa380_base.cpp)
   if (e_.head_restraint == Dsa380Effects::HeadRestraint::rotation) {
     R[3] = (I7 + m7 * LG7 * LG7) * qdd[3];  // θ̈7 = 0 (A.37)
   } else if (e_.head_restraint == Dsa380Effects::HeadRestraint::horizontal) {
@@ -137,7 +138,7 @@ void Dsa380Pantograph::residual(double t, const Eigen::VectorXd& q, const Eigen:
   }
 }
 
-void Dsa380Pantograph::tangents(double, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+void Dsa380Pantograph::tangents(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                                 const Eigen::VectorXd& qdd, Eigen::Ref<Eigen::MatrixXd> Kq,
                                 Eigen::Ref<Eigen::MatrixXd> Cq,
                                 Eigen::Ref<Eigen::MatrixXd> Mq) const {
@@ -202,6 +203,7 @@ void Dsa380Pantograph::tangents(double, const Eigen::VectorXd& q, const Eigen::V
     Kq(0, 0) += -Ff * k.y5[2];
   }
   bellows_.add_tangents(p_, 0, bellows_dof(), q, Kq, Cq, Mq);
+  add_base_tangent(t, k, q, Kq);
   if (e_.head_restraint == Dsa380Effects::HeadRestraint::rotation) {
     Kq.row(3).setZero();
     Cq.row(3).setZero();
@@ -244,10 +246,11 @@ double Dsa380Pantograph::potential_energy(const Eigen::VectorXd& q) const {
   return V + bellows_.potential_energy(bellows_dof(), q);
 }
 
-PowerSplit Dsa380Pantograph::power(double, const Eigen::VectorXd& q,
+PowerSplit Dsa380Pantograph::power(double t, const Eigen::VectorXd& q,
                                    const Eigen::VectorXd& qd) const {
   PowerSplit P;
   P.external = M0_ * qd[0] + aero_force_ * qd[2];
+  if (base_.acceleration) P.base = -base_.acceleration(t) * base_inertia(q).dot(qd);
   bellows_.add_power(p_, 0, bellows_dof(), q, qd, &P);
   if (!e_.damper && !e_.friction) return P;
   const auto k = dsa380_kinematics(p_, q[0]);
@@ -325,7 +328,7 @@ void Dsa380Pantograph::fail_working_height(double theta, double h0, double z,
   throw InputError("", "working_height", text);
 }
 
-Eigen::VectorXd Dsa380Pantograph::static_equilibrium(double contact_force, double working_height) {
+Eigen::VectorXd Dsa380Pantograph::equilibrium_at_rest(double contact_force, double working_height) {
   bellows_.clear_reference();  // the fixed-torque equilibrium first: M0 at h0
   const double z = head_descent(contact_force);
   const double y10 = working_height - p_.L7p;

@@ -22,12 +22,14 @@ FlexibleDsa380Pantograph::FlexibleDsa380Pantograph(FlexibleDsa380Parameters para
   const int n = dof_count();
   bar_mass_ = Eigen::MatrixXd::Zero(n, n);
   bar_weight_ = Eigen::VectorXd::Zero(n);
+  bar_masses_ = Eigen::VectorXd::Zero(n);
   for (const auto& e : mesh_.elements) {
     const Matrix6 Me = planar_beam_mass(e.beam);
-    const Vector6 We = planar_beam_weight(e.beam, r.g);
+    const Vector6 We = planar_beam_weight(e.beam, r.g), Wm = planar_beam_weight(e.beam, 1.0);
     for (int a = 0; a < 6; ++a) {
       if (e.dof[a] < 0) continue;
       bar_weight_[e.dof[a]] += We[a];
+      bar_masses_[e.dof[a]] += Wm[a];
       for (int b = 0; b < 6; ++b)
         if (e.dof[b] >= 0) bar_mass_(e.dof[a], e.dof[b]) += Me(a, b);
     }
@@ -76,18 +78,19 @@ void FlexibleDsa380Pantograph::add_beams(const Eigen::VectorXd& q, Eigen::Vector
   }
 }
 
-void FlexibleDsa380Pantograph::add_head(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                                        const Eigen::VectorXd& qdd, Eigen::VectorXd* R,
-                                        Eigen::MatrixXd* K, Eigen::MatrixXd* C,
+void FlexibleDsa380Pantograph::add_head(double ab, const Eigen::VectorXd& q,
+                                        const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd,
+                                        Eigen::VectorXd* R, Eigen::MatrixXd* K, Eigen::MatrixXd* C,
                                         Eigen::MatrixXd* M) const {
   const Dsa380Parameters& p = p_.rigid;
+  const double g = p.g + ab;  // a moving base: g + a_b (dsa380_base.cpp)
   const double m7 = p.m[6], LG7 = p.LG[6], I7 = p.I[6], th7d = qd[3];
   const double s = std::sin(q[3] - p.thetaG[6]), c = std::cos(q[3] - p.thetaG[6]);
   if (R) {  // head rows of (A.36)
     (*R)[1] += m7 * qdd[1] - m7 * LG7 * (s * qdd[3] + c * th7d * th7d);
-    (*R)[2] += m7 * qdd[2] + m7 * LG7 * (c * qdd[3] - s * th7d * th7d) + m7 * p.g - aero_force_;
+    (*R)[2] += m7 * qdd[2] + m7 * LG7 * (c * qdd[3] - s * th7d * th7d) + m7 * g - aero_force_;
     (*R)[3] +=
-        m7 * LG7 * (c * qdd[2] - s * qdd[1]) + (I7 + m7 * LG7 * LG7) * qdd[3] + m7 * p.g * LG7 * c;
+        m7 * LG7 * (c * qdd[2] - s * qdd[1]) + (I7 + m7 * LG7 * LG7) * qdd[3] + m7 * g * LG7 * c;
   }
   if (K) {
     (*M)(1, 1) += m7;
@@ -99,7 +102,7 @@ void FlexibleDsa380Pantograph::add_head(const Eigen::VectorXd& q, const Eigen::V
     (*M)(3, 3) += I7 + m7 * LG7 * LG7;
     (*K)(1, 3) += -m7 * LG7 * (c * qdd[3] - s * th7d * th7d);
     (*K)(2, 3) += m7 * LG7 * (-s * qdd[3] - c * th7d * th7d);
-    (*K)(3, 3) += m7 * LG7 * (-s * qdd[2] - c * qdd[1]) - m7 * p.g * LG7 * s;
+    (*K)(3, 3) += m7 * LG7 * (-s * qdd[2] - c * qdd[1]) - m7 * g * LG7 * s;
     (*C)(1, 3) += -2 * m7 * LG7 * c * th7d;
     (*C)(2, 3) += -2 * m7 * LG7 * s * th7d;
   }
@@ -189,39 +192,40 @@ void FlexibleDsa380Pantograph::apply_restraints(const Eigen::VectorXd& qdd, Eige
   }
 }
 
-void FlexibleDsa380Pantograph::assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                                        const Eigen::VectorXd& qdd, Eigen::VectorXd* R,
-                                        Eigen::MatrixXd* K, Eigen::MatrixXd* C,
+void FlexibleDsa380Pantograph::assemble(double ab, const Eigen::VectorXd& q,
+                                        const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd,
+                                        Eigen::VectorXd* R, Eigen::MatrixXd* K, Eigen::MatrixXd* C,
                                         Eigen::MatrixXd* M) const {
   if (R) R->noalias() = bar_mass_ * qdd + bar_weight_;
+  if (R && ab != 0) *R += ab * bar_masses_;
   if (K) {
     K->setZero(dof_count(), dof_count());
     C->setZero(dof_count(), dof_count());
     *M = bar_mass_;
   }
   add_beams(q, R, K);
-  add_head(q, qd, qdd, R, K, C, M);
+  add_head(ab, q, qd, qdd, R, K, C, M);
   add_drive(q, qd, R, K, C);
   if (R) bellows_.add_residual(p_.rigid, 0, bellows_dof(), q, qd, qdd, *R);
   if (K) bellows_.add_tangents(p_.rigid, 0, bellows_dof(), q, *K, *C, *M);
   apply_restraints(qdd, R, K, C, M);
 }
 
-void FlexibleDsa380Pantograph::residual(double, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                                        const Eigen::VectorXd& qdd,
+void FlexibleDsa380Pantograph::residual(double t, const Eigen::VectorXd& q,
+                                        const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd,
                                         Eigen::Ref<Eigen::VectorXd> R) const {
   Eigen::VectorXd r(dof_count());
-  assemble(q, qd, qdd, &r, nullptr, nullptr, nullptr);
+  assemble(base_acceleration(t), q, qd, qdd, &r, nullptr, nullptr, nullptr);
   R = r;
 }
 
-void FlexibleDsa380Pantograph::tangents(double, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                                        const Eigen::VectorXd& qdd,
+void FlexibleDsa380Pantograph::tangents(double t, const Eigen::VectorXd& q,
+                                        const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd,
                                         Eigen::Ref<Eigen::MatrixXd> dR_dq,
                                         Eigen::Ref<Eigen::MatrixXd> dR_dqd,
                                         Eigen::Ref<Eigen::MatrixXd> dR_dqdd) const {
   Eigen::MatrixXd K, C, M;
-  assemble(q, qd, qdd, nullptr, &K, &C, &M);
+  assemble(base_acceleration(t), q, qd, qdd, nullptr, &K, &C, &M);
   dR_dq = K;
   dR_dqd = C;
   dR_dqdd = M;
@@ -255,10 +259,11 @@ double FlexibleDsa380Pantograph::potential_energy(const Eigen::VectorXd& q) cons
   return V + bellows_.potential_energy(bellows_dof(), q);
 }
 
-PowerSplit FlexibleDsa380Pantograph::power(double, const Eigen::VectorXd& q,
+PowerSplit FlexibleDsa380Pantograph::power(double t, const Eigen::VectorXd& q,
                                            const Eigen::VectorXd& qd) const {
   PowerSplit P;
   P.external = M0_ * qd[0] + aero_force_ * qd[2];
+  if (base_.acceleration) P.base = -base_acceleration(t) * base_inertia(q).dot(qd);
   bellows_.add_power(p_.rigid, 0, bellows_dof(), q, qd, &P);
   if (damper_active(qd)) {
     const double va = damper_length(p_.rigid, q[0])[1] * qd[0];

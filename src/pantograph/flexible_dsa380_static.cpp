@@ -31,7 +31,7 @@ Eigen::VectorXd FlexibleDsa380Pantograph::static_equilibrium(double contact_forc
   const double floor = 100 * DBL_EPSILON * 2.0 * stiffest;
   double last_step = 1;
   for (int it = 0; it < 50; ++it) {
-    assemble(q, zero, zero, &R, &K, &C, &M);
+    assemble(0.0, q, zero, zero, &R, &K, &C, &M);
     R[2] += contact_force;
     if (e_.head_restraint == Dsa380Effects::HeadRestraint::rotation) {
       R[3] = q[3];

@@ -211,6 +211,16 @@ std::complex<double> transmissibility_direct(const LinearModel& lin, const BaseS
   return frf_direct(lin, i, base.dof, omega) * load;
 }
 
+std::complex<double> transmissibility_frame(const LinearModel& lin, const Eigen::VectorXd& inertia,
+                                            int i, double omega) {
+  const std::complex<double> I(0, 1);
+  const Eigen::MatrixXcd D = lin.K.cast<std::complex<double>>() +
+                             I * omega * lin.C.cast<std::complex<double>>() -
+                             omega * omega * lin.M.cast<std::complex<double>>();
+  const Eigen::VectorXcd f = omega * omega * inertia.cast<std::complex<double>>();
+  return 1.0 + D.fullPivLu().solve(f)[i];
+}
+
 std::vector<std::complex<double>> frf_modal(const LinearModel& lin, const std::vector<Mode>& damped,
                                             int i, int j, const std::vector<double>& omegas) {
   if (!lin.M.isApprox(lin.M.transpose()) || !lin.K.isApprox(lin.K.transpose()) ||

@@ -115,7 +115,13 @@ pantograph::BaseMotion psd_base_motion(const InputNode& node) {
       sum -= amplitude[n] * omega[n] * std::sin(omega[n] * t + phase[n]);
     return sum;
   };
-  return {z, v};
+  auto a = [omega, amplitude, phase](double t) {
+    double sum = 0;
+    for (std::size_t n = 0; n < omega.size(); ++n)
+      sum -= amplitude[n] * omega[n] * omega[n] * std::cos(omega[n] * t + phase[n]);
+    return sum;
+  };
+  return {z, v, a};
 }
 
 }  // namespace
@@ -129,22 +135,31 @@ pantograph::BaseMotion load_base_motion(const InputNode& node) {
     const double a = node.get_positive("amplitude", limits::base_motion),
                  w = 2 * M_PI * node.get_positive("frequency_hz", limits::frequency);
     return {[a, w](double t) { return a * std::sin(w * t); },
-            [a, w](double t) { return a * w * std::cos(w * t); }};
+            [a, w](double t) { return a * w * std::cos(w * t); },
+            [a, w](double t) { return -a * w * w * std::sin(w * t); }};
   }
   node.allow_only({"type", "file"});
   const Samples s = load_samples(node, "z_b");
   for (double z : s.y)
     if (const std::string why = limit_violation(z, limits::base_motion); !why.empty())
       node.fail_key("file", "base displacement " + why);
-  return {[s](double t) { return s.value(t); }, [s](double t) { return s.slope(t); }};
+  // No acceleration: a piecewise-linear z_b's is a train of impulses.
+  return {[s](double t) { return s.value(t); }, [s](double t) { return s.slope(t); }, {}};
 }
 
 void apply_base_motion(const InputNode& entry, pantograph::PantographModel& model) {
   if (!entry.has("base_motion")) return;
-  if (model.base_support().dof < 0)
+  if (model.base_support().dof < 0 && !model.moving_frame())
     entry.fail_key("base_motion", "not available for the " + model.kind() +
-                                      " pantograph model yet (lumped models only)");
-  model.set_base_motion(load_base_motion(entry["base_motion"]));
+                                      " pantograph model yet (lumped and DSA-380 models only)");
+  const InputNode node = entry["base_motion"];
+  pantograph::BaseMotion motion = load_base_motion(node);
+  if (model.moving_frame() && !motion.acceleration)
+    node.fail_key("type", "'file' is not available for the " + model.kind() +
+                              " pantograph model: its moving frame needs the base's "
+                              "acceleration, which a piecewise-linear z_b lacks (use harmonic "
+                              "or psd)");
+  model.set_base_motion(std::move(motion));
 }
 
 }  // namespace pcsim::scene

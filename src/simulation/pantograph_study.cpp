@@ -71,6 +71,10 @@ FrfStudyResult run_frf(const StudyScene& s, const FrfStudy& st, const Eigen::Vec
   const BaseSupport base = s.model->base_support();
   if (base.dof >= 0)
     for (double w : omegas) r.transmissibility.push_back(transmissibility_direct(lin, base, c, w));
+  if (s.model->moving_frame()) {
+    const Eigen::VectorXd b = s.model->base_inertia(q0);
+    for (double w : omegas) r.transmissibility.push_back(transmissibility_frame(lin, b, c, w));
+  }
   if (r.symmetric) {
     r.modal = frf_modal(lin, solvers::damped_modes_slepc(lin), c, c, omegas);  // (2.40)
     for (std::size_t k = 0; k < omegas.size(); ++k)

@@ -120,7 +120,8 @@ void Stepper::set_base_motion(std::size_t pantograph, double displacement_m, dou
   if (slot.model->base_support().dof < 0)
     throw InputError("step-wise run", "pantograph",
                      "'" + slot.run.name + "': its " + slot.model->kind() +
-                         " model takes no base motion (lumped models do)");
+                         " model takes no base motion step-wise (lumped models do; held z_b, "
+                         "v_b give a moving frame no acceleration)");
   if (!std::isfinite(displacement_m) || !std::isfinite(velocity_m_s))
     throw InputError("step-wise run", "base motion", "not a finite number");
   auto& bases = impl_->bases;

@@ -32,6 +32,10 @@ Dsa380Effects all_effects() {
   return e;
 }
 
+// A base accelerating at 3 g (issue 25): its load a_b Σ m_i ∂z_i/∂q shows in every test.
+const BaseMotion kBase{[](double t) { return 0.01 * t; }, [](double) { return 0.01; },
+                       [](double) { return 29.4; }};
+
 FlexibleDsa380Parameters with_aero(FlexibleDsa380Parameters p) {
   p.rigid.aero_a = 20;
   p.rigid.aero_c = 0.002;
@@ -102,12 +106,16 @@ TEST(FlexibleDsa380, RestrictedToTheRigidMechanismItIsTheRigidModel) {
   // R_rigid(q_r, q̇_r, q̈_r) = (∂Q/∂q_r)ᵀ R_flex(Q, Q̇, Q̈). This checks kinematics, bar
   // inertia (exact for rigid motion), gravity, drive, damper, friction, head and restraints.
   const auto params = with_aero(flexible_params(3));
-  for (int variant = 0; variant < 3; ++variant) {
+  for (int variant = 0; variant < 6; ++variant) {  // 3-5: with a moving base
     Dsa380Effects e = all_effects();
-    if (variant == 1) e.head_restraint = Dsa380Effects::HeadRestraint::rotation;
-    if (variant == 2) e.head_restraint = Dsa380Effects::HeadRestraint::horizontal;
+    if (variant % 3 == 1) e.head_restraint = Dsa380Effects::HeadRestraint::rotation;
+    if (variant % 3 == 2) e.head_restraint = Dsa380Effects::HeadRestraint::horizontal;
     FlexibleDsa380Pantograph flex(params, e, 80.0);
     Dsa380Pantograph rigid(params.rigid, e, 80.0);
+    if (variant >= 3) {
+      flex.set_base_motion(kBase);
+      rigid.set_base_motion(kBase);
+    }
     flex.set_bellows_torque(1100);
     rigid.set_bellows_torque(1100);
     const Eigen::Vector4d qr(0.55, -0.3, 0.95, 0.15), qdr(-0.4, 0.2, -0.5, 0.8),
@@ -130,6 +138,8 @@ TEST(FlexibleDsa380, RestrictedToTheRigidMechanismItIsTheRigidModel) {
     rigid.residual(0, qr, qdr, qddr, Rr);
     const Eigen::Vector4d projected = J.transpose() * Rf;
     const double rel = (projected - Rr).cwiseAbs().maxCoeff() / Rr.cwiseAbs().maxCoeff();
+    const Eigen::VectorXd bf = flex.base_inertia(q), br = rigid.base_inertia(qr);
+    EXPECT_LT((J.transpose() * bf - br).cwiseAbs().maxCoeff(), 1e-7 * br.cwiseAbs().maxCoeff());
     std::printf("variant %d: rigid R = [%.6f %.6f %.6f %.6f], relative difference %.2e\n", variant,
                 Rr[0], Rr[1], Rr[2], Rr[3], rel);
     // Limited by the FD of Q̇, Q̈ (h = 1e-4: ~1e-8) and by the rigid file's inertias, which
@@ -143,6 +153,7 @@ TEST(FlexibleDsa380, TangentsMatchFiniteDifferences) {
     const char* name;
     Dsa380Effects effects;
     double y5_rate;
+    bool base = false;
   };
   std::vector<Case> cases = {{"none", Dsa380Effects{}, 0.3}, {"all, rising", all_effects(), 0.3}};
   Case one_way{"one-way damper, descending", all_effects(), -0.3};
@@ -154,6 +165,11 @@ TEST(FlexibleDsa380, TangentsMatchFiniteDifferences) {
   hor.effects.head_restraint = Dsa380Effects::HeadRestraint::horizontal;
   cases.push_back(rot);
   cases.push_back(hor);
+  Case base{"moving base", all_effects(), 0.3, true}, base_rot = rot;
+  base_rot.name = "moving base, rotation restraint";
+  base_rot.base = true;
+  cases.push_back(base);
+  cases.push_back(base_rot);
   // Steel, and bars 1e4 times softer, so that the beam entries do not dwarf the others in
   // a column (every term then shows at ≥ 1e-4 of its column).
   for (const double E : {2.1e11, 2.1e7})
@@ -162,6 +178,7 @@ TEST(FlexibleDsa380, TangentsMatchFiniteDifferences) {
       params.youngs_modulus = E;
       FlexibleDsa380Pantograph m(params, c.effects, 80.0);
       m.set_bellows_torque(1150);
+      if (c.base) m.set_base_motion(kBase);
       const State s = moving_state(m, 1e-6, c.y5_rate);
       const int n = m.dof_count();
       Eigen::MatrixXd K(n, n), C(n, n), M(n, n), Kfd(n, n), Cfd(n, n), Mfd(n, n);
@@ -196,8 +213,10 @@ TEST(FlexibleDsa380, TangentsMatchFiniteDifferences) {
 
 TEST(FlexibleDsa380, EnergyRateEqualsPowerOfTheNonConservativeForces) {
   // q̇ᵀ R(q, q̇, q̈) = d(T + V)/dt − P_external − P_dissipative along q(t) = q + t q̇ + ½t² q̈.
+  // A moving base adds its power P_base (PowerSplit::base).
   FlexibleDsa380Pantograph m(with_aero(flexible_params(3)), all_effects(), 80.0);
   m.set_bellows_torque(1150);
+  m.set_base_motion(kBase);
   const State s = moving_state(m, 1e-5, 0.3);
   auto energy = [&](double t) {
     const Eigen::VectorXd q = s.q + t * s.qd + 0.5 * t * t * s.qdd, qd = s.qd + t * s.qdd;
@@ -210,9 +229,10 @@ TEST(FlexibleDsa380, EnergyRateEqualsPowerOfTheNonConservativeForces) {
   Eigen::VectorXd R(m.dof_count());
   m.residual(0, s.q, s.qd, s.qdd, R);
   const PowerSplit P = m.power(0, s.q, s.qd);
-  const double lhs = s.qd.dot(R), rhs = rate - P.external - P.dissipative;
-  std::printf("q'R = %.9e, dE/dt - P = %.9e (P_ext %.3f, P_diss %.3f)\n", lhs, rhs, P.external,
-              P.dissipative);
+  const double lhs = s.qd.dot(R), rhs = rate - P.external - P.dissipative - P.base;
+  std::printf("q'R = %.9e, dE/dt - P = %.9e (P_ext %.3f, P_diss %.3f, P_base %.3f)\n", lhs, rhs,
+              P.external, P.dissipative, P.base);
+  EXPECT_GT(std::abs(P.base), 1.0);
   // Measured relative difference 1e-12 (rounding of E over h); 1e-9 leaves a margin of 1000
   // and is ~1e-7 of the smallest power term (damper and friction, 11 W).
   EXPECT_NEAR(lhs, rhs, 1e-9 * std::abs(rate));

@@ -78,7 +78,8 @@ State dsa_state(PantographModel& m, double frame_rate) {
 }  // namespace
 
 TEST(PantographJet, LoopDerivativesMatchFiniteDifferences) {
-  const auto p = load_dsa380_parameters(pcsim::scene::InputNode::load_file(kModels + "dsa380_rigid.yaml"));
+  const auto p =
+      load_dsa380_parameters(pcsim::scene::InputNode::load_file(kModels + "dsa380_rigid.yaml"));
   const double th = 0.65, h = 1e-5;
   const auto k0 = dsa380_kinematics(p, th);
   const auto kp = dsa380_kinematics(p, th + h), km = dsa380_kinematics(p, th - h);
@@ -149,13 +150,38 @@ TEST(PantographTangents, Dsa380Restraints) {
 }
 
 TEST(PantographTangents, Dsa380HeadWithOffsetCentreOfGravity) {
-  auto p = load_dsa380_parameters(pcsim::scene::InputNode::load_file(kModels + "dsa380_rigid.yaml"));
+  auto p =
+      load_dsa380_parameters(pcsim::scene::InputNode::load_file(kModels + "dsa380_rigid.yaml"));
   p.LG[6] = 0.12;
   p.thetaG[6] = -M_PI / 2;
   p.kl3 = 2e5;
   Dsa380Pantograph m(p, Dsa380Effects{}, 0.0);
   auto s = dsa_state(m, 0.3);
   check_tangents(m, s.q, s.qd, s.qdd, 1e-6, 1e-6, 1e-6);
+}
+
+// Moving base (issue 25): the inertial load a_b Σ m_i ∂z_i/∂q depends on θ and θ7; a
+// large a_b (3 g) and an offset head centre of gravity make its tangent count.
+TEST(PantographTangents, Dsa380MovingBase) {
+  const BaseMotion base{[](double t) { return 0.01 * t; }, [](double) { return 0.01; },
+                        [](double) { return 29.4; }};
+  auto m = load("dsa380_rigid.yaml", "damper: {quadratic: 800}");
+  m->set_base_motion(base);
+  auto s = dsa_state(*m, 0.3);
+  check_tangents(*m, s.q, s.qd, s.qdd, 1e-6, 1e-6, 1e-6);
+  auto p =
+      load_dsa380_parameters(pcsim::scene::InputNode::load_file(kModels + "dsa380_rigid.yaml"));
+  p.LG[6] = 0.12;
+  p.thetaG[6] = -M_PI / 3;
+  for (auto restraint : {Dsa380Effects::HeadRestraint::none, Dsa380Effects::HeadRestraint::rotation,
+                         Dsa380Effects::HeadRestraint::horizontal}) {
+    Dsa380Effects e;
+    e.head_restraint = restraint;
+    Dsa380Pantograph offset(p, e, 0.0);
+    offset.set_base_motion(base);
+    auto so = dsa_state(offset, 0.3);
+    check_tangents(offset, so.q, so.qd, so.qdd, 1e-6, 1e-6, 1e-6);
+  }
 }
 
 TEST(PantographStatics, TwoStepMatchesGeneralNewton) {
@@ -209,7 +235,8 @@ TEST(PantographInput, UnknownEffectIsRejected) {
 }
 
 TEST(PantographEffects, AerodynamicForceLiftsHeadAndCostsNothingWhenOff) {
-  auto p = load_dsa380_parameters(pcsim::scene::InputNode::load_file(kModels + "dsa380_rigid.yaml"));
+  auto p =
+      load_dsa380_parameters(pcsim::scene::InputNode::load_file(kModels + "dsa380_rigid.yaml"));
   p.aero_a = 5;
   p.aero_b = 0.1;
   p.aero_c = 0.004;

@@ -22,7 +22,8 @@ struct PantographSlot {
   std::unique_ptr<pantograph::PantographModel> model;
   PetscInt first_dof = 0;    // global index of q[0]
   PetscInt state_first = 0;  // index of q[0] in the replicated pantograph state
-  double head_offset = 0;    // contact height = q[c] + model->contact_offset() + head_offset
+  // contact height = q[c] + model->contact_offset() + head_offset + model->frame_height(t)
+  double head_offset = 0;
 
   PetscInt contact_dof() const { return first_dof + model->contact_dof(); }
   int dof_count() const { return model->dof_count(); }
@@ -42,7 +43,7 @@ class CoupledState {
   Eigen::VectorXd q(std::size_t p) const { return slice(u_, p); }
   Eigen::VectorXd qd(std::size_t p) const { return slice(v_, p); }
   Eigen::VectorXd qdd(std::size_t p) const { return slice(a_, p); }
-  // Height of pantograph p's contact point.
+  // Height of pantograph p's contact point at t (a moving frame's z_b(t) included).
   double head_height(std::size_t p) const;
   bool on_last_rank() const { return rank_ == size_ - 1; }
   int rank() const { return rank_; }

@@ -114,13 +114,21 @@ class Dsa380Pantograph : public PantographModel {
                 Eigen::Ref<Eigen::MatrixXd> dR_dqdd) const override;
   bool is_linear() const override { return false; }
   // Two-step procedure (2.12–2.14): head descent z, then θ with y5(θ) = h0 − L7p + z,
-  // then the bellows torque M0. Sets M0 and returns q0.
+  // then the bellows torque M0. Sets M0 and returns q0. A base motion is held at rest
+  // meanwhile (M0 is the bellows' setting, not a reaction to a_b(0)).
   Eigen::VectorXd static_equilibrium(double contact_force, double working_height) override;
   // Heights are measured above the pantograph's base: nominal working height 1.2 m.
   double default_working_height() const override { return 1.2; }
   double kinetic_energy(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const override;
   double potential_energy(const Eigen::VectorXd& q) const override;
   PowerSplit power(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const override;
+  // Base motion (issue 25, dsa380_base.cpp): q is measured in the moving frame of the base;
+  // every body carries −m_i a_b(t) (gravity g becomes g + a_b).
+  bool moving_frame() const override { return true; }
+  void set_base_motion(BaseMotion motion) override;
+  Eigen::VectorXd base_inertia(const Eigen::VectorXd& q) const override;
+  double frame_height(double t) const override;
+  double frame_velocity(double t) const override;
 
   // General Newton solve of R(q, 0, 0) + F0 e_c = 0 for the current M0, with restrained
   // rows replaced by their position constraints. Throws SolverError if it fails.
@@ -137,9 +145,16 @@ class Dsa380Pantograph : public PantographModel {
   const Bellows& bellows() const { return bellows_; }
 
  private:
+  // static_equilibrium() with the base at rest (dsa380.cpp).
+  Eigen::VectorXd equilibrium_at_rest(double contact_force, double working_height);
   [[noreturn]] void fail_working_height(double theta, double h0, double z,
                                         const std::string& what) const;
   int bellows_dof() const { return bellows_.has_state() ? 4 : -1; }
+  // a_b(t) base_inertia(q) into R and its q-derivative into dR/dq (no base motion: nothing).
+  void add_base_residual(double t, const Dsa380Kinematics& k, const Eigen::VectorXd& q,
+                         Eigen::Ref<Eigen::VectorXd> R) const;
+  void add_base_tangent(double t, const Dsa380Kinematics& k, const Eigen::VectorXd& q,
+                        Eigen::Ref<Eigen::MatrixXd> Kq) const;
   Dsa380Parameters p_;
   Dsa380Effects e_;
   double aero_force_ = 0;
@@ -148,6 +163,7 @@ class Dsa380Pantograph : public PantographModel {
   HeadSpring spring_;
   FrameDamper damper_;
   HeadFriction friction_;
+  BaseMotion base_;  // empty: the base does not move
 };
 
 }  // namespace pcsim::pantograph

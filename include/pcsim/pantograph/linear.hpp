@@ -104,6 +104,11 @@ std::complex<double> frf_direct(const LinearModel& lin, int i, int j, double ome
 // motion z_b e^{iωt} loads the coordinate d joined to the base by (k, c) with (k + iωc) z_b.
 std::complex<double> transmissibility_direct(const LinearModel& lin, const BaseSupport& base, int i,
                                              double omega);
+// The same for a model in the moving frame of its base (vertical coordinate i measured
+// above the base): z_b e^{iωt} loads it with −a_b b = ω² z_b b, b = ∂R/∂a_b =
+// PantographModel::base_inertia(q0), so z_i / z_b = 1 + [K + iωC − ω²M]⁻¹_i· ω² b.
+std::complex<double> transmissibility_frame(const LinearModel& lin, const Eigen::VectorXd& inertia,
+                                            int i, double omega);
 // H_ij(ω) = Σ_r φ_r,i φ_r,j / (a_r (iω − λ_r)) + conj. (2.40), a_r = φ_rᵀ A φ_r, with the
 // damped state-space modes, at each ω of `omegas` (a_r computed once); requires symmetric
 // M, C, K.

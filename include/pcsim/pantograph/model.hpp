@@ -23,15 +23,17 @@ namespace pcsim::pantograph {
 struct PowerSplit {
   double dissipative = 0;  // damper, friction (≤ 0 for passive elements)
   double external = 0;     // uplift force / bellows torque, aerodynamic force
-  // Prescribed base motion: power of its time-dependent load on the lowest stage (no
-  // potential: a coupling adds it to the external work as it is).
+  // Prescribed base motion: power of its time-dependent load on the lowest stage (lumped)
+  // or of the moving frame's inertial load (no potential: a coupling adds it to the
+  // external work as it is).
   double base = 0;
 };
 
 // Prescribed vertical motion of a pantograph's base (the vehicle roof): z_b(t) [m,
-// upwards] and v_b(t) = dz_b/dt [m/s], defined for every t.
+// upwards], v_b(t) = dz_b/dt [m/s] and a_b(t) = dv_b/dt [m/s²] (empty where z_b has no
+// acceleration: a piecewise-linear file), defined for every t.
 struct BaseMotion {
-  std::function<double(double)> displacement, velocity;
+  std::function<double(double)> displacement, velocity, acceleration;
 };
 
 // The spring and damper that join coordinate `dof` to the base; dof < 0: the model has
@@ -82,6 +84,17 @@ class PantographModel {
   virtual void set_base_motion(BaseMotion) {
     throw SolverError(kind() + " pantograph: no base motion");
   }
+  // Models whose coordinates are measured in the frame of their base (DSA-380 models): a
+  // base motion moves that frame, the residual gains the inertial load a_b(t) ·
+  // base_inertia(q) (Σ m_i ∂z_i/∂q) and needs BaseMotion::acceleration.
+  virtual bool moving_frame() const { return false; }
+  virtual Eigen::VectorXd base_inertia(const Eigen::VectorXd& q) const {
+    return Eigen::VectorXd::Zero(q.size());
+  }
+  // Moving frame with a base motion: z_b(t), v_b(t) (0 otherwise). The contact point's
+  // absolute height is q[contact_dof()] + contact_offset() + frame_height(t).
+  virtual double frame_height(double) const { return 0.0; }
+  virtual double frame_velocity(double) const { return 0.0; }
 };
 
 }  // namespace pcsim::pantograph

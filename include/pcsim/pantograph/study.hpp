@@ -90,7 +90,8 @@ struct FrfStudyResult {
   bool symmetric = false;                   // M, K symmetric: the modal FRF is given
   std::vector<std::complex<double>> modal;  // (symmetric)
   double direct_vs_modal_max_relative_difference = 0;
-  // Base-to-head transmissibility z_c / z_b (models with a base support; else empty).
+  // Base-to-head transmissibility z_c / z_b (models with a base support or a moving frame;
+  // else empty).
   std::vector<std::complex<double>> transmissibility;
 };
 

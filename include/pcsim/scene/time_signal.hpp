@@ -26,11 +26,13 @@ struct Samples {
 Samples load_samples(const InputNode& node, const std::string& what);
 
 // The base motion of a `base_motion` node (see above); the file's z_b is continuous and
-// piecewise linear, its velocity v_b the slope (constant between samples, 0 outside).
+// piecewise linear, its velocity v_b the slope (constant between samples, 0 outside), and
+// it has no acceleration (empty); harmonic and psd give the exact a_b.
 pantograph::BaseMotion load_base_motion(const InputNode& node);
 
 // If the pantograph entry has the key `base_motion`, gives it to the model; fails naming
-// the key for a model that takes none.
+// the key for a model that takes none, and `type` for a file given to a moving-frame model
+// (DSA-380: needs a_b).
 void apply_base_motion(const InputNode& entry, pantograph::PantographModel& model);
 
 }  // namespace pcsim::scene
