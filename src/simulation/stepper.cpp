@@ -129,8 +129,10 @@ void Stepper::set_base_motion(std::size_t pantograph, double displacement_m, dou
   if (!bases[pantograph]) {
     auto held = std::make_shared<std::array<double, 2>>();
     bases[pantograph] = held;
-    slot.model->set_base_motion(
-        {[held](double) { return (*held)[0]; }, [held](double) { return (*held)[1]; }});
+    pantograph::BaseMotion motion;  // held values: no acceleration (lumped models only)
+    motion.displacement = [held](double) { return (*held)[0]; };
+    motion.velocity = [held](double) { return (*held)[1]; };
+    slot.model->set_base_motion(std::move(motion));
   }
   *bases[pantograph] = {displacement_m, velocity_m_s};
 }
