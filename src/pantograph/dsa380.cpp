@@ -250,7 +250,7 @@ PowerSplit Dsa380Pantograph::power(double t, const Eigen::VectorXd& q,
                                    const Eigen::VectorXd& qd) const {
   PowerSplit P;
   P.external = M0_ * qd[0] + aero_force_ * qd[2];
-  if (base_.acceleration) P.base = -base_.acceleration(t) * base_inertia(q).dot(qd);
+  if (frame_.moves()) P.base = -frame_.acceleration(t) * base_inertia(q).dot(qd);
   bellows_.add_power(p_, 0, bellows_dof(), q, qd, &P);
   if (!e_.damper && !e_.friction) return P;
   const auto k = dsa380_kinematics(p_, q[0]);

@@ -12,30 +12,16 @@
 
 namespace pcsim::pantograph {
 
-void Dsa380Pantograph::set_base_motion(BaseMotion motion) {
-  if (!motion.displacement || !motion.velocity || !motion.acceleration)
-    throw SolverError("dsa380 pantograph: a base motion needs z_b, v_b and a_b");
-  base_ = std::move(motion);
-}
-
 Eigen::VectorXd Dsa380Pantograph::static_equilibrium(double contact_force, double working_height) {
-  BaseMotion held = std::exchange(base_, BaseMotion{});
+  MovingFrame held = std::exchange(frame_, MovingFrame{});
   try {
     Eigen::VectorXd q0 = equilibrium_at_rest(contact_force, working_height);
-    base_ = std::move(held);
+    frame_ = std::move(held);
     return q0;
   } catch (...) {
-    base_ = std::move(held);
+    frame_ = std::move(held);
     throw;
   }
-}
-
-double Dsa380Pantograph::frame_height(double t) const {
-  return base_.displacement ? base_.displacement(t) : 0.0;
-}
-
-double Dsa380Pantograph::frame_velocity(double t) const {
-  return base_.velocity ? base_.velocity(t) : 0.0;
 }
 
 // Σ m_i ∂z_i/∂q: bars 1–6 through θ, the head (bar 7) through y10 and θ7; the rotation
@@ -54,8 +40,8 @@ Eigen::VectorXd Dsa380Pantograph::base_inertia(const Eigen::VectorXd& q) const {
 void Dsa380Pantograph::add_base_residual(double t, const Dsa380Kinematics& k,
                                          const Eigen::VectorXd& q,
                                          Eigen::Ref<Eigen::VectorXd> R) const {
-  if (!base_.acceleration) return;
-  const double ab = base_.acceleration(t);
+  if (!frame_.moves()) return;
+  const double ab = frame_.acceleration(t);
   double frame = 0;
   for (int i = 0; i < 6; ++i) frame += p_.m[i] * k.yg[i][1];
   R[0] += ab * frame;
@@ -66,8 +52,8 @@ void Dsa380Pantograph::add_base_residual(double t, const Dsa380Kinematics& k,
 void Dsa380Pantograph::add_base_tangent(double t, const Dsa380Kinematics& k,
                                         const Eigen::VectorXd& q,
                                         Eigen::Ref<Eigen::MatrixXd> Kq) const {
-  if (!base_.acceleration) return;
-  const double ab = base_.acceleration(t);
+  if (!frame_.moves()) return;
+  const double ab = frame_.acceleration(t);
   double frame = 0;
   for (int i = 0; i < 6; ++i) frame += p_.m[i] * k.yg[i][2];
   Kq(0, 0) += ab * frame;
@@ -75,24 +61,6 @@ void Dsa380Pantograph::add_base_tangent(double t, const Dsa380Kinematics& k,
 }
 
 // ---- flexible DSA-380 (thesis 2.2): the beams' lumped weights and the head's, g + a_b ----
-
-void FlexibleDsa380Pantograph::set_base_motion(BaseMotion motion) {
-  if (!motion.displacement || !motion.velocity || !motion.acceleration)
-    throw SolverError("dsa380_flexible pantograph: a base motion needs z_b, v_b and a_b");
-  base_ = std::move(motion);
-}
-
-double FlexibleDsa380Pantograph::base_acceleration(double t) const {
-  return base_.acceleration ? base_.acceleration(t) : 0.0;
-}
-
-double FlexibleDsa380Pantograph::frame_height(double t) const {
-  return base_.displacement ? base_.displacement(t) : 0.0;
-}
-
-double FlexibleDsa380Pantograph::frame_velocity(double t) const {
-  return base_.velocity ? base_.velocity(t) : 0.0;
-}
 
 Eigen::VectorXd FlexibleDsa380Pantograph::base_inertia(const Eigen::VectorXd& q) const {
   const Dsa380Parameters& p = p_.rigid;

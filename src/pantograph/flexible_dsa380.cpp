@@ -215,7 +215,7 @@ void FlexibleDsa380Pantograph::residual(double t, const Eigen::VectorXd& q,
                                         const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd,
                                         Eigen::Ref<Eigen::VectorXd> R) const {
   Eigen::VectorXd r(dof_count());
-  assemble(base_acceleration(t), q, qd, qdd, &r, nullptr, nullptr, nullptr);
+  assemble(frame_.acceleration(t), q, qd, qdd, &r, nullptr, nullptr, nullptr);
   R = r;
 }
 
@@ -225,7 +225,7 @@ void FlexibleDsa380Pantograph::tangents(double t, const Eigen::VectorXd& q,
                                         Eigen::Ref<Eigen::MatrixXd> dR_dqd,
                                         Eigen::Ref<Eigen::MatrixXd> dR_dqdd) const {
   Eigen::MatrixXd K, C, M;
-  assemble(base_acceleration(t), q, qd, qdd, nullptr, &K, &C, &M);
+  assemble(frame_.acceleration(t), q, qd, qdd, nullptr, &K, &C, &M);
   dR_dq = K;
   dR_dqd = C;
   dR_dqdd = M;
@@ -263,7 +263,7 @@ PowerSplit FlexibleDsa380Pantograph::power(double t, const Eigen::VectorXd& q,
                                            const Eigen::VectorXd& qd) const {
   PowerSplit P;
   P.external = M0_ * qd[0] + aero_force_ * qd[2];
-  if (base_.acceleration) P.base = -base_acceleration(t) * base_inertia(q).dot(qd);
+  if (frame_.moves()) P.base = -frame_.acceleration(t) * base_inertia(q).dot(qd);
   bellows_.add_power(p_.rigid, 0, bellows_dof(), q, qd, &P);
   if (damper_active(qd)) {
     const double va = damper_length(p_.rigid, q[0])[1] * qd[0];

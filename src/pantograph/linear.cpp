@@ -194,11 +194,14 @@ Eigen::MatrixXcd expand_state(const Eigen::MatrixXd& T, const Eigen::MatrixXcd& 
   return out;
 }
 
-std::complex<double> frf_direct(const LinearModel& lin, int i, int j, double omega) {
+Eigen::MatrixXcd dynamic_stiffness(const LinearModel& lin, double omega) {
   const std::complex<double> I(0, 1);
-  const Eigen::MatrixXcd D = lin.K.cast<std::complex<double>>() +
-                             I * omega * lin.C.cast<std::complex<double>>() -
-                             omega * omega * lin.M.cast<std::complex<double>>();
+  return lin.K.cast<std::complex<double>>() + I * omega * lin.C.cast<std::complex<double>>() -
+         omega * omega * lin.M.cast<std::complex<double>>();
+}
+
+std::complex<double> frf_direct(const LinearModel& lin, int i, int j, double omega) {
+  const Eigen::MatrixXcd D = dynamic_stiffness(lin, omega);
   Eigen::VectorXcd f = Eigen::VectorXcd::Zero(lin.M.rows());
   f[j] = 1.0;
   return D.fullPivLu().solve(f)[i];
@@ -213,10 +216,7 @@ std::complex<double> transmissibility_direct(const LinearModel& lin, const BaseS
 
 std::complex<double> transmissibility_frame(const LinearModel& lin, const Eigen::VectorXd& inertia,
                                             int i, double omega) {
-  const std::complex<double> I(0, 1);
-  const Eigen::MatrixXcd D = lin.K.cast<std::complex<double>>() +
-                             I * omega * lin.C.cast<std::complex<double>>() -
-                             omega * omega * lin.M.cast<std::complex<double>>();
+  const Eigen::MatrixXcd D = dynamic_stiffness(lin, omega);
   const Eigen::VectorXcd f = omega * omega * inertia.cast<std::complex<double>>();
   return 1.0 + D.fullPivLu().solve(f)[i];
 }

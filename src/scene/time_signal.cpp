@@ -132,11 +132,9 @@ pantograph::BaseMotion load_base_motion(const InputNode& node) {
   if (type == "psd") return psd_base_motion(node);
   if (type == "harmonic") {
     node.allow_only({"type", "amplitude", "frequency_hz"});
-    const double a = node.get_positive("amplitude", limits::base_motion),
-                 w = 2 * M_PI * node.get_positive("frequency_hz", limits::frequency);
-    return {[a, w](double t) { return a * std::sin(w * t); },
-            [a, w](double t) { return a * w * std::cos(w * t); },
-            [a, w](double t) { return -a * w * w * std::sin(w * t); }};
+    const double a = node.get_positive("amplitude", limits::base_motion);
+    return pantograph::harmonic_base_motion(a,
+                                            node.get_positive("frequency_hz", limits::frequency));
   }
   node.allow_only({"type", "file"});
   const Samples s = load_samples(node, "z_b");

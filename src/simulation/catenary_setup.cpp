@@ -173,9 +173,10 @@ std::string cache_file_served(const Context& ctx, const std::string& key, double
 std::optional<catenary::ReducedBasis> stored_basis(const Context& ctx, const std::string& kept_key,
                                                    const std::string& served, CatenarySetup& out) {
   if (served.empty()) return std::nullopt;
-  const std::string file = output::basis_cache_file(ctx.cache_dir, kept_key + " from " + served);
+  const std::string key = kept_key + " from " + served;
+  const std::string file = output::basis_cache_file(ctx.cache_dir, key);
   catenary::ReducedBasis basis;
-  int hit = ctx.rank == 0 && output::read_basis(file, kept_key + " from " + served, basis) ? 1 : 0;
+  int hit = ctx.rank == 0 && output::read_basis(file, key, basis) ? 1 : 0;
   MPI_Bcast(&hit, 1, MPI_INT, 0, ctx.comm);
   if (!hit) return std::nullopt;
   broadcast(basis, ctx.comm);
@@ -190,9 +191,10 @@ std::optional<catenary::ReducedBasis> stored_basis(const Context& ctx, const std
 void store_basis(const Context& ctx, const std::string& kept_key, const std::string& served,
                  const catenary::ReducedBasis& basis, CatenarySetup& out) {
   if (served.empty() || ctx.rank != 0) return;
-  const std::string file = output::basis_cache_file(ctx.cache_dir, kept_key + " from " + served);
+  const std::string key = kept_key + " from " + served;
+  const std::string file = output::basis_cache_file(ctx.cache_dir, key);
   try {
-    output::write_basis(file, kept_key + " from " + served, basis);
+    output::write_basis(file, key, basis);
     out.basis_file = file;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "pcsim: warning: the assembled basis is not cached: %s\n", e.what());

@@ -33,11 +33,6 @@ std::unique_ptr<PantographModel> two_mass() {
   return pcsim::scene::load_pantograph_model(kTwoMass, nullptr, 0.0);
 }
 
-BaseMotion harmonic(double amplitude, double f_hz) {
-  const double w = 2 * M_PI * f_hz;
-  return {[=](double t) { return amplitude * std::sin(w * t); },
-          [=](double t) { return amplitude * w * std::cos(w * t); }};
-}
 }  // namespace
 
 // Both sides are exact arithmetic on a 2 x 2 system (LU vs the closed form): they agree
@@ -73,7 +68,7 @@ TEST(BaseMotion, SteadyHeadAmplitudeIsTransmissibilityTimesBaseAmplitude) {
     auto model = two_mass();
     const Eigen::VectorXd q0 = model->static_equilibrium(120.0, 5.3);
     const LinearModel lin = linearise(*model, q0);
-    model->set_base_motion(harmonic(A, f));
+    model->set_base_motion(harmonic_base_motion(A, f));
     TimeOptions opt;
     opt.scheme = "rk4";
     opt.dt = dt;
@@ -101,7 +96,7 @@ TEST(BaseMotion, SteadyHeadAmplitudeIsTransmissibilityTimesBaseAmplitude) {
 TEST(BaseMotion, EnergyBalanceCountsTheBaseWork) {
   auto model = two_mass();
   const Eigen::VectorXd q0 = model->static_equilibrium(120.0, 5.3);
-  model->set_base_motion(harmonic(0.002, 5.0));
+  model->set_base_motion(harmonic_base_motion(0.002, 5.0));
   TimeOptions opt;
   opt.dt = 1e-3;
   opt.t_end = 5.0;

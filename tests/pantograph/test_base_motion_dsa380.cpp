@@ -24,19 +24,6 @@ std::unique_ptr<PantographModel> rigid() {
   return pcsim::scene::load_pantograph_model(kRigid, nullptr, 0.0);
 }
 
-BaseMotion harmonic(double amplitude, double f_hz) {
-  const double w = 2 * M_PI * f_hz;
-  return {[=](double t) { return amplitude * std::sin(w * t); },
-          [=](double t) { return amplitude * w * std::cos(w * t); },
-          [=](double t) { return -amplitude * w * w * std::sin(w * t); }};
-}
-
-Eigen::MatrixXcd dynamic_stiffness(const LinearModel& lin, double w) {
-  const std::complex<double> I(0, 1);
-  return lin.K.cast<std::complex<double>>() + I * w * lin.C.cast<std::complex<double>>() -
-         w * w * lin.M.cast<std::complex<double>>();
-}
-
 // Quasi-static limit: the whole pantograph follows its base (H → 1); the residual holds
 // a_b times base_inertia (the frf's load).
 TEST(BaseMotionDsa380, InertiaIsTheResidualsLoad) {
@@ -69,7 +56,7 @@ double transmissibility_error(PantographModel& model, const std::string& scheme,
   const LinearModel lin = linearise(model, q0);
   const Eigen::VectorXd b = model.base_inertia(q0);
   const double w = 2 * M_PI * f;
-  model.set_base_motion(harmonic(A, f));
+  model.set_base_motion(harmonic_base_motion(A, f));
   const Eigen::VectorXcd X =
       dynamic_stiffness(lin, w).fullPivLu().solve((w * w * A * b).cast<std::complex<double>>());
   TimeOptions opt;
@@ -123,7 +110,7 @@ TEST(BaseMotionDsa380, FlexibleHeadAmplitudeIsTransmissibilityTimesBaseAmplitude
 TEST(BaseMotionDsa380, EnergyBalanceCountsTheBaseWork) {
   auto model = rigid();
   const Eigen::VectorXd q0 = model->static_equilibrium(120.0, 1.2);
-  model->set_base_motion(harmonic(0.002, 5.0));
+  model->set_base_motion(harmonic_base_motion(0.002, 5.0));
   TimeOptions opt;
   opt.dt = 1e-3;
   opt.t_end = 3.0;

@@ -125,10 +125,10 @@ class Dsa380Pantograph : public PantographModel {
   // Base motion (issue 25, dsa380_base.cpp): q is measured in the moving frame of the base;
   // every body carries −m_i a_b(t) (gravity g becomes g + a_b).
   bool moving_frame() const override { return true; }
-  void set_base_motion(BaseMotion motion) override;
+  void set_base_motion(BaseMotion motion) override { frame_.set(std::move(motion), kind()); }
   Eigen::VectorXd base_inertia(const Eigen::VectorXd& q) const override;
-  double frame_height(double t) const override;
-  double frame_velocity(double t) const override;
+  double frame_height(double t) const override { return frame_.height(t); }
+  double frame_velocity(double t) const override { return frame_.velocity(t); }
 
   // General Newton solve of R(q, 0, 0) + F0 e_c = 0 for the current M0, with restrained
   // rows replaced by their position constraints. Throws SolverError if it fails.
@@ -163,7 +163,7 @@ class Dsa380Pantograph : public PantographModel {
   HeadSpring spring_;
   FrameDamper damper_;
   HeadFriction friction_;
-  BaseMotion base_;  // empty: the base does not move
+  MovingFrame frame_;
 };
 
 }  // namespace pcsim::pantograph

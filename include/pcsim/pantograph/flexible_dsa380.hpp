@@ -116,10 +116,10 @@ class FlexibleDsa380Pantograph : public PantographModel {
   // Base motion (issue 25, dsa380_base.cpp), as the rigid model: q is measured in the
   // moving frame of the base; g becomes g + a_b(t) in the weights of bars and head.
   bool moving_frame() const override { return true; }
-  void set_base_motion(BaseMotion motion) override;
+  void set_base_motion(BaseMotion motion) override { frame_.set(std::move(motion), kind()); }
   Eigen::VectorXd base_inertia(const Eigen::VectorXd& q) const override;
-  double frame_height(double t) const override;
-  double frame_velocity(double t) const override;
+  double frame_height(double t) const override { return frame_.height(t); }
+  double frame_velocity(double t) const override { return frame_.velocity(t); }
 
   // q of the undeformed mechanism at frame angle θ with the given head coordinates.
   Eigen::VectorXd rigid_configuration(double theta, double x10, double y10, double theta7) const;
@@ -145,7 +145,6 @@ class FlexibleDsa380Pantograph : public PantographModel {
   void assemble(double ab, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                 const Eigen::VectorXd& qdd, Eigen::VectorXd* R, Eigen::MatrixXd* K,
                 Eigen::MatrixXd* C, Eigen::MatrixXd* M) const;
-  double base_acceleration(double t) const;
   void add_beams(const Eigen::VectorXd& q, Eigen::VectorXd* R, Eigen::MatrixXd* K) const;
   void add_head(double ab, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                 const Eigen::VectorXd& qdd, Eigen::VectorXd* R, Eigen::MatrixXd* K,
@@ -168,7 +167,7 @@ class FlexibleDsa380Pantograph : public PantographModel {
   Eigen::MatrixXd bar_mass_;    // constant mass matrix of the beams
   Eigen::VectorXd bar_weight_;  // dVg/dq of the beams
   Eigen::VectorXd bar_masses_;  // the same per unit g: the beams' Σ m_i ∂z_i/∂q
-  BaseMotion base_;             // empty: the base does not move
+  MovingFrame frame_;
   double aero_force_ = 0;
   double M0_ = 0;
   Bellows bellows_;  // uplift characteristic: M0 + ΔM(θ) with the rigid mechanism's ΔM

@@ -98,6 +98,8 @@ std::vector<Mode> damped_modes_from_eigenpairs(const LinearModel& lin,
                                                const Eigen::VectorXcd& lambda,
                                                const Eigen::MatrixXcd& vectors);
 
+// The dynamic stiffness K + iωC − ω²M.
+Eigen::MatrixXcd dynamic_stiffness(const LinearModel& lin, double omega);
 // Receptance H_ij(ω) = [K + iωC − ω²M]⁻¹_ij (2.36).
 std::complex<double> frf_direct(const LinearModel& lin, int i, int j, double omega);
 // Base-to-coordinate-i transmissibility z_i / z_b = H_i,d(ω) (k + iωc) (issue 25): a base

@@ -36,6 +36,26 @@ struct BaseMotion {
   std::function<double(double)> displacement, velocity, acceleration;
 };
 
+// z_b = A sin(2π f t), with its exact v_b and a_b (`base_motion: {type: harmonic}`).
+BaseMotion harmonic_base_motion(double amplitude_m, double frequency_hz);
+
+// The base motion of a model whose coordinates are measured in its base's frame
+// (DSA-380 models): z_b, v_b, a_b, each 0 while no motion is set.
+class MovingFrame {
+ public:
+  // Throws SolverError naming 'kind' unless the motion gives z_b, v_b and a_b.
+  void set(BaseMotion motion, const std::string& kind);
+  bool moves() const { return static_cast<bool>(motion_.acceleration); }
+  double height(double t) const { return motion_.displacement ? motion_.displacement(t) : 0.0; }
+  double velocity(double t) const { return motion_.velocity ? motion_.velocity(t) : 0.0; }
+  double acceleration(double t) const {
+    return motion_.acceleration ? motion_.acceleration(t) : 0.0;
+  }
+
+ private:
+  BaseMotion motion_;
+};
+
 // The spring and damper that join coordinate `dof` to the base; dof < 0: the model has
 // no such element (it does not take a base motion).
 struct BaseSupport {
