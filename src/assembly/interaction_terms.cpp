@@ -218,11 +218,16 @@ bool PenaltyContact::low_rank_change(const CoupledState& state, std::vector<Rank
 }
 
 // The contact point moves along the wire: at fixed state the penalty energy
-// 1/2 kH dz^2 changes at the rate kH dz (dz_wire/dx) v (work of the moving
-// contact on the system); a moving frame's head rises with its base: + Fc v_b.
+// 1/2 k dz^2 changes at the rate (k dz (dz_wire/dx) + 1/2 dz^2 dk/dx) v (work
+// of the moving contact on the system; k = kH / (1 + kH r) with a reduced
+// catenary's residual flexibility r(x), dk/dx = -k^2 dr/dx); a moving
+// frame's head rises with its base: + Fc v_b.
 TermPower PenaltyContact::power(const CoupledState& state) const {
   const Evaluation e = evaluate(state);
-  double local = e.force > 0 ? kH_ * e.gap * e.wire->slope * slot_.run.speed : 0.0;
+  const double k = e.stiffness, dk_dx = -k * k * e.wire->residual_flexibility_slope;
+  double local = e.force > 0
+                     ? (k * e.gap * e.wire->slope + 0.5 * e.gap * e.gap * dk_dx) * slot_.run.speed
+                     : 0.0;
   if (e.force > 0) local += e.force * slot_.model->frame_velocity(state.t);
   TermPower p;
   p.external = sum_over_ranks(state.catenary().comm(), local);

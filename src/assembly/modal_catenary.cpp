@@ -10,7 +10,7 @@
 #include <cstring>
 #include <numeric>
 
-#include "pcsim/assembly/modal_terms.hpp"
+#include "pcsim/catenary/elements.hpp"
 #include "pcsim/contact/contact_kernel.hpp"
 #include "pcsim/core/error.hpp"
 
@@ -35,7 +35,8 @@ ModalCatenary::ModalCatenary(MPI_Comm comm, catenary::CatenaryMesh mesh,
   for (int w : mesh_.contact_wire_list())
     locators_.push_back(std::make_unique<contact::ContactWireLocator>(mesh_, static_values_, w));
   cached_.resize(locators_.size());
-  row_index_.assign(6 * mesh_.nodes.size(), -1);
+  const long keys_end = basis_.row_keys.empty() ? 0 : basis_.row_keys.back() + 1;  // ascending
+  row_index_.assign(std::max<long>(6L * mesh_.nodes.size(), keys_end), -1);
   for (std::size_t i = 0; i < basis_.row_keys.size(); ++i) row_index_[basis_.row_keys[i]] = i;
   omega_ = Eigen::Map<const Eigen::VectorXd>(basis_.omega2.data(), m_).cwiseSqrt();
   wire_position_.assign(mesh_.nodes.size(), -1);
@@ -53,7 +54,11 @@ ModalCatenary::ModalCatenary(MPI_Comm comm, catenary::CatenaryMesh mesh,
 ModalCatenary::~ModalCatenary() = default;
 
 Eigen::Map<const Eigen::RowVectorXd> ModalCatenary::row(int node, int c) const {
-  const long r = row_index_[basis_row_key(node, c)];
+  return key_row(basis_row_key(node, c));
+}
+
+Eigen::Map<const Eigen::RowVectorXd> ModalCatenary::key_row(long key) const {
+  const long r = key < static_cast<long>(row_index_.size()) ? row_index_[key] : -1;
   if (r < 0) throw SolverError("modal catenary: a basis row was not kept");
   return Eigen::Map<const Eigen::RowVectorXd>(basis_.rows.data() + r * m_, m_);
 }
@@ -334,7 +339,7 @@ ModalCatenary::CachedPoint& ModalCatenary::cached_point(double x, int wire) cons
   double chi;
   p.on_wire = locators_[wire]->locate(x, element, chi);
   p.owned = false;
-  p.z = p.slope = p.residual_flexibility = 0;
+  p.z = p.slope = p.residual_flexibility = p.residual_flexibility_slope = 0;
   p.reuse_columns = false;
   p.contiguous = true;
   c.z0 = c.z_chi0 = c.y0 = 0;
@@ -367,8 +372,11 @@ ModalCatenary::CachedPoint& ModalCatenary::cached_point(double x, int wire) cons
     std::iota(p.index.begin(), p.index.end(), 0);
     const auto at = [&](int n) { return basis_.contact_flexibility[wire_position_[n]]; };
     const double xi = chi / el.ref_length;
-    if (!basis_.contact_flexibility.empty())
+    if (!basis_.contact_flexibility.empty()) {
       p.residual_flexibility = (1 - xi) * at(el.nodes[0]) + xi * at(el.nodes[1]);
+      p.residual_flexibility_slope =
+          (at(el.nodes[1]) - at(el.nodes[0])) / (el.ref_length * c.x_chi);
+    }
   }
   c.x = x;
   return c;
@@ -474,25 +482,6 @@ std::vector<double> ModalCatenary::node_positions_to_root(Vec U) const {
   for (std::size_t n = 0; n < mesh_.nodes.size(); ++n)
     for (int c = 0; c < 3; ++c) positions[3 * n + c] += row(static_cast<int>(n), c).dot(eta);
   return positions;
-}
-
-std::vector<std::unique_ptr<Term>> ModalCatenary::make_terms(const contact::InteractionEffects& e,
-                                                             Mat pattern) {
-  dropper_slack_ = e.dropper_slack;
-  const bool exact = settings_.bars == catenary::ModalSettings::Bars::exact;
-  slack_active_ = !exact && e.dropper_slack;
-  slack_set_current_ = false;
-  std::vector<std::unique_ptr<Term>> terms;
-  terms.push_back(std::make_unique<ModalOscillators>(*this, e.rayleigh_damping,
-                                                     mesh_.rayleigh_alpha, mesh_.rayleigh_beta));
-  if (exact)
-    terms.push_back(std::make_unique<ModalExactBars>(*this, e.dropper_slack));
-  else if (slack_active_)
-    terms.push_back(std::make_unique<ModalDropperSlack>(*this));
-  // A moving window's ends (released: dashpots, pins switched by the run).
-  if (!mesh_.dashpots.empty()) terms.push_back(std::make_unique<ModalNodeDashpots>(*this));
-  if (!mesh_.pins.empty()) terms.push_back(std::make_unique<ModalNodePins>(*this));
-  return terms;
 }
 
 }  // namespace pcsim::assembly

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "pcsim/assembly/coupled_state.hpp"
+#include "pcsim/assembly/modal_wind.hpp"
 #include "pcsim/catenary/elements.hpp"
 #include "pcsim/core/error.hpp"
 
@@ -57,6 +58,14 @@ ModalOscillators::ModalOscillators(ModalCatenary& catenary, bool damping, double
       stiffness_(Eigen::Map<const Eigen::ArrayXd>(catenary.basis().omega2.data(),
                                                   catenary.catenary_dofs())) {
   if (damping) damping_ = alpha + beta * stiffness_;
+  const auto& wind = catenary.basis().wind_damping;  // the mean wind's, diagonal
+  if (static_cast<long>(wind.size()) == stiffness_.size()) {
+    const Eigen::Map<const Eigen::ArrayXd> c(wind.data(), stiffness_.size());
+    if (damping_.size() > 0)
+      damping_ += c;
+    else
+      damping_ = c;
+  }
 }
 
 // F_k += omega_k^2 eta_k + eta_k'' + c_k eta_k' on the owner (the modes lead
@@ -359,6 +368,29 @@ double ModalExactBars::energy(const CoupledState&) const {
          catenary::bar_strain_energy(params, bar.q0) - bar.f0.dot(dq) - 0.5 * dq.dot(bar.K0 * dq);
   }
   return e;
+}
+
+// ------------------------------------------------- the model's terms ----
+
+std::vector<std::unique_ptr<Term>> ModalCatenary::make_terms(const contact::InteractionEffects& e,
+                                                             Mat pattern) {
+  dropper_slack_ = e.dropper_slack;
+  const bool exact = settings_.bars == catenary::ModalSettings::Bars::exact;
+  slack_active_ = !exact && e.dropper_slack;
+  slack_set_current_ = false;
+  std::vector<std::unique_ptr<Term>> terms;
+  terms.push_back(std::make_unique<ModalOscillators>(*this, e.rayleigh_damping,
+                                                     mesh_.rayleigh_alpha, mesh_.rayleigh_beta));
+  if (exact)
+    terms.push_back(std::make_unique<ModalExactBars>(*this, e.dropper_slack));
+  else if (slack_active_)
+    terms.push_back(std::make_unique<ModalDropperSlack>(*this));
+  // A moving window's ends (released: dashpots, pins switched by the run).
+  if (!mesh_.dashpots.empty()) terms.push_back(std::make_unique<ModalNodeDashpots>(*this));
+  if (!mesh_.pins.empty()) terms.push_back(std::make_unique<ModalNodePins>(*this));
+  if (mesh_.conditions.wind.any() && mesh_.conditions.wind.turbulence.on)
+    terms.push_back(std::make_unique<ModalWindTurbulence>(*this));
+  return terms;
 }
 
 }  // namespace pcsim::assembly

@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "pcsim/assembly/coupled_state.hpp"
 #include "pcsim/catenary/elements.hpp"
+#include "pcsim/catenary/wind.hpp"
 #include "pcsim/core/error.hpp"
 
 namespace pcsim::assembly {
@@ -31,11 +33,10 @@ void turbulent_drag_gradients(const catenary::Wire& wire, const Eigen::Vector3d&
   b = DP * Eigen::Vector3d::UnitZ();
 }
 
-AerodynamicDamping::AerodynamicDamping(FECatenary& catenary) {
-  const auto& system = catenary.system();
-  const auto& mesh = catenary.mesh();
+Mat aerodynamic_damping_matrix(const CatenarySystem& system) {
+  const auto& mesh = system.mesh();
   const auto& wind = mesh.conditions.wind;
-  C_ = system.layout().create_matrix();  // the catenary's pattern: element blocks in the Jacobian's
+  Mat C = system.layout().create_matrix();  // the catenary's pattern: element blocks
   PetscInt idx[12];
   for (int e : system.layout().local_cables()) {
     const auto& el = mesh.cables[e];
@@ -49,11 +50,15 @@ AerodynamicDamping::AerodynamicDamping(FECatenary& catenary) {
     for (int k = 0; k < 4; ++k)
       for (int j = 0; j < 4; ++j) c.block<3, 3>(3 * k, 3 * j) = m(3 * k, 3 * j) * DP;
     system.cable_indices(e, idx);  // negative (fixed) rows and columns are ignored
-    PCSIM_PETSC(MatSetValues(C_, 12, idx, 12, idx, c.data(), ADD_VALUES));
+    PCSIM_PETSC(MatSetValues(C, 12, idx, 12, idx, c.data(), ADD_VALUES));
   }
-  PCSIM_PETSC(MatAssemblyBegin(C_, MAT_FINAL_ASSEMBLY));
-  PCSIM_PETSC(MatAssemblyEnd(C_, MAT_FINAL_ASSEMBLY));
+  PCSIM_PETSC(MatAssemblyBegin(C, MAT_FINAL_ASSEMBLY));
+  PCSIM_PETSC(MatAssemblyEnd(C, MAT_FINAL_ASSEMBLY));
+  return C;
 }
+
+AerodynamicDamping::AerodynamicDamping(FECatenary& catenary)
+    : C_(aerodynamic_damping_matrix(catenary.system())) {}
 
 AerodynamicDamping::~AerodynamicDamping() {
   MatDestroy(&C_);
@@ -65,32 +70,72 @@ TermPower AerodynamicDamping::power(const CoupledState& state) const {
   return p;
 }
 
-namespace {
-
-// The field's stations cover the line's cable nodes (design x).
-catenary::WindSeries series(const catenary::CatenaryMesh& mesh, double sigma, double length,
-                            std::uint64_t seed) {
+TurbulenceField turbulence_field(const catenary::CatenaryMesh& mesh) {
   const auto& wind = mesh.conditions.wind;
   const auto& s = wind.turbulence;
-  double lo = 1e300, hi = -1e300;
-  for (const auto& el : mesh.cables)
-    for (int n : el.nodes)
-      lo = std::min(lo, mesh.nodes[n].position.x()), hi = std::max(hi, mesh.nodes[n].position.x());
-  const int nx = std::max(2, static_cast<int>(std::ceil((hi - lo) / s.grid_spacing)) + 1);
-  catenary::TurbulenceSpec spec{wind.speed, sigma, length, s.coherence_decay, seed};
-  return catenary::generate_turbulence(spec, lo, s.grid_spacing, nx, s.time_step, s.time_points);
+  const catenary::TurbulenceGrid grid = catenary::turbulence_grid(mesh);
+  const auto series = [&](double sigma, double length, std::uint64_t seed) {
+    catenary::TurbulenceSpec spec{wind.speed, sigma, length, s.coherence_decay, seed};
+    return catenary::generate_turbulence(spec, grid.x0, grid.spacing, grid.count, s.time_step,
+                                         s.time_points);
+  };
+  const double sigma_u = s.intensity * wind.speed;
+  TurbulenceField field;
+  field.u = series(sigma_u, s.length_scale, s.seed);
+  field.w = series(s.vertical_ratio * sigma_u, s.vertical_length_ratio * s.length_scale,
+                   s.seed + 0x9e3779b97f4a7c15ULL);  // an independent stream for w'
+  return field;
 }
 
-}  // namespace
+Mat turbulence_load_matrix(const CatenarySystem& system) {
+  const auto& mesh = system.mesh();
+  const auto& wind = mesh.conditions.wind;
+  const catenary::TurbulenceGrid grid = catenary::turbulence_grid(mesh);
+  const PetscInt columns = 2 * grid.count;
+  Vec like = system.create_vector();
+  PetscInt local = 0;
+  PCSIM_PETSC(VecGetLocalSize(like, &local));
+  PCSIM_PETSC(VecDestroy(&like));
+  Mat L;
+  // A row has at most 4 entries: two stations, two components.
+  PCSIM_PETSC(MatCreateAIJ(system.comm(), local, PETSC_DECIDE, PETSC_DETERMINE, columns, 4, nullptr,
+                           4, nullptr, &L));
+  PCSIM_PETSC(MatSetOption(L, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
+  for (int e : system.layout().local_cables()) {
+    const auto& el = mesh.cables[e];
+    const Eigen::Vector3d p0 = mesh.nodes[el.nodes[0]].position,
+                          p1 = mesh.nodes[el.nodes[1]].position;
+    Eigen::Vector3d a, b;
+    turbulent_drag_gradients(mesh.wires[el.wire], p1 - p0, wind.velocity(), wind.air_density, a, b);
+    // The field at the element's middle, linear between two stations (WindSeries::interpolate).
+    const double x = 0.5 * (p0.x() + p1.x());
+    const double s = std::clamp((x - grid.x0) / grid.spacing, 0.0, grid.count - 1.0);
+    const int i = std::min(static_cast<int>(s), grid.count - 2);
+    const double weights[2] = {1 - (s - i), s - i};
+    PetscInt idx[12];
+    system.cable_indices(e, idx);
+    for (int c = 0; c < 2; ++c) {
+      const catenary::Vec12 f =
+          catenary::cable_line_load(el.ref_length, el.unstressed_length, c == 0 ? a : b);
+      for (int k = 0; k < 2; ++k) {
+        const PetscInt column = c * grid.count + i + k;
+        for (int r = 0; r < 12; ++r)
+          if (idx[r] >= 0)
+            PCSIM_PETSC(MatSetValue(L, idx[r], column, weights[k] * f[r], ADD_VALUES));
+      }
+    }
+  }
+  PCSIM_PETSC(MatAssemblyBegin(L, MAT_FINAL_ASSEMBLY));
+  PCSIM_PETSC(MatAssemblyEnd(L, MAT_FINAL_ASSEMBLY));
+  return L;
+}
 
 WindTurbulence::WindTurbulence(FECatenary& catenary) {
   const auto& mesh = catenary.mesh();
   const auto& wind = mesh.conditions.wind;
-  const auto& s = wind.turbulence;
-  const double sigma_u = s.intensity * wind.speed;
-  u_ = series(mesh, sigma_u, s.length_scale, s.seed);
-  w_ = series(mesh, s.vertical_ratio * sigma_u, s.vertical_length_ratio * s.length_scale,
-              s.seed + 0x9e3779b97f4a7c15ULL);  // an independent stream for w'
+  TurbulenceField field = turbulence_field(mesh);
+  u_ = std::move(field.u);
+  w_ = std::move(field.w);
   const auto& system = catenary.system();
   for (int e : system.layout().local_cables()) {
     const auto& el = mesh.cables[e];

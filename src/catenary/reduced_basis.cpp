@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "pcsim/catenary/wind.hpp"
+
 namespace pcsim::catenary {
 
 const char* fidelity_name(CatenaryFidelity f) {
@@ -52,6 +54,8 @@ std::vector<long> reduced_basis_rows(const CatenaryMesh& mesh, bool full_shapes)
       for (int c = 0; c < 3; ++c) keys.push_back(basis_row_key(static_cast<int>(n), c));
   std::sort(keys.begin(), keys.end());
   keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  const auto turbulence = turbulence_row_keys(mesh);  // beyond every node's: still ascending
+  keys.insert(keys.end(), turbulence.begin(), turbulence.end());
   return keys;
 }
 

@@ -136,6 +136,10 @@ ReducedBasis assemble_basis(const ModalData& data, const CatenaryMesh& mesh,
   RitzCoefficients ritz;
   if (s.dropper_shapes && data.shapes() > 0)
     ritz = append_ritz_vectors(data, keep, mode_rows, b.omega2, ritz_rows);
+  if (data.wind_damping.size() == data.modes()) {
+    b.wind_damping.assign(static_cast<std::size_t>(m + ritz_rows.cols()), 0.0);
+    for (long i = 0; i < m; ++i) b.wind_damping[i] = data.wind_damping[keep[i]];
+  }
   const std::size_t vectors = data.modes() + data.shapes();
   if (!data.shift_products.empty() && data.shift_products.size() == vectors * vectors)
     b.shift = shift_in_basis(data, keep, ritz);

@@ -95,4 +95,25 @@ BlowOff measure_blow_off(const CatenaryMesh& mesh, const std::vector<double>& ba
   return b;
 }
 
+TurbulenceGrid turbulence_grid(const CatenaryMesh& mesh) {
+  const auto& s = mesh.conditions.wind.turbulence;
+  double lo = 1e300, hi = -1e300;
+  for (const auto& el : mesh.cables)
+    for (int n : el.nodes)
+      lo = std::min(lo, mesh.nodes[n].position.x()), hi = std::max(hi, mesh.nodes[n].position.x());
+  if (mesh.cables.empty()) lo = hi = 0;
+  const int count = std::max(2, static_cast<int>(std::ceil((hi - lo) / s.grid_spacing)) + 1);
+  return {lo, s.grid_spacing, count};
+}
+
+std::vector<long> turbulence_row_keys(const CatenaryMesh& mesh) {
+  std::vector<long> keys;
+  const auto& wind = mesh.conditions.wind;
+  if (!wind.any() || !wind.turbulence.on) return keys;
+  const TurbulenceGrid grid = turbulence_grid(mesh);
+  for (int c = 0; c < 2; ++c)
+    for (int i = 0; i < grid.count; ++i) keys.push_back(turbulence_row_key(mesh, grid, c, i));
+  return keys;
+}
+
 }  // namespace pcsim::catenary

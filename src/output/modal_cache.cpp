@@ -91,6 +91,9 @@ void add_mesh(KeyBuffer& key, const catenary::CatenaryMesh& mesh) {
       key.add(c.wind.air_density);
       for (const auto& w : mesh.wires)
         key.add(catenary::wire_diameter(w)), key.add(catenary::wire_drag_coefficient(w));
+      key.add(std::string("aerodynamic damping of the modes"));  // ModalData::wind_damping
+      if (c.wind.turbulence.on)  // the turbulence rows (catenary::turbulence_row_keys)
+        key.add(std::string("turbulence rows")), key.add(c.wind.turbulence.grid_spacing);
     }
   }
   for (const auto& s : mesh.springs) {
@@ -221,12 +224,14 @@ bool read_basis_file(hid_t file, const std::string& key, catenary::ReducedBasis&
       !read_dataset(file, "/row_keys", b.row_keys) || !read_dataset(file, "/rows", b.rows))
     return false;
   for (auto [path, v] :
-       {std::pair{"/contact_flexibility", &b.contact_flexibility}, std::pair{"/shift", &b.shift}})
+       {std::pair{"/contact_flexibility", &b.contact_flexibility}, std::pair{"/shift", &b.shift},
+        std::pair{"/wind_damping", &b.wind_damping}})
     if (H5Lexists(file, path, H5P_DEFAULT) > 0 && !read_dataset(file, path, *v)) return false;
   b.eigenmodes = static_cast<int>(eigenmodes);
   b.dropped_modes = static_cast<int>(dropped);
   const std::size_t n = b.size();
-  return b.rows.size() == b.row_keys.size() * n && (b.shift.empty() || b.shift.size() == n * n);
+  return b.rows.size() == b.row_keys.size() * n && (b.shift.empty() || b.shift.size() == n * n) &&
+         (b.wind_damping.empty() || b.wind_damping.size() == n);
 }
 
 bool read_file(hid_t file, const std::string& key, catenary::ModalData& d) {
@@ -243,11 +248,13 @@ bool read_file(hid_t file, const std::string& key, catenary::ModalData& d) {
         std::pair{"/shape_mass", &d.shape_mass},
         std::pair{"/shape_flexibility", &d.shape_flexibility},
         std::pair{"/contact_compliance", &d.contact_compliance},
-        std::pair{"/shift_products", &d.shift_products}})
+        std::pair{"/shift_products", &d.shift_products},
+        std::pair{"/wind_damping", &d.wind_damping}})
     if (H5Lexists(file, path, H5P_DEFAULT) > 0 && !read_dataset(file, path, *v)) return false;
   d.wall_time_s = 0;
   const std::size_t nd = d.shapes(), vectors = d.modes() + nd;
   return ok && (d.shift_products.empty() || d.shift_products.size() == vectors * vectors) &&
+         (d.wind_damping.empty() || d.wind_damping.size() == d.modes()) &&
          d.mode_rows.size() == d.row_keys.size() * d.modes() &&
          d.mode_shape_mass.size() == d.modes() * nd && d.shape_mass.size() == nd * nd &&
          d.shape_flexibility.size() == nd * nd;
@@ -335,6 +342,7 @@ void write_modal_data(const std::string& file, const std::string& key,
     write_matrix(h5, "/shape_flexibility", d.shape_flexibility, d.shapes());
     if (!d.contact_compliance.empty()) h5.write("/contact_compliance", d.contact_compliance);
     write_matrix(h5, "/shift_products", d.shift_products, d.modes() + d.shapes());
+    if (!d.wind_damping.empty()) h5.write("/wind_damping", d.wind_damping);
     h5.attribute("/", "key", key);
     h5.attribute("/", "cutoff_hz", d.cutoff_hz);
     h5.attribute("/", "max_relative_residual", d.max_relative_residual);
@@ -364,6 +372,7 @@ void write_basis(const std::string& file, const std::string& key, const catenary
     write_matrix(h5, "/rows", b.rows, b.row_keys.size());
     if (!b.contact_flexibility.empty()) h5.write("/contact_flexibility", b.contact_flexibility);
     write_matrix(h5, "/shift", b.shift, b.size());
+    if (!b.wind_damping.empty()) h5.write("/wind_damping", b.wind_damping);
     h5.attribute("/", "key", key);
     h5.attribute("/", "cutoff_hz", b.cutoff_hz);
     h5.attribute("/", "eigenmodes", static_cast<double>(b.eigenmodes));

@@ -227,8 +227,6 @@ CatenaryScene load_catenary_scene(const InputNode& scene, const MeshSizeCheck& s
   out.form_finding = section.get_bool("form_finding", out.mesh.form_finding_default);
   read_catenary_model(section, out);
   if (scene.has("conditions")) out.mesh.conditions = read_conditions(scene["conditions"], out.mesh);
-  if (out.mesh.conditions.wind.turbulence.on && out.fidelity == CatenaryFidelity::modal)
-    scene["conditions"]["wind"].fail_key("turbulence", "not available for model: modal yet");
   if (scene.has("elasticity")) out.elasticity = read_elasticity(scene["elasticity"], out.mesh);
   return out;
 }

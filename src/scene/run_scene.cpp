@@ -178,6 +178,12 @@ WindowChoice load_catenary_and_window(const InputNode& scene, const RunSceneOpti
   } else if (choice.method.method == "window" || choice.method.automatic()) {
     window = RunWindow{};
   }
+  const bool turbulent = scene.has("conditions") && scene["conditions"].has("wind") &&
+                         scene["conditions"]["wind"].has("turbulence");
+  if (turbulent && window && !scene.has("window") && choice.method.automatic()) {
+    choice.declined = "the wind's turbulence does not follow a moving window yet";
+    window.reset();
+  }
   choice.automatic = window && !scene.has("window") && choice.method.automatic();
   const InputNode where = scene.has("window") ? scene["window"] : scene["catenary"];
   scene::DesignBuilder builder;

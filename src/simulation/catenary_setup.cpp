@@ -32,7 +32,7 @@ void broadcast(std::vector<T>& v, MPI_Comm comm) {
 
 void broadcast(catenary::ModalData& d, MPI_Comm comm) {
   for (auto* v : {&d.omega2, &d.mode_rows, &d.shape_rows, &d.mode_shape_mass, &d.shape_mass,
-                  &d.shape_flexibility, &d.contact_compliance, &d.shift_products})
+                  &d.shape_flexibility, &d.contact_compliance, &d.shift_products, &d.wind_damping})
     broadcast(*v, comm);
   broadcast(d.row_keys, comm);
   double scalars[3] = {d.cutoff_hz, d.max_relative_residual, d.wall_time_s};
@@ -43,7 +43,8 @@ void broadcast(catenary::ModalData& d, MPI_Comm comm) {
 }
 
 void broadcast(catenary::ReducedBasis& b, MPI_Comm comm) {
-  for (auto* v : {&b.omega2, &b.rows, &b.contact_flexibility, &b.shift}) broadcast(*v, comm);
+  for (auto* v : {&b.omega2, &b.rows, &b.contact_flexibility, &b.shift, &b.wind_damping})
+    broadcast(*v, comm);
   broadcast(b.row_keys, comm);
   int counts[2] = {b.eigenmodes, b.dropped_modes};
   MPI_Bcast(counts, 2, MPI_INT, 0, comm);

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "modal_basis_internal.hpp"
+#include "pcsim/assembly/wind_terms.hpp"
 #include "pcsim/core/error.hpp"
 
 namespace pcsim::simulation {
@@ -139,6 +140,34 @@ std::vector<double> DropperShapes::mass_products(Vec phi) const {
   return c;
 }
 
+// Under a mean wind, phi^T C phi of each mode (C: the wires' aerodynamic
+// damping, assembly/wind_terms.hpp); nothing without wind.
+class WindDamping {
+ public:
+  explicit WindDamping(const assembly::CatenarySystem& system) {
+    if (!system.mesh().conditions.wind.any()) return;
+    C_ = assembly::aerodynamic_damping_matrix(system);
+    PCSIM_PETSC(MatCreateVecs(C_, &work_, nullptr));
+  }
+  ~WindDamping() {
+    MatDestroy(&C_);
+    VecDestroy(&work_);
+  }
+  WindDamping(const WindDamping&) = delete;
+  WindDamping& operator=(const WindDamping&) = delete;
+  void append(Vec phi, std::vector<double>& out) const {
+    if (!C_) return;
+    PetscScalar c;
+    PCSIM_PETSC(MatMult(C_, phi, work_));
+    PCSIM_PETSC(VecDot(phi, work_, &c));
+    out.push_back(PetscRealPart(c));
+  }
+
+ private:
+  Mat C_ = nullptr;
+  Vec work_ = nullptr;
+};
+
 // g_i = (K^-1)_zz at every contact-wire node, contact_wire_nodes() (0 where z is fixed).
 std::vector<double> contact_compliance(const assembly::CatenarySystem& system,
                                        const StiffnessSolver& K) {
@@ -189,7 +218,11 @@ ModalData compute_modal_data(assembly::CatenarySystem& system, Vec x, double max
   data.cutoff_hz = max_frequency_hz;
   data.row_keys = catenary::reduced_basis_rows(mesh, full_shapes);
   Operators op(system, x);
-  const RowGather rows(system, data.row_keys);
+  const auto& wind = mesh.conditions.wind;
+  Mat loads = wind.any() && wind.turbulence.on ? assembly::turbulence_load_matrix(system) : nullptr;
+  const RowGather rows(system, data.row_keys, loads);
+  MatDestroy(&loads);  // (the gather holds it)
+  WindDamping wind_damping(system);
   std::unique_ptr<StiffnessSolver> K;
   std::unique_ptr<DropperShapes> shapes;
   if (!complete) {
@@ -205,6 +238,7 @@ ModalData compute_modal_data(assembly::CatenarySystem& system, Vec x, double max
     columns.emplace_back(rows.size());
     rows.gather(phi, columns.back().data());
     if (shapes) mass_products.push_back(shapes->mass_products(phi));
+    wind_damping.append(phi, data.wind_damping);
   };
   const double omega_max = 2 * M_PI * max_frequency_hz;
   data.max_relative_residual = complete ? stream_all_modes_dense(op, sink)

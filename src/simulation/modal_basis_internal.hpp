@@ -23,10 +23,13 @@ struct Operators {
   Operators& operator=(const Operators&) = delete;
 };
 
-// The kept rows (catenary::basis_row_key) of global vectors, on every rank.
+// The kept rows (catenary::basis_row_key) of global vectors, on every rank;
+// a turbulence row (catenary::turbulence_row_keys) is the product with its
+// column of 'loads' (assembly::turbulence_load_matrix), a generalised force.
 class RowGather {
  public:
-  RowGather(const assembly::CatenarySystem& system, const std::vector<long>& keys);
+  RowGather(const assembly::CatenarySystem& system, const std::vector<long>& keys,
+            Mat loads = nullptr);
   ~RowGather();
   RowGather(const RowGather&) = delete;
   RowGather& operator=(const RowGather&) = delete;
@@ -39,6 +42,12 @@ class RowGather {
   Vec local_ = nullptr;
   std::vector<std::size_t> slot_;  // row of each scattered value
   std::size_t size_ = 0;
+  // Turbulence rows: L^T v (column layout), gathered to every rank, into
+  // the rows from load_slot_ on.
+  Mat loads_ = nullptr;
+  Vec forces_ = nullptr, forces_all_ = nullptr;
+  VecScatter to_all_ = nullptr;
+  std::size_t load_slot_ = 0;
 };
 
 // Called with each eigenpair (lambda, phi), phi M-normalised with its largest

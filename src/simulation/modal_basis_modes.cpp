@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "modal_basis_internal.hpp"
+#include "pcsim/catenary/wind.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/solvers/spectrum.hpp"
 
@@ -25,11 +26,17 @@ Operators::~Operators() {
   MatDestroy(&M);
 }
 
-RowGather::RowGather(const assembly::CatenarySystem& system, const std::vector<long>& keys)
+RowGather::RowGather(const assembly::CatenarySystem& system, const std::vector<long>& keys,
+                     Mat loads)
     : size_(keys.size()) {
   const auto& L = system.layout();
   std::vector<PetscInt> from;
+  load_slot_ = keys.size();
   for (std::size_t i = 0; i < keys.size(); ++i) {
+    if (catenary::is_turbulence_row_key(system.mesh(), keys[i])) {  // the last ones
+      load_slot_ = std::min(load_slot_, i);
+      continue;
+    }
     const PetscInt g = L.global_dof(static_cast<int>(keys[i] / 6), static_cast<int>(keys[i] % 6));
     if (g < 0) continue;
     from.push_back(g);
@@ -43,11 +50,22 @@ RowGather::RowGather(const assembly::CatenarySystem& system, const std::vector<l
   PCSIM_PETSC(VecScatterCreate(global, is, local_, nullptr, &scatter_));
   PCSIM_PETSC(VecDestroy(&global));
   PCSIM_PETSC(ISDestroy(&is));
+  if (load_slot_ < keys.size()) {
+    if (!loads) throw SolverError("reduced basis: turbulence rows without their loads");
+    loads_ = loads;
+    PCSIM_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(loads_)));
+    PCSIM_PETSC(MatCreateVecs(loads_, &forces_, nullptr));
+    PCSIM_PETSC(VecScatterCreateToAll(forces_, &to_all_, &forces_all_));
+  }
 }
 
 RowGather::~RowGather() {
   VecScatterDestroy(&scatter_);
   VecDestroy(&local_);
+  VecScatterDestroy(&to_all_);
+  VecDestroy(&forces_);
+  VecDestroy(&forces_all_);
+  MatDestroy(&loads_);
 }
 
 void RowGather::gather(Vec v, double* out) const {
@@ -58,6 +76,13 @@ void RowGather::gather(Vec v, double* out) const {
   PCSIM_PETSC(VecGetArrayRead(local_, &a));
   for (std::size_t k = 0; k < slot_.size(); ++k) out[slot_[k]] = a[k];
   PCSIM_PETSC(VecRestoreArrayRead(local_, &a));
+  if (!loads_) return;
+  PCSIM_PETSC(MatMultTranspose(loads_, v, forces_));  // phi^T L_j
+  PCSIM_PETSC(VecScatterBegin(to_all_, forces_, forces_all_, INSERT_VALUES, SCATTER_FORWARD));
+  PCSIM_PETSC(VecScatterEnd(to_all_, forces_, forces_all_, INSERT_VALUES, SCATTER_FORWARD));
+  PCSIM_PETSC(VecGetArrayRead(forces_all_, &a));
+  std::copy(a, a + (size_ - load_slot_), out + load_slot_);
+  PCSIM_PETSC(VecRestoreArrayRead(forces_all_, &a));
 }
 
 namespace {

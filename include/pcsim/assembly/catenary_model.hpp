@@ -40,6 +40,7 @@ struct WirePoint {
   // Static compliance at x that the unknowns leave out (a reduced model's
   // truncated modes) [m/N]: a spring in series with the contact. 0 for FE.
   double residual_flexibility = 0;
+  double residual_flexibility_slope = 0;  // its d/dx [m/N per m]
   // The same few unknowns recur as x moves (FE: the element's DOFs), so that
   // a solver may cache a solve per unknown; false for dense weights (modes).
   bool reuse_columns = true;

@@ -80,6 +80,7 @@ class ModalCatenary : public CatenaryModel {
   double static_value(int node, int c) const { return static_values_[6 * node + c]; }
   // Rows of the basis for (node, component) (a kept row).
   Eigen::Map<const Eigen::RowVectorXd> row(int node, int c) const;
+  Eigen::Map<const Eigen::RowVectorXd> key_row(long key) const;  // any kept row
   // Slack-capable bars: elongation gradients b_d over the basis (rows),
   // static stretch s_d (dl = s_d + b_d . eta) and stiffness.
   const RowMatrix& elongation_rows() const { return B_; }

@@ -22,6 +22,10 @@ namespace pcsim::assembly {
 // EN 50318; as linear parts with diagonal matrices they cost two sparse
 // products and six vector operations per residual). Energy
 // 1/2 (|eta'|^2 + eta . Omega^2 eta); power -eta' . (alpha + beta Omega^2) eta'.
+// Under a mean wind the damping adds the diagonal of the wires' aerodynamic
+// damping in the basis (catenary::ReducedBasis::wind_damping; on the FE
+// levels the full matrix, assembly/wind_terms.hpp), whatever the Rayleigh
+// damping's switch.
 class ModalOscillators : public Term {
  public:
   // damping: the Rayleigh coefficients (alpha, beta), or none.

@@ -74,6 +74,23 @@ class AerodynamicDamping : public Term {
 Eigen::Matrix3d aerodynamic_damping(const catenary::Wire& wire, const Eigen::Vector3d& tangent,
                                     const Eigen::Vector3d& velocity, double air_density);
 
+// The wires' aerodynamic damping matrix C (AerodynamicDamping, above) of
+// the system's cable elements, in the catenary's pattern.
+Mat aerodynamic_damping_matrix(const CatenarySystem& system);
+
+// The line's turbulence (u', w') on its grid (catenary::turbulence_grid):
+// every model of one scene draws the same field.
+struct TurbulenceField {
+  catenary::WindSeries u, w;
+};
+TurbulenceField turbulence_field(const catenary::CatenaryMesh& mesh);
+
+// The turbulence load per unit u' (columns 0..n-1) and w' (n..2n-1) at each
+// of the n stations, over the system's DOFs: the load WindTurbulence puts on
+// the cable elements is L [u'(t); w'(t)] (the field linear between stations
+// at each element's middle). The modal level projects it on its basis.
+Mat turbulence_load_matrix(const CatenarySystem& system);
+
 void turbulent_drag_gradients(const catenary::Wire& wire, const Eigen::Vector3d& tangent,
                               const Eigen::Vector3d& velocity, double air_density,
                               Eigen::Vector3d& a, Eigen::Vector3d& b);

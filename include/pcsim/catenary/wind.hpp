@@ -28,4 +28,26 @@ void set_wind_loads(CatenaryMesh& mesh);
 BlowOff measure_blow_off(const CatenaryMesh& mesh, const std::vector<double>& bare,
                          const std::vector<double>& now);
 
+// The turbulence field's stations (docs/conditions.md, "Turbulence"): x0 +
+// i grid_spacing, i < count, over the design x of the cable nodes.
+struct TurbulenceGrid {
+  double x0 = 0, spacing = 1;
+  int count = 0;
+};
+TurbulenceGrid turbulence_grid(const CatenaryMesh& mesh);
+
+// The modal level's turbulence rows (assembly/modal_wind.hpp): the
+// generalised forces of a unit u' (component 0) or w' (component 1) at one
+// station, kept as rows of the basis under keys beyond every node's
+// (basis_row_key of a node index >= mesh.nodes.size()). Empty without
+// turbulence.
+std::vector<long> turbulence_row_keys(const CatenaryMesh& mesh);
+inline long turbulence_row_key(const CatenaryMesh& mesh, const TurbulenceGrid& grid, int component,
+                               int station) {
+  return 6L * static_cast<long>(mesh.nodes.size()) + component * grid.count + station;
+}
+inline bool is_turbulence_row_key(const CatenaryMesh& mesh, long key) {
+  return key >= 6L * static_cast<long>(mesh.nodes.size());
+}
+
 }  // namespace pcsim::catenary

@@ -1,0 +1,73 @@
+#include "pcsim/assembly/modal_wind.hpp"
+
+#include <cmath>
+
+#include "pcsim/assembly/coupled_state.hpp"
+#include "pcsim/catenary/wind.hpp"
+#include "pcsim/core/error.hpp"
+
+namespace pcsim::assembly {
+
+ModalWindTurbulence::ModalWindTurbulence(ModalCatenary& catenary)
+    : catenary_(catenary), field_(turbulence_field(catenary.mesh())) {
+  const auto keys = catenary::turbulence_row_keys(catenary.mesh());
+  const long m = catenary.catenary_dofs();
+  R_.resize(static_cast<long>(keys.size()), m);
+  for (std::size_t j = 0; j < keys.size(); ++j)
+    R_.row(static_cast<long>(j)) = catenary.key_row(keys[j]);
+  force_.setZero(m);
+}
+
+// f_k = R^T s_k: the stations' u' (rows 0..n-1) and w' (n..2n-1) at sample k.
+const Eigen::VectorXd& ModalWindTurbulence::sample(int k) const {
+  Eigen::VectorXd& f = samples_[k % 2];
+  if (sample_index_[k % 2] == k) return f;
+  const int n = field_.u.nx;
+  Eigen::VectorXd s(2 * n);
+  for (int i = 0; i < n; ++i) s[i] = field_.u.at(i, k), s[n + i] = field_.w.at(i, k);
+  f.noalias() = R_.transpose() * s;
+  sample_index_[k % 2] = k;
+  return f;
+}
+
+// As catenary::WindSeries::interpolate in time (periodic).
+const Eigen::VectorXd& ModalWindTurbulence::force(double t) const {
+  if (t == force_time_) return force_;
+  const auto& u = field_.u;
+  const double period = u.nt * u.dt;
+  double tau = std::fmod(t, period);
+  if (tau < 0) tau += period;
+  const int k = std::min(static_cast<int>(tau / u.dt), u.nt - 1);
+  const double b = tau / u.dt - k;
+  const int k1 = (k + 1) % u.nt;
+  const Eigen::VectorXd& f0 = sample(k);
+  const Eigen::VectorXd& f1 = sample(k1);
+  force_ = (1 - b) * f0 + b * f1;
+  force_time_ = t;
+  return force_;
+}
+
+void ModalWindTurbulence::add_residual(const CoupledState& state, Vec F) {
+  if (!catenary_.on_owner()) return;
+  const Eigen::VectorXd& f = force(state.t);
+  PetscScalar* a;
+  PCSIM_PETSC(VecGetArray(F, &a));
+  Eigen::Map<Eigen::VectorXd>(a, f.size()) -= f;  // a load lowers the residual
+  PCSIM_PETSC(VecRestoreArray(F, &a));
+}
+
+TermPower ModalWindTurbulence::power(const CoupledState& state) const {
+  TermPower p;
+  if (!state.V) return p;
+  const Eigen::VectorXd& f = force(state.t);
+  if (catenary_.on_owner()) {
+    const PetscScalar* v;
+    PCSIM_PETSC(VecGetArrayRead(state.V, &v));
+    p.external = f.dot(Eigen::Map<const Eigen::VectorXd>(v, f.size()));
+    PCSIM_PETSC(VecRestoreArrayRead(state.V, &v));
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &p.external, 1, MPI_DOUBLE, MPI_SUM, catenary_.comm());
+  return p;
+}
+
+}  // namespace pcsim::assembly
