@@ -360,6 +360,13 @@ ModalCatenary::CachedPoint& ModalCatenary::cached_point(double x, int wire) cons
     Eigen::Map<Eigen::RowVectorXd>(p.weight.data(), m_) =
         s[0] * r0 + s[1] * r1 + s[2] * r2 + s[3] * r3;
     c.z_chi = ds[0] * r0 + ds[1] * r1 + ds[2] * r2 + ds[3] * r3;
+    c.y_eta.resize(0);
+    const int lateral[4] = {1, 4, 1, 4};  // y, y' (kept under a wind): lateral motion
+    bool kept = true;
+    for (int k = 0; k < 4; ++k) kept = kept && row_index_[basis_row_key(node[k], lateral[k])] >= 0;
+    if (kept)
+      c.y_eta = s[0] * row(node[0], 1) + s[1] * row(node[1], 4) + s[2] * row(node[2], 1) +
+                s[3] * row(node[3], 4);
     c.x_chi = 0;
     for (int k = 0; k < 4; ++k) {
       c.z0 += s[k] * static_values_[6 * node[k] + comp[k]];
@@ -388,7 +395,7 @@ const WirePoint& ModalCatenary::wire_point(double x, int wire) const {
   WirePoint& p = c.point;
   if (p.on_wire && on_owner() && c.eta_version != eta_version_) {
     p.owned = true;
-    p.y = c.y0;
+    p.y = c.y_eta.size() > 0 ? c.y0 + c.y_eta.dot(eta_) : c.y0;
     p.z = c.z0 + Eigen::Map<const Eigen::VectorXd>(p.weight.data(), m_).dot(eta_);
     // dz/dx with x(chi) static (the contact point moves along the track).
     p.slope = (c.z_chi0 + c.z_chi.dot(eta_)) / c.x_chi;

@@ -39,9 +39,11 @@ std::vector<int> contact_wire_nodes(const CatenaryMesh& mesh) {
 
 std::vector<long> reduced_basis_rows(const CatenaryMesh& mesh, bool full_shapes) {
   std::vector<long> keys;
+  const bool lateral = mesh.conditions.wind.any();  // the contact point's lateral motion
   for (int n : contact_wire_nodes(mesh)) {
     keys.push_back(basis_row_key(n, 2));
     keys.push_back(basis_row_key(n, 5));
+    if (lateral) keys.push_back(basis_row_key(n, 1)), keys.push_back(basis_row_key(n, 4));
   }
   for (const auto& bar : mesh.bars)
     for (int n : bar.nodes)

@@ -91,7 +91,7 @@ void add_mesh(KeyBuffer& key, const catenary::CatenaryMesh& mesh) {
       key.add(c.wind.air_density);
       for (const auto& w : mesh.wires)
         key.add(catenary::wire_diameter(w)), key.add(catenary::wire_drag_coefficient(w));
-      key.add(std::string("aerodynamic damping of the modes"));  // ModalData::wind_damping
+      key.add(std::string("modes' damping, lateral rows"));  // wind_damping, y rows
       if (c.wind.turbulence.on)  // the turbulence rows (catenary::turbulence_row_keys)
         key.add(std::string("turbulence rows")), key.add(c.wind.turbulence.grid_spacing);
     }

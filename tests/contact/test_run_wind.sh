@@ -14,13 +14,15 @@
 #     1 rank within 1e-8 of its maximum (test_run_ranks.sh's bound; measured
 #     7.5e-11 and 1.0e-10 in two runs);
 #  6. the contact point's lateral position (the wire's y at the contact
-#     point, /pantographs/NAME/wire_lateral, summary `lateral`): on the modal
-#     level the static one (a mean wind); linear FE under the mean wind moves
-#     it by 2.3 mm at most from there (the wind-leaned wire's vertical motion
-#     under the pantograph; asserted 4 mm), the turbulence by 19.8 mm
-#     (asserted >= 10 mm: it is recorded); the summary's largest |y| over the
-#     analysis section is that of the dataset, the stagger at a support
-#     (0.2 m, held by the steady arm, within 1 mm), inside the 0.40 m.
+#     point, /pantographs/NAME/wire_lateral, summary `lateral`): linear FE's
+#     turbulence moves it by 19.96 mm at most from the mean wind's run
+#     (asserted >= 10 mm: it is recorded); the modal level, whose basis
+#     keeps the contact wire's lateral rows under a wind, gives that motion
+#     to 0.079 mm and the mean wind's run to 0.12 mm (asserted 0.5 mm: a
+#     modal level that recorded the static position would be 20 mm off);
+#     the summary's largest |y| over the analysis section is that of the
+#     dataset, the stagger at a support (0.2 m, held by the steady arm,
+#     within 1 mm), inside the 0.40 m.
 set -euo pipefail
 : "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:=/usr/bin/python3}"
 tmp=$(mktemp -d)
@@ -37,6 +39,7 @@ run seed4 --set conditions.wind.turbulence.seed=4
 run nonlinear --set effects.catenary_nonlinear=true
 run modal-mean --set "conditions.wind={speed: 25}" --set catenary.model=modal \
   -pcsim_accuracy_pilot false --cache "$tmp/cache"
+run modal-seed3 --set catenary.model=modal -pcsim_accuracy_pilot false --cache "$tmp/cache"
 grep -q "contact point up to 200.0 mm from the track centre" "$tmp/seed3.log" ||
   { cat "$tmp/seed3.log"; exit 1; }
 grep -q "wind 25 m/s" "$tmp/seed3.log" || { cat "$tmp/seed3.log"; exit 1; }
@@ -74,18 +77,26 @@ def lateral(k):
         g = f["/pantographs/lumped"]
         assert g["wire_lateral"].attrs["unit"] in (b"m", "m")
         return g["position"][:], g["wire_lateral"][:]
-x, static = lateral("modal-mean")
-for k, low, high in (("mean", 0, 0.004), ("seed3", 0.010, 1)):
+x, y_mean = lateral("mean")
+_, y_turb = lateral("seed3")
+_, m_mean = lateral("modal-mean")
+_, m_turb = lateral("modal-seed3")
+moved = np.max(np.abs(y_turb - y_mean))
+modal_gap = np.max(np.abs((m_turb - m_mean) - (y_turb - y_mean)))
+mean_gap = np.max(np.abs(m_mean - y_mean))
+print(f"the turbulence moves the contact point laterally by {1e3 * moved:.2f} mm (FE); "
+      f"the modal level gives that to {1e3 * modal_gap:.3f} mm, the mean wind's run to "
+      f"{1e3 * mean_gap:.3f} mm")
+assert moved >= 0.010, moved
+assert modal_gap <= 0.0005 and mean_gap <= 0.0005, (modal_gap, mean_gap)
+for k in ("mean", "seed3", "modal-mean", "modal-seed3"):
     xk, y = lateral(k)
     assert np.array_equal(x, xk)
-    moved = np.max(np.abs(y - static))
-    print(f"{k}: contact point's lateral position within {1e3 * moved:.2f} mm of the static one")
-    assert low <= moved <= high, (k, moved)
     summary = json.load(open(f"{d}/{k}/summary.json"))
     a = summary["analysis"]
     inside = (xk >= a["from_x"]) & (xk <= a["to_x"])
     lat = summary["pantographs"][0]["lateral"]
     assert lat["max_abs_m"] == np.max(np.abs(y[inside])), lat
     assert abs(lat["max_abs_m"] - 0.2) <= 1e-3 and lat["inside"] and lat["permissible_m"] == 0.4, lat
-assert json.load(open(f"{d}/modal-mean/summary.json"))["pantographs"][0]["lateral"]["static_only"]
+    assert not lat["static_only"], (k, lat)
 PY

@@ -33,8 +33,8 @@ struct WirePoint {
   double z = 0;          // height the contact sees at x at the loaded state [m]
                          // (the wire + its contact-gap offset, mesh.hpp)
   double slope = 0;      // dz/dx of the wire at x at the loaded state
-  double y = 0;  // lateral position at x from the track centre line [m]: at the loaded state
-                 // (FE), the static one (modal: its basis has no lateral rows)
+  double y = 0;          // lateral position at x from the track centre line [m] at the loaded state
+                         // (modal in still air: the static one, its basis keeps no lateral rows)
   std::vector<PetscInt> index;  // global unknowns z depends on (every rank)
   std::vector<double> weight;   // dz/dU for those unknowns (every rank)
   // Static compliance at x that the unknowns leave out (a reduced model's

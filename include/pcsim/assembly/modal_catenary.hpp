@@ -154,6 +154,7 @@ class ModalCatenary : public CatenaryModel {
     WirePoint point;
     double z0 = 0, x_chi = 1;  // static height, dx/dchi
     double y0 = 0;             // static lateral position (point.y)
+    Eigen::RowVectorXd y_eta;  // dy/d eta (empty: the basis keeps no lateral rows)
     Eigen::RowVectorXd z_chi;  // d(dz/dchi)/d eta
     double z_chi0 = 0;         // static dz/dchi
     long eta_version = -1;     // point.z and point.slope belong to this eta_version_

@@ -124,7 +124,8 @@ ReducedBasis assemble_basis(const ModalData& data, const CatenaryMesh& mesh,
 // order): the order of the contact compliance and residual flexibility.
 std::vector<int> contact_wire_nodes(const CatenaryMesh& mesh);
 
-// The rows a modal model of 'mesh' needs: z and z' of the contact-wire nodes,
+// The rows a modal model of 'mesh' needs: z and z' of the contact-wire nodes
+// (under a wind y and y' too: the contact point's lateral motion),
 // x, y, z of every bar's ends, z of the supports, the DOFs of its dashpots
 // and pins (a window's ends); with full_shapes x, y, z of every node.
 // Sorted, unique.

@@ -31,7 +31,7 @@ struct RunSettings {
   // With a wind (conditions.wind): the contact point's lateral position is
   // judged against this (working half width - sway - tolerance) [m].
   double permissible_lateral_m = 0;
-  bool lateral_static = false;  // the modal level: the wires' static lateral position
+  bool lateral_static = false;  // the modal level in still air: the static lateral position
   std::vector<std::string> pantograph_names;
   Assessment assessment;  // the criteria set the figures are judged against
 };

@@ -22,7 +22,8 @@ inline output::RunSettings run_settings(const scene::RunScene& run, const std::s
   s.dropper_forces = run.dropper_forces;
   const auto& wind = run.catenary.mesh.conditions.wind;
   if (wind.any()) s.permissible_lateral_m = wind.permissible_m();
-  s.lateral_static = run.catenary.fidelity == catenary::CatenaryFidelity::modal;
+  // The modal basis keeps the contact wire's lateral rows under a wind only.
+  s.lateral_static = run.catenary.fidelity == catenary::CatenaryFidelity::modal && !wind.any();
   for (const auto& p : run.pantographs) s.pantograph_names.push_back(p.name);
   s.assessment = run.assessment;
   return s;
