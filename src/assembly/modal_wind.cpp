@@ -1,7 +1,5 @@
 #include "pcsim/assembly/modal_wind.hpp"
 
-#include <cmath>
-
 #include "pcsim/assembly/coupled_state.hpp"
 #include "pcsim/catenary/wind.hpp"
 #include "pcsim/core/error.hpp"
@@ -33,16 +31,10 @@ const Eigen::VectorXd& ModalWindTurbulence::sample(int k) const {
 // As catenary::WindSeries::interpolate in time (periodic).
 const Eigen::VectorXd& ModalWindTurbulence::force(double t) const {
   if (t == force_time_) return force_;
-  const auto& u = field_.u;
-  const double period = u.nt * u.dt;
-  double tau = std::fmod(t, period);
-  if (tau < 0) tau += period;
-  const int k = std::min(static_cast<int>(tau / u.dt), u.nt - 1);
-  const double b = tau / u.dt - k;
-  const int k1 = (k + 1) % u.nt;
-  const Eigen::VectorXd& f0 = sample(k);
-  const Eigen::VectorXd& f1 = sample(k1);
-  force_ = (1 - b) * f0 + b * f1;
+  const catenary::Bracket k = catenary::sample_bracket(t, field_.u.dt, field_.u.nt);
+  const Eigen::VectorXd& f0 = sample(k.lo);
+  const Eigen::VectorXd& f1 = sample(k.hi);
+  force_ = (1 - k.w) * f0 + k.w * f1;
   force_time_ = t;
   return force_;
 }

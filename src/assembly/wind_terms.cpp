@@ -108,17 +108,17 @@ Mat turbulence_load_matrix(const CatenarySystem& system) {
     Eigen::Vector3d a, b;
     turbulent_drag_gradients(mesh.wires[el.wire], p1 - p0, wind.velocity(), wind.air_density, a, b);
     // The field at the element's middle, linear between two stations (WindSeries::interpolate).
-    const double x = 0.5 * (p0.x() + p1.x());
-    const double s = std::clamp((x - grid.x0) / grid.spacing, 0.0, grid.count - 1.0);
-    const int i = std::min(static_cast<int>(s), grid.count - 2);
-    const double weights[2] = {1 - (s - i), s - i};
+    const catenary::Bracket s =
+        catenary::station_bracket(0.5 * (p0.x() + p1.x()), grid.x0, grid.spacing, grid.count);
+    const int station[2] = {s.lo, s.hi};
+    const double weights[2] = {1 - s.w, s.w};
     PetscInt idx[12];
     system.cable_indices(e, idx);
     for (int c = 0; c < 2; ++c) {
       const catenary::Vec12 f =
           catenary::cable_line_load(el.ref_length, el.unstressed_length, c == 0 ? a : b);
       for (int k = 0; k < 2; ++k) {
-        const PetscInt column = c * grid.count + i + k;
+        const PetscInt column = c * grid.count + station[k];
         for (int r = 0; r < 12; ++r)
           if (idx[r] >= 0)
             PCSIM_PETSC(MatSetValue(L, idx[r], column, weights[k] * f[r], ADD_VALUES));

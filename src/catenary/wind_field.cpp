@@ -20,19 +20,26 @@ double turbulence_coherence(const TurbulenceSpec& s, double f, double dx) {
   return std::exp(-s.coherence_decay * f * std::abs(dx) / s.mean_speed);
 }
 
-double WindSeries::interpolate(double x, double t) const {
-  if (nx == 0) return 0;
+Bracket station_bracket(double x, double x0, double dx, int nx) {
   const double u = std::clamp((x - x0) / dx, 0.0, static_cast<double>(nx - 1));
   const int i = std::min(static_cast<int>(u), std::max(nx - 2, 0));
-  const double a = nx > 1 ? u - i : 0.0;
+  return {i, nx > 1 ? i + 1 : i, nx > 1 ? u - i : 0.0};
+}
+
+Bracket sample_bracket(double t, double dt, int nt) {
   const double period = nt * dt;
   double tau = std::fmod(t, period);
   if (tau < 0) tau += period;
   const int k = std::min(static_cast<int>(tau / dt), nt - 1);
-  const double b = tau / dt - k;
-  const int k1 = (k + 1) % nt, i1 = nx > 1 ? i + 1 : i;
-  return (1 - a) * ((1 - b) * at(i, k) + b * at(i, k1)) +
-         a * ((1 - b) * at(i1, k) + b * at(i1, k1));
+  return {k, (k + 1) % nt, tau / dt - k};
+}
+
+double WindSeries::interpolate(double x, double t) const {
+  if (nx == 0) return 0;
+  const Bracket s = station_bracket(x, x0, dx, nx), k = sample_bracket(t, dt, nt);
+  const double a = s.w, b = k.w;
+  return (1 - a) * ((1 - b) * at(s.lo, k.lo) + b * at(s.lo, k.hi)) +
+         a * ((1 - b) * at(s.hi, k.lo) + b * at(s.hi, k.hi));
 }
 
 // u_j(t_p) = Re sum_l B_jl exp(2 pi i l p / nt), B_jl = sum_k H_jk(f_l)

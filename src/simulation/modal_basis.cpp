@@ -145,27 +145,17 @@ std::vector<double> DropperShapes::mass_products(Vec phi) const {
 class WindDamping {
  public:
   explicit WindDamping(const assembly::CatenarySystem& system) {
-    if (!system.mesh().conditions.wind.any()) return;
-    C_ = assembly::aerodynamic_damping_matrix(system);
-    PCSIM_PETSC(MatCreateVecs(C_, &work_, nullptr));
+    if (system.mesh().conditions.wind.any()) C_ = assembly::aerodynamic_damping_matrix(system);
   }
-  ~WindDamping() {
-    MatDestroy(&C_);
-    VecDestroy(&work_);
-  }
+  ~WindDamping() { MatDestroy(&C_); }
   WindDamping(const WindDamping&) = delete;
   WindDamping& operator=(const WindDamping&) = delete;
   void append(Vec phi, std::vector<double>& out) const {
-    if (!C_) return;
-    PetscScalar c;
-    PCSIM_PETSC(MatMult(C_, phi, work_));
-    PCSIM_PETSC(VecDot(phi, work_, &c));
-    out.push_back(PetscRealPart(c));
+    if (C_) out.push_back(assembly::quadratic_form(C_, phi));
   }
 
  private:
   Mat C_ = nullptr;
-  Vec work_ = nullptr;
 };
 
 // g_i = (K^-1)_zz at every contact-wire node, contact_wire_nodes() (0 where z is fixed).

@@ -30,6 +30,16 @@ double turbulence_psd(const TurbulenceSpec& s, double f);
 // Davenport's coherence (root-coherence, real) between stations dx apart.
 double turbulence_coherence(const TurbulenceSpec& s, double f, double dx);
 
+// Linear interpolation between two grid points: value = (1 - w) v[lo] + w v[hi].
+struct Bracket {
+  int lo = 0, hi = 0;
+  double w = 0;
+};
+// Between stations x0 + i dx (i < nx), held beyond the ends.
+Bracket station_bracket(double x, double x0, double dx, int nx);
+// Between samples k dt (k < nt), periodic with period nt dt.
+Bracket sample_bracket(double t, double dt, int nt);
+
 // Samples of a component at stations x0 + i dx (i < nx) and times k dt
 // (k < nt, nt a power of two: period nt dt), row i = station.
 struct WindSeries {
