@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <random>
 #include <string>
@@ -275,12 +276,16 @@ void bind_simulation(py::module_& m) {
           py::arg("pantograph"), "The force set on a pantograph's head [N]")
       .def(
           "set_base_motion",
-          [](Simulation& sim, const py::object& p, double z, double v) {
-            sim.stepper->set_base_motion(sim.index(p), z, v);
+          [](Simulation& sim, const py::object& p, double z, double v, const py::object& a) {
+            sim.stepper->set_base_motion(
+                sim.index(p), z, v,
+                a.is_none() ? std::numeric_limits<double>::quiet_NaN() : a.cast<double>());
           },
           py::arg("pantograph"), py::arg("displacement"), py::arg("velocity") = 0.0,
+          py::arg("acceleration") = py::none(),
           "A pantograph's base (the vehicle roof) at 'displacement' [m, upwards] moving at "
-          "'velocity' [m/s] from the next step on, held until set again (lumped models)");
+          "'velocity' [m/s] with 'acceleration' [m/s^2] from the next step on, held until set "
+          "again (lumped models read the first two; the DSA-380 models need the acceleration)");
 }
 
 void initialize() {

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <random>
 #include <sstream>
 
+#include "pcsim/core/cubic_spline.hpp"
 #include "pcsim/core/limits.hpp"
 #include "pcsim/core/random.hpp"
 
@@ -126,7 +128,7 @@ pantograph::BaseMotion psd_base_motion(const InputNode& node) {
 
 }  // namespace
 
-pantograph::BaseMotion load_base_motion(const InputNode& node) {
+pantograph::BaseMotion load_base_motion(const InputNode& node, bool moving_frame) {
   const std::string type = node.get_choice("type", {"harmonic", "file", "psd"}, "");
   if (type.empty()) node.fail_key("type", "required key is missing (harmonic, file or psd)");
   if (type == "psd") return psd_base_motion(node);
@@ -136,11 +138,24 @@ pantograph::BaseMotion load_base_motion(const InputNode& node) {
     return pantograph::harmonic_base_motion(a,
                                             node.get_positive("frequency_hz", limits::frequency));
   }
-  node.allow_only({"type", "file"});
-  const Samples s = load_samples(node, "z_b");
+  node.allow_only({"type", "file", "interpolation"});
+  const std::string interpolation =
+      node.get_choice("interpolation", {"linear", "cubic"}, moving_frame ? "cubic" : "linear");
+  if (moving_frame && interpolation == "linear")
+    node.fail_key("interpolation",
+                  "'linear' is not available for a moving-frame (DSA-380) pantograph model: it "
+                  "needs the base's acceleration, which a piecewise-linear z_b lacks (use cubic, "
+                  "the default for these models)");
+  Samples s = load_samples(node, "z_b");
   for (double z : s.y)
     if (const std::string why = limit_violation(z, limits::base_motion); !why.empty())
       node.fail_key("file", "base displacement " + why);
+  if (interpolation == "cubic") {  // C2: z_b, v_b and a_b of a natural cubic spline
+    auto spline = std::make_shared<const NaturalCubicSpline>(std::move(s.t), std::move(s.y));
+    return {[spline](double t) { return spline->value(t); },
+            [spline](double t) { return spline->slope(t); },
+            [spline](double t) { return spline->second_derivative(t); }};
+  }
   // No acceleration: a piecewise-linear z_b's is a train of impulses.
   return {[s](double t) { return s.value(t); }, [s](double t) { return s.slope(t); }, {}};
 }
@@ -150,14 +165,7 @@ void apply_base_motion(const InputNode& entry, pantograph::PantographModel& mode
   if (model.base_support().dof < 0 && !model.moving_frame())
     entry.fail_key("base_motion", "not available for the " + model.kind() +
                                       " pantograph model yet (lumped and DSA-380 models only)");
-  const InputNode node = entry["base_motion"];
-  pantograph::BaseMotion motion = load_base_motion(node);
-  if (model.moving_frame() && !motion.acceleration)
-    node.fail_key("type", "'file' is not available for the " + model.kind() +
-                              " pantograph model: its moving frame needs the base's "
-                              "acceleration, which a piecewise-linear z_b lacks (use harmonic "
-                              "or psd)");
-  model.set_base_motion(std::move(motion));
+  model.set_base_motion(load_base_motion(entry["base_motion"], model.moving_frame()));
 }
 
 }  // namespace pcsim::scene

@@ -2,6 +2,7 @@
 
 #include <petscts.h>
 
+#include <array>
 #include <cmath>
 
 #include "pcsim/assembly/coupled_system.hpp"
@@ -16,13 +17,25 @@
 
 namespace pcsim::simulation {
 
+namespace {
+// A base motion set step-wise: (z_b, v_b, a_b) before and after the time it
+// was set, so that the step's residual at its end time reads the new values
+// and the HHT alpha-term at its start (t <= since) the old ones, as a
+// scene's base_motion would be read.
+struct HeldBase {
+  std::array<double, 3> before{}, after{};
+  double since = -1e300;
+  const std::array<double, 3>& at(double t) const { return t > since ? after : before; }
+};
+}  // namespace
+
 struct Stepper::Impl {
   Context ctx;
   scene::RunScene& scene;
   RunSetup prepared;  // statics, catenary facts
   assembly::CoupledSystem* system = nullptr;
   assembly::PrescribedHeadForces* forces = nullptr;
-  std::vector<std::shared_ptr<std::array<double, 2>>> bases;  // held z_b, v_b per pantograph
+  std::vector<std::shared_ptr<HeldBase>> bases;  // per pantograph
   std::unique_ptr<solvers::DynamicSolver> solver;
   Impl(const Context& c, scene::RunScene& s) : ctx(c), scene(s) {}
 };
@@ -111,30 +124,42 @@ void Stepper::set_head_force(std::size_t pantograph, double force_N) {
   impl_->forces->set(pantograph, force_N);
 }
 
-// The model reads the held values (pantograph::BaseMotion, lumped models): a
-// load k z_b + c v_b on the lowest stage, its power counted as external work.
-void Stepper::set_base_motion(std::size_t pantograph, double displacement_m, double velocity_m_s) {
+// The model reads the held values (pantograph::BaseMotion): a lumped model a
+// load k z_b + c v_b on the lowest stage, a DSA-380 model (moving frame) the
+// inertial load of a_b on its bodies and z_b in the head's height; the power
+// counted as external work.
+void Stepper::set_base_motion(std::size_t pantograph, double displacement_m, double velocity_m_s,
+                              double acceleration_m_s2) {
   auto& slots = impl_->system->pantographs();
   check_index(pantograph, slots.size());
   auto& slot = slots[pantograph];
-  if (slot.model->base_support().dof < 0)
+  const bool moving_frame = slot.model->moving_frame();
+  if (slot.model->base_support().dof < 0 && !moving_frame)
     throw InputError("step-wise run", "pantograph",
                      "'" + slot.run.name + "': its " + slot.model->kind() +
-                         " model takes no base motion step-wise (lumped models do; held z_b, "
-                         "v_b give a moving frame no acceleration)");
-  if (!std::isfinite(displacement_m) || !std::isfinite(velocity_m_s))
+                         " model takes no base motion (lumped and DSA-380 models do)");
+  if (moving_frame && std::isnan(acceleration_m_s2))
+    throw InputError("step-wise run", "base motion",
+                     "'" + slot.run.name + "': its " + slot.model->kind() +
+                         " model's moving frame needs the base's acceleration too");
+  if (!std::isfinite(displacement_m) || !std::isfinite(velocity_m_s) ||
+      (moving_frame && !std::isfinite(acceleration_m_s2)))
     throw InputError("step-wise run", "base motion", "not a finite number");
   auto& bases = impl_->bases;
   if (bases.size() < slots.size()) bases.resize(slots.size());
   if (!bases[pantograph]) {
-    auto held = std::make_shared<std::array<double, 2>>();
+    auto held = std::make_shared<HeldBase>();
     bases[pantograph] = held;
-    pantograph::BaseMotion motion;  // held values: no acceleration (lumped models only)
-    motion.displacement = [held](double) { return (*held)[0]; };
-    motion.velocity = [held](double) { return (*held)[1]; };
+    pantograph::BaseMotion motion;  // held values
+    motion.displacement = [held](double t) { return held->at(t)[0]; };
+    motion.velocity = [held](double t) { return held->at(t)[1]; };
+    if (moving_frame) motion.acceleration = [held](double t) { return held->at(t)[2]; };
     slot.model->set_base_motion(std::move(motion));
   }
-  *bases[pantograph] = {displacement_m, velocity_m_s};
+  HeldBase& held = *bases[pantograph];
+  held.before = held.at(reading_.t);
+  held.after = {displacement_m, velocity_m_s, moving_frame ? acceleration_m_s2 : 0.0};
+  held.since = reading_.t;
 }
 
 double Stepper::head_force(std::size_t pantograph) const {

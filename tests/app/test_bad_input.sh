@@ -121,9 +121,9 @@ sed -i 's/from_span: 2, to_span: 2, to_span: 7/from_span: 2, to_span: 7/' "$w/sp
 run_scene dsa-high "  - {name: p, model: $dsa, start_x: 13.1, working_height: 3.0}"
 run_scene dsa-cheap "  - {name: p, model: $dsa, start_x: 13.1}"
 run_scene dsa-base "  - {name: p, model: $S/meshes/pantographs/dsa380_flexible.yaml, start_x: 13.1,
-     base_motion: {type: file, file: $S/runs/conditions/roof.csv}}"
+     base_motion: {type: file, file: $S/runs/conditions/roof.csv, interpolation: linear}}"
 run_scene dsa-base-file "  - {name: p, model: $dsa, start_x: 13.1,
-     base_motion: {type: file, file: $S/runs/conditions/roof.csv}}"
+     base_motion: {type: file, file: $S/runs/conditions/roof.csv, interpolation: linear}}"
 echo "effects: {catenary_nonlinear: true}" >> "$w/dsa-cheap.yaml"  # no cheap path
 run_scene huge-run "$one" "" "" "huge-design.yaml"
 run_scene close "  - {name: p, model: $two_mass, start_x: 13.1}
@@ -365,10 +365,12 @@ expect base-negative 2 "command line --set $base|key '$base.amplitude'|must be p
   run good-run.yaml --set "$base={type: harmonic, amplitude: -0.002, frequency_hz: 5}"
 expect base-file 2 "command line --set $base|key '$base.file'|no such file" yes \
   run good-run.yaml --set "$base={type: file, file: no-such-roof.csv}"
-expect base-dsa 2 "dsa-base.yaml|key '$base.type'|'file' is not available for the dsa380_flexible" yes \
+expect base-dsa 2 "dsa-base.yaml|key '$base.interpolation'|'linear' is not available for a moving-frame" yes \
   run dsa-base.yaml
-expect base-dsa-file 2 "dsa-base-file.yaml|key '$base.type'|'file' is not available for the dsa380" yes \
+expect base-dsa-file 2 "dsa-base-file.yaml|key '$base.interpolation'|needs the base's acceleration" yes \
   run dsa-base-file.yaml
+expect base-interpolation 2 "command line --set $base|key '$base.interpolation'|spline" yes \
+  run good-run.yaml --set "$base={type: file, file: $S/runs/conditions/roof.csv, interpolation: spline}"
 expect name-slash 2 "name-slash.yaml|key 'pantographs[1].name'|must not contain '/'" yes run name-slash.yaml
 expect name-abs 2 "name-abs.yaml|key 'pantographs[1].name'|must not contain '/'" yes run name-abs.yaml
 expect name-dot 2 "name-dot.yaml|key 'pantographs[0].name'|must not be '.'" yes run name-dot.yaml

@@ -9,15 +9,17 @@
 //               point's station and the head's height, on every rank;
 //   set_head_force(p, f)  a vertical force on pantograph p's head from the
 //               next step on (assembly/prescribed_forces.hpp);
-//   set_base_motion(p, z, v)  pantograph p's base (the vehicle roof) at height
-//               z [m, upwards] moving at v [m/s] from the next step on, held
-//               until set again (lumped models, as the scene's base_motion;
-//               it replaces the scene's).
+//   set_base_motion(p, z, v, a)  pantograph p's base (the vehicle roof) at
+//               height z [m, upwards] moving at v [m/s] with acceleration a
+//               [m/s^2] from the next step on, held until set again (as the
+//               scene's base_motion, which it replaces; a lumped model reads
+//               z and v, a DSA-380 model's moving frame needs a too).
 // Nothing is written: the caller keeps what it needs. No moving window and
 // no restart. Collective over ctx.comm; failures are exceptions on every rank.
 #pragma once
 
 #include <array>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -53,7 +55,9 @@ class Stepper {
   std::vector<std::string> pantograph_names() const;
   void set_head_force(std::size_t pantograph, double force_N);
   double head_force(std::size_t pantograph) const;
-  void set_base_motion(std::size_t pantograph, double displacement_m, double velocity_m_s);
+  // acceleration_m_s2: NaN (not given) only for a lumped model.
+  void set_base_motion(std::size_t pantograph, double displacement_m, double velocity_m_s,
+                       double acceleration_m_s2 = std::numeric_limits<double>::quiet_NaN());
 
  private:
   struct Impl;
