@@ -7,7 +7,9 @@ supports pinned, steady arms holding the contact wire's lateral position):
 the contact wire and the messenger as taut strings of horizontal tension T
 under their drag q = rho Cd d V^2 / 2, joined at the droppers by pendulums
 of lateral stiffness N / h (the dropper's force over its length). Finite
-differences along the span (dx = 0.1 m). N from the contact wire's weight
+differences along the span (dx = 0.1 m). Each dropper (stranded bronze,
+d = 4 mm, Cd 1.2) carries its own drag q_d h, half onto each wire at its
+station. N from the contact wire's weight
 shared between neighbouring droppers (clamps, steady arm), h from the
 messenger's parabola under its weight and the dropper forces. The wires are
 anchored at the line's ends: their lateral sag stretches them, the tension
@@ -25,6 +27,7 @@ SPAN, SPANS, SYSTEM_HEIGHT = 60.0, 10, 1.2
 DROPPERS = [5.0, 10.5, 17.0, 23.5, 30.0, 36.5, 43.0, 49.5, 55.0]
 CONTACT = dict(mass=1.35, EA=1.44e7, T=20000.0, d=0.0132, cd=1.0)
 MESSENGER = dict(mass=1.07, EA=1.0e7, T=16000.0, d=0.0105, cd=1.2)
+DROPPER = dict(d=0.004, cd=1.2)
 CLAMP_CONTACT, CLAMP_MESSENGER, DROPPER_MASS, ARM = 0.165, 0.195, 0.117, 1.0
 RHO = 1.25
 DX = 0.1
@@ -70,9 +73,10 @@ def string(T, load, springs=None):
     return y
 
 
-def span_lateral(Tc, Tm, qc, qm, k):
+def span_lateral(Tc, Tm, qc, qm, k, dropper_drag):
     """Lateral deflections of both wires in one span: strings coupled by the
-    droppers' pendulum stiffnesses k (N/m) at the dropper stations."""
+    droppers' pendulum stiffnesses k (N/m) at the dropper stations, each
+    dropper's drag (N) half on either wire there."""
     n = int(round(SPAN / DX))
     m = n - 1
     A = np.zeros((2 * m, 2 * m))
@@ -86,11 +90,12 @@ def span_lateral(Tc, Tm, qc, qm, k):
             if i < m - 1:
                 A[r, r + 1] = -T / DX**2
             b[r] = q
-    for xd, kd in zip(DROPPERS, k):
+    for xd, kd, fd in zip(DROPPERS, k, dropper_drag):
         i = int(round(xd / DX)) - 1
         for r, s in ((i, m + i), (m + i, i)):
             A[r, r] += kd / DX
             A[r, s] -= kd / DX
+            b[r] += 0.5 * fd / DX
     y = np.linalg.solve(A, b)
     zero = np.zeros(1)
     return np.concatenate([zero, y[:m], zero]), np.concatenate([zero, y[m:], zero])
@@ -102,9 +107,10 @@ def estimate(speed):
     k = forces / lengths
     qc = 0.5 * RHO * CONTACT["cd"] * CONTACT["d"] * speed**2
     qm = 0.5 * RHO * MESSENGER["cd"] * MESSENGER["d"] * speed**2
+    dropper_drag = 0.5 * RHO * DROPPER["cd"] * DROPPER["d"] * speed**2 * lengths
     Tc, Tm = CONTACT["T"], MESSENGER["T"]
     for _ in range(20):  # anchored wires: the lateral sag's stretch raises the tension
-        yc, ym = span_lateral(Tc, Tm, qc, qm, k)
+        yc, ym = span_lateral(Tc, Tm, qc, qm, k, dropper_drag)
         stretch = lambda y: 0.5 * np.sum(np.diff(y) ** 2) / DX / SPAN
         Tc = CONTACT["T"] + CONTACT["EA"] * stretch(yc)
         Tm = MESSENGER["T"] + MESSENGER["EA"] * stretch(ym)

@@ -211,6 +211,8 @@ class ExplicitBuilder {
     if (in.index_in_span < -1) fail(key + ".index_in_span", "must not be negative");
     b.span = static_cast<int>(in.span);
     b.index_in_span = static_cast<int>(in.index_in_span);
+    b.diameter = in.diameter;
+    b.drag_coefficient = in.drag_coefficient;
     mesh_.bars.push_back(b);
   }
 

@@ -325,6 +325,8 @@ void SectionBuilder::add_droppers() {
     b.form_find_length = true;
     b.span = st.span;
     b.index_in_span = st.dropper;
+    b.diameter = dr.diameter;
+    b.drag_coefficient = dr.drag_coefficient;
     const int bar = static_cast<int>(mesh_.bars.size());
     mesh_.bars.push_back(b);
     mesh_.height_targets.push_back({lower, mesh_.nodes[lower].position.z(), bar});

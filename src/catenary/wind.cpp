@@ -12,6 +12,14 @@ Eigen::Vector3d wire_drag(const Wire& wire, const Eigen::Vector3d& tangent,
   return 0.5 * air_density * wire_drag_coefficient(wire) * wire_diameter(wire) * vn.norm() * vn;
 }
 
+Eigen::Vector3d bar_drag(const BarElement& bar, const Eigen::Vector3d& chord,
+                         const Eigen::Vector3d& velocity, double air_density) {
+  const Eigen::Vector3d t = chord.normalized();
+  const Eigen::Vector3d vn = velocity - velocity.dot(t) * t;
+  return 0.5 * air_density * bar_drag_coefficient(bar) * bar_diameter(bar) * vn.norm() * vn *
+         chord.norm();
+}
+
 void set_wind_loads(CatenaryMesh& mesh) {
   const auto& wind = mesh.conditions.wind;
   const Eigen::Vector3d v = wind.velocity();
@@ -23,6 +31,19 @@ void set_wind_loads(CatenaryMesh& mesh) {
     const Eigen::Vector3d chord =
         mesh.nodes[el.nodes[1]].position - mesh.nodes[el.nodes[0]].position;
     el.wind_load = wire_drag(mesh.wires[el.wire], chord, v, wind.air_density);
+  }
+  auto& forces = mesh.node_forces;
+  forces.erase(std::remove_if(forces.begin(), forces.end(),
+                              [](const NodeForce& f) { return f.label == kBarWindLabel; }),
+               forces.end());
+  if (!wind.any()) return;
+  for (const auto& bar : mesh.bars) {
+    if (bar_diameter(bar) <= 0) continue;
+    const Eigen::Vector3d chord =
+        mesh.nodes[bar.nodes[1]].position - mesh.nodes[bar.nodes[0]].position;
+    const Eigen::Vector3d half = 0.5 * bar_drag(bar, chord, v, wind.air_density);
+    if (half.isZero()) continue;
+    for (int node : bar.nodes) forces.push_back({node, half, kBarWindLabel});
   }
 }
 

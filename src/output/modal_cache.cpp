@@ -92,6 +92,9 @@ void add_mesh(KeyBuffer& key, const catenary::CatenaryMesh& mesh) {
       for (const auto& w : mesh.wires)
         key.add(catenary::wire_diameter(w)), key.add(catenary::wire_drag_coefficient(w));
       key.add(std::string("modes' damping, lateral rows"));  // wind_damping, y rows
+      key.add(std::string("bars' drag"));                    // catenary::bar_drag
+      for (const auto& b : mesh.bars)
+        key.add(catenary::bar_diameter(b)), key.add(catenary::bar_drag_coefficient(b));
       if (c.wind.turbulence.on)  // the turbulence rows (catenary::turbulence_row_keys)
         key.add(std::string("turbulence rows")), key.add(c.wind.turbulence.grid_spacing);
     }

@@ -70,7 +70,7 @@ CableDesign read_cable(const InputNode& n) {
 
 DropperDesign read_droppers(const InputNode& drop) {
   drop.allow_only({"positions", "sags", "spans", "stiffness", "EA", "mass_per_length", "slack",
-                   "clamp_mass_messenger", "clamp_mass_contact"});
+                   "clamp_mass_messenger", "clamp_mass_contact", "diameter", "drag_coefficient"});
   DropperDesign d;
   InputNode pos = drop["positions"];
   if (!pos.is_sequence()) pos.fail("must be a list of distances from the span's first support [m]");
@@ -106,6 +106,9 @@ DropperDesign read_droppers(const InputNode& drop) {
   d.slack = reader::read_slack(drop, "length");
   d.clamp_mass_messenger = drop.get_double("clamp_mass_messenger", 0.0);
   d.clamp_mass_contact = drop.get_double("clamp_mass_contact", 0.0);
+  if (drop.has("diameter")) d.diameter = drop.get_positive("diameter", limits::wire_diameter);
+  if (drop.has("drag_coefficient"))
+    d.drag_coefficient = drop.get_positive("drag_coefficient", limits::drag_coefficient);
   return d;
 }
 

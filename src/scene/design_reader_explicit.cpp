@@ -87,7 +87,7 @@ ExplicitWire read_wire(const InputNode& wn, std::size_t index) {
 
 ExplicitBar read_bar(const InputNode& bn) {
   bn.allow_only({"nodes", "kind", "stiffness", "mass", "unstressed_length", "slack", "form_find",
-                 "span", "index_in_span"});
+                 "span", "index_in_span", "diameter", "drag_coefficient"});
   InputNode nodes = bn["nodes"];
   if (!nodes.is_sequence() || nodes.size() != 2) nodes.fail("must be a list of 2 nodes [a, b]");
   ExplicitBar b;
@@ -105,6 +105,9 @@ ExplicitBar read_bar(const InputNode& bn) {
   b.form_find = bn.get_bool("form_find", false);
   b.span = bn.get_int("span", -1);
   b.index_in_span = bn.get_int("index_in_span", -1);
+  if (bn.has("diameter")) b.diameter = bn.get_positive("diameter", limits::wire_diameter);
+  if (bn.has("drag_coefficient"))
+    b.drag_coefficient = bn.get_positive("drag_coefficient", limits::drag_coefficient);
   return b;
 }
 

@@ -397,3 +397,27 @@ TEST(DesignFileErrors, ParametricValidation) {
   msg = message_of([&] { build_text("name: x\n", "v.yaml"); });
   EXPECT_TRUE(contains(msg, "'type'") && contains(msg, "missing")) << msg;
 }
+
+// droppers.diameter and drag_coefficient (the wind's drag, docs/conditions.md)
+// reach every dropper bar; without them the bars keep 0 (the kind's default,
+// catenary::bar_diameter: 4 mm, Cd 1.2).
+TEST(ParametricDesignFile, DropperDragKeysReachTheBars) {
+  const std::string text = replace_once(reference_text(), "droppers:\n",
+                                        "droppers:\n  diameter: 0.005\n  drag_coefficient: 1.1\n");
+  const CatenaryMesh given = build_text(text, "drag.yaml");
+  const CatenaryMesh plain = build_text(reference_text(), "plain.yaml");
+  int droppers = 0;
+  for (std::size_t b = 0; b < given.bars.size(); ++b) {
+    if (given.bars[b].kind != BarKind::dropper) continue;
+    ++droppers;
+    EXPECT_EQ(pcsim::catenary::bar_diameter(given.bars[b]), 0.005);
+    EXPECT_EQ(pcsim::catenary::bar_drag_coefficient(given.bars[b]), 1.1);
+    EXPECT_EQ(pcsim::catenary::bar_diameter(plain.bars[b]), 0.004);
+    EXPECT_EQ(pcsim::catenary::bar_drag_coefficient(plain.bars[b]), 1.2);
+  }
+  EXPECT_EQ(droppers, 90);
+  const std::string bad =
+      replace_once(reference_text(), "droppers:\n", "droppers:\n  diameter: -1\n");
+  EXPECT_NE(message_of([&] { build_text(bad, "bad.yaml"); }).find("droppers.diameter"),
+            std::string::npos);
+}

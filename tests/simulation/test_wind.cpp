@@ -154,3 +154,45 @@ TEST(WindLoad, ModalCacheKeyIncludesTheWind) {
   iced_calm.conditions.wind.direction_deg = 30;  // no speed: the ice key as before the wind
   EXPECT_EQ(key(iced), key(iced_calm));
 }
+
+// The drag on the bars (droppers, stitch bars): cross-flow like the wires',
+// q L on the bar's design chord, half on each end as node forces; a vertical
+// dropper across the wind takes q_d L, a bar along the wind none; steady
+// arms and other bars take none unless the design gives a diameter; the
+// forces are replaced, not added, on a second call and dropped without wind.
+TEST(WindLoad, BarDragHalfOnEachEnd) {
+  catenary::CatenaryMesh mesh;
+  for (const Eigen::Vector3d p :
+       {Eigen::Vector3d(0, 0, 5.3), Eigen::Vector3d(0, 0, 6.5), Eigen::Vector3d(0, 1.5, 5.3)}) {
+    catenary::Node n;
+    n.position = p;
+    mesh.nodes.push_back(n);
+  }
+  catenary::BarElement dropper, arm, stitch_along;
+  dropper.nodes = {1, 0}, dropper.kind = catenary::BarKind::dropper;
+  arm.nodes = {0, 2}, arm.kind = catenary::BarKind::steady_arm;
+  stitch_along.nodes = {0, 2}, stitch_along.kind = catenary::BarKind::stitch;  // along y
+  mesh.bars = {dropper, arm, stitch_along};
+  mesh.conditions.wind.speed = 30;  // across the track: +y
+  catenary::set_wind_loads(mesh);
+  catenary::set_wind_loads(mesh);  // replaces
+  // 1.2 m dropper, 4 mm, Cd 1.2, rho 1.25: 1/2 rho Cd d V^2 L = 3.2400 N
+  const double expected = 0.5 * 1.25 * 1.2 * 0.004 * 30 * 30 * 1.2;
+  ASSERT_EQ(mesh.node_forces.size(), 2u);  // the arm has no diameter, the stitch bar lies along V
+  for (const auto& f : mesh.node_forces) {
+    EXPECT_EQ(f.label, catenary::kBarWindLabel);
+    EXPECT_NEAR((f.force - Eigen::Vector3d(0, 0.5 * expected, 0)).norm(), 0, 1e-12);
+  }
+  mesh.bars[1].diameter = 0.02;  // an arm given a diameter, across a wind along the track
+  mesh.conditions.wind.direction_deg = 0;
+  catenary::set_wind_loads(mesh);
+  Eigen::Vector3d total = Eigen::Vector3d::Zero();
+  for (const auto& f : mesh.node_forces) total += f.force;
+  const double along = 0.5 * 1.25 * 1.2 * 30 * 30;  // per diameter and length
+  EXPECT_NEAR(
+      (total - Eigen::Vector3d(along * (0.004 * 1.2 + 0.02 * 1.5 + 0.0075 * 1.5), 0, 0)).norm(), 0,
+      1e-12);
+  mesh.conditions.wind.speed = 0;
+  catenary::set_wind_loads(mesh);
+  EXPECT_TRUE(mesh.node_forces.empty());
+}

@@ -4,11 +4,12 @@
 #  1. the contact wire's lateral deflection at the interior mid-spans
 #     (spans 2-9) against the independent estimate of
 #     runs/conditions/blowoff_estimate.py (strings coupled by the droppers'
-#     pendulum stiffness, no pcsim code): measured -0.72 %; bound 2 %, the
-#     estimate's own modelling error (constant dropper forces from the
-#     weight's share, straight strings) being of that order, while the
-#     contact wire alone (no messenger pulling through the droppers) is
-#     -2.7 % and the wind's absence -100 %;
+#     pendulum stiffness, each dropper's drag half on either wire; no pcsim
+#     code): measured -0.71 %; bound 1.2 %, the estimate's own modelling
+#     error (constant dropper forces from the weight's share, straight
+#     strings) being of that order, while the line without the droppers'
+#     drag is -2.4 %, the contact wire alone (no messenger pulling through
+#     the droppers) -4.3 % and the wind's absence -100 %;
 #  2. the supports hold the stagger (+-0.2 m), the results carry the
 #     blow-off datasets with their unit, summary.json its entry;
 #  3. the two partitions agree to 1e-9 m;
@@ -49,7 +50,7 @@ for np_ in ("np1", "np2"):
     print(f"{np_}: interior mid-span deflection {defl.min():.5f} .. {defl.max():.5f} m, estimate "
           f"{est['contact_mid']:.5f} m: {100 * rel.min():+.2f} .. {100 * rel.max():+.2f} % "
           f"(the contact wire alone {100 * alone:+.2f} %)")
-    assert np.all(np.abs(rel) < 0.02), rel
+    assert np.all(np.abs(rel) < 0.012), rel
     assert np.allclose(np.abs(lat[sup == 1]), 0.2, atol=1e-9), lat[sup == 1]
     s = json.load(open(f"{tmp}/{np_}/summary.json"))["blow_off"]
     assert s["inside"] and abs(s["permissible_m"] - 0.40) < 1e-12, s

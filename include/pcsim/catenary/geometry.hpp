@@ -73,8 +73,9 @@ struct DropperDesign {
   std::vector<double> EA_per_position;  // [N] > 0; empty: not given
   double mass_per_length = 0;           // [kg/m] >= 0
   SlackCriterion slack = SlackCriterion::length;
-  double clamp_mass_messenger = 0;  // [kg] >= 0
-  double clamp_mass_contact = 0;    // [kg] >= 0
+  double clamp_mass_messenger = 0;            // [kg] >= 0
+  double clamp_mass_contact = 0;              // [kg] >= 0
+  double diameter = 0, drag_coefficient = 0;  // wind; 0: a dropper's default
 };
 
 // Stitch wire at every support inside a tension section ('stitch_wire').
@@ -230,6 +231,7 @@ struct ExplicitBar {
   bool form_find = false;
   long span = -1;  // -1: none
   long index_in_span = -1;
+  double diameter = 0, drag_coefficient = 0;  // wind; 0: the kind's default
 };
 
 struct ExplicitSupport {

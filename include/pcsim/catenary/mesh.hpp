@@ -118,6 +118,10 @@ struct BarElement {
   bool form_find_length = false;  // L0 is a form-finding unknown
   int span = -1;                  // span index (droppers), 0-based
   int index_in_span = -1;         // dropper number within its span, 0-based
+  // Wind (docs/conditions.md): outer diameter [m] and drag coefficient [1];
+  // 0: the default of the bar's kind (bar_diameter, bar_drag_coefficient).
+  double diameter = 0;
+  double drag_coefficient = 0;
   double equilibrium_length = 0;  // l_eq, set after the static solution
   double equilibrium_force = 0;   // N_eq, set after the static solution
 };
@@ -127,6 +131,21 @@ struct BarElement {
 inline void set_bar_unstressed_length(BarElement& bar, double L0) {
   bar.unstressed_length = L0;
   if (bar.axial_rigidity > 0) bar.stiffness = bar.axial_rigidity / L0;
+}
+
+// Default diameters [m] of bars for the wind's drag: a dropper of stranded
+// bronze Bz 10 (7 x 1.35 mm: 4 mm), a stitch bar as a Bz 35 stitch wire
+// (7.5 mm); steady arms and other bars none (a steady arm lies across the
+// track, along a cross-wind: give a diameter in the design to load it).
+// Drag coefficient 1.2 (stranded wire) for every kind (docs/conditions.md).
+inline double default_bar_diameter(BarKind kind) {
+  return kind == BarKind::dropper ? 0.004 : kind == BarKind::stitch ? 0.0075 : 0.0;
+}
+inline double bar_diameter(const BarElement& b) {
+  return b.diameter > 0 ? b.diameter : default_bar_diameter(b.kind);
+}
+inline double bar_drag_coefficient(const BarElement& b) {
+  return b.drag_coefficient > 0 ? b.drag_coefficient : 1.2;
 }
 
 struct PointMass {

@@ -17,8 +17,18 @@ namespace pcsim::catenary {
 Eigen::Vector3d wire_drag(const Wire& wire, const Eigen::Vector3d& tangent,
                           const Eigen::Vector3d& velocity, double air_density);
 
+// The drag on a bar of design chord c (from its first node to its second)
+// in a wind of velocity V: q L with q as wire_drag's (the bar's diameter and
+// drag coefficient, bar_diameter, bar_drag_coefficient) and L = |c| [N].
+Eigen::Vector3d bar_drag(const BarElement& bar, const Eigen::Vector3d& chord,
+                         const Eigen::Vector3d& velocity, double air_density);
+
 // Sets every cable element's wind_load from mesh.conditions.wind (zero
-// without wind); the element's tangent is its design chord.
+// without wind); the element's tangent is its design chord. Every bar with
+// a diameter (droppers, stitch bars by default) carries its drag (bar_drag)
+// as two node forces labelled kBarWindLabel, half on each end; the call
+// replaces those of an earlier one.
+inline constexpr const char* kBarWindLabel = "bar_wind";
 void set_wind_loads(CatenaryMesh& mesh);
 
 // The contact wires' lateral position relative to the track's centre line
