@@ -11,7 +11,7 @@
 #      full matrix (max Fc 198 N): asserted 0.25 N (the damping is 2.4 % of
 #      critical at 1 Hz; a modal level without it differs by ~2 N);
 #    - the turbulence's effect on the contact force (the run with
-#      turbulence minus the mean wind's) is the FE's to 0.64 % of its
+#      turbulence minus the mean wind's) is the FE's to 0.61 % of its
 #      largest value (25 N): asserted 1.5 % (a load projected with a wrong
 #      sign, scale or station is off by its own size);
 #    - the turbulence's work on the catenary (external work, output.energy,
