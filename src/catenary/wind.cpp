@@ -5,18 +5,28 @@
 
 namespace pcsim::catenary {
 
-Eigen::Vector3d wire_drag(const Wire& wire, const Eigen::Vector3d& tangent,
-                          const Eigen::Vector3d& velocity, double air_density) {
+namespace {
+// The cross-flow drag per length of a cylinder (diameter d, coefficient Cd)
+// along `tangent`: 1/2 rho Cd d |V_n| V_n, V_n the wind's normal component.
+Eigen::Vector3d cross_flow_drag(double diameter, double drag_coefficient,
+                                const Eigen::Vector3d& tangent, const Eigen::Vector3d& velocity,
+                                double air_density) {
   const Eigen::Vector3d t = tangent.normalized();
   const Eigen::Vector3d vn = velocity - velocity.dot(t) * t;
-  return 0.5 * air_density * wire_drag_coefficient(wire) * wire_diameter(wire) * vn.norm() * vn;
+  return 0.5 * air_density * drag_coefficient * diameter * vn.norm() * vn;
+}
+}  // namespace
+
+Eigen::Vector3d wire_drag(const Wire& wire, const Eigen::Vector3d& tangent,
+                          const Eigen::Vector3d& velocity, double air_density) {
+  return cross_flow_drag(wire_diameter(wire), wire_drag_coefficient(wire), tangent, velocity,
+                         air_density);
 }
 
 Eigen::Vector3d bar_drag(const BarElement& bar, const Eigen::Vector3d& chord,
                          const Eigen::Vector3d& velocity, double air_density) {
-  const Eigen::Vector3d t = chord.normalized();
-  const Eigen::Vector3d vn = velocity - velocity.dot(t) * t;
-  return 0.5 * air_density * bar_drag_coefficient(bar) * bar_diameter(bar) * vn.norm() * vn *
+  return cross_flow_drag(bar_diameter(bar), bar_drag_coefficient(bar), chord, velocity,
+                         air_density) *
          chord.norm();
 }
 
