@@ -147,6 +147,30 @@ void CoupledSystem::residual(double t, Vec U, Vec V, Vec A, Vec F) {
   PCSIM_PETSC(VecAssemblyEnd(F));
 }
 
+bool CoupledSystem::constant_inertia() const {
+  return std::none_of(terms_.begin(), terms_.end(), [](const auto& term) {
+    return term->acceleration_use() == AccelerationUse::varying;
+  });
+}
+
+// The linear parts' ca A products and the terms' constant inertia, in the
+// residual's order (vector operations first, VecSetValues last, one assembly).
+void CoupledSystem::inertia_product(Vec A, Vec MA) {
+  PCSIM_PETSC(VecSet(MA, 0.0));
+  for (const auto& part : parts_) {
+    if (part.ca == 0) continue;
+    PCSIM_PETSC(VecAXPBY(work_, part.ca, 0.0, A));
+    PCSIM_PETSC(MatMultAdd(part.matrix, work_, MA, MA));
+  }
+  for (bool by_set_values : {false, true})
+    for (const auto& term : terms_)
+      if (term->adds_by_set_values() == by_set_values &&
+          term->acceleration_use() == AccelerationUse::constant)
+        term->add_inertia(A, MA);
+  PCSIM_PETSC(VecAssemblyBegin(MA));
+  PCSIM_PETSC(VecAssemblyEnd(MA));
+}
+
 void CoupledSystem::assemble_tangent(Shifts shifts, Mat J, bool reference) {
   PCSIM_PETSC(MatZeroEntries(J));
   for (const auto& term : terms_) {

@@ -38,6 +38,26 @@ void PantographTerm::add_residual(const CoupledState& state, Vec F) {
   PCSIM_PETSC(VecSetValues(F, model.dof_count(), idx.data(), R.data(), ADD_VALUES));
 }
 
+// dF/dA A = M q'' on the pantograph's own unknowns (owned by one rank).
+void PantographTerm::add_inertia(Vec A, Vec F) const {
+  PetscInt begin = 0, end = 0;
+  PCSIM_PETSC(VecGetOwnershipRange(A, &begin, &end));
+  if (slot_.first_dof < begin || slot_.first_dof >= end) return;
+  const auto& model = *slot_.model;
+  const int n = model.dof_count();
+  if (mass_.rows() != n) {  // constant: a linear model's tangents at any state
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+    Eigen::MatrixXd Kq(n, n), Cq(n, n);
+    mass_.resize(n, n);
+    model.tangents(0.0, zero, zero, zero, Kq, Cq, mass_);
+  }
+  const auto idx = dof_range(slot_);
+  Eigen::VectorXd qdd(n);
+  PCSIM_PETSC(VecGetValues(A, n, idx.data(), qdd.data()));
+  const Eigen::VectorXd force = mass_ * qdd;
+  PCSIM_PETSC(VecSetValues(F, n, idx.data(), force.data(), ADD_VALUES));
+}
+
 std::vector<double> PantographTerm::block_tangent(const CoupledState& state, Shifts shifts) const {
   const auto& model = *slot_.model;
   const int n = model.dof_count();

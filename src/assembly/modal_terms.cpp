@@ -101,6 +101,18 @@ void ModalOscillators::add_residual(const CoupledState& state, Vec F) {
   PCSIM_PETSC(VecRestoreArray(F, &f));
 }
 
+void ModalOscillators::add_inertia(Vec A, Vec F) const {
+  if (!catenary_.on_owner()) return;
+  const PetscInt m = catenary_.catenary_dofs();
+  const PetscScalar* a;
+  PetscScalar* f;
+  PCSIM_PETSC(VecGetArrayRead(A, &a));
+  PCSIM_PETSC(VecGetArray(F, &f));
+  Eigen::Map<Eigen::ArrayXd>(f, m) += Eigen::Map<const Eigen::ArrayXd>(a, m);
+  PCSIM_PETSC(VecRestoreArray(F, &f));
+  PCSIM_PETSC(VecRestoreArrayRead(A, &a));
+}
+
 void ModalOscillators::add_tangent(const CoupledState&, Shifts shifts, Mat J) {
   if (!catenary_.on_owner()) return;
   for (PetscInt k = 0; k < catenary_.catenary_dofs(); ++k) {

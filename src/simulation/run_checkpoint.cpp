@@ -67,6 +67,7 @@ nlohmann::json scalars_json(const RunCheckpoint& c) {
           {"reference_t", s.reference_t},
           {"shift_v", s.shift_v},
           {"shift_a", s.shift_a},
+          {"has_alpha_term", s.has_alpha_term},
           {"terms", s.terms},
           {"head_offsets", s.head_offsets},
           {"records", c.progress.records},
@@ -90,6 +91,7 @@ void from_scalars_json(const nlohmann::json& j, RunCheckpoint& c) {
   s.reference_t = j.at("reference_t");
   s.shift_v = j.at("shift_v");
   s.shift_a = j.at("shift_a");
+  s.has_alpha_term = j.value("has_alpha_term", false);  // absent before it was kept
   s.terms = j.at("terms").get<std::vector<std::vector<double>>>();
   s.head_offsets = j.at("head_offsets").get<std::vector<double>>();
   c.progress.records = j.at("records");
@@ -111,6 +113,7 @@ output::CheckpointData to_data(const RunCheckpoint& c) {
     d.arrays["/reference/V"] = s.reference_V;
     d.arrays["/reference/A"] = s.reference_A;
   }
+  if (s.has_alpha_term) d.arrays["/alpha_term"] = s.alpha_term;
   for (std::size_t k = 0; k < s.terms.size(); ++k) d.arrays[term_array(k)] = s.terms[k];
   d.arrays["/pantographs/head_offset"] = s.head_offsets;
   nlohmann::json j = scalars_json(c);
@@ -133,6 +136,7 @@ RunCheckpoint from_data(output::CheckpointData& d) {
   for (const auto& [key, value] : d.numbers) j[key] = value;
   for (const auto& [key, value] : d.texts) j[key] = value;
   j["has_reference"] = d.numbers.at("has_reference") != 0;
+  j["has_alpha_term"] = d.numbers.count("has_alpha_term") && d.numbers.at("has_alpha_term") != 0;
   for (const char* key : {"step", "accepted_since_cut", "records", "snapshots", "newton_iterations",
                           "rejected_steps", "ranks"})
     j[key] = static_cast<long>(d.numbers.at(key));
@@ -151,6 +155,7 @@ RunCheckpoint from_data(output::CheckpointData& d) {
     c.state.reference_V = std::move(d.arrays.at("/reference/V"));
     c.state.reference_A = std::move(d.arrays.at("/reference/A"));
   }
+  if (c.state.has_alpha_term) c.state.alpha_term = std::move(d.arrays.at("/alpha_term"));
   return c;
 }
 
@@ -176,6 +181,8 @@ std::string damage(const RunCheckpoint& c) {
        s.reference_U.size() != s.U.size() || !finite(s.reference_U) || !finite(s.reference_V) ||
        !finite(s.reference_A)))
     return "its reference state (the cheap path's J0) is not finite or not of the state's length";
+  if (s.has_alpha_term && (s.alpha_term.size() != s.U.size() || !finite(s.alpha_term)))
+    return "its HHT alpha-term is not finite or not of the state's length";
   if (!finite(s.head_offsets)) return "its pantograph head offsets are not finite";
   for (const auto& t : s.terms)
     if (!finite(t)) return "a term's saved state is not finite";
@@ -207,7 +214,8 @@ std::string mismatch(const Context& ctx, const RunCheckpoint& c,
 
 }  // namespace
 
-std::vector<InputFile> run_input_files(const std::string& scene_path, const scene::InputNode& scene) {
+std::vector<InputFile> run_input_files(const std::string& scene_path,
+                                       const scene::InputNode& scene) {
   const scene::InputNode catenary = scene["catenary"];
   std::vector<InputFile> files = {{"scene", scene_path, sha256_hex(scene::to_yaml(scene))},
                                   {"design", catenary.path_value("design"),
@@ -221,8 +229,9 @@ std::vector<InputFile> run_input_files(const std::string& scene_path, const scen
     const scene::InputNode a = scene["assessment"];
     const auto builtin = scene::builtin_criteria_sets();
     if (std::find(builtin.begin(), builtin.end(), a.get_string("criteria")) == builtin.end())
-      files.push_back({"criteria set", a.path_value("criteria"),
-                       sha256_hex(scene::to_yaml(scene::InputNode::load_file(a.path_value("criteria"))))});
+      files.push_back(
+          {"criteria set", a.path_value("criteria"),
+           sha256_hex(scene::to_yaml(scene::InputNode::load_file(a.path_value("criteria"))))});
   }
   return files;
 }
@@ -257,7 +266,8 @@ void add_referenced(const scene::InputNode& node, const std::string& path,
 
 }  // namespace
 
-std::vector<RecordedInput> recorded_inputs(const std::string& scene_path, const scene::InputNode& scene) {
+std::vector<RecordedInput> recorded_inputs(const std::string& scene_path,
+                                           const scene::InputNode& scene) {
   const std::string content = scene::to_yaml(scene);
   std::vector<RecordedInput> out = {{"scene", scene_path, sha256_hex(content), content}};
   add_referenced(scene, "", out);

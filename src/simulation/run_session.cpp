@@ -311,6 +311,11 @@ nlohmann::json RunSession::facts() const {
   TSType type;
   PCSIM_PETSC(TSGetType(solver_.ts(), &type));
   j["rejected_steps"] = std::string(type) == solvers::kTSHHT ? rejected_steps() : 0;
+  if (std::string(type) == solvers::kTSHHT) {  // this process's steps (not a restart's earlier)
+    const auto info = solvers::hht_get_info(solver_.ts());
+    j["alpha_terms_reused"] = info.alpha_terms_reused;
+    j["alpha_terms_evaluated"] = info.alpha_terms_evaluated;
+  }
   j["step_time"] = timing_.json();
   return j;
 }

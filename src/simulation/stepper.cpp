@@ -122,6 +122,7 @@ void check_index(std::size_t pantograph, std::size_t count) {
 void Stepper::set_head_force(std::size_t pantograph, double force_N) {
   check_index(pantograph, impl_->system->pantographs().size());
   impl_->forces->set(pantograph, force_N);
+  impl_->solver->residual_changed();  // the next step's alpha-term reads the new force
 }
 
 // The model reads the held values (pantograph::BaseMotion): a lumped model a

@@ -102,6 +102,8 @@ DynamicSolver::DynamicSolver(assembly::CoupledSystem& system, double dt, double 
     use_step_lu(ksp);
   }
   hht_set_alpha(ts_, hht_alpha);  // before the options: -ts_hht_alpha wins
+  // F affine in A with a constant M: each step's alpha-term from the last residual.
+  if (system.constant_inertia()) hht_set_inertia_product(ts_, inertia_product, this);
   PCSIM_PETSC(TSSetFromOptions(ts_));
   configure_direct_solvers();
 }
@@ -136,6 +138,18 @@ PetscErrorCode DynamicSolver::residual(TS, PetscReal t, Vec U, Vec V, Vec A, Vec
   PCSIM_CALLBACK_BEGIN
   static_cast<DynamicSolver*>(ctx)->system_.residual(t, U, V, A, F);
   PCSIM_CALLBACK_END
+}
+
+PetscErrorCode DynamicSolver::inertia_product(TS, Vec A, Vec MA, void* ctx) {
+  PCSIM_CALLBACK_BEGIN
+  static_cast<DynamicSolver*>(ctx)->system_.inertia_product(A, MA);
+  PCSIM_CALLBACK_END
+}
+
+void DynamicSolver::residual_changed() {
+  TSType type;
+  PCSIM_PETSC(TSGetType(ts_, &type));
+  if (std::string(type) == kTSHHT) hht_invalidate_alpha_term(ts_);
 }
 
 PetscErrorCode DynamicSolver::jacobian(TS, PetscReal t, Vec U, Vec V, Vec A, PetscReal shift_v,

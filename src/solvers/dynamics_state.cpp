@@ -52,6 +52,10 @@ DynamicState DynamicSolver::save_state() const {
     s.reference_V = gather_to_root(reference_V_);
     s.reference_A = gather_to_root(reference_A_);
   }
+  Vec F0 = system_.create_vector();
+  s.has_alpha_term = hht_get_alpha_term(ts_, F0);  // the same on every rank
+  if (s.has_alpha_term) s.alpha_term = gather_to_root(F0);
+  PCSIM_PETSC(VecDestroy(&F0));
   s.terms = system_.checkpoint_terms();
   for (const auto& slot : system_.pantographs()) s.head_offsets.push_back(slot.head_offset);
   return s;
@@ -93,6 +97,12 @@ void DynamicSolver::restore_state(const DynamicState& s) {
   }
   // After the reference tangent: the terms' state refers to it.
   system_.restore_terms(s.terms);
+  if (s.has_alpha_term) {  // last: it belongs to the solution and time set above
+    Vec F0 = system_.create_vector();
+    scatter_from_root(s.alpha_term, F0);
+    hht_set_alpha_term(ts_, F0);
+    PCSIM_PETSC(VecDestroy(&F0));
+  }
   PCSIM_PETSC(VecDestroy(&U));
   PCSIM_PETSC(VecDestroy(&V));
   PCSIM_PETSC(VecDestroy(&A));

@@ -90,6 +90,10 @@ PetscErrorCode snes_function(SNES snes, Vec X, Vec F, TS ts) {
     PetscCall(MatMult(th->M0, th->A1, th->work));
     PetscCall(VecAXPY(F, th->alpha / (1 - th->alpha), th->work));
   }
+  th->last_F = F;  // the next step's alpha-term may come from it (prepare_next_alpha_term)
+  th->last_X = X;
+  PetscCall(PetscObjectStateGet(reinterpret_cast<PetscObject>(F), &th->last_F_state));
+  PetscCall(PetscObjectStateGet(reinterpret_cast<PetscObject>(X), &th->last_X_state));
   PetscFunctionReturn(0);
 }
 
@@ -221,7 +225,13 @@ PetscErrorCode begin_step(TS ts) {
     }
   }
   th->t0 = t_n;
-  PetscCall(TSComputeI2Function(ts, t_n, th->U0, th->V0, th->zero, th->F0));
+  // After a rollback the step's own alpha-term stays if it came from the last
+  // residual (the step is then taken again bit for bit).
+  if (ts->steprollback ? !th->F0_reused : !take_next_alpha_term(ts)) {
+    PetscCall(TSComputeI2Function(ts, t_n, th->U0, th->V0, th->zero, th->F0));
+    ++th->alpha_terms_evaluated;
+    th->F0_reused = PETSC_FALSE;
+  }
   if (th->average_inertia) {  // M(U_n), once per step
     Mat J = nullptr, P = nullptr;
     PetscCall(SNESGetJacobian(ts->snes, &J, &P, nullptr, nullptr));
@@ -278,6 +288,7 @@ PetscErrorCode attempt_step(TS ts, PetscReal dt, PetscBool* converged) {
   ts->ptime = hits_final_time ? ts->max_time : th->t1;
   th->accel_valid = PETSC_TRUE;
   th->accel_time = ts->ptime;
+  PetscCall(prepare_next_alpha_term(ts));
   PetscFunctionReturn(0);
 }
 
@@ -330,7 +341,7 @@ PetscErrorCode ts_reset(TS ts) {
   HHTData* th = data_of(ts);
   PetscFunctionBeginUser;
   for (Vec* v : {&th->U0, &th->V0, &th->A0, &th->U1, &th->V1, &th->A1, &th->A1_arg, &th->F0,
-                 &th->zero, &th->R_prev, &th->work, &th->newton_F, &th->newton_Y})
+                 &th->F0_next, &th->zero, &th->R_prev, &th->work, &th->newton_F, &th->newton_Y})
     PetscCall(VecDestroy(v));
   PetscCall(MatDestroy(&th->M0));
   PetscCall(MatDestroy(&th->K_work));
@@ -354,7 +365,7 @@ PetscErrorCode ts_setup(TS ts) {
   PetscCheck(ts->vec_dot, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONGSTATE,
              "TS type hht needs the velocity: call TS2SetSolution(ts, U, V)");
   for (Vec* v : {&th->U0, &th->V0, &th->A0, &th->U1, &th->V1, &th->A1, &th->A1_arg, &th->F0,
-                 &th->zero, &th->R_prev, &th->work, &th->newton_F, &th->newton_Y})
+                 &th->F0_next, &th->zero, &th->R_prev, &th->work, &th->newton_F, &th->newton_Y})
     if (!*v) PetscCall(VecDuplicate(ts->vec_sol, v));
   PetscCall(VecZeroEntries(th->zero));
   PetscCall(TSGetAdapt(ts, &ts->adapt));
@@ -367,6 +378,8 @@ PetscErrorCode ts_setup(TS ts) {
   th->newton_chosen = PETSC_FALSE;
   th->dt_last_set = -1;
   th->accepted = th->rejected = 0;
+  th->next_valid = PETSC_FALSE;
+  th->last_F = th->last_X = nullptr;
   PetscFunctionReturn(0);
 }
 
@@ -400,6 +413,11 @@ PetscErrorCode ts_set_from_options(TS ts, PetscOptionItems* PetscOptionsObject) 
   PetscCall(PetscOptionsInt("-ts_hht_regrow_steps",
                             "Accepted steps before a reduced dt doubles again", "",
                             th->regrow_steps, &th->regrow_steps, nullptr));
+  PetscCall(PetscOptionsBool("-ts_hht_reuse_alpha_term",
+                             "A step's alpha-term F(t_n, U_n, V_n, 0) from the last residual "
+                             "minus its inertia (when the problem gives it; 0: evaluated)",
+                             "hht_set_inertia_product", th->reuse_alpha_term, &th->reuse_alpha_term,
+                             nullptr));
   PetscOptionsHeadEnd();
   PetscFunctionReturn(0);
 }
@@ -422,6 +440,12 @@ PetscErrorCode ts_view(TS ts, PetscViewer viewer) {
                                      th->average_inertia ? "averaged (1-alpha) M(U_n+1) + alpha "
                                                            "M(U_n)"
                                                          : "M(U_n+1) at the new level"));
+    PetscCall(PetscViewerASCIIPrintf(
+        viewer, "  alpha-term: %s (%" PetscInt_FMT " steps from it, %" PetscInt_FMT " evaluated)\n",
+        th->inertia && th->reuse_alpha_term && !th->average_inertia
+            ? "from the previous step's last residual"
+            : "evaluated",
+        th->alpha_terms_reused, th->alpha_terms_evaluated));
   }
   PetscFunctionReturn(0);
 }

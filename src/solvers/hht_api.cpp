@@ -76,7 +76,34 @@ HHTNewtonInfo hht_get_info(TS ts) {
   info.rejected_steps = th->rejected;
   info.user_time_step = th->dt_user;
   info.own_newton = th->own_newton;
+  info.alpha_terms_reused = th->alpha_terms_reused;
+  info.alpha_terms_evaluated = th->alpha_terms_evaluated;
   return info;
+}
+
+void hht_set_inertia_product(TS ts, HHTInertiaProduct product, void* ctx) {
+  HHTData* th = checked_data(ts);
+  th->inertia = product;
+  th->inertia_ctx = ctx;
+  th->next_valid = PETSC_FALSE;
+}
+
+void hht_invalidate_alpha_term(TS ts) {
+  checked_data(ts)->next_valid = PETSC_FALSE;
+}
+
+bool hht_get_alpha_term(TS ts, Vec F0) {
+  HHTData* th = checked_data(ts);
+  if (!next_alpha_term_current(ts)) return false;
+  PCSIM_PETSC(VecCopy(th->F0_next, F0));
+  return true;
+}
+
+void hht_set_alpha_term(TS ts, Vec F0) {
+  HHTData* th = checked_data(ts);
+  if (!th->F0_next) PCSIM_PETSC(VecDuplicate(F0, &th->F0_next));
+  PCSIM_PETSC(VecCopy(F0, th->F0_next));
+  PCSIM_PETSC(stamp_next_alpha_term(ts));
 }
 
 HHTStepControl hht_get_step_control(TS ts) {

@@ -4,6 +4,8 @@
 
 #include <petsc/private/tsimpl.h>
 
+#include "pcsim/solvers/hht.hpp"
+
 namespace pcsim::solvers::hht_detail {
 
 enum class SolveMode { kStep, kInitialAcceleration };
@@ -47,6 +49,22 @@ struct HHTData {
   Vec stage_X = nullptr;
   PetscObjectState stage_state = 0;
 
+  // The α-term from the last residual (-ts_hht_reuse_alpha_term, hht_set_inertia_product):
+  // F0_next is F(t_n, U_n, V_n, 0) of the solution next_U, rate next_V at their states and
+  // time next_time, when next_valid. last_F: the last step residual, at last_X's state.
+  HHTInertiaProduct inertia = nullptr;
+  void* inertia_ctx = nullptr;
+  PetscBool reuse_alpha_term = PETSC_TRUE;
+  Vec F0_next = nullptr;
+  PetscBool next_valid = PETSC_FALSE;
+  PetscBool F0_reused = PETSC_FALSE;  // this step's F0 came from the last residual
+  Vec next_U = nullptr, next_V = nullptr;
+  PetscObjectState next_U_state = 0, next_V_state = 0;
+  PetscReal next_time = 0;
+  Vec last_F = nullptr, last_X = nullptr;
+  PetscObjectState last_F_state = 0, last_X_state = 0;
+  PetscInt alpha_terms_reused = 0, alpha_terms_evaluated = 0;
+
   // Current solve.
   SolveMode mode = SolveMode::kStep;
   PetscReal t0 = 0, t1 = 0, dt = 0;
@@ -81,6 +99,14 @@ PetscErrorCode snes_jacobian(SNES snes, Vec X, Mat J, Mat P, TS ts);
 // own Newton, leaves the reason and iteration count in the SNES and adds the
 // iterations to the TS's counts (hht_newton.cpp).
 PetscErrorCode newton_solve(TS ts, Vec X);
+// The α-term: after an accepted step, F0_next from the step's last residual if it can
+// be (prepare); at a step's start, F0 from it if it still belongs to the solution
+// (take: true), hht.cpp.
+PetscErrorCode prepare_next_alpha_term(TS ts);
+PetscBool take_next_alpha_term(TS ts);
+// Marks F0_next as belonging to the current solution, rate and time; whether it still does.
+PetscErrorCode stamp_next_alpha_term(TS ts);
+PetscBool next_alpha_term_current(TS ts);
 PetscErrorCode converged_energy(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm,
                                 PetscReal fnorm, SNESConvergedReason* reason, void* ctx);
 

@@ -51,6 +51,10 @@ class CoupledSystem {
   Mat create_reference_matrix() const;
 
   void residual(double t, Vec U, Vec V, Vec A, Vec F);
+  // True when dF/dA is a constant matrix M (no term's add_residual() reads A
+  // otherwise); then inertia_product() gives MA = M A.
+  bool constant_inertia() const;
+  void inertia_product(Vec A, Vec MA);
   // The exact tangent, assembled into J.
   void jacobian(double t, Vec U, Vec V, Vec A, Shifts shifts, Mat J);
   // Cheap path: J0 (every term's reference tangent), assembled; then the

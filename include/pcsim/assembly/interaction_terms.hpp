@@ -22,6 +22,11 @@ class PantographTerm : public Term {
   }
   bool adds_by_set_values() const override { return true; }
   void add_residual(const CoupledState& state, Vec F) override;
+  // The model's M q'' (a linear model's M is constant).
+  AccelerationUse acceleration_use() const override {
+    return slot_.model->is_linear() ? AccelerationUse::constant : AccelerationUse::varying;
+  }
+  void add_inertia(Vec A, Vec F) const override;
   void add_tangent(const CoupledState& state, Shifts shifts, Mat J) override;
   void insert_pattern(Mat J) const override;
   void add_reference_tangent(const CoupledState& state, Shifts shifts, Mat J) override;
@@ -39,6 +44,7 @@ class PantographTerm : public Term {
   std::size_t index_;
   const PantographSlot& slot_;
   std::vector<double> reference_;  // block_tangent() at J0's state (last rank)
+  mutable Eigen::MatrixXd mass_;   // a linear model's M (last rank, at the first add_inertia)
 };
 
 // Penalty contact of one pantograph with one contact wire at the moving point

@@ -87,6 +87,12 @@ struct TermPower {
   double external = 0;     // work rate of prescribed forces (moving contact, uplift)
 };
 
+// How a term's add_residual() (not its linear parts) depends on the acceleration A:
+// not at all, through a constant matrix (add_inertia gives the product), or otherwise
+// (a configuration-dependent mass). With no 'varying' term the system's dF/dA is
+// constant and the integrator may take its HHT alpha-term from the last residual.
+enum class AccelerationUse { none, constant, varying };
+
 // v^T C v over the ranks (a constant damping matrix C dissipates -v^T C v).
 double quadratic_form(Mat C, Vec v);
 
@@ -105,6 +111,11 @@ class Term {
   virtual bool adds_by_set_values() const { return false; }
   virtual void add_residual(const CoupledState& state, Vec F) {}
   virtual void add_tangent(const CoupledState& state, Shifts shifts, Mat J) {}
+  // Every term whose add_residual() reads A says so (default: it does not).
+  virtual AccelerationUse acceleration_use() const { return AccelerationUse::none; }
+  // 'constant': F += dF/dA A for add_residual()'s part (by VecSetValues if
+  // adds_by_set_values(), as add_residual does).
+  virtual void add_inertia(Vec A, Vec F) const {}
   // Entries the term may ever touch (zeros), so that the Jacobian's pattern
   // never changes during a run.
   virtual void insert_pattern(Mat J) const {}

@@ -44,6 +44,11 @@ struct DynamicState {
   std::vector<double> reference_U, reference_V, reference_A;
   std::vector<std::vector<double>> terms;  // Term::checkpoint() of every term
   std::vector<double> head_offsets;        // every pantograph's, set by the initial state
+  // The HHT alpha-term the next step takes from the last residual (hht.hpp;
+  // false: the next step evaluates it), so that a restarted run does the
+  // uninterrupted one's arithmetic.
+  bool has_alpha_term = false;
+  std::vector<double> alpha_term;
 };
 
 class DynamicSolver {
@@ -77,9 +82,13 @@ class DynamicSolver {
   // (ignored elsewhere); on the cheap path J0 is rebuilt at the next step.
   void replace_state(const std::vector<double>& U, const std::vector<double>& V,
                      const std::vector<double>& A);
+  // The residual changed between steps other than through the state (a held
+  // load set from outside): the next step evaluates its HHT alpha-term.
+  void residual_changed();
 
  private:
   static PetscErrorCode residual(TS, PetscReal t, Vec U, Vec V, Vec A, Vec F, void* ctx);
+  static PetscErrorCode inertia_product(TS, Vec A, Vec MA, void* ctx);
   static PetscErrorCode jacobian(TS, PetscReal t, Vec U, Vec V, Vec A, PetscReal shift_v,
                                  PetscReal shift_a, Mat J, Mat P, void* ctx);
   void cheap_jacobian(PetscReal t, Vec U, Vec V, Vec A, assembly::Shifts shifts, Mat P);

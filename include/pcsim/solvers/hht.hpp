@@ -37,6 +37,11 @@
 //                                 -snes_test_jacobian, -snes_monitor), the energy-norm test or
 //                                 an SNES other than newtonls with the basic line search asks
 //                                 for the SNES.
+//   -ts_hht_reuse_alpha_term <1>  with hht_set_inertia_product(): the next step's α-term
+//                                 F(t_n, U_n, V_n, 0) is the step's last residual (at the
+//                                 converged U_n) minus its α-term and its inertia M A_n/(1-α):
+//                                 one inertia product instead of a residual per step. Equal to
+//                                 evaluating it up to round-off; 0 evaluates it.
 // The initial acceleration solves F(t0, U0, V0, A0) = 0 with the TS's SNES at the first step
 // (and whenever the time differs from the end of the last step), unless
 // hht_set_initial_acceleration() supplied it. With -ts_hht_energy_norm_tol the TS installs its
@@ -68,6 +73,21 @@ void hht_get_params(TS ts, PetscReal* alpha, PetscReal* gamma, PetscReal* beta);
 // Sets the energy-norm tolerance (<= 0 disables the test); takes effect at TSSetUp.
 void hht_set_energy_norm_tol(TS ts, PetscReal tol);
 
+// The problem's inertia, when F is affine in A with a constant dF/dA = M: MA = M A.
+// With it the type takes each step's α-term from the previous step's last residual
+// (-ts_hht_reuse_alpha_term) while nothing but the steps changed the solution, its
+// rate and the time; call hht_invalidate_alpha_term() when F itself changed between
+// steps (e.g. a held load set from outside).
+using HHTInertiaProduct = PetscErrorCode (*)(TS ts, Vec A, Vec MA, void* ctx);
+void hht_set_inertia_product(TS ts, HHTInertiaProduct product, void* ctx);
+void hht_invalidate_alpha_term(TS ts);
+// Checkpoint/restart: the α-term the next step will use, if the type holds one for the
+// current solution (false: the next step evaluates it), and giving it back after the
+// solution and time were restored (the restarted run then does the arithmetic of the
+// uninterrupted one).
+bool hht_get_alpha_term(TS ts, Vec F0);
+void hht_set_alpha_term(TS ts, Vec F0);
+
 // Diagnostics of the most recent Newton solve of a step.
 struct HHTNewtonInfo {
   PetscReal last_energy_norm = 0;  // |Δqᵀ R| of the last iteration (0 before any)
@@ -77,6 +97,8 @@ struct HHTNewtonInfo {
   PetscReal user_time_step = 0;  // the Δt the step size grows back to
   // The steps' Newton: the type's own iteration (true) or the SNES (after the first step).
   PetscBool own_newton = PETSC_FALSE;
+  // Steps whose α-term was taken from the previous step's last residual, and evaluated.
+  PetscInt alpha_terms_reused = 0, alpha_terms_evaluated = 0;
 };
 HHTNewtonInfo hht_get_info(TS ts);
 
