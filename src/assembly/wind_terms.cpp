@@ -13,24 +13,54 @@
 
 namespace pcsim::assembly {
 
-Eigen::Matrix3d aerodynamic_damping(const catenary::Wire& wire, const Eigen::Vector3d& tangent,
+Eigen::Matrix3d aerodynamic_damping(const DragSection& section, const Eigen::Vector3d& tangent,
                                     const Eigen::Vector3d& velocity, double air_density) {
   const Eigen::Vector3d t = tangent.normalized();
   const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - t * t.transpose();
   const Eigen::Vector3d vn = P * velocity;
   const double speed = vn.norm();
-  if (speed == 0) return Eigen::Matrix3d::Zero();  // wind along the wire: no drag
-  const double k =
-      0.5 * air_density * catenary::wire_drag_coefficient(wire) * catenary::wire_diameter(wire);
+  if (speed == 0) return Eigen::Matrix3d::Zero();  // wind along the member: no drag
+  const double k = 0.5 * air_density * section.drag_coefficient * section.diameter;
   return k * (speed * Eigen::Matrix3d::Identity() + vn * vn.transpose() / speed) * P;
 }
 
-void turbulent_drag_gradients(const catenary::Wire& wire, const Eigen::Vector3d& tangent,
+DragSection wire_section(const catenary::Wire& wire) {
+  return {catenary::wire_diameter(wire), catenary::wire_drag_coefficient(wire)};
+}
+
+DragSection bar_section(const catenary::BarElement& bar) {
+  return {catenary::bar_diameter(bar), catenary::bar_drag_coefficient(bar)};
+}
+
+void turbulent_drag_gradients(const DragSection& section, const Eigen::Vector3d& tangent,
                               const Eigen::Vector3d& velocity, double air_density,
                               Eigen::Vector3d& a, Eigen::Vector3d& b) {
-  const Eigen::Matrix3d DP = aerodynamic_damping(wire, tangent, velocity, air_density);
+  const Eigen::Matrix3d DP = aerodynamic_damping(section, tangent, velocity, air_density);
   a = velocity.norm() > 0 ? Eigen::Vector3d(DP * velocity.normalized()) : Eigen::Vector3d::Zero();
   b = DP * Eigen::Vector3d::UnitZ();
+}
+
+std::vector<WindBar> wind_bars(const CatenarySystem& system) {
+  const auto& mesh = system.mesh();
+  const auto& wind = mesh.conditions.wind;
+  std::vector<WindBar> out;
+  for (int b : system.layout().local_bars()) {
+    const auto& bar = mesh.bars[b];
+    if (catenary::bar_diameter(bar) <= 0) continue;
+    const Eigen::Vector3d p0 = mesh.nodes[bar.nodes[0]].position,
+                          p1 = mesh.nodes[bar.nodes[1]].position;
+    const double half = 0.5 * (p1 - p0).norm();
+    WindBar w;
+    system.bar_indices(b, w.idx.data());
+    w.damping =
+        half * aerodynamic_damping(bar_section(bar), p1 - p0, wind.velocity(), wind.air_density);
+    turbulent_drag_gradients(bar_section(bar), p1 - p0, wind.velocity(), wind.air_density, w.a,
+                             w.b);
+    w.a *= half, w.b *= half;
+    w.x = 0.5 * (p0.x() + p1.x());
+    out.push_back(w);
+  }
+  return out;
 }
 
 Mat aerodynamic_damping_matrix(const CatenarySystem& system) {
@@ -40,9 +70,10 @@ Mat aerodynamic_damping_matrix(const CatenarySystem& system) {
   PetscInt idx[12];
   for (int e : system.layout().local_cables()) {
     const auto& el = mesh.cables[e];
-    const Eigen::Matrix3d DP = aerodynamic_damping(
-        mesh.wires[el.wire], mesh.nodes[el.nodes[1]].position - mesh.nodes[el.nodes[0]].position,
-        wind.velocity(), wind.air_density);
+    const Eigen::Matrix3d DP =
+        aerodynamic_damping(wire_section(mesh.wires[el.wire]),
+                            mesh.nodes[el.nodes[1]].position - mesh.nodes[el.nodes[0]].position,
+                            wind.velocity(), wind.air_density);
     // (L0 / Lref) int S^T S dchi: the mass matrix of a unit mass per unstressed length.
     const catenary::Mat12 m = catenary::cable_mass_matrix(
         {1.0, 1.0, el.unstressed_length / el.ref_length}, el.ref_length);
@@ -52,6 +83,12 @@ Mat aerodynamic_damping_matrix(const CatenarySystem& system) {
     system.cable_indices(e, idx);  // negative (fixed) rows and columns are ignored
     PCSIM_PETSC(MatSetValues(C, 12, idx, 12, idx, c.data(), ADD_VALUES));
   }
+  for (const WindBar& bar : wind_bars(system))  // half of each bar's on each end node
+    for (int end = 0; end < 2; ++end) {
+      const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> c = bar.damping;
+      PCSIM_PETSC(
+          MatSetValues(C, 3, &bar.idx[3 * end], 3, &bar.idx[3 * end], c.data(), ADD_VALUES));
+    }
   PCSIM_PETSC(MatAssemblyBegin(C, MAT_FINAL_ASSEMBLY));
   PCSIM_PETSC(MatAssemblyEnd(C, MAT_FINAL_ASSEMBLY));
   return C;
@@ -106,7 +143,8 @@ Mat turbulence_load_matrix(const CatenarySystem& system) {
     const Eigen::Vector3d p0 = mesh.nodes[el.nodes[0]].position,
                           p1 = mesh.nodes[el.nodes[1]].position;
     Eigen::Vector3d a, b;
-    turbulent_drag_gradients(mesh.wires[el.wire], p1 - p0, wind.velocity(), wind.air_density, a, b);
+    turbulent_drag_gradients(wire_section(mesh.wires[el.wire]), p1 - p0, wind.velocity(),
+                             wind.air_density, a, b);
     // The field at the element's middle, linear between two stations (WindSeries::interpolate).
     const catenary::Bracket s =
         catenary::station_bracket(0.5 * (p0.x() + p1.x()), grid.x0, grid.spacing, grid.count);
@@ -124,6 +162,18 @@ Mat turbulence_load_matrix(const CatenarySystem& system) {
             PCSIM_PETSC(MatSetValue(L, idx[r], column, weights[k] * f[r], ADD_VALUES));
       }
     }
+  }
+  for (const WindBar& bar : wind_bars(system)) {
+    const catenary::Bracket s = catenary::station_bracket(bar.x, grid.x0, grid.spacing, grid.count);
+    for (int c = 0; c < 2; ++c)
+      for (int k = 0; k < 2; ++k) {
+        const PetscInt column = c * grid.count + (k == 0 ? s.lo : s.hi);
+        const double weight = k == 0 ? 1 - s.w : s.w;
+        const Eigen::Vector3d& f = c == 0 ? bar.a : bar.b;
+        for (int r = 0; r < 6; ++r)
+          if (bar.idx[r] >= 0)
+            PCSIM_PETSC(MatSetValue(L, bar.idx[r], column, weight * f[r % 3], ADD_VALUES));
+      }
   }
   PCSIM_PETSC(MatAssemblyBegin(L, MAT_FINAL_ASSEMBLY));
   PCSIM_PETSC(MatAssemblyEnd(L, MAT_FINAL_ASSEMBLY));
@@ -143,12 +193,13 @@ WindTurbulence::WindTurbulence(FECatenary& catenary) {
                           p1 = mesh.nodes[el.nodes[1]].position;
     Element out;
     system.cable_indices(e, out.idx.data());
-    turbulent_drag_gradients(mesh.wires[el.wire], p1 - p0, wind.velocity(), wind.air_density, out.a,
-                             out.b);
+    turbulent_drag_gradients(wire_section(mesh.wires[el.wire]), p1 - p0, wind.velocity(),
+                             wind.air_density, out.a, out.b);
     out.x = 0.5 * (p0.x() + p1.x());
     out.ref_length = el.ref_length, out.unstressed_length = el.unstressed_length;
     elements_.push_back(out);
   }
+  bars_ = wind_bars(system);
 }
 
 WindTurbulence::~WindTurbulence() {
@@ -165,6 +216,16 @@ void WindTurbulence::add_loads(double t, Vec F, double sign) const {
     int n = 0;
     for (int i = 0; i < 12; ++i)
       if (el.idx[i] >= 0) idx[n] = el.idx[i], values[n++] = f[i];  // -1: a fixed DOF
+    PCSIM_PETSC(VecSetValues(F, n, idx, values, ADD_VALUES));
+  }
+  for (const auto& bar : bars_) {  // half of the bar's load on each end node
+    const Eigen::Vector3d q =
+        sign * (u_.interpolate(bar.x, t) * bar.a + w_.interpolate(bar.x, t) * bar.b);
+    PetscInt idx[6];
+    double values[6];
+    int n = 0;
+    for (int i = 0; i < 6; ++i)
+      if (bar.idx[i] >= 0) idx[n] = bar.idx[i], values[n++] = q[i % 3];
     PCSIM_PETSC(VecSetValues(F, n, idx, values, ADD_VALUES));
   }
 }

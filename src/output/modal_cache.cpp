@@ -95,6 +95,7 @@ void add_mesh(KeyBuffer& key, const catenary::CatenaryMesh& mesh) {
       key.add(std::string("bars' drag"));                    // catenary::bar_drag
       for (const auto& b : mesh.bars)
         key.add(catenary::bar_diameter(b)), key.add(catenary::bar_drag_coefficient(b));
+      key.add(std::string("bars' damping and turbulence"));  // assembly::wind_bars
       if (c.wind.turbulence.on)  // the turbulence rows (catenary::turbulence_row_keys)
         key.add(std::string("turbulence rows")), key.add(c.wind.turbulence.grid_spacing);
     }

@@ -20,6 +20,25 @@
 
 namespace pcsim::assembly {
 
+// A member's cross-section for drag: diameter d [m], drag coefficient Cd.
+struct DragSection {
+  double diameter = 0, drag_coefficient = 0;
+};
+DragSection wire_section(const catenary::Wire& wire);
+DragSection bar_section(const catenary::BarElement& bar);
+
+// A bar under the wind (droppers, stitch bars: a diameter, catenary/mesh.hpp),
+// lumped half on each end node as its mean drag is (catenary::bar_drag): the
+// aerodynamic damping (L/2) D P and the turbulence load (L/2) a, (L/2) b per
+// unit u', w' on each end, the field taken at the bar's middle x.
+struct WindBar {
+  std::array<PetscInt, 6> idx{};  // the end nodes' translations (-1: fixed)
+  Eigen::Matrix3d damping;        // [N s/m] on each end
+  Eigen::Vector3d a, b;           // [N s/m] on each end per unit u', w'
+  double x = 0;
+};
+std::vector<WindBar> wind_bars(const CatenarySystem& system);  // the rank's bars with a diameter
+
 class WindTurbulence : public Term {
  public:
   explicit WindTurbulence(FECatenary& catenary);
@@ -41,6 +60,7 @@ class WindTurbulence : public Term {
   };
   void add_loads(double t, Vec F, double sign) const;
   std::vector<Element> elements_;
+  std::vector<WindBar> bars_;
   catenary::WindSeries u_, w_;
   mutable Vec work_ = nullptr;
 };
@@ -71,7 +91,7 @@ class AerodynamicDamping : public Term {
 // The load per unstressed length per unit u' and w' on a wire of unit
 // tangent t in the mean wind V (horizontal): the columns a, b above.
 // D P of the aerodynamic damping (above) [N s/m^2].
-Eigen::Matrix3d aerodynamic_damping(const catenary::Wire& wire, const Eigen::Vector3d& tangent,
+Eigen::Matrix3d aerodynamic_damping(const DragSection& section, const Eigen::Vector3d& tangent,
                                     const Eigen::Vector3d& velocity, double air_density);
 
 // The wires' aerodynamic damping matrix C (AerodynamicDamping, above) of
@@ -91,7 +111,7 @@ TurbulenceField turbulence_field(const catenary::CatenaryMesh& mesh);
 // at each element's middle). The modal level projects it on its basis.
 Mat turbulence_load_matrix(const CatenarySystem& system);
 
-void turbulent_drag_gradients(const catenary::Wire& wire, const Eigen::Vector3d& tangent,
+void turbulent_drag_gradients(const DragSection& section, const Eigen::Vector3d& tangent,
                               const Eigen::Vector3d& velocity, double air_density,
                               Eigen::Vector3d& a, Eigen::Vector3d& b);
 
