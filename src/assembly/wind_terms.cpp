@@ -107,20 +107,26 @@ TermPower AerodynamicDamping::power(const CoupledState& state) const {
   return p;
 }
 
-TurbulenceField turbulence_field(const catenary::CatenaryMesh& mesh) {
+TurbulenceSpecs turbulence_specs(const catenary::CatenaryMesh& mesh) {
   const auto& wind = mesh.conditions.wind;
   const auto& s = wind.turbulence;
-  const catenary::TurbulenceGrid grid = catenary::turbulence_grid(mesh);
-  const auto series = [&](double sigma, double length, std::uint64_t seed) {
-    catenary::TurbulenceSpec spec{wind.speed, sigma, length, s.coherence_decay, seed};
-    return catenary::generate_turbulence(spec, grid.x0, grid.spacing, grid.count, s.time_step,
-                                         s.time_points);
-  };
   const double sigma_u = s.intensity * wind.speed;
+  TurbulenceSpecs specs;
+  specs.u = {wind.speed, sigma_u, s.length_scale, s.coherence_decay, s.seed};
+  specs.w = {wind.speed, s.vertical_ratio * sigma_u, s.vertical_length_ratio * s.length_scale,
+             s.coherence_decay, s.seed + 0x9e3779b97f4a7c15ULL};  // an independent stream for w'
+  return specs;
+}
+
+TurbulenceField turbulence_field(const catenary::CatenaryMesh& mesh) {
+  const auto& s = mesh.conditions.wind.turbulence;
+  const catenary::TurbulenceGrid grid = catenary::turbulence_grid(mesh);
+  const TurbulenceSpecs specs = turbulence_specs(mesh);
   TurbulenceField field;
-  field.u = series(sigma_u, s.length_scale, s.seed);
-  field.w = series(s.vertical_ratio * sigma_u, s.vertical_length_ratio * s.length_scale,
-                   s.seed + 0x9e3779b97f4a7c15ULL);  // an independent stream for w'
+  field.u = catenary::generate_turbulence(specs.u, grid.x0, grid.spacing, grid.count, s.time_step,
+                                          s.time_points);
+  field.w = catenary::generate_turbulence(specs.w, grid.x0, grid.spacing, grid.count, s.time_step,
+                                          s.time_points);
   return field;
 }
 
@@ -183,9 +189,14 @@ Mat turbulence_load_matrix(const CatenarySystem& system) {
 WindTurbulence::WindTurbulence(FECatenary& catenary) {
   const auto& mesh = catenary.mesh();
   const auto& wind = mesh.conditions.wind;
-  TurbulenceField field = turbulence_field(mesh);
-  u_ = std::move(field.u);
-  w_ = std::move(field.w);
+  const TurbulenceSpecs specs = turbulence_specs(mesh);
+  grid_ = catenary::turbulence_grid(mesh);
+  const auto& t = wind.turbulence;
+  u_generator_ = std::make_unique<catenary::TurbulenceGenerator>(specs.u, grid_.spacing,
+                                                                 t.time_step, t.time_points);
+  w_generator_ = std::make_unique<catenary::TurbulenceGenerator>(specs.w, grid_.spacing,
+                                                                 t.time_step, t.time_points);
+  follow(0.0);  // the line's own grid (turbulence_field)
   const auto& system = catenary.system();
   for (int e : system.layout().local_cables()) {
     const auto& el = mesh.cables[e];
@@ -200,6 +211,18 @@ WindTurbulence::WindTurbulence(FECatenary& catenary) {
     elements_.push_back(out);
   }
   bars_ = wind_bars(system);
+}
+
+// The line's stations x0 + i dx (the window at offset 0 starts where the
+// line does) that cover the window's [x0, x0 + (count - 1) dx] + offset.
+void WindTurbulence::follow(double offset) {
+  const double dx = grid_.spacing;
+  const long first = static_cast<long>(std::floor(offset / dx + 1e-9));
+  const double end = offset + (grid_.count - 1) * dx;  // the window's last station on the line
+  const int count = std::max(2, static_cast<int>(std::ceil(end / dx - 1e-9) - first) + 1);
+  const double x0 = grid_.x0 + first * dx - offset;  // in the window's coordinates
+  u_ = u_generator_->stations(first, count, x0, dx);
+  w_ = w_generator_->stations(first, count, x0, dx);
 }
 
 WindTurbulence::~WindTurbulence() {

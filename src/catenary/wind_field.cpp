@@ -1,11 +1,10 @@
 #include "pcsim/catenary/wind_field.hpp"
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <random>
+#include <stdexcept>
 #include <unsupported/Eigen/FFT>
 
 namespace pcsim::catenary {
@@ -42,37 +41,81 @@ double WindSeries::interpolate(double x, double t) const {
          a * ((1 - b) * at(s.hi, k.lo) + b * at(s.hi, k.hi));
 }
 
-// u_j(t_p) = Re sum_l B_jl exp(2 pi i l p / nt), B_jl = sum_k H_jk(f_l)
-// sqrt(2 df) exp(i phi_kl): variance sum_l S df, cross-covariance
-// sum_l (H H^T)_ij df = sum_l S_ij df.
-WindSeries generate_turbulence(const TurbulenceSpec& s, double x0, double dx, int nx, double dt,
-                               int nt) {
-  WindSeries out{x0, dx, dt, nx, nt, std::vector<double>(static_cast<std::size_t>(nx) * nt, 0.0)};
+namespace {
+
+// SplitMix64's finaliser (Steele, Lea and Flood, OOPSLA 2014): a bijective mix.
+std::uint64_t mix64(std::uint64_t z) {
+  z += 0x9e3779b97f4a7c15ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+}  // namespace
+
+double turbulence_phase(std::uint64_t seed, int frequency, long station) {
+  const std::uint64_t key =
+      (static_cast<std::uint64_t>(station) << 21) ^ static_cast<std::uint64_t>(frequency);
+  return 2 * M_PI * static_cast<double>(mix64(mix64(seed) ^ key) >> 11) * 0x1.0p-53;
+}
+
+TurbulenceGenerator::TurbulenceGenerator(const TurbulenceSpec& s, double dx, double dt, int nt)
+    : spec_(s), dt_(dt), nt_(nt) {
   const double df = 1.0 / (nt * dt);
   const int m = nt / 2;  // frequencies l df, l = 1 .. m - 1 (below Nyquist)
-  std::mt19937_64 rng(s.seed);
-  std::uniform_real_distribution<double> phase(0.0, 2 * M_PI);
-  Eigen::MatrixXcd B = Eigen::MatrixXcd::Zero(nx, nt);
-  Eigen::MatrixXd S(nx, nx);
+  amplitude_.assign(m, 0.0), decay_.assign(m, 0.0), innovation_.assign(m, 0.0);
+  state_.assign(m, {0.0, 0.0});
   for (int l = 1; l < m; ++l) {
-    const double f = l * df, psd = turbulence_psd(s, f);
-    for (int i = 0; i < nx; ++i)
-      for (int j = 0; j < nx; ++j) S(i, j) = psd * turbulence_coherence(s, f, (i - j) * dx);
-    const Eigen::LLT<Eigen::MatrixXd> llt(S);
-    const Eigen::MatrixXd H = llt.matrixL();
-    Eigen::VectorXcd e(nx);
-    for (int k = 0; k < nx; ++k) e[k] = std::polar(std::sqrt(2 * df), phase(rng));
-    B.col(l) = H * e;
+    const double f = l * df;
+    amplitude_[l] = std::sqrt(turbulence_psd(s, f) * 2 * df);
+    decay_[l] = turbulence_coherence(s, f, dx);
+    innovation_[l] = amplitude_[l] * std::sqrt(1 - decay_[l] * decay_[l]);
   }
+}
+
+// B_0 = a e_0, B_i = rho B_(i-1) + a sqrt(1 - rho^2) e_i at each frequency:
+// the Cholesky factor of the stations' cross-spectral matrix a^2 rho^|i-j|
+// (Davenport's coherence on a regular grid) applied to the random phases
+// e_i = exp(i phi_i), one station after the other.
+void TurbulenceGenerator::step() {
+  for (std::size_t l = 1; l < state_.size(); ++l) {
+    const std::complex<double> e =
+        std::polar(1.0, turbulence_phase(spec_.seed, static_cast<int>(l), next_));
+    state_[l] = next_ == 0 ? amplitude_[l] * e : decay_[l] * state_[l] + innovation_[l] * e;
+  }
+  ++next_;
+}
+
+WindSeries TurbulenceGenerator::stations(long first, int count, double x0, double dx) {
+  if (first < next_) {  // overlapping the last stretch: from its start again
+    if (first < saved_next_)
+      throw std::logic_error("TurbulenceGenerator: a stretch starts before the last one's start");
+    state_ = saved_state_;
+    next_ = saved_next_;
+  }
+  WindSeries out{x0,    dx,  dt_,
+                 count, nt_, std::vector<double>(static_cast<std::size_t>(count) * nt_)};
+  while (next_ < first) step();
+  saved_state_ = state_;
+  saved_next_ = next_;
   Eigen::FFT<double> fft;
-  std::vector<std::complex<double>> in(nt), time(nt);
-  for (int i = 0; i < nx; ++i) {
-    for (int k = 0; k < nt; ++k) in[k] = B(i, k);
+  std::vector<std::complex<double>> in(nt_, {0.0, 0.0}), time(nt_);
+  for (int i = 0; i < count; ++i) {
+    step();
+    std::copy(state_.begin(), state_.end(), in.begin());
     fft.inv(time, in);  // (1/nt) sum_l in_l exp(+2 pi i l p / nt)
-    for (int k = 0; k < nt; ++k)
-      out.values[static_cast<std::size_t>(i) * nt + k] = nt * time[k].real();
+    for (int k = 0; k < nt_; ++k)
+      out.values[static_cast<std::size_t>(i) * nt_ + k] = nt_ * time[k].real();
   }
   return out;
+}
+
+// u_j(t_p) = Re sum_l B_jl exp(2 pi i l p / nt) (TurbulenceGenerator):
+// variance sum_l S df, cross-covariance sum_l S_ij df.
+WindSeries generate_turbulence(const TurbulenceSpec& s, double x0, double dx, int nx, double dt,
+                               int nt) {
+  TurbulenceGenerator generator(s, dx, dt, nt);
+  return generator.stations(0, nx, x0, dx);
 }
 
 }  // namespace pcsim::catenary

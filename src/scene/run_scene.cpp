@@ -202,8 +202,12 @@ WindowChoice load_catenary_and_window(const InputNode& scene, const RunSceneOpti
     support_x.resize(static_cast<std::size_t>(window->line_spans) + 1);
     for (std::size_t k = 0; k < support_x.size(); ++k) support_x[k] = x0 + k * window->span_length;
     run.window = std::move(window);
-    if (run.catenary.mesh.conditions.wind.turbulence.on)
-      scene["conditions"]["wind"].fail_key("turbulence", "not available with a moving window yet");
+    if (run.catenary.mesh.conditions.wind.turbulence.on &&
+        run.catenary.fidelity == catenary::CatenaryFidelity::modal)
+      scene["conditions"]["wind"].fail_key(
+          "turbulence",
+          "not available with the modal level's moving window yet (the FE levels' "
+          "window takes it)");
   }
   return choice;
 }

@@ -5,6 +5,7 @@
 // differences of the quasi-steady drag.
 #include <gtest/gtest.h>
 
+#include <Eigen/Cholesky>
 #include <cmath>
 #include <complex>
 #include <unsupported/Eigen/FFT>
@@ -192,4 +193,58 @@ TEST(WindField, BarDragGradientsAgainstFiniteDifferences) {
   assembly::turbulent_drag_gradients(assembly::bar_section(bar), {0, 0, -1}, {0, 25, 0}, 1.25, a,
                                      b);
   EXPECT_NEAR(a.y(), 1.25 * 1.2 * 0.004 * 25, 1e-12);
+}
+
+// The generator's recursion from station to station is the spectral
+// representation with the Cholesky factor of the stations' cross-spectral
+// matrix S(f) rho^|i-j| (what the generator did before, O(n^3) per
+// frequency): the same series from the same phases, to round-off (measured
+// ~1e-15 of the largest value, asserted 1e-12).
+TEST(WindField, RecursionEqualsTheCholeskyFactor) {
+  const auto s = spec();
+  constexpr int n = 12, nt = 256;
+  const auto w = catenary::generate_turbulence(s, 0, kDx, n, kDt, nt);
+  const double df = 1.0 / (nt * kDt);
+  Eigen::MatrixXcd B = Eigen::MatrixXcd::Zero(n, nt);
+  Eigen::MatrixXd S(n, n);
+  for (int l = 1; l < nt / 2; ++l) {
+    const double f = l * df;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        S(i, j) =
+            catenary::turbulence_psd(s, f) * catenary::turbulence_coherence(s, f, (i - j) * kDx);
+    const Eigen::MatrixXd H = Eigen::LLT<Eigen::MatrixXd>(S).matrixL();
+    Eigen::VectorXcd e(n);
+    for (int i = 0; i < n; ++i)
+      e[i] = std::polar(std::sqrt(2 * df), catenary::turbulence_phase(s.seed, l, i));
+    B.col(l) = H * e;
+  }
+  double worst = 0, largest = 0;
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < nt; ++k) {
+      std::complex<double> sum = 0;
+      for (int l = 1; l < nt / 2; ++l) sum += B(i, l) * std::polar(1.0, 2 * M_PI * l * k / nt);
+      worst = std::max(worst, std::abs(sum.real() - w.at(i, k)));
+      largest = std::max(largest, std::abs(w.at(i, k)));
+    }
+  EXPECT_LT(worst, 1e-12 * largest) << worst;
+  EXPECT_GT(largest, 1.0);
+}
+
+// Any stretch of the line's stations is the whole line's field, bit for bit,
+// also when taken in overlapping steps as a moving window takes it; a
+// stretch cannot start before the last one's start.
+TEST(WindField, StretchesAreTheLinesField) {
+  const auto s = spec();
+  const auto line = catenary::generate_turbulence(s, 0, kDx, 30, kDt, 256);
+  catenary::TurbulenceGenerator generator(s, kDx, kDt, 256);
+  for (const long first : {3L, 9L, 21L}) {  // a window of 8 stations moving by 6, then 12
+    const auto stretch = generator.stations(first, 8, first * kDx, kDx);
+    for (int i = 0; i < 8; ++i)
+      for (int k = 0; k < 256; ++k) ASSERT_EQ(stretch.at(i, k), line.at(first + i, k));
+    EXPECT_EQ(stretch.interpolate((first + 2.5) * kDx, 0.3),
+              line.interpolate((first + 2.5) * kDx, 0.3));
+  }
+  EXPECT_THROW(generator.stations(20, 2, 0, kDx), std::logic_error);
+  EXPECT_NO_THROW(generator.stations(21, 2, 0, kDx));
 }

@@ -12,10 +12,12 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <memory>
 #include <vector>
 
 #include "pcsim/assembly/fe_catenary.hpp"
 #include "pcsim/assembly/term.hpp"
+#include "pcsim/catenary/wind.hpp"
 #include "pcsim/catenary/wind_field.hpp"
 
 namespace pcsim::assembly {
@@ -51,6 +53,10 @@ class WindTurbulence : public Term {
 
   const catenary::WindSeries& lateral() const { return u_; }
   const catenary::WindSeries& vertical() const { return w_; }
+  // A moving window whose x = 0 is the line's x = offset: the field of the
+  // line's stations over the window (the whole line's field there, bit for
+  // bit; offsets never decrease).
+  void follow(double offset);
 
  private:
   struct Element {
@@ -62,6 +68,8 @@ class WindTurbulence : public Term {
   std::vector<Element> elements_;
   std::vector<WindBar> bars_;
   catenary::WindSeries u_, w_;
+  std::unique_ptr<catenary::TurbulenceGenerator> u_generator_, w_generator_;
+  catenary::TurbulenceGrid grid_;  // the mesh's (at offset 0: the line's stations from x0)
   mutable Vec work_ = nullptr;
 };
 
@@ -97,6 +105,12 @@ Eigen::Matrix3d aerodynamic_damping(const DragSection& section, const Eigen::Vec
 // The wires' aerodynamic damping matrix C (AerodynamicDamping, above) of
 // the system's cable elements, in the catenary's pattern.
 Mat aerodynamic_damping_matrix(const CatenarySystem& system);
+
+// The turbulence's components u' and w' (their spectra and seeds).
+struct TurbulenceSpecs {
+  catenary::TurbulenceSpec u, w;
+};
+TurbulenceSpecs turbulence_specs(const catenary::CatenaryMesh& mesh);
 
 // The line's turbulence (u', w') on its grid (catenary::turbulence_grid):
 // every model of one scene draws the same field.
