@@ -1,5 +1,7 @@
 #include "pcsim/assembly/modal_wind.hpp"
 
+#include <cmath>
+
 #include "pcsim/assembly/coupled_state.hpp"
 #include "pcsim/catenary/wind.hpp"
 #include "pcsim/core/error.hpp"
@@ -8,12 +10,43 @@ namespace pcsim::assembly {
 
 ModalWindTurbulence::ModalWindTurbulence(ModalCatenary& catenary)
     : catenary_(catenary), field_(turbulence_field(catenary.mesh())) {
+  const auto& t = catenary.mesh().conditions.wind.turbulence;
+  const TurbulenceSpecs specs = turbulence_specs(catenary.mesh());
+  const double dx = field_.u.dx;
+  u_generator_ =
+      std::make_unique<catenary::TurbulenceGenerator>(specs.u, dx, t.time_step, t.time_points);
+  w_generator_ =
+      std::make_unique<catenary::TurbulenceGenerator>(specs.w, dx, t.time_step, t.time_points);
   const auto keys = catenary::turbulence_row_keys(catenary.mesh());
   const long m = catenary.catenary_dofs();
   R_.resize(static_cast<long>(keys.size()), m);
   for (std::size_t j = 0; j < keys.size(); ++j)
     R_.row(static_cast<long>(j)) = catenary.key_row(keys[j]);
   force_.setZero(m);
+}
+
+// The basis's rows belong to the window's stations x0 + j dx: each takes the
+// line's field at x0 + j dx + offset, linear between the line's stations
+// (exactly a line station's when the shift is a multiple of dx).
+void ModalWindTurbulence::follow(double offset) {
+  const double x0 = field_.u.x0, dx = field_.u.dx;
+  const int n = field_.u.nx;
+  const long first = static_cast<long>(std::floor(offset / dx));
+  const int count = n + 1;  // covers x0 + offset .. x0 + (n - 1) dx + offset
+  const double line_x0 = x0 + first * dx - offset;  // in the window's coordinates
+  const auto take = [&](catenary::TurbulenceGenerator& generator, catenary::WindSeries& series) {
+    const catenary::WindSeries line = generator.stations(first, count, line_x0, dx);
+    for (int j = 0; j < n; ++j) {
+      const catenary::Bracket b = catenary::station_bracket(x0 + j * dx, line_x0, dx, count);
+      for (int k = 0; k < series.nt; ++k)
+        series.values[static_cast<std::size_t>(j) * series.nt + k] =
+            b.w == 0 ? line.at(b.lo, k) : (1 - b.w) * line.at(b.lo, k) + b.w * line.at(b.hi, k);
+    }
+  };
+  take(*u_generator_, field_.u);
+  take(*w_generator_, field_.w);
+  sample_index_[0] = sample_index_[1] = -1;
+  force_time_ = -1e300;
 }
 
 // f_k = R^T s_k: the stations' u' (rows 0..n-1) and w' (n..2n-1) at sample k.

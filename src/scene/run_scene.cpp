@@ -181,7 +181,8 @@ WindowChoice load_catenary_and_window(const InputNode& scene, const RunSceneOpti
   const bool turbulent = scene.has("conditions") && scene["conditions"].has("wind") &&
                          scene["conditions"]["wind"].has("turbulence");
   if (turbulent && window && !scene.has("window") && choice.method.automatic()) {
-    choice.declined = "the wind's turbulence does not follow a moving window yet";
+    choice.declined =
+        "under turbulent wind (a window does not feel the wind outside it; give 'window:')";
     window.reset();
   }
   choice.automatic = window && !scene.has("window") && choice.method.automatic();
@@ -202,12 +203,6 @@ WindowChoice load_catenary_and_window(const InputNode& scene, const RunSceneOpti
     support_x.resize(static_cast<std::size_t>(window->line_spans) + 1);
     for (std::size_t k = 0; k < support_x.size(); ++k) support_x[k] = x0 + k * window->span_length;
     run.window = std::move(window);
-    if (run.catenary.mesh.conditions.wind.turbulence.on &&
-        run.catenary.fidelity == catenary::CatenaryFidelity::modal)
-      scene["conditions"]["wind"].fail_key(
-          "turbulence",
-          "not available with the modal level's moving window yet (the FE levels' "
-          "window takes it)");
   }
   return choice;
 }

@@ -4,6 +4,7 @@
 
 #include "pcsim/assembly/fe_catenary.hpp"
 #include "pcsim/assembly/modal_catenary.hpp"
+#include "pcsim/assembly/modal_wind.hpp"
 #include "pcsim/assembly/wind_terms.hpp"
 #include "pcsim/catenary/window.hpp"
 #include "pcsim/core/error.hpp"
@@ -83,9 +84,12 @@ void MovingWindow::shift(solvers::DynamicSolver& solver) {
   solver.replace_state(s.U, s.V, s.A);
   for (auto& pantograph : system_.pantographs()) pantograph.run.start_x -= 2.0 * span_length_;
   ++shifts_;
-  set_pins();                               // J0 is rebuilt at the next step (replace_state)
-  for (const auto& term : system_.terms())  // the line's turbulence over the window
+  set_pins();                                 // J0 is rebuilt at the next step (replace_state)
+  for (const auto& term : system_.terms()) {  // the line's turbulence over the window
     if (auto* wind = dynamic_cast<assembly::WindTurbulence*>(term.get())) wind->follow(offset());
+    if (auto* wind = dynamic_cast<assembly::ModalWindTurbulence*>(term.get()))
+      wind->follow(offset());
+  }
 }
 
 void MovingWindow::shift_fe(solvers::DynamicState& s) const {

@@ -153,8 +153,8 @@ std::string conditions_summary(const StaticConfiguration& config) {
     const auto& t = c.wind.turbulence;
     if (t.on) {
       std::snprintf(text, sizeof text,
-                    ", turbulence I_u %.3f, L_u %.1f m, seed %lu (dynamic runs, every level; the "
-                    "modal level not with a moving window)",
+                    ", turbulence I_u %.3f, L_u %.1f m, seed %lu (dynamic runs, every level and "
+                    "window)",
                     t.intensity, t.length_scale, t.seed);
       on += text;
     }

@@ -354,9 +354,6 @@ expect wind-terrain 2 "command line --set conditions.wind.terrain_category=V|key
   run good-run.yaml --set "conditions.wind={speed: 20, turbulence: {}}" --set conditions.wind.terrain_category=V
 expect wind-both 2 "command line --set conditions.wind|key 'conditions.wind'|needs exactly one of 'speed'" yes \
   run good-run.yaml --set "conditions.wind={speed: 20, basic_speed: 25}"
-expect wind-window 2 "key 'conditions.wind.turbulence'|not available with the modal level's moving window yet" yes \
-  run "$PCSIM_SOURCE_DIR/runs/conditions/en50318-300-wind.yaml" --set catenary.model=modal \
-  --set catenary.modal.method=window
 # issue 25: the pantograph's base motion (docs/conditions.md "Vehicle excitation")
 base="pantographs[0].base_motion"
 expect base-key 2 "command line --set $base|key '$base.phase'|unknown key" yes \

@@ -31,9 +31,9 @@
 #    residual flexibility's series spring (k = kH / (1 + kH r(x))) it was
 #    0.069 and 0.074.
 # 3. The cache: a second run reads the basis with its turbulence rows; a
-#    field on another grid is another basis. A moving window refuses the
-#    turbulence (exit 2, nothing written); the automatic method takes the
-#    whole line and says why.
+#    field on another grid is another basis. The automatic method takes the
+#    whole line under turbulence and says why (an explicit window takes the
+#    line's field: tests/contact/test_run_window_wind.sh).
 set -euo pipefail
 : "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:=/usr/bin/python3}"
 tmp=$(mktemp -d)
@@ -116,13 +116,6 @@ assert np.array_equal(f[0], f[1]), "a run from the cache gave another contact fo
 PY
 run line-grid "$line" --set catenary.model=modal --set conditions.wind.turbulence.grid_spacing=4
 grep -q "computing the catenary's modes" "$tmp/line-grid.log" || { cat "$tmp/line-grid.log"; exit 1; }
-grep -q "modal method: whole (auto: the wind's turbulence does not follow a moving window" \
+grep -q "modal method: whole (auto: under turbulent wind" \
   "$tmp/line-modal.log" || { cat "$tmp/line-modal.log"; exit 1; }
-status=0
-"$PCSIM_BIN" run "$PCSIM_SOURCE_DIR/runs/conditions/en50318-300-wind.yaml" \
-  --set catenary.model=modal --set catenary.modal.method=window -o "$tmp/window" \
-  --cache "$tmp/cache" > "$tmp/window.log" 2>&1 || status=$?
-[ "$status" -eq 2 ] && grep -q "turbulence.*moving window" "$tmp/window.log" ||
-  { echo "exit $status"; cat "$tmp/window.log"; exit 1; }
-[ ! -e "$tmp/window" ] || { echo "the refused run left $tmp/window"; exit 1; }
 echo "modal wind: all checks passed"

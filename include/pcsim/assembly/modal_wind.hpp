@@ -12,6 +12,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 
 #include "pcsim/assembly/modal_catenary.hpp"
 #include "pcsim/assembly/term.hpp"
@@ -28,11 +29,15 @@ class ModalWindTurbulence : public Term {
   TermPower power(const CoupledState& state) const override;
   // The generalised force f(t) (every rank).
   const Eigen::VectorXd& force(double t) const;
+  // A moving window whose x = 0 is the line's x = offset: its stations take
+  // the line's field there (WindTurbulence::follow; offsets never decrease).
+  void follow(double offset);
 
  private:
   const Eigen::VectorXd& sample(int k) const;
   ModalCatenary& catenary_;
   TurbulenceField field_;
+  std::unique_ptr<catenary::TurbulenceGenerator> u_generator_, w_generator_;
   ModalCatenary::RowMatrix R_;  // 2 stations x modes: u' rows, then w' rows
   // The last two samples f_k (slot k % 2) and the last f(t).
   mutable int sample_index_[2] = {-1, -1};
