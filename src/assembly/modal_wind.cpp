@@ -1,7 +1,5 @@
 #include "pcsim/assembly/modal_wind.hpp"
 
-#include <cmath>
-
 #include "pcsim/assembly/coupled_state.hpp"
 #include "pcsim/catenary/wind.hpp"
 #include "pcsim/core/error.hpp"
@@ -25,26 +23,11 @@ ModalWindTurbulence::ModalWindTurbulence(ModalCatenary& catenary)
   force_.setZero(m);
 }
 
-// The basis's rows belong to the window's stations x0 + j dx: each takes the
-// line's field at x0 + j dx + offset, linear between the line's stations
-// (exactly a line station's when the shift is a multiple of dx).
+// The basis's rows belong to the window's stations: they take the line's
+// field at their new place.
 void ModalWindTurbulence::follow(double offset) {
-  const double x0 = field_.u.x0, dx = field_.u.dx;
-  const int n = field_.u.nx;
-  const long first = static_cast<long>(std::floor(offset / dx));
-  const int count = n + 1;  // covers x0 + offset .. x0 + (n - 1) dx + offset
-  const double line_x0 = x0 + first * dx - offset;  // in the window's coordinates
-  const auto take = [&](catenary::TurbulenceGenerator& generator, catenary::WindSeries& series) {
-    const catenary::WindSeries line = generator.stations(first, count, line_x0, dx);
-    for (int j = 0; j < n; ++j) {
-      const catenary::Bracket b = catenary::station_bracket(x0 + j * dx, line_x0, dx, count);
-      for (int k = 0; k < series.nt; ++k)
-        series.values[static_cast<std::size_t>(j) * series.nt + k] =
-            b.w == 0 ? line.at(b.lo, k) : (1 - b.w) * line.at(b.lo, k) + b.w * line.at(b.hi, k);
-    }
-  };
-  take(*u_generator_, field_.u);
-  take(*w_generator_, field_.w);
+  catenary::take_line_field(*u_generator_, offset, field_.u);
+  catenary::take_line_field(*w_generator_, offset, field_.w);
   sample_index_[0] = sample_index_[1] = -1;
   force_time_ = -1e300;
 }

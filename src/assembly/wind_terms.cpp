@@ -190,13 +190,15 @@ WindTurbulence::WindTurbulence(FECatenary& catenary) {
   const auto& mesh = catenary.mesh();
   const auto& wind = mesh.conditions.wind;
   const TurbulenceSpecs specs = turbulence_specs(mesh);
-  grid_ = catenary::turbulence_grid(mesh);
+  const catenary::TurbulenceGrid grid = catenary::turbulence_grid(mesh);
   const auto& t = wind.turbulence;
-  u_generator_ = std::make_unique<catenary::TurbulenceGenerator>(specs.u, grid_.spacing,
-                                                                 t.time_step, t.time_points);
-  w_generator_ = std::make_unique<catenary::TurbulenceGenerator>(specs.w, grid_.spacing,
-                                                                 t.time_step, t.time_points);
-  follow(0.0);  // the line's own grid (turbulence_field)
+  u_generator_ = std::make_unique<catenary::TurbulenceGenerator>(specs.u, grid.spacing, t.time_step,
+                                                                 t.time_points);
+  w_generator_ = std::make_unique<catenary::TurbulenceGenerator>(specs.w, grid.spacing, t.time_step,
+                                                                 t.time_points);
+  const std::vector<double> zeros(static_cast<std::size_t>(grid.count) * t.time_points, 0.0);
+  u_ = w_ = {grid.x0, grid.spacing, t.time_step, grid.count, t.time_points, zeros};
+  follow(0.0);  // the line's own stations (turbulence_field)
   const auto& system = catenary.system();
   for (int e : system.layout().local_cables()) {
     const auto& el = mesh.cables[e];
@@ -213,16 +215,11 @@ WindTurbulence::WindTurbulence(FECatenary& catenary) {
   bars_ = wind_bars(system);
 }
 
-// The line's stations x0 + i dx (the window at offset 0 starts where the
-// line does) that cover the window's [x0, x0 + (count - 1) dx] + offset.
+// The window's stations (the mesh's grid) take the line's field at their
+// place (at offset 0 the line's own stations: turbulence_field's).
 void WindTurbulence::follow(double offset) {
-  const double dx = grid_.spacing;
-  const long first = static_cast<long>(std::floor(offset / dx + 1e-9));
-  const double end = offset + (grid_.count - 1) * dx;  // the window's last station on the line
-  const int count = std::max(2, static_cast<int>(std::ceil(end / dx - 1e-9) - first) + 1);
-  const double x0 = grid_.x0 + first * dx - offset;  // in the window's coordinates
-  u_ = u_generator_->stations(first, count, x0, dx);
-  w_ = w_generator_->stations(first, count, x0, dx);
+  catenary::take_line_field(*u_generator_, offset, u_);
+  catenary::take_line_field(*w_generator_, offset, w_);
 }
 
 WindTurbulence::~WindTurbulence() {

@@ -118,4 +118,18 @@ WindSeries generate_turbulence(const TurbulenceSpec& s, double x0, double dx, in
   return generator.stations(0, nx, x0, dx);
 }
 
+void take_line_field(TurbulenceGenerator& line, double offset, WindSeries& window) {
+  const double dx = window.dx;
+  const int n = window.nx;
+  const long first = static_cast<long>(std::floor(offset / dx));
+  const double line_x0 = window.x0 + first * dx - offset;  // in the window's coordinates
+  const WindSeries field = line.stations(first, n + 1, line_x0, dx);
+  for (int j = 0; j < n; ++j) {
+    const Bracket b = station_bracket(window.x0 + j * dx, line_x0, dx, n + 1);
+    for (int k = 0; k < window.nt; ++k)
+      window.values[static_cast<std::size_t>(j) * window.nt + k] =
+          b.w == 0 ? field.at(b.lo, k) : (1 - b.w) * field.at(b.lo, k) + b.w * field.at(b.hi, k);
+  }
+}
+
 }  // namespace pcsim::catenary

@@ -247,4 +247,15 @@ TEST(WindField, StretchesAreTheLinesField) {
   }
   EXPECT_THROW(generator.stations(20, 2, 0, kDx), std::logic_error);
   EXPECT_NO_THROW(generator.stations(21, 2, 0, kDx));
+  // A window of 6 stations moved by 10 dx takes the line's stations 10..15
+  // bit for bit; moved by 10.4 dx, the field linear between them.
+  catenary::TurbulenceGenerator again(s, kDx, kDt, 256);
+  catenary::WindSeries window{0, kDx, kDt, 6, 256, std::vector<double>(6 * 256)};
+  catenary::take_line_field(again, 10 * kDx, window);
+  for (int j = 0; j < 6; ++j)
+    for (int k = 0; k < 256; ++k) ASSERT_EQ(window.at(j, k), line.at(10 + j, k));
+  catenary::take_line_field(again, 10.4 * kDx, window);
+  for (int j = 0; j < 6; ++j)
+    for (int k = 0; k < 256; ++k)
+      ASSERT_NEAR(window.at(j, k), 0.6 * line.at(10 + j, k) + 0.4 * line.at(11 + j, k), 1e-12);
 }

@@ -69,7 +69,6 @@ class WindTurbulence : public Term {
   std::vector<WindBar> bars_;
   catenary::WindSeries u_, w_;
   std::unique_ptr<catenary::TurbulenceGenerator> u_generator_, w_generator_;
-  catenary::TurbulenceGrid grid_;  // the mesh's (at offset 0: the line's stations from x0)
   mutable Vec work_ = nullptr;
 };
 

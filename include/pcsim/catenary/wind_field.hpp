@@ -84,4 +84,11 @@ class TurbulenceGenerator {
 WindSeries generate_turbulence(const TurbulenceSpec& s, double x0, double dx, int nx, double dt,
                                int nt);
 
+// A moving window's stations (window.x0 + j window.dx, in the window's
+// coordinates; the line's station 0 at window x0 when offset = 0) take the
+// line's field at x + offset: a line station's series bit for bit when the
+// offset is a multiple of dx, else linear between the two around it.
+// Offsets never decrease (TurbulenceGenerator::stations).
+void take_line_field(TurbulenceGenerator& line, double offset, WindSeries& window);
+
 }  // namespace pcsim::catenary
