@@ -7,14 +7,7 @@
 namespace pcsim::assembly {
 
 ModalWindTurbulence::ModalWindTurbulence(ModalCatenary& catenary)
-    : catenary_(catenary), field_(turbulence_field(catenary.mesh())) {
-  const auto& t = catenary.mesh().conditions.wind.turbulence;
-  const TurbulenceSpecs specs = turbulence_specs(catenary.mesh());
-  const double dx = field_.u.dx;
-  u_generator_ =
-      std::make_unique<catenary::TurbulenceGenerator>(specs.u, dx, t.time_step, t.time_points);
-  w_generator_ =
-      std::make_unique<catenary::TurbulenceGenerator>(specs.w, dx, t.time_step, t.time_points);
+    : catenary_(catenary), field_(catenary.mesh()) {
   const auto keys = catenary::turbulence_row_keys(catenary.mesh());
   const long m = catenary.catenary_dofs();
   R_.resize(static_cast<long>(keys.size()), m);
@@ -26,8 +19,7 @@ ModalWindTurbulence::ModalWindTurbulence(ModalCatenary& catenary)
 // The basis's rows belong to the window's stations: they take the line's
 // field at their new place.
 void ModalWindTurbulence::follow(double offset) {
-  catenary::take_line_field(*u_generator_, offset, field_.u);
-  catenary::take_line_field(*w_generator_, offset, field_.w);
+  field_.follow(offset);
   sample_index_[0] = sample_index_[1] = -1;
   force_time_ = -1e300;
 }

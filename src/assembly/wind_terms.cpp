@@ -107,27 +107,30 @@ TermPower AerodynamicDamping::power(const CoupledState& state) const {
   return p;
 }
 
-TurbulenceSpecs turbulence_specs(const catenary::CatenaryMesh& mesh) {
+// u' with sigma_u = I_u V; w' with sigma_w = vertical_ratio sigma_u, its length
+// scale vertical_length_ratio L_u and an independent seed.
+LineTurbulence::LineTurbulence(const catenary::CatenaryMesh& mesh) {
   const auto& wind = mesh.conditions.wind;
   const auto& s = wind.turbulence;
+  const catenary::TurbulenceGrid grid = catenary::turbulence_grid(mesh);
   const double sigma_u = s.intensity * wind.speed;
-  TurbulenceSpecs specs;
-  specs.u = {wind.speed, sigma_u, s.length_scale, s.coherence_decay, s.seed};
-  specs.w = {wind.speed, s.vertical_ratio * sigma_u, s.vertical_length_ratio * s.length_scale,
-             s.coherence_decay, s.seed + 0x9e3779b97f4a7c15ULL};  // an independent stream for w'
-  return specs;
+  const catenary::TurbulenceSpec spec_u{wind.speed, sigma_u, s.length_scale, s.coherence_decay,
+                                        s.seed};
+  const catenary::TurbulenceSpec spec_w{wind.speed, s.vertical_ratio * sigma_u,
+                                        s.vertical_length_ratio * s.length_scale, s.coherence_decay,
+                                        s.seed + 0x9e3779b97f4a7c15ULL};
+  u_line_ = std::make_unique<catenary::TurbulenceGenerator>(spec_u, grid.spacing, s.time_step,
+                                                            s.time_points);
+  w_line_ = std::make_unique<catenary::TurbulenceGenerator>(spec_w, grid.spacing, s.time_step,
+                                                            s.time_points);
+  const std::vector<double> zeros(static_cast<std::size_t>(grid.count) * s.time_points, 0.0);
+  u = w = {grid.x0, grid.spacing, s.time_step, grid.count, s.time_points, zeros};
+  follow(0.0);  // the line's own first stations
 }
 
-TurbulenceField turbulence_field(const catenary::CatenaryMesh& mesh) {
-  const auto& s = mesh.conditions.wind.turbulence;
-  const catenary::TurbulenceGrid grid = catenary::turbulence_grid(mesh);
-  const TurbulenceSpecs specs = turbulence_specs(mesh);
-  TurbulenceField field;
-  field.u = catenary::generate_turbulence(specs.u, grid.x0, grid.spacing, grid.count, s.time_step,
-                                          s.time_points);
-  field.w = catenary::generate_turbulence(specs.w, grid.x0, grid.spacing, grid.count, s.time_step,
-                                          s.time_points);
-  return field;
+void LineTurbulence::follow(double offset) {
+  catenary::take_line_field(*u_line_, offset, u);
+  catenary::take_line_field(*w_line_, offset, w);
 }
 
 Mat turbulence_load_matrix(const CatenarySystem& system) {
@@ -186,19 +189,9 @@ Mat turbulence_load_matrix(const CatenarySystem& system) {
   return L;
 }
 
-WindTurbulence::WindTurbulence(FECatenary& catenary) {
+WindTurbulence::WindTurbulence(FECatenary& catenary) : field_(catenary.mesh()) {
   const auto& mesh = catenary.mesh();
   const auto& wind = mesh.conditions.wind;
-  const TurbulenceSpecs specs = turbulence_specs(mesh);
-  const catenary::TurbulenceGrid grid = catenary::turbulence_grid(mesh);
-  const auto& t = wind.turbulence;
-  u_generator_ = std::make_unique<catenary::TurbulenceGenerator>(specs.u, grid.spacing, t.time_step,
-                                                                 t.time_points);
-  w_generator_ = std::make_unique<catenary::TurbulenceGenerator>(specs.w, grid.spacing, t.time_step,
-                                                                 t.time_points);
-  const std::vector<double> zeros(static_cast<std::size_t>(grid.count) * t.time_points, 0.0);
-  u_ = w_ = {grid.x0, grid.spacing, t.time_step, grid.count, t.time_points, zeros};
-  follow(0.0);  // the line's own stations (turbulence_field)
   const auto& system = catenary.system();
   for (int e : system.layout().local_cables()) {
     const auto& el = mesh.cables[e];
@@ -215,11 +208,8 @@ WindTurbulence::WindTurbulence(FECatenary& catenary) {
   bars_ = wind_bars(system);
 }
 
-// The window's stations (the mesh's grid) take the line's field at their
-// place (at offset 0 the line's own stations: turbulence_field's).
 void WindTurbulence::follow(double offset) {
-  catenary::take_line_field(*u_generator_, offset, u_);
-  catenary::take_line_field(*w_generator_, offset, w_);
+  field_.follow(offset);
 }
 
 WindTurbulence::~WindTurbulence() {
@@ -228,7 +218,8 @@ WindTurbulence::~WindTurbulence() {
 
 void WindTurbulence::add_loads(double t, Vec F, double sign) const {
   for (const auto& el : elements_) {
-    const Eigen::Vector3d q = u_.interpolate(el.x, t) * el.a + w_.interpolate(el.x, t) * el.b;
+    const Eigen::Vector3d q =
+        field_.u.interpolate(el.x, t) * el.a + field_.w.interpolate(el.x, t) * el.b;
     const catenary::Vec12 f =
         sign * catenary::cable_line_load(el.ref_length, el.unstressed_length, q);
     PetscInt idx[12];
@@ -240,7 +231,7 @@ void WindTurbulence::add_loads(double t, Vec F, double sign) const {
   }
   for (const auto& bar : bars_) {  // half of the bar's load on each end node
     const Eigen::Vector3d q =
-        sign * (u_.interpolate(bar.x, t) * bar.a + w_.interpolate(bar.x, t) * bar.b);
+        sign * (field_.u.interpolate(bar.x, t) * bar.a + field_.w.interpolate(bar.x, t) * bar.b);
     PetscInt idx[6];
     double values[6];
     int n = 0;

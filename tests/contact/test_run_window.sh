@@ -31,18 +31,17 @@ run window1 1 "${window[@]}"
 run window2 2 "${window[@]}"
 grep -q "moving window: 5 of the line's 10 spans" "$tmp/window1.log"
 
-"$PCSIM_PYTHON" - "$tmp" <<'PY'
-import json, sys
-import h5py
+PYTHONPATH="$S/tests/contact" "$PCSIM_PYTHON" - "$tmp" <<'PY'
+import sys
 import numpy as np
+import run_figures
 d = sys.argv[1]
 def summary(name):
-    return json.load(open(f"{d}/{name}/summary.json"))
+    return run_figures.summary(f"{d}/{name}")
 def figures(name):
-    return {f["key"]: f["value"] for f in summary(name)["en50318"]["pantograph"]["figures"]}
+    return run_figures.figures(f"{d}/{name}")
 def force(name):
-    with h5py.File(f"{d}/{name}/results.h5") as f:
-        return f["/pantographs/pantograph/contact_force"][:], f["/pantographs/pantograph/position"][:]
+    return run_figures.force_and_position(f"{d}/{name}")
 assert summary("window1")["window_shifts"] == 1, summary("window1").get("window_shifts")
 full, win = figures("full"), figures("window1")
 for key in ("mean_N", "std_N", "stat_max_N", "max_N", "uplift_mm"):

@@ -37,15 +37,15 @@ run window1 1 "${window[@]}"
 run window2 2 "${window[@]}"
 run modal 1 "${window[@]}" --set catenary.model=modal -pcsim_accuracy_pilot false --cache "$tmp/cache"
 grep -q "moving window: 8 of the line's 16 spans" "$tmp/window1.log"
-"$PCSIM_PYTHON" - "$tmp" <<'PY'
-import json, sys
-import h5py
+PYTHONPATH="$S/tests/contact" "$PCSIM_PYTHON" - "$tmp" <<'PY'
+import sys
 import numpy as np
+import run_figures
 d = sys.argv[1]
 def summary(name):
-    return json.load(open(f"{d}/{name}/summary.json"))
+    return run_figures.summary(f"{d}/{name}")
 def figures(name):
-    return {f["key"]: f["value"] for f in summary(name)["en50318"]["pantograph"]["figures"]}
+    return run_figures.figures(f"{d}/{name}")
 assert summary("window1")["window_shifts"] == 1, summary("window1").get("window_shifts")
 full, win = figures("full"), figures("window1")
 fm = full["mean_N"]
@@ -57,22 +57,7 @@ for key, scale, bound in (("mean_N", fm, 1e-3), ("std_N", full["std_N"], 8e-3),
     print(f"{key}: window {win[key]:.3f}, whole line {full[key]:.3f}, {100 * err:+.2f} %")
     assert abs(err) < bound, key
 def force(name):
-    with h5py.File(f"{d}/{name}/results.h5") as f:
-        return f["/pantographs/pantograph/contact_force"][:]
-# The modal level's window takes the line's field as the FE window does: its
-# figures against the FE window's are its truncation's, within issue 21's
-# targets (mean 0.5 %, sigma, Fm+3sigma, max 1 %, uplift 2 %; Fm-3sigma and
-# the actual minimum, a single sample, printed: measured +0.13 and +1.87 % of
-# Fm).
-modal = figures("modal")
-assert summary("modal")["window_shifts"] == 1
-for key, scale, bound in (("mean_N", fm, 5e-3), ("std_N", win["std_N"], 1e-2),
-                          ("stat_max_N", win["stat_max_N"], 1e-2), ("max_N", win["max_N"], 1e-2),
-                          ("uplift_mm", win["uplift_mm"], 2e-2), ("stat_min_N", fm, None),
-                          ("min_N", fm, None)):
-    err = (modal[key] - win[key]) / scale
-    print(f"{key}: modal window {modal[key]:.3f}, FE window {win[key]:.3f}, {100 * err:+.2f} %")
-    assert bound is None or abs(err) < bound, key
+    return run_figures.force_and_position(f"{d}/{name}")[0]
 f1, f2 = force("window1"), force("window2")
 rel = np.max(np.abs(f2 - f1)) / np.max(np.abs(f1))
 print(f"window under turbulence, 2 ranks vs 1: {rel:.1e}")

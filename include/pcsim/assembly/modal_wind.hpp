@@ -36,8 +36,7 @@ class ModalWindTurbulence : public Term {
  private:
   const Eigen::VectorXd& sample(int k) const;
   ModalCatenary& catenary_;
-  TurbulenceField field_;
-  std::unique_ptr<catenary::TurbulenceGenerator> u_generator_, w_generator_;
+  LineTurbulence field_;
   ModalCatenary::RowMatrix R_;  // 2 stations x modes: u' rows, then w' rows
   // The last two samples f_k (slot k % 2) and the last f(t).
   mutable int sample_index_[2] = {-1, -1};

@@ -41,6 +41,20 @@ struct WindBar {
 };
 std::vector<WindBar> wind_bars(const CatenarySystem& system);  // the rank's bars with a diameter
 
+// The line's turbulence (u', w') over a mesh's stations
+// (catenary::turbulence_grid): the line's own field, and a moving window's
+// after each shift (follow: offset, the line's x at the window's x = 0;
+// catenary::take_line_field). Every model of one scene draws the same field.
+class LineTurbulence {
+ public:
+  explicit LineTurbulence(const catenary::CatenaryMesh& mesh);
+  void follow(double offset);
+  catenary::WindSeries u, w;
+
+ private:
+  std::unique_ptr<catenary::TurbulenceGenerator> u_line_, w_line_;
+};
+
 class WindTurbulence : public Term {
  public:
   explicit WindTurbulence(FECatenary& catenary);
@@ -51,8 +65,8 @@ class WindTurbulence : public Term {
   void add_residual(const CoupledState& state, Vec F) override;
   TermPower power(const CoupledState& state) const override;
 
-  const catenary::WindSeries& lateral() const { return u_; }
-  const catenary::WindSeries& vertical() const { return w_; }
+  const catenary::WindSeries& lateral() const { return field_.u; }
+  const catenary::WindSeries& vertical() const { return field_.w; }
   // A moving window whose x = 0 is the line's x = offset: the field of the
   // line's stations over the window (the whole line's field there, bit for
   // bit; offsets never decrease).
@@ -67,8 +81,7 @@ class WindTurbulence : public Term {
   void add_loads(double t, Vec F, double sign) const;
   std::vector<Element> elements_;
   std::vector<WindBar> bars_;
-  catenary::WindSeries u_, w_;
-  std::unique_ptr<catenary::TurbulenceGenerator> u_generator_, w_generator_;
+  LineTurbulence field_;
   mutable Vec work_ = nullptr;
 };
 
@@ -104,19 +117,6 @@ Eigen::Matrix3d aerodynamic_damping(const DragSection& section, const Eigen::Vec
 // The wires' aerodynamic damping matrix C (AerodynamicDamping, above) of
 // the system's cable elements, in the catenary's pattern.
 Mat aerodynamic_damping_matrix(const CatenarySystem& system);
-
-// The turbulence's components u' and w' (their spectra and seeds).
-struct TurbulenceSpecs {
-  catenary::TurbulenceSpec u, w;
-};
-TurbulenceSpecs turbulence_specs(const catenary::CatenaryMesh& mesh);
-
-// The line's turbulence (u', w') on its grid (catenary::turbulence_grid):
-// every model of one scene draws the same field.
-struct TurbulenceField {
-  catenary::WindSeries u, w;
-};
-TurbulenceField turbulence_field(const catenary::CatenaryMesh& mesh);
 
 // The turbulence load per unit u' (columns 0..n-1) and w' (n..2n-1) at each
 // of the n stations, over the system's DOFs: the load WindTurbulence puts on
