@@ -65,6 +65,27 @@ void print_criteria_set(const app::CommandContext& ctx, const Assessment& a, dou
                 reference.edition.c_str(), reference.speeds_with_ranges().c_str());
 }
 
+// Under a wind: the contact point's lateral position against the permissible
+// one, from the head's centre where the cross-wind blows the head aside too.
+void print_lateral(const app::CommandContext& ctx, const output::RunSettings& s,
+                   const output::PantographStatistics& p, std::size_t i) {
+  if (!(s.permissible_lateral_m > 0)) return;
+  const bool head_moves = i < s.cross_wind.size() && s.cross_wind[i].on;
+  const double judged = head_moves ? p.max_on_head_m : p.max_lateral_m;
+  app::print0(ctx, "    contact point up to %.1f mm from the track centre (x = %.1f m)%s",
+              1e3 * p.max_lateral_m, p.max_lateral_x,
+              s.lateral_static ? " (the wire's static position: modal level)" : "");
+  if (head_moves)
+    app::print0(ctx,
+                "; the cross-wind's %.1f N on the\n    pantograph moves its head %.1f mm: up to "
+                "%.1f mm from the head's centre (x = %.1f m)",
+                s.cross_wind[i].force_n, 1e3 * s.cross_wind[i].offset_m, 1e3 * p.max_on_head_m,
+                p.max_on_head_x);
+  app::print0(
+      ctx, "; permissible %.1f mm: %s\n", 1e3 * s.permissible_lateral_m,
+      judged <= s.permissible_lateral_m ? "inside the working width" : "OUTSIDE the working width");
+}
+
 // The figures of every pantograph, judged against the run's criteria set.
 void print_statistics(const app::CommandContext& ctx, const output::RunSettings& s,
                       const output::RunStatistics& stats) {
@@ -74,7 +95,8 @@ void print_statistics(const app::CommandContext& ctx, const output::RunSettings&
               s.cutoff_hz, s.analysis_from_span, s.analysis_to_span, speed_kmh);
   print_criteria_set(ctx, s.assessment, speed_kmh);
   const nlohmann::json run = {{"max_uplift_at_support_m", stats.max_uplift_m}};
-  for (const auto& p : stats.pantographs) {
+  for (std::size_t i = 0; i < stats.pantographs.size(); ++i) {
+    const auto& p = stats.pantographs[i];
     if (!p.complete) {
       app::print0(ctx, "  %-12s did not cross the analysis section: no statistics\n",
                   p.name.c_str());
@@ -92,15 +114,7 @@ void print_statistics(const app::CommandContext& ctx, const output::RunSettings&
                                                       statistics, stats.max_uplift_m, s.assessment),
                                                   speed_kmh))
                       .c_str());
-    if (s.permissible_lateral_m > 0)
-      app::print0(ctx,
-                  "    contact point up to %.1f mm from the track centre (x = %.1f m)%s; "
-                  "permissible %.1f mm: %s\n",
-                  1e3 * p.max_lateral_m, p.max_lateral_x,
-                  s.lateral_static ? " (the wire's static position: modal level)" : "",
-                  1e3 * s.permissible_lateral_m,
-                  p.max_lateral_m <= s.permissible_lateral_m ? "inside the working width"
-                                                             : "OUTSIDE the working width");
+    print_lateral(ctx, s, p, i);
     if (p.force.actual_min < 0)
       app::print0(ctx,
                   "    the filtered minimum is negative: the contact force is zero while the "

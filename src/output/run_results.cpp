@@ -101,11 +101,23 @@ PantographStatistics pantograph_results(hid_t file, const RunSettings& s,
   st.complete = !x.empty() && x.front() <= s.analysis_from_x && x.back() >= s.analysis_to_x;
   if (st.complete)
     st.force = force_statistics(x, filtered, force, s.analysis_from_x, s.analysis_to_x);
+  const bool cross_wind = p < s.cross_wind.size() && s.cross_wind[p].on;
+  if (cross_wind) {
+    h5::write(file, g + "/cross_wind_force", {s.cross_wind[p].force_n}, {1}, "N",
+              "the mean cross-wind's lateral force on the pantograph (towards +y)");
+    h5::write(file, g + "/head_lateral_offset", {s.cross_wind[p].offset_m}, {1}, "m",
+              "the head's quasi-static lateral deflection under that force (towards +y)");
+  }
   if (st.complete && h5::exists(file, g + "/wire_lateral")) {
     const auto y = h5::read(file, g + "/wire_lateral");
-    for (std::size_t i = 0; i < y.size() && i < x.size(); ++i)
-      if (x[i] >= s.analysis_from_x && x[i] <= s.analysis_to_x && std::abs(y[i]) > st.max_lateral_m)
+    const double head = cross_wind ? s.cross_wind[p].offset_m : 0.0;
+    for (std::size_t i = 0; i < y.size() && i < x.size(); ++i) {
+      if (x[i] < s.analysis_from_x || x[i] > s.analysis_to_x) continue;
+      if (std::abs(y[i]) > st.max_lateral_m)
         st.max_lateral_m = std::abs(y[i]), st.max_lateral_x = x[i];
+      if (std::abs(y[i] - head) > st.max_on_head_m)
+        st.max_on_head_m = std::abs(y[i] - head), st.max_on_head_x = x[i];
+    }
   }
   if (st.complete && s.loss_min_duration_s > 0)
     st.force.loss_of_contact_percent = loss_of_contact_percent(
@@ -217,9 +229,19 @@ void write_run_summary(const OutputDir& out, const RunSettings& s, const RunStat
       figures["lateral"] = {{"max_abs_m", p.max_lateral_m},
                             {"at_x_m", p.max_lateral_x},
                             {"static_only", s.lateral_static}};
+      const std::size_t i = summary["pantographs"].size();
+      const bool cross_wind = i < s.cross_wind.size() && s.cross_wind[i].on;
+      if (cross_wind) {
+        figures["lateral"]["cross_wind_force_n"] = s.cross_wind[i].force_n;
+        figures["lateral"]["head_offset_m"] = s.cross_wind[i].offset_m;
+        figures["lateral"]["max_abs_on_head_m"] = p.max_on_head_m;
+        figures["lateral"]["on_head_at_x_m"] = p.max_on_head_x;
+      }
+      // Judged from the head's centre where the head is blown aside too.
+      const double judged = cross_wind ? p.max_on_head_m : p.max_lateral_m;
       if (s.permissible_lateral_m > 0) {
         figures["lateral"]["permissible_m"] = s.permissible_lateral_m;
-        figures["lateral"]["inside"] = p.max_lateral_m <= s.permissible_lateral_m;
+        figures["lateral"]["inside"] = judged <= s.permissible_lateral_m;
       }
       summary["pantographs"].push_back(figures);
     }

@@ -42,10 +42,26 @@ void read_simulation(const InputNode& scene, RunScene& run, std::optional<double
                               format_number(x_last) + "] m");
 }
 
+// The mean cross-wind's lateral force on a pantograph, F_y = rho CdA V_y |V_y| / 2
+// (the wind's component across the track: the cross-flow principle, as the
+// wires' drag), and the head's quasi-static lateral deflection F_y / k_y.
+void read_cross_wind(const InputNode& p, const catenary::WindLoad& wind,
+                     contact::PantographRun& pr) {
+  if (!p.has("cross_wind")) return;
+  const InputNode c = p["cross_wind"];
+  c.allow_only({"drag_area", "lateral_stiffness"});
+  const double drag_area = c.get_positive("drag_area", limits::drag_area);
+  const double stiffness = c.get_positive("lateral_stiffness", limits::stiffness);
+  const double across = wind.velocity().y();
+  pr.cross_wind = true;
+  pr.cross_wind_force = 0.5 * wind.air_density * drag_area * across * std::abs(across);
+  pr.head_lateral_offset = pr.cross_wind_force / stiffness;
+}
+
 // Entry i of the scene's pantographs: how it travels and starts, and its model.
 void read_pantograph(const InputNode& p, std::size_t i, RunScene& run) {
   p.allow_only({"name", "model", "start_x", "static_force", "start", "ramp_distance",
-                "working_height", "effects", "base_motion"});
+                "working_height", "effects", "base_motion", "cross_wind"});
   const double x_first = run.catenary.mesh.support_x.front();
   contact::PantographRun pr;
   pr.name = p.get_string("name", "pantograph" + std::to_string(i + 1));
@@ -56,6 +72,7 @@ void read_pantograph(const InputNode& p, std::size_t i, RunScene& run) {
   auto model = load_pantograph_model(p.load_referenced("model"),
                                      p.has("effects") ? &effects : nullptr, air_speed);
   apply_base_motion(p, *model);
+  read_cross_wind(p, run.catenary.mesh.conditions.wind, pr);
   pr.start_x = p.get_double("start_x", x_first + 5.0);
   if (pr.start_x < x_first || pr.start_x >= run.end_x)
     p.fail_key("start_x", "must lie on the line before simulation.end_x (" +

@@ -354,6 +354,11 @@ expect wind-terrain 2 "command line --set conditions.wind.terrain_category=V|key
   run good-run.yaml --set "conditions.wind={speed: 20, turbulence: {}}" --set conditions.wind.terrain_category=V
 expect wind-both 2 "command line --set conditions.wind|key 'conditions.wind'|needs exactly one of 'speed'" yes \
   run good-run.yaml --set "conditions.wind={speed: 20, basic_speed: 25}"
+cw="pantographs[0].cross_wind"
+expect cross-wind-missing 2 "command line --set $cw|key '$cw.lateral_stiffness'|missing" yes \
+  run good-run.yaml --set "$cw={drag_area: 0.5}"
+expect cross-wind-negative 2 "command line --set $cw|key '$cw.drag_area'|must be positive" yes \
+  run good-run.yaml --set "$cw={drag_area: -0.5, lateral_stiffness: 5e4}"
 # issue 25: the pantograph's base motion (docs/conditions.md "Vehicle excitation")
 base="pantographs[0].base_motion"
 expect base-key 2 "command line --set $base|key '$base.phase'|unknown key" yes \

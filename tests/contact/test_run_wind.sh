@@ -22,7 +22,15 @@
 #     modal level that recorded the static position would be 20 mm off);
 #     the summary's largest |y| over the analysis section is that of the
 #     dataset, the stagger at a support (0.2 m, held by the steady arm,
-#     within 1 mm), inside the 0.40 m.
+#     within 1 mm), inside the 0.40 m;
+#  7. the cross-wind's force on the pantograph (pantographs[].cross_wind,
+#     CdA 0.5 m^2): F_y = rho CdA V^2 / 2 = 195.3125 N and the head's
+#     deflection F_y / k_y (k_y 5e4 N/m: 3.90625 mm) in summary.json and
+#     results.h5 (with units) to 1e-12; the wire's motion is that of the run
+#     without it, bit for bit (the models have no lateral motion); the
+#     position from the head's centre is max |y - deflection| over the
+#     analysis section, and it is what is judged: a soft head (k_y 300 N/m,
+#     0.651 m aside) is outside the working width where the wire is inside.
 set -euo pipefail
 : "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:=/usr/bin/python3}"
 tmp=$(mktemp -d)
@@ -37,6 +45,13 @@ run seed3
 run seed3-again
 run seed4 --set conditions.wind.turbulence.seed=4
 run nonlinear --set effects.catenary_nonlinear=true
+run cross --set "conditions.wind={speed: 25}" \
+  --set "pantographs[0].cross_wind={drag_area: 0.5, lateral_stiffness: 5e4}"
+run cross-soft --set "conditions.wind={speed: 25}" \
+  --set "pantographs[0].cross_wind={drag_area: 0.5, lateral_stiffness: 300}"
+grep -q "pantograph moves its head 3.9 mm: up to 203.9 mm from the head's centre" "$tmp/cross.log" ||
+  { cat "$tmp/cross.log"; exit 1; }
+grep -q "OUTSIDE the working width" "$tmp/cross-soft.log" || { cat "$tmp/cross-soft.log"; exit 1; }
 run modal-mean --set "conditions.wind={speed: 25}" --set catenary.model=modal \
   -pcsim_accuracy_pilot false --cache "$tmp/cache"
 run modal-seed3 --set catenary.model=modal -pcsim_accuracy_pilot false --cache "$tmp/cache"
@@ -99,4 +114,27 @@ for k in ("mean", "seed3", "modal-mean", "modal-seed3"):
     assert lat["max_abs_m"] == np.max(np.abs(y[inside])), lat
     assert abs(lat["max_abs_m"] - 0.2) <= 1e-3 and lat["inside"] and lat["permissible_m"] == 0.4, lat
     assert not lat["static_only"], (k, lat)
+
+for k, stiffness in (("cross", 5e4), ("cross-soft", 300.0)):
+    force = 0.5 * 1.25 * 0.5 * 25.0**2
+    offset = force / stiffness
+    xk, y = lateral(k)
+    assert np.array_equal(y, y_mean), "the head's force moved the wire"
+    lat = json.load(open(f"{d}/{k}/summary.json"))["pantographs"][0]["lateral"]
+    with h5py.File(f"{d}/{k}/results.h5") as f:
+        g = f["/pantographs/lumped"]
+        assert g["cross_wind_force"].attrs["unit"] in (b"N", "N")
+        assert g["head_lateral_offset"].attrs["unit"] in (b"m", "m")
+        assert abs(g["cross_wind_force"][0] - force) <= 1e-12 * force
+        assert abs(g["head_lateral_offset"][0] - offset) <= 1e-12 * offset
+    assert abs(lat["cross_wind_force_n"] - force) <= 1e-12 * force, lat
+    assert abs(lat["head_offset_m"] - offset) <= 1e-12 * offset, lat
+    a = json.load(open(f"{d}/{k}/summary.json"))["analysis"]
+    inside = (xk >= a["from_x"]) & (xk <= a["to_x"])
+    on_head = np.max(np.abs(y[inside] - offset))
+    assert abs(lat["max_abs_on_head_m"] - on_head) <= 1e-15, (lat, on_head)
+    assert lat["inside"] == (on_head <= 0.4), lat
+    print(f"{k}: {force:.4f} N on the pantograph, head {1e3 * offset:.3f} mm aside, contact point "
+          f"{1e3 * on_head:.1f} mm from its centre, inside {lat['inside']}")
+assert not json.load(open(f"{d}/cross-soft/summary.json"))["pantographs"][0]["lateral"]["inside"]
 PY

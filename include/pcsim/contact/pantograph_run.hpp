@@ -27,6 +27,13 @@ struct PantographRun {
   // Height of the contact point above the pantograph's base at the start [m];
   // <= 0: the model takes absolute heights (lumped models).
   double working_height = 0;
+  // The mean cross-wind's force on the pantograph (scene 'cross_wind',
+  // docs/conditions.md "Wind on the pantograph"): F_y = rho CdA V_y |V_y| / 2
+  // from the wind's component across the track, and the head's quasi-static
+  // lateral deflection F_y / k_y [N, m]. The models have no lateral motion:
+  // it moves the head under the wire, not the contact force.
+  bool cross_wind = false;
+  double cross_wind_force = 0, head_lateral_offset = 0;
 
   double contact_x(double t) const { return start_x + speed * t; }
   // Weight of the pantograph's own uplift during the ramp (thesis 3.3.1); 1 after it.

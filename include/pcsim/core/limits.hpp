@@ -34,6 +34,7 @@ inline constexpr Limit wire_diameter{1.0, "m"};          // wires 5-20 mm
 inline constexpr Limit drag_coefficient{10.0, ""};       // round wires 1.0-1.2
 inline constexpr Limit wind_speed{100.0, "m/s"};         // design gusts ~25-50 m/s
 inline constexpr Limit air_density{10.0, "kg/m^3"};      // 1.25 at sea level
+inline constexpr Limit drag_area{100.0, "m^2"};          // a pantograph's Cd A ~0.2-1 m^2
 inline constexpr Limit stiffness{1e12, "N/m"};           // springs, droppers, contact
 inline constexpr Limit mass{1e5, "kg"};                  // clamps, arms, weights, stages
 inline constexpr Limit damping{1e8, "N s/m"};            // pantograph stages ~10-100

@@ -33,6 +33,13 @@ struct RunSettings {
   double permissible_lateral_m = 0;
   bool lateral_static = false;  // the modal level in still air: the static lateral position
   std::vector<std::string> pantograph_names;
+  // Per pantograph: the mean cross-wind's force [N] and the head's lateral
+  // deflection [m] (pantographs[].cross_wind); not given: no entry is 'on'.
+  struct HeadCrossWind {
+    bool on = false;
+    double force_n = 0, offset_m = 0;
+  };
+  std::vector<HeadCrossWind> cross_wind;
   Assessment assessment;  // the criteria set the figures are judged against
 };
 
@@ -43,6 +50,9 @@ struct PantographStatistics {
   // The contact point's largest |lateral position| over the analysis section
   // (the wire's y at the contact point) and its station [m].
   double max_lateral_m = 0, max_lateral_x = 0;
+  // With a cross-wind on the pantograph: the same from the head's centre,
+  // |y - head deflection| (its largest value and station) [m].
+  double max_on_head_m = 0, max_on_head_x = 0;
 };
 
 struct RunStatistics {

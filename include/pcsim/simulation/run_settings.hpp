@@ -24,7 +24,10 @@ inline output::RunSettings run_settings(const scene::RunScene& run, const std::s
   if (wind.any()) s.permissible_lateral_m = wind.permissible_m();
   // The modal basis keeps the contact wire's lateral rows under a wind only.
   s.lateral_static = run.catenary.fidelity == catenary::CatenaryFidelity::modal && !wind.any();
-  for (const auto& p : run.pantographs) s.pantograph_names.push_back(p.name);
+  for (const auto& p : run.pantographs) {
+    s.pantograph_names.push_back(p.name);
+    s.cross_wind.push_back({p.cross_wind, p.cross_wind_force, p.head_lateral_offset});
+  }
   s.assessment = run.assessment;
   return s;
 }
