@@ -71,7 +71,6 @@ void print_lateral(const app::CommandContext& ctx, const output::RunSettings& s,
                    const output::PantographStatistics& p, std::size_t i) {
   if (!(s.permissible_lateral_m > 0)) return;
   const bool head_moves = i < s.cross_wind.size() && s.cross_wind[i].on;
-  const double judged = head_moves ? p.max_on_head_m : p.max_lateral_m;
   app::print0(ctx, "    contact point up to %.1f mm from the track centre (x = %.1f m)%s",
               1e3 * p.max_lateral_m, p.max_lateral_x,
               s.lateral_static ? " (the wire's static position: modal level)" : "");
@@ -81,9 +80,9 @@ void print_lateral(const app::CommandContext& ctx, const output::RunSettings& s,
                 "%.1f mm from the head's centre (x = %.1f m)",
                 s.cross_wind[i].force_n, 1e3 * s.cross_wind[i].offset_m, 1e3 * p.max_on_head_m,
                 p.max_on_head_x);
-  app::print0(
-      ctx, "; permissible %.1f mm: %s\n", 1e3 * s.permissible_lateral_m,
-      judged <= s.permissible_lateral_m ? "inside the working width" : "OUTSIDE the working width");
+  app::print0(ctx, "; permissible %.1f mm: %s\n", 1e3 * s.permissible_lateral_m,
+              p.judged_lateral_m <= s.permissible_lateral_m ? "inside the working width"
+                                                            : "OUTSIDE the working width");
 }
 
 // The figures of every pantograph, judged against the run's criteria set.

@@ -119,6 +119,7 @@ PantographStatistics pantograph_results(hid_t file, const RunSettings& s,
         st.max_on_head_m = std::abs(y[i] - head), st.max_on_head_x = x[i];
     }
   }
+  st.judged_lateral_m = cross_wind ? st.max_on_head_m : st.max_lateral_m;
   if (st.complete && s.loss_min_duration_s > 0)
     st.force.loss_of_contact_percent = loss_of_contact_percent(
         x, time, force, s.analysis_from_x, s.analysis_to_x, s.loss_min_duration_s);
@@ -237,11 +238,9 @@ void write_run_summary(const OutputDir& out, const RunSettings& s, const RunStat
         figures["lateral"]["max_abs_on_head_m"] = p.max_on_head_m;
         figures["lateral"]["on_head_at_x_m"] = p.max_on_head_x;
       }
-      // Judged from the head's centre where the head is blown aside too.
-      const double judged = cross_wind ? p.max_on_head_m : p.max_lateral_m;
       if (s.permissible_lateral_m > 0) {
         figures["lateral"]["permissible_m"] = s.permissible_lateral_m;
-        figures["lateral"]["inside"] = judged <= s.permissible_lateral_m;
+        figures["lateral"]["inside"] = p.judged_lateral_m <= s.permissible_lateral_m;
       }
       summary["pantographs"].push_back(figures);
     }

@@ -53,6 +53,9 @@ struct PantographStatistics {
   // With a cross-wind on the pantograph: the same from the head's centre,
   // |y - head deflection| (its largest value and station) [m].
   double max_on_head_m = 0, max_on_head_x = 0;
+  // What the permissible position is judged against: the former, or the
+  // latter where the cross-wind blows the head aside too [m].
+  double judged_lateral_m = 0;
 };
 
 struct RunStatistics {
