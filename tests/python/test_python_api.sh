@@ -14,9 +14,11 @@ cd "$tmp"
 for np in 1 2; do
   "$mpirun" -n $np "$PCSIM_BIN" run "$scene" -o "ref-$np" --no-report > "ref-$np.log" 2>&1 ||
     { cat "ref-$np.log"; exit 1; }
-  "$mpirun" -n $np "$PCSIM_PYTHON" "$PCSIM_SOURCE_DIR/tests/python/python_api_check.py" \
+  # -m mpi4py: an uncaught exception (a failed check on one rank) aborts every
+  # rank instead of leaving the others waiting in a collective.
+  "$mpirun" -n $np "$PCSIM_PYTHON" -m mpi4py "$PCSIM_SOURCE_DIR/tests/python/python_api_check.py" \
     "$PCSIM_SOURCE_DIR" "ref-$np/summary.json"
-  "$mpirun" -n $np "$PCSIM_PYTHON" "$PCSIM_SOURCE_DIR/tests/python/stepping_check.py" \
+  "$mpirun" -n $np "$PCSIM_PYTHON" -m mpi4py "$PCSIM_SOURCE_DIR/tests/python/stepping_check.py" \
     "$PCSIM_SOURCE_DIR"
 done
 # docs/python.md's study (its first ```python block) and its step-wise
