@@ -19,3 +19,19 @@ def force_and_position(folder, pantograph="pantograph"):
     with h5py.File(f"{folder}/results.h5") as f:
         group = f[f"/pantographs/{pantograph}"]
         return group["contact_force"][:], group["position"][:]
+
+
+class Runs:
+    """The result folders of one test, by run name: d/<name>."""
+
+    def __init__(self, folder):
+        self.folder = folder
+
+    def summary(self, name):
+        return summary(f"{self.folder}/{name}")
+
+    def figures(self, name, pantograph="pantograph"):
+        return figures(f"{self.folder}/{name}", pantograph)
+
+    def force_and_position(self, name, pantograph="pantograph"):
+        return force_and_position(f"{self.folder}/{name}", pantograph)

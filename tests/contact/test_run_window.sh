@@ -36,12 +36,8 @@ import sys
 import numpy as np
 import run_figures
 d = sys.argv[1]
-def summary(name):
-    return run_figures.summary(f"{d}/{name}")
-def figures(name):
-    return run_figures.figures(f"{d}/{name}")
-def force(name):
-    return run_figures.force_and_position(f"{d}/{name}")
+runs = run_figures.Runs(d)
+summary, figures, force = runs.summary, runs.figures, runs.force_and_position
 assert summary("window1")["window_shifts"] == 1, summary("window1").get("window_shifts")
 full, win = figures("full"), figures("window1")
 for key in ("mean_N", "std_N", "stat_max_N", "max_N", "uplift_mm"):

@@ -42,10 +42,8 @@ import sys
 import numpy as np
 import run_figures
 d = sys.argv[1]
-def summary(name):
-    return run_figures.summary(f"{d}/{name}")
-def figures(name):
-    return run_figures.figures(f"{d}/{name}")
+runs = run_figures.Runs(d)
+summary, figures = runs.summary, runs.figures
 assert summary("window1")["window_shifts"] == 1, summary("window1").get("window_shifts")
 full, win = figures("full"), figures("window1")
 fm = full["mean_N"]
@@ -57,7 +55,7 @@ for key, scale, bound in (("mean_N", fm, 1e-3), ("std_N", full["std_N"], 8e-3),
     print(f"{key}: window {win[key]:.3f}, whole line {full[key]:.3f}, {100 * err:+.2f} %")
     assert abs(err) < bound, key
 def force(name):
-    return run_figures.force_and_position(f"{d}/{name}")[0]
+    return runs.force_and_position(name)[0]
 f1, f2 = force("window1"), force("window2")
 rel = np.max(np.abs(f2 - f1)) / np.max(np.abs(f1))
 print(f"window under turbulence, 2 ranks vs 1: {rel:.1e}")
