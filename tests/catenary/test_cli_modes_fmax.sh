@@ -28,10 +28,8 @@ done
 "$PY" - "$WORK" <<'PY'
 import json, sys
 work = sys.argv[1]
-sliced = json.load(open(f"{work}/slice/summary.json"))["catenary_frequencies_hz"]
 counted = [f for f in json.load(open(f"{work}/count/summary.json"))["catenary_frequencies_hz"] if f < 3.0]
 assert len(counted) < 40, "count-based solve did not reach 3 Hz"
-assert len(sliced) == len(counted), f"{len(sliced)} sliced vs {len(counted)} counted modes below 3 Hz"
 for run in ("slice", "mumps", "np2"):
     sliced = json.load(open(f"{work}/{run}/summary.json"))["catenary_frequencies_hz"]
     assert len(sliced) == len(counted), f"{run}: {len(sliced)} sliced vs {len(counted)} counted modes below 3 Hz"
