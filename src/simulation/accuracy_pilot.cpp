@@ -95,6 +95,35 @@ void apply_stretch(const Stretch& s, scene::RunScene& run) {
   run.checkpoint_every = 0;
 }
 
+// A -ts_max_steps or -ts_max_time (they bind the pilot's runs too) that
+// would stop a pilot run before it crosses its stretch: a SolverError before
+// any pilot run (the run goes on without the estimate, app/cmd_run.cpp).
+void check_not_cut_short(const scene::RunScene& run, const Stretch& stretch) {
+  // RunScene::duration() of the scene apply_stretch makes.
+  const double duration =
+      (stretch.end_x - (run.pantographs.front().start_x + stretch.shift)) / run.speed;
+  const long steps = std::lround(std::ceil(duration / (run.dt / 2) - 1e-9));  // at dt/2
+  PetscInt max_steps = 0;
+  PetscReal max_time = 0;
+  PetscBool steps_given = PETSC_FALSE, time_given = PETSC_FALSE;
+  PCSIM_PETSC(PetscOptionsGetInt(nullptr, nullptr, "-ts_max_steps", &max_steps, &steps_given));
+  PCSIM_PETSC(PetscOptionsGetReal(nullptr, nullptr, "-ts_max_time", &max_time, &time_given));
+  char why[160] = "";
+  if (steps_given && max_steps < steps)
+    std::snprintf(why, sizeof why,
+                  "-ts_max_steps %ld stops its runs before their stretch "
+                  "(its run at dt/2 needs %ld steps)",
+                  static_cast<long>(max_steps), steps);
+  else if (time_given && max_time < duration)
+    std::snprintf(why, sizeof why,
+                  "-ts_max_time %g stops its runs before their stretch "
+                  "(they need %.3f s)",
+                  static_cast<double>(max_time), duration);
+  if (why[0])
+    throw SolverError(std::string("the accuracy pilot: ") + why +
+                      " (-pcsim_accuracy_pilot false skips it)");
+}
+
 // One pilot run, quietly, in a folder of the cache that is removed after.
 PilotFigures run_pilot(const Context& ctx, const SceneSource& source, const StudyVariant& variant,
                        const Stretch& stretch, double dt, double cutoff_hz,
@@ -104,8 +133,9 @@ PilotFigures run_pilot(const Context& ctx, const SceneSource& source, const Stud
   apply_stretch(stretch, run);
   run.dt = dt;
   if (cutoff_hz > 0) run.catenary.modal.max_frequency_hz = cutoff_hz;
-  output::OutputRequest request{dir,         "command line",   "--cache",        "run (accuracy pilot)",
-                        source.path, "accuracy pilot", source.provenance};
+  output::OutputRequest request{
+      dir,         "command line",   "--cache",        "run (accuracy pilot)",
+      source.path, "accuracy pilot", source.provenance};
   request.overwrite = true;  // the pilot's own folder of an earlier, killed pilot
   output::OutputDir out(ctx.comm, request);
   RunRequest what;
@@ -385,6 +415,7 @@ PilotEstimate run_accuracy_pilot(const Context& ctx, const SceneSource& source,
   }
   const double start = now_s();
   const Stretch stretch = pilot_stretch(run);
+  check_not_cut_short(run, stretch);
   pilot.done = true;
   pilot.from_x = stretch.from_x;
   pilot.to_x = stretch.to_x;

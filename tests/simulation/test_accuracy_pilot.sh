@@ -12,6 +12,8 @@
 #    the run's actual errors are within the fast level's targets (--targets).
 #  - A second run, with -log_view, reads the estimate from the cache (no
 #    pilot run, the same numbers, the same cut-off).
+#  - A -ts_max_steps that would stop the pilot's runs before their stretch is
+#    said before any pilot run; the run goes on without the estimate.
 #  - A value other than auto, true or false is an input error (exit 2, nothing made).
 # The tests' PETSC_OPTIONS switch the pilot off (tests/CMakeLists.txt); the
 # command line switches it on here.
@@ -47,6 +49,11 @@ assert pa["cutoff_hz"] > 60 and a["modal"]["cutoff_hz"] == pa["cutoff_hz"], (
 assert a["en50318"] == b["en50318"]
 print(f"cut-off {pa['cutoff_hz']:.1f} Hz after {pa['cutoff_raises']} raise(s); cached run equal")
 PY
+run --set catenary.model=modal -o short -pcsim_accuracy_pilot true -ts_max_steps 20 > short.log 2>&1 ||
+  { cat short.log; exit 1; }
+grep -q "no accuracy pilot: the accuracy pilot: -ts_max_steps 20 stops its runs before their stretch" \
+  short.log || { cat short.log; exit 1; }
+if grep -q "linear FE at" short.log; then echo "a pilot run started"; cat short.log; exit 1; fi
 status=0
 run -o bad -pcsim_accuracy_pilot maybe > bad.log 2>&1 || status=$?
 [ "$status" = 2 ] || { echo "exit $status, not 2"; cat bad.log; exit 1; }
