@@ -10,6 +10,7 @@
 #include "modal_basis_internal.hpp"
 #include "pcsim/assembly/wind_terms.hpp"
 #include "pcsim/core/error.hpp"
+#include "pcsim/solvers/spectrum.hpp"
 
 namespace pcsim::simulation {
 
@@ -26,23 +27,17 @@ std::size_t row_of(const std::vector<long>& keys, long key) {
   return static_cast<std::size_t>(it - keys.begin());
 }
 
-// Solves with K_T (one Cholesky factorisation: on one rank PETSc's own, as
-// the slicing's, solvers::configure_slicing; MUMPS in parallel).
+// Solves with K_T (one Cholesky factorisation, solvers::use_line_cholesky).
 class StiffnessSolver {
  public:
   explicit StiffnessSolver(Mat K) {
     PC pc;
-    const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(K));
-    PetscMPIInt ranks;
-    PCSIM_PETSC(MPI_Comm_size(comm, &ranks));
-    PCSIM_PETSC(KSPCreate(comm, &ksp_));
+    PCSIM_PETSC(KSPCreate(PetscObjectComm(reinterpret_cast<PetscObject>(K)), &ksp_));
     PCSIM_PETSC(KSPSetOptionsPrefix(ksp_, "modal_static_"));
     PCSIM_PETSC(KSPSetOperators(ksp_, K, K));
     PCSIM_PETSC(KSPSetType(ksp_, KSPPREONLY));
     PCSIM_PETSC(KSPGetPC(ksp_, &pc));
-    PCSIM_PETSC(PCSetType(pc, PCCHOLESKY));
-    PCSIM_PETSC(PCFactorSetMatSolverType(pc, ranks == 1 ? MATSOLVERPETSC : MATSOLVERMUMPS));
-    if (ranks == 1) PCSIM_PETSC(PCFactorSetMatOrderingType(pc, MATORDERINGRCM));
+    solvers::use_line_cholesky(pc);
     PCSIM_PETSC(KSPSetFromOptions(ksp_));
     PCSIM_PETSC(KSPSetUp(ksp_));
   }

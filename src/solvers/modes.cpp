@@ -57,21 +57,29 @@ ModesRequest modes_request_from_options(MPI_Comm comm, ModesRequest scene_values
   return r;
 }
 
-// Spectrum slicing over [lambda_lo, lambda_hi] (needs the inertia of a
-// Cholesky factorisation). On one rank PETSc's own sparse LDL^T with a
-// reverse Cuthill-McKee ordering: a line's matrix is a narrow band (fill
-// ratio ~1.6) and its solves take a quarter of MUMPS's. In parallel, MUMPS.
-// The basis vectors as separate Vecs: PETSc's multi-vector kernels
-// orthogonalise ~3x faster than the reference BLAS's dgemv that the default
-// contiguous storage calls (docs/benchmarks.md, "What the first modal run
-// costs"). Options (-st_pc_factor_mat_solver_type, -bv_type) still win.
+bool use_line_cholesky(PC pc) {
+  PetscMPIInt ranks;
+  PCSIM_PETSC(MPI_Comm_size(PetscObjectComm(reinterpret_cast<PetscObject>(pc)), &ranks));
+  PCSIM_PETSC(PCSetType(pc, PCCHOLESKY));
+  if (ranks > 1) {
+    PCSIM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+    return true;
+  }
+  PCSIM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERPETSC));
+  PCSIM_PETSC(PCFactorSetMatOrderingType(pc, MATORDERINGRCM));
+  return false;
+}
+
+// Spectrum slicing (spectrum.hpp). The basis vectors as separate Vecs:
+// PETSc's multi-vector kernels orthogonalise ~3x faster than the reference
+// BLAS's dgemv that the default contiguous storage calls (docs/benchmarks.md,
+// "What the first modal run costs"). Options (-st_pc_factor_mat_solver_type,
+// -bv_type) still win.
 void configure_slicing(EPS eps, double lambda_lo, double lambda_hi) {
   ST st;
   KSP ksp;
   PC pc;
   BV bv;
-  PetscMPIInt ranks;
-  PCSIM_PETSC(MPI_Comm_size(PetscObjectComm(reinterpret_cast<PetscObject>(eps)), &ranks));
   PCSIM_PETSC(EPSSetProblemType(eps, EPS_GHEP));
   PCSIM_PETSC(EPSGetST(eps, &st));
   PCSIM_PETSC(STSetType(st, STSINVERT));
@@ -80,17 +88,11 @@ void configure_slicing(EPS eps, double lambda_lo, double lambda_hi) {
   PCSIM_PETSC(BVSetType(bv, BVVECS));
   PCSIM_PETSC(EPSSetInterval(eps, lambda_lo, lambda_hi));
   PCSIM_PETSC(EPSSetWhichEigenpairs(eps, EPS_ALL));
+  PCSIM_PETSC(EPSSetTolerances(eps, 1e-12, 200));
   PCSIM_PETSC(EPSKrylovSchurGetKSP(eps, &ksp));  // the slicing solver's KSP, with operators
   PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
   PCSIM_PETSC(KSPGetPC(ksp, &pc));
-  PCSIM_PETSC(PCSetType(pc, PCCHOLESKY));
-  PCSIM_PETSC(EPSSetTolerances(eps, 1e-12, 200));
-  if (ranks == 1) {
-    PCSIM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERPETSC));
-    PCSIM_PETSC(PCFactorSetMatOrderingType(pc, MATORDERINGRCM));
-    return;
-  }
-  PCSIM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  if (!use_line_cholesky(pc)) return;
   // The inertia of a parallel MUMPS factorisation needs ICNTL(13) = 1 (no
   // ScaLAPACK root); -st_mat_mumps_icntl_13 still wins (read at setup).
   PCSIM_PETSC(PCFactorSetUpMatSolverType(pc));

@@ -17,9 +17,17 @@ namespace pcsim::solvers {
 // system: the flag removes round-off asymmetry).
 void assemble_stiffness_and_mass(assembly::CatenarySystem& system, Vec x, Mat K, Mat M);
 
+// A Cholesky factorisation (with its inertia) of a line's symmetric matrix
+// for pc: on one rank PETSc's own LDL^T with a reverse Cuthill-McKee
+// ordering (a narrow band, fill ratio ~1.6: its solves take a quarter of
+// MUMPS's, docs/benchmarks.md "What the first modal run costs"); in
+// parallel MUMPS. Returns true for MUMPS. Options still win.
+bool use_line_cholesky(PC pc);
+
 // Krylov-Schur spectrum slicing of the GHEP K x = lambda M x over
-// [lambda_lo, lambda_hi], shift-and-invert with MUMPS Cholesky (its inertia);
-// tolerance 1e-12. The caller sets the operators and calls EPSSetFromOptions.
+// [lambda_lo, lambda_hi], shift-and-invert with use_line_cholesky (its
+// inertia), the basis as separate vectors; tolerance 1e-12. The caller sets
+// the operators and calls EPSSetFromOptions.
 void configure_slicing(EPS eps, double lambda_lo, double lambda_hi);
 
 // The converged eigenvalues of a solved EPS (real parts) and their indices
