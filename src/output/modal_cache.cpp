@@ -301,10 +301,12 @@ std::vector<std::string> modal_data_candidates(const std::string& dir, const std
       continue;
     const std::string tail = name.substr(prefix.size());
     const double cutoff = tail.rfind("all", 0) == 0 ? 0.0 : std::atof(tail.c_str());
-    // The name gives the cut-off to 6 digits; the file's own value decides below.
-    const bool serves = max_frequency_hz <= 0
-                            ? cutoff <= 0
-                            : cutoff <= 0 || cutoff >= max_frequency_hz * (1 - 1e-5);
+    // The name gives the cut-off to 6 digits; the file's own value decides
+    // below. Every mode ('all') serves only a request for every mode: it has
+    // no dropper shapes and no contact compliance (its basis is complete), so
+    // a cut-off's basis restricted from it would lack them.
+    const bool serves =
+        max_frequency_hz <= 0 ? cutoff <= 0 : cutoff > 0 && cutoff >= max_frequency_hz * (1 - 1e-5);
     if (serves) candidates.emplace_back(cutoff <= 0 ? 1e300 : cutoff, entry.path().string());
   }
   std::sort(candidates.begin(), candidates.end());
@@ -317,7 +319,7 @@ bool find_modal_data(const std::string& dir, const std::string& key, double max_
                      catenary::ModalData& data, std::string& file) {
   const auto covers = [&](double cutoff) {
     return max_frequency_hz <= 0 ? cutoff <= 0
-                                 : cutoff <= 0 || cutoff >= max_frequency_hz * (1 - 1e-12);
+                                 : cutoff > 0 && cutoff >= max_frequency_hz * (1 - 1e-12);
   };
   for (const auto& path : modal_data_candidates(dir, key, max_frequency_hz))
     if (read_modal_data(path, key, data) && covers(data.cutoff_hz)) {

@@ -37,8 +37,9 @@ std::string modal_cache_file(const std::string& dir, const std::string& key, dou
 std::vector<std::string> modal_data_candidates(const std::string& dir, const std::string& key,
                                                double max_frequency_hz);
 // The cached data of 'key' that serve max_frequency_hz (the smallest cut-off
-// at least that; for every mode (<= 0) only such data), and their file;
-// false if there are none (or none readable).
+// at least that; every mode's data (<= 0) serve only every mode: they have
+// no dropper shapes or contact compliance), and their file; false if there
+// are none (or none readable).
 bool find_modal_data(const std::string& dir, const std::string& key, double max_frequency_hz,
                      catenary::ModalData& data, std::string& file);
 // False (data untouched) if the file is missing, unreadable or for another key.
