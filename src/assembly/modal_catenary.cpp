@@ -91,6 +91,7 @@ void ModalCatenary::build_dropper_rows() {
     if (bar.kind == catenary::BarKind::dropper) droppers_.push_back(static_cast<int>(d));
   }
   elongation_ = stretch_;
+  for (double b : bnorm_) bnorm_max_ = std::max(bnorm_max_, b);
   B_single_ = B_.cast<float>();
 }
 
@@ -247,21 +248,26 @@ bool ModalCatenary::line_candidates(std::size_t few) {
   return true;
 }
 
-// dl += fl(B (eta - eta_a)) in single precision, with the bound of its
-// rounding: the dot product of n terms, (n + 2) u |b| |d eta| (Higham, with
-// the conversions to single precision), u = 2^-24.
-void ModalCatenary::single_precision_anchor(double step) {
+// dl = dl_e + fl(B (eta - eta_e)) in single precision from the last exact
+// anchor, with its rounding bound (n + 2) u |b| |eta - eta_e| (Higham, with
+// the conversions), u = 2^-24: it follows the distance from eta_e and does not
+// add up over the updates. False, with no product, if it would exceed 'reset'.
+bool ModalCatenary::single_precision_anchor(double reset) {
   constexpr double u = 5.9604644775390625e-08;
   const double gamma = (static_cast<double>(m_) + 2) * u / (1 - (m_ + 2) * u);
-  work_single_ = work_.cast<float>();  // eta - eta_a
+  work_ = eta_ - exact_eta_;
+  const double distance = work_.norm();
+  if (gamma * bnorm_max_ * distance > reset) return false;
+  work_single_ = work_.cast<float>();
   change_single_.noalias() = B_single_ * work_single_;
   for (long d = 0; d < B_.rows(); ++d) {
-    anchor_elongation_[d] += change_single_[d];
-    anchor_error_[d] += gamma * bnorm_[d] * step;
+    anchor_elongation_[d] = exact_elongation_[d] + change_single_[d];
+    anchor_error_[d] = gamma * bnorm_[d] * distance;
   }
   anchor_ = eta_;
   anchor_version_ = eta_version_;
   ++single_products_;
+  return true;
 }
 
 // The droppers not certainly taut at the loaded state (work_: eta - eta_a).
@@ -277,7 +283,7 @@ void ModalCatenary::find_candidates(double step, double step_omega) {
 void ModalCatenary::update_slack_set() {
   constexpr std::size_t kFewCandidates = 4;  // more: one single-precision product for all
   constexpr double kErrorReset =
-      1e-5;  // [m] accumulated rounding bound (margins ~1 mm): exact anchor
+      1e-4;  // [m] rounding bound of a single-precision update (margins ~1 mm): exact anchor
   slack_now_.clear();
   if (!slack_active_) return;
   const long n = B_.rows();
@@ -299,8 +305,7 @@ void ModalCatenary::update_slack_set() {
       const double step_omega = (work_.array() * omega_.array()).matrix().norm();
       find_candidates(step, step_omega);
       if (candidates_.size() > kFewCandidates) {
-        single_precision_anchor(step);
-        if (anchor_error_.maxCoeff() > kErrorReset) exact_anchor();
+        if (!single_precision_anchor(kErrorReset)) exact_anchor();
         find_candidates(0, 0);
         at_anchor = true;
       }

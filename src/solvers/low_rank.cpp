@@ -148,9 +148,13 @@ void LowRankStepSolver::update_z(Entry& e) {
       solve_fixed(e.u, e.z);
     }
     e.z_valid = true;
+    e.changed = true;
     capacitance_dirty_ = true;
   }
-  if (!varying_->empty()) varying_->solve_rows(e.u, e.z);
+  if (!varying_->empty()) {
+    varying_->solve_rows(e.u, e.z);
+    e.changed = true;
+  }
 }
 
 void LowRankStepSolver::evict_unused_columns() {
@@ -187,6 +191,7 @@ void LowRankStepSolver::set_terms(const std::vector<assembly::RankOne>& terms,
       e.term = term;
       build_u(e);
       e.z_valid = false;
+      e.changed = true;
     }
   }
   for (auto it = entries_.begin(); it != entries_.end();) {
@@ -260,18 +265,34 @@ std::vector<LowRankStepSolver::Entry*> LowRankStepSolver::active() {
   return list;
 }
 
+// C^-1 + U^T Z. With the same active terms as before, only the rows and
+// columns of the terms whose u or z changed are formed again (a moving
+// contact's, not a window end's dashpots): u_i . z_j and z_j . u_i are the
+// same products summed in the same order, so either way gives the same bits.
 void LowRankStepSolver::update_capacitance() {
-  active_ = active();
-  const std::size_t k = active_.size();
-  capacitance_.resize(k, k);
-  std::vector<Vec> zs(k);
-  for (std::size_t j = 0; j < k; ++j) zs[j] = active_[j]->z;
+  auto now = active();
+  const std::size_t k = now.size();
+  const bool same_terms = now == active_ && products_.rows() == static_cast<long>(k);
+  active_ = std::move(now);
+  std::vector<Vec> us(k), zs(k);
+  for (std::size_t j = 0; j < k; ++j) {
+    us[j] = active_[j]->u;
+    zs[j] = active_[j]->z;
+  }
+  if (!same_terms) products_.resize(k, k);
   std::vector<PetscScalar> row(k);
   for (std::size_t i = 0; i < k; ++i) {
+    if (same_terms && !active_[i]->changed) continue;
     PCSIM_PETSC(VecMDot(active_[i]->u, static_cast<PetscInt>(k), zs.data(), row.data()));
+    for (std::size_t j = 0; j < k; ++j) products_(i, j) = row[j];
+    if (!same_terms) continue;
+    PCSIM_PETSC(VecMDot(active_[i]->z, static_cast<PetscInt>(k), us.data(), row.data()));
     for (std::size_t j = 0; j < k; ++j)
-      capacitance_(i, j) = row[j] + (i == j ? 1.0 / active_[i]->term.coefficient : 0.0);
+      if (!active_[j]->changed) products_(j, i) = row[j];  // a changed row is formed whole
   }
+  for (Entry* e : active_) e->changed = false;
+  capacitance_ = products_;
+  for (std::size_t i = 0; i < k; ++i) capacitance_(i, i) += 1.0 / active_[i]->term.coefficient;
   capacitance_dirty_ = false;
 }
 

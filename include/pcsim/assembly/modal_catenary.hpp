@@ -95,6 +95,7 @@ class ModalCatenary : public CatenaryModel {
   // and states loaded (bounded set statistics).
   long dropper_evaluations() const { return evaluations_; }
   long single_precision_updates() const { return single_products_; }
+  long exact_anchors() const { return exact_count_; }
   long loads() const { return loads_; }
 
  private:
@@ -117,6 +118,7 @@ class ModalCatenary : public CatenaryModel {
   bool slack_active_ = false;       // the slack correction is a term
   bool dropper_slack_ = true;       // the scene's effect (make_terms)
   std::vector<double> stretch_, bnorm_, bnorm_omega_;  // s_d, |b_d|, |Omega^-1 b_d|
+  double bnorm_max_ = 0;                               // max_d |b_d|
   RowMatrix B_;
   RowMatrix support_rows_;  // the contact-wire height rows of the supports
   Eigen::VectorXd omega_;
@@ -143,7 +145,7 @@ class ModalCatenary : public CatenaryModel {
   mutable long evaluations_ = 0, single_products_ = 0;
   long loads_ = 0;
   void exact_anchor() const;
-  void single_precision_anchor(double step);
+  bool single_precision_anchor(double reset);
   void find_candidates(double step, double step_omega);
   bool line_candidates(std::size_t few);
   // Wire-point weights of the last few x of each contact wire (they depend

@@ -66,6 +66,7 @@ class LowRankStepSolver {
     assembly::RankOne term;
     Vec u = nullptr, z = nullptr;
     bool z_valid = false;
+    bool changed = true;  // u or z since the capacitance's products
   };
   static PetscErrorCode pc_create(PC pc);
   static LowRankStepSolver* attached(PC pc);  // the solver install() attached
@@ -89,7 +90,8 @@ class LowRankStepSolver {
   bool factored_ = false, capacitance_dirty_ = true, inner_chosen_ = false;
   std::map<int, Entry> entries_;
   std::map<PetscInt, Vec> columns_;  // J0^-1 e_g
-  Eigen::MatrixXd capacitance_;      // C^-1 + U^T Z over the active terms
+  Eigen::MatrixXd products_;         // U^T Z over the active terms
+  Eigen::MatrixXd capacitance_;      // C^-1 + U^T Z
   std::vector<Entry*> active_;
 };
 

@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# The modal level's step on several scenes, two pcsim binaries run in turn
+# (interleaved, REPS times each; docs/benchmarks.md, "A modal step on
+# several pantographs"): prints per scene and binary the median over the
+# repetitions of the real-time factor and of the step-time median and 99.99th
+# percentile. Modes and bases come from the cache (a first run computes
+# them); the accuracy pilot is off (its runs are not the step's cost).
+#   runs/bench_modal_step.sh BEFORE_BIN AFTER_BIN
+# Environment: REPS=3, SCENES="en300 win70 win109 two20 three". Run it on an
+# otherwise idle machine: it measures wall time.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+[ $# -eq 2 ] || { echo "usage: $0 BEFORE_BIN AFTER_BIN" >&2; exit 2; }
+BINS=("$1" "$2")
+REPS=${REPS:-3}
+SCENES=${SCENES:-en300 win70 win109 two20 three}
+declare -A S=(
+  [en300]="runs/en50318-300-modal.yaml"
+  [win70]="runs/interaction/two-pantographs-300-window.yaml --set catenary.model=modal"
+  [win109]="runs/interaction/two-pantographs-300-window.yaml --set catenary.model=modal --set catenary.max_frequency_hz=108.8"
+  [two20]="runs/interaction/two-pantographs-300.yaml --set catenary.model=modal"
+  [three]="runs/interaction/three-pantographs-300.yaml --set catenary.model=modal"
+)
+OUT=$(mktemp -d)
+trap 'rm -rf "$OUT"' EXIT
+echo "load before: $(cut -d' ' -f1-3 /proc/loadavg)"
+for rep in $(seq "$REPS"); do
+  for s in $SCENES; do
+    for b in 0 1; do
+      # shellcheck disable=SC2086
+      "${BINS[$b]}" run ${S[$s]} -pcsim_accuracy_pilot false --no-report -o "$OUT/run" \
+        --overwrite >/dev/null 2>&1 || { echo "run failed: $s with ${BINS[$b]}"; exit 1; }
+      /usr/bin/python3 -c "
+import json, sys
+s = json.load(open(sys.argv[1]))
+t = s['step_time']
+print(sys.argv[2], sys.argv[3], s['real_time_factor'], t['median_ms'], t['p99_99_ms'])
+" "$OUT/run/summary.json" "$s" "$b" >>"$OUT/rows"
+    done
+  done
+done
+echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)"
+/usr/bin/python3 - "$OUT/rows" "$1" "$2" <<'PY'
+import statistics, sys
+rows = [l.split() for l in open(sys.argv[1])]
+print(f"before: {sys.argv[2]}\nafter:  {sys.argv[3]}")
+print("| scene | RTF before | RTF after | step median ms before | after | p99.99 ms before | after |")
+print("|---|---:|---:|---:|---:|---:|---:|")
+for scene in dict.fromkeys(r[0] for r in rows):
+    med = lambda b, k: statistics.median(float(r[k]) for r in rows if r[0] == scene and r[1] == b)
+    print(f"| {scene} | {med('0', 2):.2f} | {med('1', 2):.2f} | {med('0', 3):.3f} | {med('1', 3):.3f} "
+          f"| {med('0', 4):.2f} | {med('1', 4):.2f} |")
+PY
