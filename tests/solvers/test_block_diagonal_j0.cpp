@@ -51,10 +51,11 @@ double entry(PetscInt i, PetscInt j, bool coupled) {
   return 0.0;
 }
 
-double solve_error(bool coupled, bool* by_blocks) {
+// J0 over kLocal rows per rank (entry()); n its global size.
+Mat make_j0(bool coupled, PetscInt& n) {
   int size;
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
-  const PetscInt n = kLocal * size;
+  n = kLocal * size;
   Mat J0;
   PCSIM_PETSC(
       MatCreateAIJ(PETSC_COMM_WORLD, kLocal, kLocal, n, n, kLocal, nullptr, kLocal, nullptr, &J0));
@@ -66,6 +67,13 @@ double solve_error(bool coupled, bool* by_blocks) {
         PCSIM_PETSC(MatSetValue(J0, i, j, entry(i, j, coupled), INSERT_VALUES));
   PCSIM_PETSC(MatAssemblyBegin(J0, MAT_FINAL_ASSEMBLY));
   PCSIM_PETSC(MatAssemblyEnd(J0, MAT_FINAL_ASSEMBLY));
+  return J0;
+}
+
+double solve_error(bool coupled, bool* by_blocks) {
+  PetscInt n, lo, hi;
+  Mat J0 = make_j0(coupled, n);
+  PCSIM_PETSC(MatGetOwnershipRange(J0, &lo, &hi));
   // Rank-one terms: a dense u over every unknown, a sparse one over three.
   std::vector<pcsim::assembly::RankOne> terms(2);
   for (PetscInt k = 0; k < n; ++k) {
@@ -177,20 +185,8 @@ pcsim::assembly::RankOne dense_term(int key, PetscInt n, double phase, double co
 }
 
 Sequence changed_terms_sequence() {
-  int size;
-  MPI_Comm_size(PETSC_COMM_WORLD, &size);
-  const PetscInt n = kLocal * size;
-  Mat J0;
-  PCSIM_PETSC(
-      MatCreateAIJ(PETSC_COMM_WORLD, kLocal, kLocal, n, n, kLocal, nullptr, kLocal, nullptr, &J0));
-  PetscInt lo, hi;
-  PCSIM_PETSC(MatGetOwnershipRange(J0, &lo, &hi));
-  for (PetscInt i = lo; i < hi; ++i)
-    for (PetscInt j = 0; j < n; ++j)
-      if (entry(i, j, false) != 0)
-        PCSIM_PETSC(MatSetValue(J0, i, j, entry(i, j, false), INSERT_VALUES));
-  PCSIM_PETSC(MatAssemblyBegin(J0, MAT_FINAL_ASSEMBLY));
-  PCSIM_PETSC(MatAssemblyEnd(J0, MAT_FINAL_ASSEMBLY));
+  PetscInt n;
+  Mat J0 = make_j0(false, n);
   // Two constant terms (dashpots) and a moving one (a contact): the contact
   // moves, then a dashpot's coefficient changes, then a term leaves and
   // another comes (every product formed again).
