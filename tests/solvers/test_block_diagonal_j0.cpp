@@ -70,6 +70,29 @@ Mat make_j0(bool coupled, PetscInt& n) {
   return J0;
 }
 
+// The step solver as a PC of a KSP that applies it once.
+KSP preonly_ksp(pcsim::solvers::LowRankStepSolver& solver, Mat J0) {
+  KSP ksp;
+  PC pc;
+  PCSIM_PETSC(KSPCreate(PETSC_COMM_WORLD, &ksp));
+  PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
+  PCSIM_PETSC(KSPGetPC(ksp, &pc));
+  solver.install(pc);
+  PCSIM_PETSC(KSPSetOperators(ksp, solver.op(), J0));
+  return ksp;
+}
+
+// b_i = cos(0.3 i), and x of the same layout.
+void right_hand_side(Mat J0, Vec* x, Vec* b) {
+  PCSIM_PETSC(MatCreateVecs(J0, x, b));
+  PetscInt lo, hi;
+  PCSIM_PETSC(VecGetOwnershipRange(*b, &lo, &hi));
+  for (PetscInt i = lo; i < hi; ++i)
+    PCSIM_PETSC(VecSetValue(*b, i, std::cos(0.3 * static_cast<double>(i)), INSERT_VALUES));
+  PCSIM_PETSC(VecAssemblyBegin(*b));
+  PCSIM_PETSC(VecAssemblyEnd(*b));
+}
+
 double solve_error(bool coupled, bool* by_blocks) {
   PetscInt n, lo, hi;
   Mat J0 = make_j0(coupled, n);
@@ -92,20 +115,10 @@ double solve_error(bool coupled, bool* by_blocks) {
   pcsim::solvers::use_step_lu(solver.inner());
   PCSIM_PETSC(KSPSetFromOptions(solver.inner()));
   solver.set_terms(terms);
-  KSP ksp;
-  PC pc;
-  PCSIM_PETSC(KSPCreate(PETSC_COMM_WORLD, &ksp));
-  PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
-  PCSIM_PETSC(KSPGetPC(ksp, &pc));
-  solver.install(pc);
-  PCSIM_PETSC(KSPSetOperators(ksp, solver.op(), J0));
+  KSP ksp = preonly_ksp(solver, J0);
   solver.set_terms(terms);
   Vec b, x;
-  PCSIM_PETSC(MatCreateVecs(J0, &x, &b));
-  for (PetscInt i = lo; i < hi; ++i)
-    PCSIM_PETSC(VecSetValue(b, i, std::cos(0.3 * static_cast<double>(i)), INSERT_VALUES));
-  PCSIM_PETSC(VecAssemblyBegin(b));
-  PCSIM_PETSC(VecAssemblyEnd(b));
+  right_hand_side(J0, &x, &b);
   PCSIM_PETSC(KSPSolve(ksp, b, x));
   *by_blocks = solver.block_inverse();
   // The same system densely on every rank.
@@ -143,21 +156,11 @@ struct Sequence {
 std::vector<double> solve_sequence(Mat J0,
                                    const std::vector<std::vector<pcsim::assembly::RankOne>>& sets) {
   pcsim::solvers::LowRankStepSolver solver(J0, "test_seq_");
-  KSP ksp;
-  PC pc;
-  PCSIM_PETSC(KSPCreate(PETSC_COMM_WORLD, &ksp));
-  PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
-  PCSIM_PETSC(KSPGetPC(ksp, &pc));
-  solver.install(pc);
-  PCSIM_PETSC(KSPSetOperators(ksp, solver.op(), J0));
+  KSP ksp = preonly_ksp(solver, J0);
   Vec b, x;
-  PCSIM_PETSC(MatCreateVecs(J0, &x, &b));
+  right_hand_side(J0, &x, &b);
   PetscInt lo, hi;
   PCSIM_PETSC(VecGetOwnershipRange(b, &lo, &hi));
-  for (PetscInt i = lo; i < hi; ++i)
-    PCSIM_PETSC(VecSetValue(b, i, std::cos(0.3 * static_cast<double>(i)), INSERT_VALUES));
-  PCSIM_PETSC(VecAssemblyBegin(b));
-  PCSIM_PETSC(VecAssemblyEnd(b));
   for (const auto& terms : sets) {
     solver.set_terms(terms);
     PCSIM_PETSC(KSPSolve(ksp, b, x));
