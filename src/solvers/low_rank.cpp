@@ -291,8 +291,9 @@ void LowRankStepSolver::update_capacitance() {
       if (!active_[j]->changed) products_(j, i) = row[j];  // a changed row is formed whole
   }
   for (Entry* e : active_) e->changed = false;
-  capacitance_ = products_;
-  for (std::size_t i = 0; i < k; ++i) capacitance_(i, i) += 1.0 / active_[i]->term.coefficient;
+  Eigen::MatrixXd capacitance = products_;
+  for (std::size_t i = 0; i < k; ++i) capacitance(i, i) += 1.0 / active_[i]->term.coefficient;
+  capacitance_lu_.compute(capacitance);  // once per change, not at every apply
   capacitance_dirty_ = false;
 }
 
@@ -313,7 +314,7 @@ PetscErrorCode LowRankStepSolver::pc_apply(PC pc, Vec r, Vec x) {
   std::vector<PetscScalar> w(k);
   PCSIM_PETSC(VecMDot(x, static_cast<PetscInt>(k), us.data(), w.data()));
   Eigen::VectorXd s =
-      self->capacitance_.lu().solve(Eigen::Map<Eigen::VectorXd>(w.data(), static_cast<long>(k)));
+      self->capacitance_lu_.solve(Eigen::Map<Eigen::VectorXd>(w.data(), static_cast<long>(k)));
   s = -s;
   PCSIM_PETSC(VecMAXPY(x, static_cast<PetscInt>(k), s.data(), zs.data()));
   PCSIM_CALLBACK_END

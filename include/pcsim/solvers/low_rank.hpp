@@ -22,6 +22,7 @@
 #include <petscksp.h>
 
 #include <Eigen/Core>
+#include <Eigen/LU>
 #include <map>
 #include <memory>
 #include <vector>
@@ -89,9 +90,9 @@ class LowRankStepSolver {
   std::unique_ptr<VaryingBlocks> varying_;        // 'block' terms' changes
   bool factored_ = false, capacitance_dirty_ = true, inner_chosen_ = false;
   std::map<int, Entry> entries_;
-  std::map<PetscInt, Vec> columns_;  // J0^-1 e_g
-  Eigen::MatrixXd products_;         // U^T Z over the active terms
-  Eigen::MatrixXd capacitance_;      // C^-1 + U^T Z
+  std::map<PetscInt, Vec> columns_;                      // J0^-1 e_g
+  Eigen::MatrixXd products_;                             // U^T Z over the active terms
+  Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_lu_;  // of C^-1 + U^T Z
   std::vector<Entry*> active_;
 };
 
