@@ -134,7 +134,7 @@ bad "standstill.csv: line 61: column 'speed \[km/h\]' is 0: the speed must be po
   r --measurement standstill.csv -o x
 bad "speed-by-x.csv: header column 'speed \[km/h\]' goes with a time column 't \[s\]', not with a position column" \
   r --measurement speed-by-x.csv -o x
-head -3 two.csv > short.csv && tail -n +4 two.csv | head -200 >> short.csv  # 50 m of rows, 109-159 m
+sed -n 1,203p two.csv > short.csv  # 50 m of rows, 109-159 m (no `tail | head`: under pipefail tail may die of SIGPIPE)
 before=$(ls -A)
 bad "short.csv: does not cover the run's analysis section 165-275 m at any lag within 27.5 m" \
   r --measurement short.csv -o x
