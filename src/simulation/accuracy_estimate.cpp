@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "pcsim/assembly/modal_catenary.hpp"
+#include "pcsim/simulation/accuracy_pilot.hpp"
 
 namespace pcsim::simulation {
 
@@ -253,6 +254,29 @@ void add_fidelity_facts(const scene::RunScene& run, const CatenarySetup& setup,
     }
   }
   facts["accuracy_estimate"] = estimate.json();
+}
+
+void print_pilot(const Context& ctx, const PilotEstimate& pilot) {
+  if (!pilot.done) return;
+  const auto discretisation = pilot.discretisation(), reduction = pilot.reduction();
+  const bool modal = !reduction.empty();
+  print0(ctx, "  accuracy estimate from the pilot%s (x %.0f-%.0f m; %s):\n",
+         pilot.cached ? " (cached)" : "", pilot.from_x, pilot.to_x,
+         modal ? "discretisation against converged linear FE, reduction against linear FE"
+               : "discretisation against converged linear FE");
+  if (modal && pilot.cutoff_raises > 0)
+    print0(ctx, "    modal cut-off raised %d time(s) to %.1f Hz to meet the targets\n",
+           pilot.cutoff_raises, pilot.cutoff_hz);
+  for (std::size_t p = 0; p < discretisation.size(); ++p) {
+    print0(ctx, "    %-16s %16s%s\n", discretisation[p].pantograph.c_str(), "discretisation",
+           modal ? "   reduction" : "");
+    for (int f = 0; f < kPilotFigures; ++f) {
+      const char* unit = f == 7 ? "pt" : (f == 5 || f == 6) ? "%Fm" : "%";
+      print0(ctx, "    %-16s %12.2f %-3s", kPilotFigureLabels[f], discretisation[p].value[f], unit);
+      if (modal) print0(ctx, " %9.2f %-3s", reduction[p].value[f], unit);
+      print0(ctx, "\n");
+    }
+  }
 }
 
 }  // namespace pcsim::simulation

@@ -17,6 +17,7 @@
 #include "pcsim/core/vec_root.hpp"
 #include "pcsim/core/version.hpp"
 #include "pcsim/output/output_dir.hpp"
+#include "pcsim/simulation/catenary_setup.hpp"
 #include "pcsim/simulation/run.hpp"
 #include "pcsim/simulation/run_checkpoint.hpp"
 
@@ -448,12 +449,20 @@ PilotEstimate run_accuracy_pilot(const Context& ctx, const SceneSource& source,
   if (modal) {
     StudyVariant reduced;
     reduced.model = catenary::CatenaryFidelity::modal;
+    ModalExtensionScope raises;  // a raised cut-off computes only the modes above
     double cutoff = run.catenary.modal.max_frequency_hz;
     for (;;) {
+      if (run.catenary.modal_cutoff_given || pilot.cutoff_raises == kMaxCutoffRaises)
+        raises.last_computation_next();
       char label[96];
       std::snprintf(label, sizeof label, "modal at %.1f Hz (its modes computed unless cached)",
                     cutoff);
+      const long before = last_modal_computation().serial;
       const auto figures = timed(label, reduced, run.dt, cutoff);
+      const auto modes = last_modal_computation();
+      if (modes.serial != before && modes.kept > 0)
+        print0(ctx, "      %ld modes computed, the %ld below %.1f Hz kept from the last\n",
+               modes.computed, modes.kept, modes.kept_below_hz);
       pilot.reduction_measured = differences(figures, reference, 1.0);
       if (run.catenary.modal_cutoff_given || within_targets(pilot.reduction_measured) ||
           pilot.cutoff_raises == kMaxCutoffRaises || cutoff <= 0)
@@ -468,29 +477,6 @@ PilotEstimate run_accuracy_pilot(const Context& ctx, const SceneSource& source,
   print0(ctx, "    %d pilot runs in %.1f s\n", pilot.runs, pilot.seconds);
   write_cached(ctx, key, pilot);
   return pilot;
-}
-
-void print_pilot(const Context& ctx, const PilotEstimate& pilot) {
-  if (!pilot.done) return;
-  const auto discretisation = pilot.discretisation(), reduction = pilot.reduction();
-  const bool modal = !reduction.empty();
-  print0(ctx, "  accuracy estimate from the pilot%s (x %.0f-%.0f m; %s):\n",
-         pilot.cached ? " (cached)" : "", pilot.from_x, pilot.to_x,
-         modal ? "discretisation against converged linear FE, reduction against linear FE"
-               : "discretisation against converged linear FE");
-  if (modal && pilot.cutoff_raises > 0)
-    print0(ctx, "    modal cut-off raised %d time(s) to %.1f Hz to meet the targets\n",
-           pilot.cutoff_raises, pilot.cutoff_hz);
-  for (std::size_t p = 0; p < discretisation.size(); ++p) {
-    print0(ctx, "    %-16s %16s%s\n", discretisation[p].pantograph.c_str(), "discretisation",
-           modal ? "   reduction" : "");
-    for (int f = 0; f < kPilotFigures; ++f) {
-      const char* unit = f == 7 ? "pt" : (f == 5 || f == 6) ? "%Fm" : "%";
-      print0(ctx, "    %-16s %12.2f %-3s", kPilotFigureLabels[f], discretisation[p].value[f], unit);
-      if (modal) print0(ctx, " %9.2f %-3s", reduction[p].value[f], unit);
-      print0(ctx, "\n");
-    }
-  }
 }
 
 }  // namespace pcsim::simulation

@@ -77,12 +77,50 @@ Mat window_shift_matrix(const assembly::CatenarySystem& system, double shift) {
   return S;
 }
 
+// What the last modal data of this process were computed with, while a
+// ModalExtensionScope lives: a higher cut-off of the same key computes only
+// the modes above (ModalDataBuilder).
+struct KeptBuilder {
+  std::string key;
+  std::unique_ptr<assembly::CatenarySystem> system;
+  Vec x = nullptr;
+  Mat shift = nullptr;
+  std::unique_ptr<simulation::ModalDataBuilder> builder;
+  ~KeptBuilder() {
+    builder.reset();
+    MatDestroy(&shift);
+    VecDestroy(&x);
+  }
+};
+int extension_scopes = 0;
+bool no_later_extension = false;
+std::unique_ptr<KeptBuilder> kept_builder;
+ModalComputation last_computation;
+
+std::unique_ptr<KeptBuilder> new_builder(const Context& ctx, const scene::RunScene& run,
+                                         const simulation::StaticConfiguration& statics,
+                                         const std::string& key, bool full_shapes) {
+  auto b = std::make_unique<KeptBuilder>();
+  b->key = key;
+  b->system =
+      std::make_unique<assembly::CatenarySystem>(ctx.comm, statics.mesh, 0, &statics.node_owner);
+  b->x = b->system->create_vector();
+  assembly::set_state_from_node_values(*b->system, statics.result.node_values, b->x);
+  if (run.window) b->shift = window_shift_matrix(*b->system, 2.0 * run.window->span_length);
+  b->builder = std::make_unique<simulation::ModalDataBuilder>(*b->system, b->x, full_shapes,
+                                                              b->shift, ctx.cache_dir);
+  return b;
+}
+
 catenary::ModalData compute_data(const Context& ctx, const scene::RunScene& run,
-                                 const simulation::StaticConfiguration& statics, double cutoff_hz,
-                                 bool full_shapes) {
-  assembly::CatenarySystem system(ctx.comm, statics.mesh, 0, &statics.node_owner);
-  Vec x = system.create_vector();
-  assembly::set_state_from_node_values(system, statics.result.node_values, x);
+                                 const simulation::StaticConfiguration& statics,
+                                 const std::string& key, double cutoff_hz, bool full_shapes) {
+  const std::string kept_key = key + "@" + std::to_string(ctx.size);
+  const bool extends = kept_builder && kept_builder->key == kept_key && cutoff_hz > 0 &&
+                       kept_builder->builder->cutoff_hz() > 0 &&
+                       cutoff_hz >= kept_builder->builder->cutoff_hz();
+  const double from_hz = extends ? kept_builder->builder->cutoff_hz() : 0;
+  const long kept_modes = extends ? kept_builder->builder->modes() : 0;
   PetscLogDouble start;
   PetscTime(&start);
   // A line per chunk of modes: how many, the time so far and the ETA (the
@@ -91,7 +129,10 @@ catenary::ModalData compute_data(const Context& ctx, const scene::RunScene& run,
     PetscLogDouble now;
     PetscTime(&now);
     const double elapsed = now - start;
-    if (done == 0)
+    if (done == 0 && extends)
+      print0(ctx, "  modes: %ld between %.1f and %.1f Hz to compute (the %ld below, kept)\n", total,
+             from_hz, cutoff_hz, kept_modes);
+    else if (done == 0)
       print0(ctx, "  modes: %ld below %.1f Hz to compute (dropper shapes and factor: %.1f s)\n",
              total, cutoff_hz, elapsed);
     else
@@ -99,10 +140,17 @@ catenary::ModalData compute_data(const Context& ctx, const scene::RunScene& run,
              100.0 * done / std::max(total, 1L), elapsed,
              done < total ? elapsed * (total - done) / done : 0.0);
   };
-  Mat shift = run.window ? window_shift_matrix(system, 2.0 * run.window->span_length) : nullptr;
-  auto data = simulation::compute_modal_data(system, x, cutoff_hz, full_shapes, progress, shift);
-  PCSIM_PETSC(MatDestroy(&shift));
-  PCSIM_PETSC(VecDestroy(&x));
+  const bool keep = extension_scopes > 0 && !no_later_extension && cutoff_hz > 0;
+  if (extends) forget_kept_bases(key);  // the lower cut-off's bases: superseded
+  auto builder =
+      extends ? std::move(kept_builder) : new_builder(ctx, run, statics, kept_key, full_shapes);
+  kept_builder.reset();  // (another key's: freed before this computation)
+  auto data = builder->builder->extend(cutoff_hz, progress, keep);
+  last_computation.serial++;
+  last_computation.computed = static_cast<long>(data.modes()) - kept_modes;
+  last_computation.kept = kept_modes;
+  last_computation.kept_below_hz = from_hz;
+  if (keep) kept_builder = std::move(builder);
   return data;
 }
 
@@ -140,7 +188,7 @@ catenary::ModalData cached_data(const Context& ctx, const scene::RunScene& run,
   out.cache_file = output::modal_cache_file(ctx.cache_dir, key, cutoff_hz);
   print0(ctx, "  computing the catenary's modes below %.1f Hz (cached in %s)\n", cutoff_hz,
          out.cache_file.c_str());
-  data = compute_data(ctx, run, statics, cutoff_hz, full_shapes);
+  data = compute_data(ctx, run, statics, key, cutoff_hz, full_shapes);
   out.basis_seconds = data.wall_time_s;
   if (ctx.rank == 0) {
     try {
@@ -229,7 +277,7 @@ catenary::ReducedBasis modal_basis(const Context& ctx, const scene::RunScene& ru
   }
   // Assembled once, on rank 0, and broadcast: every rank holds the same bits
   // (Eigen's sums depend on the data's alignment in memory), those stored.
-  const auto data =
+  auto data =
       cached_data(ctx, run, statics, key, settings.max_frequency_hz, settings.full_shapes, out);
   catenary::ReducedBasis basis;
   std::string failure;  // an error on rank 0 fails every rank (none waits)
@@ -238,6 +286,7 @@ catenary::ReducedBasis modal_basis(const Context& ctx, const scene::RunScene& ru
     } catch (const std::exception& e) {
       failure = e.what();
     }
+  data = catenary::ModalData();  // freed before the basis is copied and kept
   failure = broadcast_text(ctx.comm, failure);
   if (!failure.empty()) throw SolverError("the modal basis: " + failure);
   broadcast(basis, ctx.comm);
@@ -249,6 +298,24 @@ catenary::ReducedBasis modal_basis(const Context& ctx, const scene::RunScene& ru
 }
 
 }  // namespace
+
+ModalComputation last_modal_computation() {
+  return last_computation;
+}
+
+ModalExtensionScope::ModalExtensionScope() {
+  ++extension_scopes;
+}
+
+ModalExtensionScope::~ModalExtensionScope() {
+  if (--extension_scopes > 0) return;
+  kept_builder.reset();
+  no_later_extension = false;
+}
+
+void ModalExtensionScope::last_computation_next() {
+  no_later_extension = true;
+}
 
 nlohmann::json CatenarySetup::facts() const {
   nlohmann::json j;

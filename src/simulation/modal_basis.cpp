@@ -198,47 +198,127 @@ std::vector<double> row_major(const Matrix& A) {
 
 }  // namespace
 
-ModalData compute_modal_data(assembly::CatenarySystem& system, Vec x, double max_frequency_hz,
-                             bool full_shapes, const ModalProgress& progress, Mat shift) {
-  PetscLogDouble t0, t1;
-  PetscTime(&t0);
-  const auto& mesh = system.mesh();
-  const bool complete = max_frequency_hz <= 0;
-  ModalData data;
-  data.cutoff_hz = max_frequency_hz;
-  data.row_keys = catenary::reduced_basis_rows(mesh, full_shapes);
-  Operators op(system, x);
-  const auto& wind = mesh.conditions.wind;
-  Mat loads = wind.any() && wind.turbulence.on ? assembly::turbulence_load_matrix(system) : nullptr;
-  const RowGather rows(system, data.row_keys, loads);
-  MatDestroy(&loads);  // (the gather holds it)
-  WindDamping wind_damping(system);
+// What the data are computed with, kept between extend() calls.
+struct ModalDataBuilder::Parts {
+  assembly::CatenarySystem& system;
+  Vec x;
+  bool keep_vectors = true;
+  std::vector<long> row_keys;
+  Operators op;
+  RowGather rows;
+  WindDamping wind_damping;
   std::unique_ptr<StiffnessSolver> K;
   std::unique_ptr<DropperShapes> shapes;
-  if (!complete) {
-    K = std::make_unique<StiffnessSolver>(op.K);
-    shapes = std::make_unique<DropperShapes>(system, x, op, *K, rows, data.row_keys);
-  }
-  std::vector<std::vector<double>> columns, mass_products;
   std::unique_ptr<ShiftProducts> shift_products;  // every vector, for the window's shift
-  if (shift) shift_products = std::make_unique<ShiftProducts>(op.M, shift);
-  auto sink = [&](double lambda, Vec phi) {
-    data.omega2.push_back(lambda);
-    if (shift_products) shift_products->append(phi);
-    columns.emplace_back(rows.size());
-    rows.gather(phi, columns.back().data());
-    if (shapes) mass_products.push_back(shapes->mass_products(phi));
-    wind_damping.append(phi, data.wind_damping);
-  };
-  const double omega_max = 2 * M_PI * max_frequency_hz;
-  data.max_relative_residual = complete ? stream_all_modes_dense(op, sink)
-                                        : stream_modes(op, omega_max * omega_max, sink, progress);
-  const std::size_t n_rows = data.row_keys.size(), m = data.modes();
+  std::vector<long> shift_order;  // each appended vector: mode k (k >= 0) or shape d (-1 - d)
+  std::vector<double> contact_compliance, omega2, wind;
+  std::vector<std::vector<double>> columns, mass_products;  // of each mode
+  double cutoff_hz = 0, max_residual = 0;
+  bool computed = false;
+
+  Parts(assembly::CatenarySystem& s, Vec x_, bool full_shapes, Mat shift,
+        const std::string& spill_dir, Mat loads)
+      : system(s),
+        x(x_),
+        row_keys(catenary::reduced_basis_rows(s.mesh(), full_shapes)),
+        op(s, x_),
+        rows(s, row_keys, loads),
+        wind_damping(s) {
+    if (shift) shift_products = std::make_unique<ShiftProducts>(op.M, shift, spill_dir);
+  }
+  void add_mode(double lambda, Vec phi);
+  ModalData data();  // frees each mode's rows once copied unless keep_vectors
+};
+
+namespace {
+
+Mat turbulence_loads(assembly::CatenarySystem& system) {
+  const auto& wind = system.mesh().conditions.wind;
+  return wind.any() && wind.turbulence.on ? assembly::turbulence_load_matrix(system) : nullptr;
+}
+
+}  // namespace
+
+ModalDataBuilder::ModalDataBuilder(assembly::CatenarySystem& system, Vec x, bool full_shapes,
+                                   Mat shift, const std::string& spill_dir) {
+  Mat loads = turbulence_loads(system);
+  parts_ = std::make_unique<Parts>(system, x, full_shapes, shift, spill_dir, loads);
+  MatDestroy(&loads);  // (the gather holds it)
+}
+
+ModalDataBuilder::~ModalDataBuilder() = default;
+
+double ModalDataBuilder::cutoff_hz() const {
+  return parts_->computed ? parts_->cutoff_hz : -1;
+}
+
+long ModalDataBuilder::modes() const {
+  return static_cast<long>(parts_->omega2.size());
+}
+
+void ModalDataBuilder::Parts::add_mode(double lambda, Vec phi) {
+  if (shift_products) {
+    shift_order.push_back(static_cast<long>(omega2.size()));
+    shift_products->append(phi);
+  }
+  omega2.push_back(lambda);
+  columns.emplace_back(rows.size());
+  rows.gather(phi, columns.back().data());
+  if (shapes) mass_products.push_back(shapes->mass_products(phi));
+  wind_damping.append(phi, wind);
+}
+
+ModalData ModalDataBuilder::extend(double max_frequency_hz, const ModalProgress& progress,
+                                   bool keep_for_extension) {
+  PetscLogDouble t0, t1;
+  PetscTime(&t0);
+  Parts& p = *parts_;
+  if (p.computed && !p.keep_vectors) throw SolverError("modal data: the vectors were freed");
+  p.keep_vectors = keep_for_extension;
+  const bool complete = max_frequency_hz <= 0;
+  if (p.computed && (complete || p.cutoff_hz <= 0 || max_frequency_hz < p.cutoff_hz))
+    throw SolverError("modal data: a cut-off can only be raised");
+  if (!p.computed && !complete) {
+    p.K = std::make_unique<StiffnessSolver>(p.op.K);
+    p.shapes = std::make_unique<DropperShapes>(p.system, p.x, p.op, *p.K, p.rows, p.row_keys);
+    if (!p.system.mesh().contact_wire_list().empty())
+      p.contact_compliance = contact_compliance(p.system, *p.K);
+  }
+  const auto sink = [&p](double lambda, Vec phi) { p.add_mode(lambda, phi); };
+  const double omega_from = 2 * M_PI * p.cutoff_hz, omega_max = 2 * M_PI * max_frequency_hz;
+  p.max_residual = std::max(p.max_residual,
+                            complete ? stream_all_modes_dense(p.op, sink)
+                                     : stream_modes(p.op, p.computed ? omega_from * omega_from : 0,
+                                                    omega_max * omega_max, sink, progress));
+  if (p.shift_products && p.shapes && !p.computed)
+    for (std::size_t d = 0; d < p.shapes->count(); ++d) {
+      p.shift_order.push_back(-1 - static_cast<long>(d));
+      p.shift_products->append(p.shapes->vector(d));
+    }
+  p.computed = true;
+  p.cutoff_hz = max_frequency_hz;
+  ModalData data = p.data();
+  PetscTime(&t1);
+  data.wall_time_s = t1 - t0;
+  return data;
+}
+
+ModalData ModalDataBuilder::Parts::data() {
+  ModalData data;
+  data.cutoff_hz = cutoff_hz;
+  data.row_keys = row_keys;
+  data.omega2 = omega2;
+  data.wind_damping = wind;
+  data.max_relative_residual = max_residual;
+  data.contact_compliance = contact_compliance;
+  const std::size_t n_rows = row_keys.size(), m = data.modes();
   data.mode_rows.resize(n_rows * m);
-  for (std::size_t k = 0; k < m; ++k)
+  for (std::size_t k = 0; k < m; ++k) {
     for (std::size_t i = 0; i < n_rows; ++i) data.mode_rows[i * m + k] = columns[k][i];
-  if (shapes && shapes->count() > 0) {
-    const std::size_t nd = shapes->count();
+    if (!keep_vectors) std::vector<double>().swap(columns[k]);
+  }
+  const std::size_t nd = shapes ? shapes->count() : 0;
+  if (nd > 0) {
     data.shape_rows = row_major(shapes->rows());
     data.mode_shape_mass.resize(m * nd);
     for (std::size_t k = 0; k < m; ++k)
@@ -247,15 +327,18 @@ ModalData compute_modal_data(assembly::CatenarySystem& system, Vec x, double max
     data.shape_mass = row_major(shapes->psi_M_psi());
     data.shape_flexibility = row_major(shapes->flexibility());
   }
-  if (K && !mesh.contact_wire_list().empty())
-    data.contact_compliance = contact_compliance(system, *K);
   if (shift_products) {
-    if (shapes)
-      for (std::size_t d = 0; d < shapes->count(); ++d) shift_products->append(shapes->vector(d));
-    data.shift_products = shift_products->compute(x);
+    const auto& G = shift_products->compute(x, keep_vectors);  // in the order appended
+    const std::size_t c = shift_order.size();
+    std::vector<std::size_t> at(c);  // each appended vector's place in [modes, shapes]
+    for (std::size_t i = 0; i < c; ++i)
+      at[i] = shift_order[i] >= 0 ? static_cast<std::size_t>(shift_order[i])
+                                  : m + static_cast<std::size_t>(-1 - shift_order[i]);
+    data.shift_products.resize(c * c);
+    for (std::size_t i = 0; i < c; ++i)
+      for (std::size_t j = 0; j < c; ++j)
+        data.shift_products[at[i] * c + at[j]] = G(static_cast<long>(i), static_cast<long>(j));
   }
-  PetscTime(&t1);
-  data.wall_time_s = t1 - t0;
   return data;
 }
 

@@ -7,10 +7,13 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "pcsim/assembly/catenary_system.hpp"
 #include "pcsim/catenary/reduced_basis.hpp"
+#include "vector_store.hpp"
 
 namespace pcsim::simulation::modal_detail {
 
@@ -58,25 +61,38 @@ using ModeSink = std::function<void(double lambda, Vec phi)>;
 // computed in chunks of the interval (options prefix -modal_); returns the
 // largest relative residual ||K phi - lambda M phi|| / (lambda ||M phi||).
 // progress(done, total) after each chunk (may be empty).
-double stream_modes(const Operators& op, double lambda_max, const ModeSink& sink,
-                    const std::function<void(long, long)>& progress);
+// lambda_above > 0: only those above it (a raised cut-off's).
+double stream_modes(const Operators& op, double lambda_above, double lambda_max,
+                    const ModeSink& sink, const std::function<void(long, long)>& progress);
 
 // G = V^T M S V (row-major, c x c, every rank) over the vectors V appended
-// (c of them, their local parts kept: n x c doubles in all): a moving
-// window's shift in the computed vectors (ModalData::shift_products).
+// (c of them, their local parts kept: n x c doubles in all, in a
+// VectorStore: on a file in spill_dir but for the block being filled): a
+// moving window's shift in the computed vectors (ModalData::shift_products),
+// in the order appended. compute() after more appends computes only the rows
+// and columns of the new vectors (a raised cut-off's modes): with G(i, j) of
+// a new row i and an old column j as (S^T M v_i)^T v_j.
 class ShiftProducts {
  public:
-  ShiftProducts(Mat M, Mat S);
+  ShiftProducts(Mat M, Mat S, std::string spill_dir);
+  ~ShiftProducts();
   void append(Vec v);
-  // Collective; 'like' a vector of the layout. Frees the columns.
-  std::vector<double> compute(Vec like);
+  // Collective; 'like' a vector of the layout. keep_vectors false: frees
+  // the columns (no later compute()).
+  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>& compute(
+      Vec like, bool keep_vectors);
+  long count() const { return count_; }
+  long spilled_blocks() const;  // blocks of the vectors on file (tests)
 
  private:
-  static constexpr long kBlock = 256;
+  void new_columns(Vec like);
+  void new_rows_of_old_columns(Vec like);
   Mat M_, S_;
+  std::string spill_dir_;
   PetscInt local_ = 0;
-  long count_ = 0;
-  std::vector<Eigen::MatrixXd> blocks_;  // local_ x kBlock each, the last partly filled
+  long count_ = 0, computed_ = 0;  // vectors appended, and in G
+  std::unique_ptr<VectorStore> store_;
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> G_;
 };
 
 // Every eigenpair of a small structure by a dense solve on every rank.

@@ -159,13 +159,17 @@ double stream_interval(const Operators& op, double lo, double hi, const ModeSink
 // Chunks of about kChunkModes modes (equal widths in frequency: the modal
 // density of a tensioned line is about constant in f), so that SLEPc holds
 // one chunk's eigenvectors at a time.
-double stream_modes(const Operators& op, double lambda_max, const ModeSink& sink,
-                    const std::function<void(long, long)>& progress) {
+double stream_modes(const Operators& op, double lambda_above, double lambda_max,
+                    const ModeSink& sink, const std::function<void(long, long)>& progress) {
   constexpr double kChunkModes = 800;
-  const PetscInt count = count_below(op, lambda_max);
+  const PetscInt count =
+      count_below(op, lambda_max) - (lambda_above > 0 ? count_below(op, lambda_above) : 0);
   const int chunks = std::max(1, static_cast<int>(std::ceil(count / kChunkModes)));
+  const double omega_min = std::sqrt(std::max(lambda_above, 0.0));
   const double omega_max = std::sqrt(lambda_max);
-  double max_residual = 0, lo = 0;
+  double max_residual = 0;
+  // [lo, hi] intervals do not overlap (nor the modes above lambda_above with those below)
+  double lo = lambda_above > 0 ? std::nextafter(lambda_above, 2 * lambda_above) : 0;
   long done = 0;
   const ModeSink counting = [&](double lambda, Vec phi) {
     ++done;
@@ -173,9 +177,10 @@ double stream_modes(const Operators& op, double lambda_max, const ModeSink& sink
   };
   if (progress) progress(0, count);
   for (int c = 1; c <= chunks; ++c) {
-    const double hi = c == chunks ? lambda_max : std::pow(omega_max * c / chunks, 2);
+    const double hi =
+        c == chunks ? lambda_max : std::pow(omega_min + (omega_max - omega_min) * c / chunks, 2);
     max_residual = std::max(max_residual, stream_interval(op, lo, hi, counting));
-    lo = std::nextafter(hi, 2 * hi);  // [lo, hi] intervals do not overlap
+    lo = std::nextafter(hi, 2 * hi);
     if (progress) progress(done, count);
   }
   return max_residual;

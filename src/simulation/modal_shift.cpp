@@ -8,55 +8,133 @@
 
 namespace pcsim::simulation::modal_detail {
 
-ShiftProducts::ShiftProducts(Mat M, Mat S) : M_(M), S_(S) {}
+namespace {
+
+// y = A x, or y = A^T x, into column j of W (local rows).
+void product_column(Mat A, Vec x, Vec y, bool transpose, Eigen::MatrixXd& W, long j) {
+  PCSIM_PETSC(transpose ? MatMultTranspose(A, x, y) : MatMult(A, x, y));
+  const PetscScalar* r;
+  PCSIM_PETSC(VecGetArrayRead(y, &r));
+  std::copy(r, r + W.rows(), W.col(j).data());
+  PCSIM_PETSC(VecRestoreArrayRead(y, &r));
+}
+
+}  // namespace
+
+ShiftProducts::ShiftProducts(Mat M, Mat S, std::string spill_dir)
+    : M_(M), S_(S), spill_dir_(std::move(spill_dir)) {}
+
+ShiftProducts::~ShiftProducts() = default;
+
+long ShiftProducts::spilled_blocks() const {
+  long n = 0;
+  for (std::size_t b = 0; store_ && b < store_->blocks(); ++b) n += store_->spilled(b) ? 1 : 0;
+  return n;
+}
 
 void ShiftProducts::append(Vec v) {
   PCSIM_PETSC(VecGetLocalSize(v, &local_));
-  if (count_ % kBlock == 0) blocks_.emplace_back(local_, kBlock);
+  if (!store_) store_ = std::make_unique<VectorStore>(local_, spill_dir_);
   const PetscScalar* a;
   PCSIM_PETSC(VecGetArrayRead(v, &a));
-  std::copy(a, a + local_, blocks_.back().col(count_ % kBlock).data());
+  store_->append(a);
   PCSIM_PETSC(VecRestoreArrayRead(v, &a));
   ++count_;
 }
 
-// W = M S V by blocks of columns, G(I, J) = V_I^T W_J on every rank (dense
-// products: the local gemms are the cost, ~2 n c^2 flops), then summed over
-// the ranks.
-std::vector<double> ShiftProducts::compute(Vec like) {
-  const long c = count_;
-  if (c == 0) return {};
+// G(:, j) = V^T (M S v_j) for the new columns j, by blocks of columns (dense
+// products: the local gemms are the cost, ~2 n c^2 flops at the first call;
+// blocks on file are read back once per block of new columns).
+void ShiftProducts::new_columns(Vec like) {
+  constexpr long kBlock = VectorStore::kBlock;
   Vec column, shifted, w;
   PCSIM_PETSC(VecDuplicate(like, &column));
   PCSIM_PETSC(VecDuplicate(like, &shifted));
   PCSIM_PETSC(VecDuplicate(like, &w));
-  const auto width = [&](std::size_t b) {
-    return std::min<long>(kBlock, c - static_cast<long>(b) * kBlock);
-  };
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> G(c, c);
-  Eigen::MatrixXd W(local_, kBlock);
-  for (std::size_t J = 0; J < blocks_.size(); ++J) {
-    for (long j = 0; j < width(J); ++j) {
+  Eigen::MatrixXd W(local_, kBlock), scratch;
+  for (std::size_t J = static_cast<std::size_t>(computed_ / kBlock); J < store_->blocks(); ++J) {
+    const long first = static_cast<long>(J) * kBlock, width = store_->width(J);
+    const long j0 = std::max(computed_ - first, 0L);  // the block's first new column
+    const Eigen::MatrixXd& VJ = store_->block(J, scratch);
+    for (long j = j0; j < width; ++j) {
       PetscScalar* a;
       PCSIM_PETSC(VecGetArray(column, &a));
-      std::copy(blocks_[J].col(j).data(), blocks_[J].col(j).data() + local_, a);
+      std::copy(VJ.col(j).data(), VJ.col(j).data() + local_, a);
       PCSIM_PETSC(VecRestoreArray(column, &a));
       PCSIM_PETSC(MatMult(S_, column, shifted));
-      PCSIM_PETSC(MatMult(M_, shifted, w));
-      const PetscScalar* r;
-      PCSIM_PETSC(VecGetArrayRead(w, &r));
-      std::copy(r, r + local_, W.col(j).data());
-      PCSIM_PETSC(VecRestoreArrayRead(w, &r));
+      product_column(M_, shifted, w, false, W, j);
     }
-    for (std::size_t I = 0; I < blocks_.size(); ++I)
-      G.block(static_cast<long>(I) * kBlock, static_cast<long>(J) * kBlock, width(I), width(J))
-          .noalias() = blocks_[I].leftCols(width(I)).transpose() * W.leftCols(width(J));
+    for (std::size_t I = 0; I < store_->blocks(); ++I)
+      G_.block(static_cast<long>(I) * kBlock, first + j0, store_->width(I), width - j0).noalias() =
+          store_->block(I, scratch).leftCols(store_->width(I)).transpose() *
+          W.middleCols(j0, width - j0);
   }
   for (Vec* v : {&column, &shifted, &w}) PCSIM_PETSC(VecDestroy(v));
-  blocks_.clear();
-  MPI_Allreduce(MPI_IN_PLACE, G.data(), static_cast<int>(G.size()), MPI_DOUBLE, MPI_SUM,
-                PetscObjectComm(reinterpret_cast<PetscObject>(like)));
-  return std::vector<double>(G.data(), G.data() + G.size());
+}
+
+// G(i, j) = (S^T M v_i)^T v_j for the new rows i and the old columns j.
+void ShiftProducts::new_rows_of_old_columns(Vec like) {
+  constexpr long kBlock = VectorStore::kBlock;
+  const long fresh = count_ - computed_;
+  if (computed_ == 0 || fresh == 0) return;
+  Vec column, mass, z;
+  PCSIM_PETSC(VecDuplicate(like, &column));
+  PCSIM_PETSC(VecDuplicate(like, &mass));
+  PCSIM_PETSC(VecDuplicate(like, &z));
+  Eigen::MatrixXd Z(local_, fresh), scratch;
+  for (std::size_t I = static_cast<std::size_t>(computed_ / kBlock); I < store_->blocks(); ++I) {
+    const Eigen::MatrixXd& VI = store_->block(I, scratch);
+    const long first = static_cast<long>(I) * kBlock;
+    for (long i = std::max(computed_, first); i < first + store_->width(I); ++i) {
+      PetscScalar* a;
+      PCSIM_PETSC(VecGetArray(column, &a));
+      std::copy(VI.col(i - first).data(), VI.col(i - first).data() + local_, a);
+      PCSIM_PETSC(VecRestoreArray(column, &a));
+      PCSIM_PETSC(MatMult(M_, column, mass));
+      product_column(S_, mass, z, true, Z, i - computed_);
+    }
+  }
+  for (std::size_t I = 0; static_cast<long>(I) * kBlock < computed_; ++I) {
+    const long first = static_cast<long>(I) * kBlock;
+    const long cols = std::min(store_->width(I), computed_ - first);  // old columns of block I
+    G_.block(computed_, first, fresh, cols).noalias() =
+        Z.transpose() * store_->block(I, scratch).leftCols(cols);
+  }
+  for (Vec* v : {&column, &mass, &z}) PCSIM_PETSC(VecDestroy(v));
+}
+
+const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>&
+ShiftProducts::compute(Vec like, bool keep_vectors) {
+  const long c = count_, old = computed_;
+  if (c == old) return G_;
+  {  // G grows; its computed part stays
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> grown(c, c);
+    grown.topLeftCorner(old, old) = G_;
+    G_.swap(grown);
+  }
+  new_columns(like);
+  new_rows_of_old_columns(like);
+  if (!keep_vectors) store_->clear();
+  const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(like));
+  if (old == 0) {
+    MPI_Allreduce(MPI_IN_PLACE, G_.data(), static_cast<int>(G_.size()), MPI_DOUBLE, MPI_SUM, comm);
+  } else {  // the new parts: the new columns of every row, the old columns of the new rows
+    std::vector<double> sums;
+    sums.reserve(static_cast<std::size_t>(c * (c - old) + (c - old) * old));
+    for (long i = 0; i < c; ++i)
+      for (long j = old; j < c; ++j) sums.push_back(G_(i, j));
+    for (long i = old; i < c; ++i)
+      for (long j = 0; j < old; ++j) sums.push_back(G_(i, j));
+    MPI_Allreduce(MPI_IN_PLACE, sums.data(), static_cast<int>(sums.size()), MPI_DOUBLE, MPI_SUM,
+                  comm);
+    auto s = sums.begin();
+    for (long i = 0; i < c; ++i)
+      for (long j = old; j < c; ++j) G_(i, j) = *s++;
+    for (long i = old; i < c; ++i)
+      for (long j = 0; j < old; ++j) G_(i, j) = *s++;
+  }
+  computed_ = c;
+  return G_;
 }
 
 }  // namespace pcsim::simulation::modal_detail

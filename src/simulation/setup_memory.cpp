@@ -115,6 +115,14 @@ void keep_basis(const std::string& key, const std::string& file,
   bases.push_back({key, file, basis});
 }
 
+void forget_kept_bases(const std::string& cache_key) {
+  const std::lock_guard<std::mutex> lock(kept_mutex());
+  auto& bases = kept();
+  const std::string prefix = kept_basis_key(cache_key, {}).substr(0, cache_key.size() + 8);
+  for (auto it = bases.begin(); it != bases.end();)
+    it = it->key.compare(0, prefix.size(), prefix) == 0 ? bases.erase(it) : it + 1;
+}
+
 std::size_t kept_bases() {
   const std::lock_guard<std::mutex> lock(kept_mutex());
   return kept().size();

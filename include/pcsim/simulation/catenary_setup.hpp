@@ -34,6 +34,33 @@ struct CatenarySetup {
   nlohmann::json facts() const;
 };
 
+// While one lives, the modal data this process computes keep what they were
+// computed with (simulation::ModalDataBuilder: operators, factor, dropper
+// shapes, a window's vectors), and data of the same catenary at a higher
+// cut-off compute only the modes above the last one: the accuracy pilot's
+// raised cut-offs (accuracy_pilot.cpp). When the last one ends, they are
+// freed (collective: every rank of the runs ends it).
+class ModalExtensionScope {
+ public:
+  ModalExtensionScope();
+  ~ModalExtensionScope();
+  ModalExtensionScope(const ModalExtensionScope&) = delete;
+  ModalExtensionScope& operator=(const ModalExtensionScope&) = delete;
+  // The next computation is the last one this scope extends: it frees what
+  // it was computed with as soon as it can (a window's vectors before its
+  // products are summed), as a computation outside a scope does.
+  void last_computation_next();
+};
+
+// The last modal data this process computed: the modes computed, those kept
+// from a lower cut-off (ModalExtensionScope) and that cut-off; 'serial'
+// counts the computations (0: none yet).
+struct ModalComputation {
+  long serial = 0, computed = 0, kept = 0;
+  double kept_below_hz = 0;
+};
+ModalComputation last_modal_computation();
+
 // extra_dofs: the pantographs' unknowns. Snapshots need a modal model's full
 // shapes (run.snapshot_every > 0).
 CatenarySetup make_catenary_model(const Context& ctx, const scene::RunScene& run,

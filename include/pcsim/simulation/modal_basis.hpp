@@ -15,23 +15,48 @@
 #include <petscvec.h>
 
 #include <functional>
+#include <memory>
+#include <string>
 
 #include "pcsim/assembly/catenary_system.hpp"
 #include "pcsim/catenary/reduced_basis.hpp"
 
 namespace pcsim::simulation {
 
-// 'x': the static configuration of 'system' (no extra unknowns). Collective;
-// the result on every rank.
+// The data computed in steps of a rising cut-off: extend(f) computes the
+// modes below f, and after extend(f1 < f) only those between f1 and f. It
+// keeps the operators, the factor of K, the dropper shapes and the
+// compliance (and with a shift, every vector) until it is destroyed (the
+// accuracy pilot's raised cut-offs, catenary_setup.hpp).
+// 'x': the static configuration of 'system' (no extra unknowns); 'system'
+// and 'x' must outlive it. Collective; the results on every rank.
 // progress(done, total): the modes computed so far, after each chunk of the
 // interval (not for 'every mode'). shift: a moving window's shift S (global
 // DOFs of 'system', S(g, h) = 1 where DOF g takes DOF h's displacement), or
-// null; with it the data's shift_products (keeps every vector until the end:
-// n x (modes + shapes) doubles).
+// null; with it the data's shift_products, from every vector: n x (modes +
+// shapes) doubles, kept on an unlinked file in spill_dir (the modal cache
+// folder) but for the block being filled (in memory if spill_dir is "" or
+// takes no file).
 using ModalProgress = std::function<void(long done, long total)>;
-catenary::ModalData compute_modal_data(assembly::CatenarySystem& system, Vec x,
-                                       double max_frequency_hz, bool full_shapes,
-                                       const ModalProgress& progress = nullptr,
-                                       Mat shift = nullptr);
+class ModalDataBuilder {
+ public:
+  ModalDataBuilder(assembly::CatenarySystem& system, Vec x, bool full_shapes, Mat shift,
+                   const std::string& spill_dir);
+  ~ModalDataBuilder();
+  ModalDataBuilder(const ModalDataBuilder&) = delete;
+  ModalDataBuilder& operator=(const ModalDataBuilder&) = delete;
+  // Collective. max_frequency_hz at least the last one's (<= 0, every mode:
+  // only at the first call); wall_time_s is this call's. keep_for_extension
+  // false: the window's vectors and products are freed as soon as they have
+  // served (no later extend).
+  catenary::ModalData extend(double max_frequency_hz, const ModalProgress& progress,
+                             bool keep_for_extension);
+  double cutoff_hz() const;  // the last extend's; -1 before the first
+  long modes() const;        // computed so far
+
+ private:
+  struct Parts;
+  std::unique_ptr<Parts> parts_;
+};
 
 }  // namespace pcsim::simulation

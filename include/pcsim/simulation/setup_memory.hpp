@@ -49,6 +49,9 @@ std::optional<catenary::ReducedBasis> find_kept_basis(const std::string& key,
                                                       const std::string& file);
 void keep_basis(const std::string& key, const std::string& file,
                 const catenary::ReducedBasis& basis);
+// Forgets the bases kept under the cache key 'cache_key' (any settings): a
+// raised cut-off's data supersede them (ModalExtensionScope).
+void forget_kept_bases(const std::string& cache_key);
 // How many bases this process keeps now (tests).
 std::size_t kept_bases();
 
