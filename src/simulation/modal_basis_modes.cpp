@@ -162,6 +162,7 @@ double stream_interval(const Operators& op, double lo, double hi, const ModeSink
 double stream_modes(const Operators& op, double lambda_above, double lambda_max,
                     const ModeSink& sink, const std::function<void(long, long)>& progress) {
   constexpr double kChunkModes = 800;
+  if (lambda_above >= lambda_max) return 0;  // (the same cut-off again: nothing above)
   const PetscInt count =
       count_below(op, lambda_max) - (lambda_above > 0 ? count_below(op, lambda_above) : 0);
   const int chunks = std::max(1, static_cast<int>(std::ceil(count / kChunkModes)));

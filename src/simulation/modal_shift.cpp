@@ -10,6 +10,16 @@ namespace pcsim::simulation::modal_detail {
 
 namespace {
 
+// v's local part from a column (local rows).
+void set_vector(Vec v, const double* column) {
+  PetscInt n;
+  PetscScalar* a;
+  PCSIM_PETSC(VecGetLocalSize(v, &n));
+  PCSIM_PETSC(VecGetArray(v, &a));
+  std::copy(column, column + n, a);
+  PCSIM_PETSC(VecRestoreArray(v, &a));
+}
+
 // y = A x, or y = A^T x, into column j of W (local rows).
 void product_column(Mat A, Vec x, Vec y, bool transpose, Eigen::MatrixXd& W, long j) {
   PCSIM_PETSC(transpose ? MatMultTranspose(A, x, y) : MatMult(A, x, y));
@@ -57,10 +67,7 @@ void ShiftProducts::new_columns(Vec like) {
     const long j0 = std::max(computed_ - first, 0L);  // the block's first new column
     const Eigen::MatrixXd& VJ = store_->block(J, scratch);
     for (long j = j0; j < width; ++j) {
-      PetscScalar* a;
-      PCSIM_PETSC(VecGetArray(column, &a));
-      std::copy(VJ.col(j).data(), VJ.col(j).data() + local_, a);
-      PCSIM_PETSC(VecRestoreArray(column, &a));
+      set_vector(column, VJ.col(j).data());
       PCSIM_PETSC(MatMult(S_, column, shifted));
       product_column(M_, shifted, w, false, W, j);
     }
@@ -86,10 +93,7 @@ void ShiftProducts::new_rows_of_old_columns(Vec like) {
     const Eigen::MatrixXd& VI = store_->block(I, scratch);
     const long first = static_cast<long>(I) * kBlock;
     for (long i = std::max(computed_, first); i < first + store_->width(I); ++i) {
-      PetscScalar* a;
-      PCSIM_PETSC(VecGetArray(column, &a));
-      std::copy(VI.col(i - first).data(), VI.col(i - first).data() + local_, a);
-      PCSIM_PETSC(VecRestoreArray(column, &a));
+      set_vector(column, VI.col(i - first).data());
       PCSIM_PETSC(MatMult(M_, column, mass));
       product_column(S_, mass, z, true, Z, i - computed_);
     }

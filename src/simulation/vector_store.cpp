@@ -25,19 +25,11 @@ int unnamed_file(const std::string& dir) {
   return fd;
 }
 
-bool write_all(int fd, const char* data, std::size_t size, off_t offset) {
+// All of 'size' bytes at 'offset' by pread or pwrite (which may do part).
+template <typename Transfer>
+bool transfer_all(Transfer transfer, char* data, std::size_t size, off_t offset) {
   while (size > 0) {
-    const ssize_t n = pwrite(fd, data, size, offset);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    data += n, size -= static_cast<std::size_t>(n), offset += n;
-  }
-  return true;
-}
-
-bool read_all(int fd, char* data, std::size_t size, off_t offset) {
-  while (size > 0) {
-    const ssize_t n = pread(fd, data, size, offset);
+    const ssize_t n = transfer(data, size, offset);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) return false;
     data += n, size -= static_cast<std::size_t>(n), offset += n;
@@ -73,7 +65,8 @@ void VectorStore::spill(std::size_t b) {
   if (fd_ < 0) return;
   const std::size_t bytes = sizeof(double) * static_cast<std::size_t>(rows_ * kBlock);
   const off_t offset = static_cast<off_t>(b * bytes);
-  if (!write_all(fd_, reinterpret_cast<const char*>(blocks_[b].data()), bytes, offset)) return;
+  const auto write = [this](char* d, std::size_t n, off_t at) { return pwrite(fd_, d, n, at); };
+  if (!transfer_all(write, reinterpret_cast<char*>(blocks_[b].data()), bytes, offset)) return;
   blocks_[b] = Eigen::MatrixXd();
   on_file_[b] = true;
 }
@@ -83,7 +76,9 @@ const Eigen::MatrixXd& VectorStore::block(std::size_t b, Eigen::MatrixXd& scratc
   if (!on_file_[b]) return blocks_[b];
   scratch.resize(rows_, kBlock);
   const std::size_t bytes = sizeof(double) * static_cast<std::size_t>(rows_ * kBlock);
-  if (!read_all(fd_, reinterpret_cast<char*>(scratch.data()), bytes, static_cast<off_t>(b * bytes)))
+  const auto read = [this](char* d, std::size_t n, off_t at) { return pread(fd_, d, n, at); };
+  if (!transfer_all(read, reinterpret_cast<char*>(scratch.data()), bytes,
+                    static_cast<off_t>(b * bytes)))
     throw SolverError("modal window shift: the vectors stored on file cannot be read back");
   return scratch;
 }
