@@ -210,7 +210,9 @@ struct ModalDataBuilder::Parts {
   std::unique_ptr<StiffnessSolver> K;
   std::unique_ptr<DropperShapes> shapes;
   std::unique_ptr<ShiftProducts> shift_products;  // every vector, for the window's shift
-  std::vector<long> shift_order;  // each appended vector: mode k (k >= 0) or shape d (-1 - d)
+  // The window's vectors are appended as the first extend's modes, the
+  // shapes, then the later extends' modes: the shapes start at this index.
+  std::size_t shapes_appended_at = 0;
   std::vector<double> contact_compliance, omega2, wind;
   std::vector<std::vector<double>> columns, mass_products;  // of each mode
   double cutoff_hz = 0, max_residual = 0;
@@ -257,10 +259,7 @@ long ModalDataBuilder::modes() const {
 }
 
 void ModalDataBuilder::Parts::add_mode(double lambda, Vec phi) {
-  if (shift_products) {
-    shift_order.push_back(static_cast<long>(omega2.size()));
-    shift_products->append(phi);
-  }
+  if (shift_products) shift_products->append(phi);
   omega2.push_back(lambda);
   columns.emplace_back(rows.size());
   rows.gather(phi, columns.back().data());
@@ -290,11 +289,11 @@ ModalData ModalDataBuilder::extend(double max_frequency_hz, const ModalProgress&
                             complete ? stream_all_modes_dense(p.op, sink)
                                      : stream_modes(p.op, p.computed ? omega_from * omega_from : 0,
                                                     omega_max * omega_max, sink, progress));
-  if (p.shift_products && p.shapes && !p.computed)
-    for (std::size_t d = 0; d < p.shapes->count(); ++d) {
-      p.shift_order.push_back(-1 - static_cast<long>(d));
+  if (p.shift_products && p.shapes && !p.computed) {
+    p.shapes_appended_at = p.omega2.size();
+    for (std::size_t d = 0; d < p.shapes->count(); ++d)
       p.shift_products->append(p.shapes->vector(d));
-    }
+  }
   p.computed = true;
   p.cutoff_hz = max_frequency_hz;
   ModalData data = p.data();
@@ -329,11 +328,9 @@ ModalData ModalDataBuilder::Parts::data() {
   }
   if (shift_products) {
     const auto& G = shift_products->compute(x, keep_vectors);  // in the order appended
-    const std::size_t c = shift_order.size();
+    const std::size_t c = m + nd, s0 = shapes_appended_at;
     std::vector<std::size_t> at(c);  // each appended vector's place in [modes, shapes]
-    for (std::size_t i = 0; i < c; ++i)
-      at[i] = shift_order[i] >= 0 ? static_cast<std::size_t>(shift_order[i])
-                                  : m + static_cast<std::size_t>(-1 - shift_order[i]);
+    for (std::size_t i = 0; i < c; ++i) at[i] = i < s0 ? i : i < s0 + nd ? m + (i - s0) : i - nd;
     data.shift_products.resize(c * c);
     for (std::size_t i = 0; i < c; ++i)
       for (std::size_t j = 0; j < c; ++j)

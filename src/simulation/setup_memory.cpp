@@ -118,7 +118,7 @@ void keep_basis(const std::string& key, const std::string& file,
 void forget_kept_bases(const std::string& cache_key) {
   const std::lock_guard<std::mutex> lock(kept_mutex());
   auto& bases = kept();
-  const std::string prefix = kept_basis_key(cache_key, {}).substr(0, cache_key.size() + 8);
+  const std::string prefix = cache_key + " cut-off ";  // how kept_basis_key begins
   for (auto it = bases.begin(); it != bases.end();)
     it = it->key.compare(0, prefix.size(), prefix) == 0 ? bases.erase(it) : it + 1;
 }
