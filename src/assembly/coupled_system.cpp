@@ -55,6 +55,8 @@ CoupledSystem::CoupledSystem(std::unique_ptr<CatenaryModel> catenary,
         it->cu += part.cu, it->cv += part.cv, it->ca += part.ca;
     }
   part_axpy_.resize(parts_.size());
+  for (std::size_t k = 0; k < parts_.size(); ++k)
+    part_arguments_.push_back(catenary_->create_vector());
   reference_ = catenary_->create_vector();
   catenary_->reference_state(reference_);
   work_ = catenary_->create_vector();
@@ -64,6 +66,7 @@ CoupledSystem::~CoupledSystem() {
   terms_.clear();
   VecDestroy(&reference_);
   VecDestroy(&work_);
+  for (Vec& w : part_arguments_) VecDestroy(&w);
 }
 
 PetscInt CoupledSystem::global_size() const {
@@ -110,35 +113,60 @@ void CoupledSystem::load(double t, Vec U, Vec V, Vec A) {
   state_.load(t, U, V, A);
 }
 
-// F += sum over constant matrices A_k (cu (U - U_ref) + cv V + ca A).
-void CoupledSystem::add_linear_parts(Vec U, Vec V, Vec A, Vec F) {
-  const ScopedEvent timed(log_events().linear_parts);
-  for (const auto& part : parts_) {
-    bool empty = true;
-    auto add = [&](double c, Vec x) {
-      if (c == 0 || !x) return;
-      if (empty)
-        PCSIM_PETSC(VecAXPBY(work_, c, 0.0, x));
-      else
-        PCSIM_PETSC(VecAXPY(work_, c, x));
-      empty = false;
-    };
-    if (part.cu != 0) {
-      PCSIM_PETSC(VecWAXPY(work_, -1.0, reference_, U));
-      if (part.cu != 1) PCSIM_PETSC(VecScale(work_, part.cu));
-      empty = false;
+// Each part's argument w_k = cu (U - U_ref) + cv V + ca A, all in one pass
+// over the state (each entry takes the operations, in order, of the VecWAXPY,
+// VecScale and VecAXPY that formed it before: the same bits).
+void CoupledSystem::form_part_arguments(Vec U, Vec V, Vec A) {
+  PetscInt n = 0;
+  const PetscScalar *u = nullptr, *r = nullptr, *v = nullptr, *a = nullptr;
+  PCSIM_PETSC(VecGetLocalSize(reference_, &n));
+  PCSIM_PETSC(VecGetArrayRead(U, &u));
+  PCSIM_PETSC(VecGetArrayRead(reference_, &r));
+  if (V) PCSIM_PETSC(VecGetArrayRead(V, &v));
+  if (A) PCSIM_PETSC(VecGetArrayRead(A, &a));
+  for (std::size_t k = 0; k < parts_.size(); ++k) {
+    const MergedPart& part = parts_[k];
+    const double cu = part.cu, cv = v ? part.cv : 0.0, ca = a ? part.ca : 0.0;
+    if (cu == 0 && cv == 0 && ca == 0) continue;
+    PetscScalar* w = nullptr;
+    PCSIM_PETSC(VecGetArrayWrite(part_arguments_[k], &w));
+    for (PetscInt i = 0; i < n; ++i) {
+      double x = 0;
+      if (cu != 0) x = cu == 1 ? u[i] - r[i] : (u[i] - r[i]) * cu;
+      if (cv != 0) x = cu != 0 ? x + cv * v[i] : cv * v[i];
+      if (ca != 0) x = cu != 0 || cv != 0 ? x + ca * a[i] : ca * a[i];
+      w[i] = x;
     }
-    add(part.cv, V);
-    add(part.ca, A);
-    if (!empty) PCSIM_PETSC(MatMultAdd(part.matrix, work_, F, F));
+    PCSIM_PETSC(VecRestoreArrayWrite(part_arguments_[k], &w));
   }
+  if (A) PCSIM_PETSC(VecRestoreArrayRead(A, &a));
+  if (V) PCSIM_PETSC(VecRestoreArrayRead(V, &v));
+  PCSIM_PETSC(VecRestoreArrayRead(reference_, &r));
+  PCSIM_PETSC(VecRestoreArrayRead(U, &u));
+}
+
+// F = sum over constant matrices A_k w_k (the first product sets F: no pass
+// to zero it), or F = 0 without linear parts.
+void CoupledSystem::set_linear_parts(Vec U, Vec V, Vec A, Vec F) {
+  const ScopedEvent timed(log_events().linear_parts);
+  form_part_arguments(U, V, A);
+  bool first = true;
+  for (std::size_t k = 0; k < parts_.size(); ++k) {
+    const MergedPart& part = parts_[k];
+    if (part.cu == 0 && (part.cv == 0 || !V) && (part.ca == 0 || !A)) continue;
+    if (first)
+      PCSIM_PETSC(MatMult(part.matrix, part_arguments_[k], F));
+    else
+      PCSIM_PETSC(MatMultAdd(part.matrix, part_arguments_[k], F, F));
+    first = false;
+  }
+  if (first) PCSIM_PETSC(VecSet(F, 0.0));
 }
 
 void CoupledSystem::residual(double t, Vec U, Vec V, Vec A, Vec F) {
   const ScopedEvent timed(log_events().residual);
   load(t, U, V, A);
-  PCSIM_PETSC(VecSet(F, 0.0));
-  add_linear_parts(U, V, A, F);
+  set_linear_parts(U, V, A, F);
   for (const auto& term : terms_)
     if (!term->adds_by_set_values()) term->add_residual(state_, F);
   for (const auto& term : terms_)
@@ -156,12 +184,21 @@ bool CoupledSystem::constant_inertia() const {
 // The linear parts' ca A products and the terms' constant inertia, in the
 // residual's order (vector operations first, VecSetValues last, one assembly).
 void CoupledSystem::inertia_product(Vec A, Vec MA) {
-  PCSIM_PETSC(VecSet(MA, 0.0));
+  bool first = true;
   for (const auto& part : parts_) {
     if (part.ca == 0) continue;
-    PCSIM_PETSC(VecAXPBY(work_, part.ca, 0.0, A));
-    PCSIM_PETSC(MatMultAdd(part.matrix, work_, MA, MA));
+    Vec x = A;  // ca A, or A itself for ca = 1 (the same bits: no copy)
+    if (part.ca != 1) {
+      PCSIM_PETSC(VecAXPBY(work_, part.ca, 0.0, A));
+      x = work_;
+    }
+    if (first)
+      PCSIM_PETSC(MatMult(part.matrix, x, MA));
+    else
+      PCSIM_PETSC(MatMultAdd(part.matrix, x, MA, MA));
+    first = false;
   }
+  if (first) PCSIM_PETSC(VecSet(MA, 0.0));
   for (bool by_set_values : {false, true})
     for (const auto& term : terms_)
       if (term->adds_by_set_values() == by_set_values &&

@@ -136,6 +136,9 @@ DofLayout::DofLayout(MPI_Comm comm, const CatenaryMesh& mesh, PetscInt extra_dof
     }
   }
   gathered_size_ = static_cast<PetscInt>(from.size());
+  gather_identity_ = size_ == 1;
+  for (PetscInt i = 0; i < gathered_size_ && gather_identity_; ++i)
+    gather_identity_ = from[static_cast<std::size_t>(i)] == i;
 
   PCSIM_PETSC(VecCreateMPI(comm_, local_size_, PETSC_DETERMINE, &scatter_template_global_));
   PCSIM_PETSC(VecCreateSeq(PETSC_COMM_SELF, gathered_size_, &scatter_template_local_));

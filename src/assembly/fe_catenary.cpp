@@ -97,6 +97,11 @@ Mat FECatenary::static_tangent(unsigned mask) {
   auto it = tangents_.find(mask);
   if (it != tangents_.end()) return it->second;
   Mat K = system_->layout().create_matrix();
+  // The bars' own matrix has rows only at the bars' nodes: without inodes
+  // PETSc keeps its nonempty rows apart (compressed rows) and a product skips
+  // the others.
+  if ((mask & kOwnPattern) && !(mask & CatenarySystem::kCables))
+    PCSIM_PETSC(MatSetOption(K, MAT_USE_INODES, PETSC_FALSE));
   system_->load_state(U0_);
   system_->add_forces(nullptr, K, mask & (CatenarySystem::kAllTerms | CatenarySystem::kTautBars));
   PCSIM_PETSC(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY));

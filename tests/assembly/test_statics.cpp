@@ -6,10 +6,14 @@
 #include <petscsnes.h>
 
 #include <cmath>
+#include <set>
+#include <utility>
 
 #include "catenary_fixtures.hpp"
 #include "pcsim/assembly/catenary_system.hpp"
 #include "pcsim/assembly/static_problem.hpp"
+#include "pcsim/catenary/elements.hpp"
+#include "pcsim/core/error.hpp"
 #include "pcsim/solvers/modes.hpp"
 #include "pcsim/solvers/statics.hpp"
 
@@ -166,6 +170,81 @@ TEST(Modes, TautStringMatchesTensionedBeamFormula) {
   }
   EXPECT_LT(modes.max_relative_residual, 1e-8);
   VecDestroy(&x);
+}
+
+// The consistent mass m_kj (x) I3 stores no exact zero (its cross-component
+// entries are not kept) and its product equals the sum of the element
+// products, on every rank count.
+TEST(MassMatrix, StoresOnlyNonzerosAndEqualsElementSum) {
+  auto mesh = fixtures::single_wire(50, 25, 1.35, 1.44e7, 195, 20000, 0.1, 0.999);
+  assembly::CatenarySystem system(PETSC_COMM_WORLD, mesh);
+  Mat M = system.layout().create_matrix();
+  system.assemble_mass(M);
+  Vec x = system.create_vector(), Mx = system.create_vector(), sum = system.create_vector();
+  PetscInt lo, hi, stored = 0, zeros = 0;
+  PCSIM_PETSC(MatGetOwnershipRange(M, &lo, &hi));
+  for (PetscInt i = lo; i < hi; ++i) {
+    PetscInt ncols;
+    const PetscScalar* values;
+    PCSIM_PETSC(MatGetRow(M, i, &ncols, nullptr, &values));
+    stored += ncols;
+    for (PetscInt k = 0; k < ncols; ++k) zeros += values[k] == 0.0;
+    PCSIM_PETSC(MatRestoreRow(M, i, &ncols, nullptr, &values));
+  }
+  EXPECT_EQ(zeros, 0);
+  for (PetscInt i = lo; i < hi; ++i)
+    PCSIM_PETSC(VecSetValue(x, i, std::sin(0.7 * i), INSERT_VALUES));
+  PCSIM_PETSC(VecAssemblyBegin(x));
+  PCSIM_PETSC(VecAssemblyEnd(x));
+  PCSIM_PETSC(MatMult(M, x, Mx));
+  // The reference: every element's full 12 x 12 matrix, zeros included.
+  Vec all;
+  VecScatter to_all;
+  PCSIM_PETSC(VecScatterCreateToAll(x, &to_all, &all));
+  PCSIM_PETSC(VecScatterBegin(to_all, x, all, INSERT_VALUES, SCATTER_FORWARD));
+  PCSIM_PETSC(VecScatterEnd(to_all, x, all, INSERT_VALUES, SCATTER_FORWARD));
+  const PetscScalar* xa;
+  PCSIM_PETSC(VecGetArrayRead(all, &xa));
+  for (int e : system.layout().local_cables()) {
+    const auto& el = mesh.cables[static_cast<std::size_t>(e)];
+    const catenary::Mat12 me =
+        catenary::cable_mass_matrix(catenary::cable_section(mesh.wires[0], el), el.ref_length);
+    PetscInt idx[12];
+    system.cable_indices(e, idx);
+    for (int r = 0; r < 12; ++r) {
+      if (idx[r] < 0) continue;
+      double row = 0;
+      for (int c = 0; c < 12; ++c)
+        if (idx[c] >= 0) row += me(r, c) * xa[idx[c]];
+      PCSIM_PETSC(VecSetValue(sum, idx[r], row, ADD_VALUES));
+    }
+  }
+  PCSIM_PETSC(VecRestoreArrayRead(all, &xa));
+  PCSIM_PETSC(VecAssemblyBegin(sum));
+  PCSIM_PETSC(VecAssemblyEnd(sum));
+  PetscReal difference, size;
+  PCSIM_PETSC(VecNorm(Mx, NORM_INFINITY, &size));
+  PCSIM_PETSC(VecAXPY(sum, -1.0, Mx));
+  PCSIM_PETSC(VecNorm(sum, NORM_INFINITY, &difference));
+  EXPECT_LT(difference, 1e-14 * size);  // the same sums in another order: round-off only
+  // Exactly the positions where some element has a nonzero entry (a third
+  // of the element pattern: the rest couples different components).
+  std::set<std::pair<PetscInt, PetscInt>> nonzero;
+  for (std::size_t e = 0; e < mesh.cables.size(); ++e) {
+    const auto& el = mesh.cables[e];
+    const catenary::Mat12 me =
+        catenary::cable_mass_matrix(catenary::cable_section(mesh.wires[0], el), el.ref_length);
+    PetscInt idx[12];
+    system.cable_indices(static_cast<int>(e), idx);
+    for (int r = 0; r < 12; ++r)
+      for (int c = 0; c < 12; ++c)
+        if (idx[r] >= lo && idx[r] < hi && idx[c] >= 0 && me(r, c) != 0.0)
+          nonzero.insert({idx[r], idx[c]});
+  }
+  EXPECT_EQ(stored, static_cast<PetscInt>(nonzero.size()));
+  PCSIM_PETSC(VecScatterDestroy(&to_all));
+  for (Vec* v : {&all, &x, &Mx, &sum}) VecDestroy(v);
+  MatDestroy(&M);
 }
 
 TEST(RankIndependence, StaticAndModesEqualSerial) {

@@ -85,7 +85,8 @@ class CoupledSystem {
     MatStructure structure;
   };
   void load(double t, Vec U, Vec V, Vec A);
-  void add_linear_parts(Vec U, Vec V, Vec A, Vec F);
+  void form_part_arguments(Vec U, Vec V, Vec A);
+  void set_linear_parts(Vec U, Vec V, Vec A, Vec F);
   void assemble_tangent(Shifts shifts, Mat J, bool reference);
   Mat build_pattern(bool reference) const;
 
@@ -98,6 +99,7 @@ class CoupledSystem {
   std::vector<SubsetAxpy> part_axpy_;  // J += c A_k for the parts with a pattern of their own
   double contact_stiffness_;
   std::vector<bool> wire_coupled_;
+  std::vector<Vec> part_arguments_;  // each part's cu (U - U_ref) + cv V + ca A
   Vec reference_ = nullptr, work_ = nullptr;
   bool record_dropper_forces_ = true;
 };

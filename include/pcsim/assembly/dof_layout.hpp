@@ -58,6 +58,9 @@ class DofLayout {
   int needed_index(int node) const;  // index into needed_nodes(), -1 if not needed
   PetscInt gathered_size() const { return gathered_size_; }
   PetscInt gathered_position(int needed, int c) const { return gathered_pos_[6 * needed + c]; }
+  // True when the gathered vector is the start of the global one (one rank,
+  // nodes numbered in order): a global vector's array can be read in its place.
+  bool gather_identity() const { return gather_identity_; }
 
   // Gathers the free catenary DOFs of the needed nodes from a global vector.
   void gather(Vec global, Vec gathered) const;
@@ -86,6 +89,7 @@ class DofLayout {
   std::vector<int> owned_nodes_, needed_nodes_, needed_lookup_;
   std::vector<PetscInt> gathered_pos_;
   PetscInt gathered_size_ = 0;
+  bool gather_identity_ = false;
   std::vector<std::vector<int>> adjacency_;
   VecScatter scatter_ = nullptr;
   Vec scatter_template_global_ = nullptr, scatter_template_local_ = nullptr;
