@@ -113,6 +113,15 @@ void CoupledSystem::load(double t, Vec U, Vec V, Vec A) {
   state_.load(t, U, V, A);
 }
 
+namespace {
+
+// Whether a part has an argument at this state (V, A may be absent).
+bool part_active(double cu, double cv, double ca, Vec V, Vec A) {
+  return cu != 0 || (cv != 0 && V) || (ca != 0 && A);
+}
+
+}  // namespace
+
 // Each part's argument w_k = cu (U - U_ref) + cv V + ca A, all in one pass
 // over the state (each entry takes the operations, in order, of the VecWAXPY,
 // VecScale and VecAXPY that formed it before: the same bits).
@@ -126,8 +135,8 @@ void CoupledSystem::form_part_arguments(Vec U, Vec V, Vec A) {
   if (A) PCSIM_PETSC(VecGetArrayRead(A, &a));
   for (std::size_t k = 0; k < parts_.size(); ++k) {
     const MergedPart& part = parts_[k];
+    if (!part_active(part.cu, part.cv, part.ca, V, A)) continue;
     const double cu = part.cu, cv = v ? part.cv : 0.0, ca = a ? part.ca : 0.0;
-    if (cu == 0 && cv == 0 && ca == 0) continue;
     PetscScalar* w = nullptr;
     PCSIM_PETSC(VecGetArrayWrite(part_arguments_[k], &w));
     for (PetscInt i = 0; i < n; ++i) {
@@ -153,7 +162,7 @@ void CoupledSystem::set_linear_parts(Vec U, Vec V, Vec A, Vec F) {
   bool first = true;
   for (std::size_t k = 0; k < parts_.size(); ++k) {
     const MergedPart& part = parts_[k];
-    if (part.cu == 0 && (part.cv == 0 || !V) && (part.ca == 0 || !A)) continue;
+    if (!part_active(part.cu, part.cv, part.ca, V, A)) continue;
     if (first)
       PCSIM_PETSC(MatMult(part.matrix, part_arguments_[k], F));
     else
