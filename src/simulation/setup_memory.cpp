@@ -88,13 +88,21 @@ StaticConfiguration kept_static_configuration(const Context& ctx, const std::str
   return statics;
 }
 
+namespace {
+
+// How every kept basis key of a cache key begins (forget_kept_bases).
+std::string kept_basis_prefix(const std::string& cache_key) {
+  return cache_key + " cut-off ";
+}
+
+}  // namespace
+
 std::string kept_basis_key(const std::string& cache_key, const catenary::ModalSettings& s) {
   char settings[160];
-  std::snprintf(settings, sizeof settings,
-                " cut-off %.17g shapes %d flexibility %d vertical %d %.17g", s.max_frequency_hz,
-                s.dropper_shapes ? 1 : 0, s.contact_flexibility ? 1 : 0, s.vertical_only ? 1 : 0,
-                s.participation);
-  return cache_key + settings;
+  std::snprintf(settings, sizeof settings, "%.17g shapes %d flexibility %d vertical %d %.17g",
+                s.max_frequency_hz, s.dropper_shapes ? 1 : 0, s.contact_flexibility ? 1 : 0,
+                s.vertical_only ? 1 : 0, s.participation);
+  return kept_basis_prefix(cache_key) + settings;
 }
 
 std::optional<catenary::ReducedBasis> find_kept_basis(const std::string& key,
@@ -118,7 +126,7 @@ void keep_basis(const std::string& key, const std::string& file,
 void forget_kept_bases(const std::string& cache_key) {
   const std::lock_guard<std::mutex> lock(kept_mutex());
   auto& bases = kept();
-  const std::string prefix = cache_key + " cut-off ";  // how kept_basis_key begins
+  const std::string prefix = kept_basis_prefix(cache_key);
   for (auto it = bases.begin(); it != bases.end();)
     it = it->key.compare(0, prefix.size(), prefix) == 0 ? bases.erase(it) : it + 1;
 }
