@@ -131,6 +131,8 @@ nlohmann::json fidelity_facts(const scene::RunScene& run, const RunRequest& requ
   const auto dd = solvers::domain_decomposition_info(solver.step_ksp());
   fidelity["step_interface_unknowns"] = dd.interface_size;
   fidelity["step_interface_bandwidth"] = dd.interface_bandwidth;
+  fidelity["step_correction_stored"] = dd.correction_stored;
+  fidelity["step_correction_entries"] = dd.correction_entries;
   fidelity.erase("steps");
   if (window) fidelity["window_shifts"] = window->shifts();
   return fidelity;

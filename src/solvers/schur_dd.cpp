@@ -1,10 +1,13 @@
 #include "pcsim/solvers/schur_dd.hpp"
 
 #include <algorithm>
+#include <tuple>
 #include <utility>
 #include <vector>
 
+#include "dd_blocks.hpp"
 #include "interface_solve.hpp"
+#include "negligible_entries.hpp"
 #include "pc_types.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/core/profiling.hpp"
@@ -14,36 +17,6 @@ namespace pcsim::solvers {
 namespace {
 
 constexpr const char* kDescription = "pcsim exact domain decomposition (interior LU + Schur)";
-
-// The matrix's diagonal block (owned rows and columns), its off-diagonal
-// block and the global numbers of that block's columns.
-struct LocalBlocks {
-  Mat diagonal = nullptr, off_diagonal = nullptr;
-  const PetscInt* off_columns = nullptr;
-  PetscInt n_off_columns = 0;
-};
-
-LocalBlocks local_blocks(Mat A) {
-  LocalBlocks b;
-  PetscBool mpi = PETSC_FALSE;
-  PCSIM_PETSC(PetscObjectBaseTypeCompare(reinterpret_cast<PetscObject>(A), MATMPIAIJ, &mpi));
-  if (!mpi) {
-    b.diagonal = A;
-    return b;
-  }
-  PCSIM_PETSC(MatMPIAIJGetSeqAIJ(A, &b.diagonal, &b.off_diagonal, &b.off_columns));
-  PetscInt rows;
-  PCSIM_PETSC(MatGetSize(b.off_diagonal, &rows, &b.n_off_columns));
-  return b;
-}
-
-std::vector<int> all_counts(MPI_Comm comm, int mine) {
-  int size;
-  MPI_Comm_size(comm, &size);
-  std::vector<int> counts(size);
-  MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
-  return counts;
-}
 
 class SchurDomainSolver {
  public:
@@ -265,9 +238,9 @@ void SchurDomainSolver::refill_blocks(Mat diagonal) {
   }
 }
 
-// A_II = L U (sequential), X = A_II^-1 A_IG (dense, |I_r| x |G_r|), solved
-// column by column in place of A_IG's dense copy (no second dense block:
-// 1000 spans, 2 ranks: 0.13 GB per rank).
+// A_II = L U (sequential), X = A_II^-1 A_IG (dense, |I_r| x |G_r|, made
+// sparse after S: negligible_entries.hpp), solved column by column in place
+// of A_IG's dense copy (no second dense block).
 void SchurDomainSolver::factor_interior() {
   const PetscInt n_I = static_cast<PetscInt>(interior_.size());
   const PetscInt m = static_cast<PetscInt>(interface_.size());
@@ -377,7 +350,11 @@ void SchurDomainSolver::set_up(Mat A) {
   extract_blocks(blocks.diagonal, new_split ? MAT_INITIAL_MATRIX : MAT_REUSE_MATRIX);
   factor_interior();
   assemble_schur(blocks);
-  MPI_Allreduce(MPI_IN_PLACE, &info_.factor_nonzeros, 1, MPI_DOUBLE, MPI_SUM, comm_);
+  if (X_) drop_negligible(&X_, &info_.correction_entries, &info_.correction_stored);
+  double sums[] = {info_.factor_nonzeros, info_.correction_entries, info_.correction_stored};
+  MPI_Allreduce(MPI_IN_PLACE, sums, 3, MPI_DOUBLE, MPI_SUM, comm_);
+  std::tie(info_.factor_nonzeros, info_.correction_entries, info_.correction_stored) =
+      std::tie(sums[0], sums[1], sums[2]);
 }
 
 void SchurDomainSolver::apply(Vec r, Vec x) {

@@ -5,7 +5,8 @@
 // 1, 2 and 3 ranks. It must be a direct solve: one application of the PC
 // gives x to round-off, and the same x on any number of ranks. And the
 // interface factorisation alone (src/solvers/interface_solve.hpp) on the
-// Schur complement of a chain of 9 parts numbered out of track order.
+// Schur complement of a chain of 9 parts numbered out of track order. And
+// the interior correction's sparse copy (negligible_entries.hpp).
 // pcsim-test-ranks: 1 2 3
 #include <gtest/gtest.h>
 #include <petscksp.h>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "../../src/solvers/interface_solve.hpp"
+#include "../../src/solvers/negligible_entries.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/solvers/direct.hpp"
 #include "pcsim/solvers/schur_dd.hpp"
@@ -230,6 +232,86 @@ TEST(SchurDomainDecomposition, InterfaceFactorIsBandedAndExact) {
   EXPECT_LE(lu.bandwidth(), 2 * kSide - 1 + 6);
   EXPECT_EQ(lu.nonzeros(), static_cast<PetscInt>(c.S.columns.size()));
   EXPECT_GE(lu.factor_nonzeros(), static_cast<double>(lu.nonzeros()));
+}
+
+// The sparse copy keeps exactly the entries above 1e-18 of their column's
+// largest magnitude (1e-18 itself is left out), with their values, and its
+// product moves by at most 1e-18 of each column's largest term beyond the
+// rounding of the sums.
+TEST(SchurDomainDecomposition, CorrectionKeepsAllButNegligibleEntries) {
+  constexpr PetscInt kRows = 80, kCols = 3;  // 37 of 80 rows kept: sparse
+  Mat dense = nullptr;
+  PCSIM_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, kRows, kCols, nullptr, &dense));
+  Eigen::MatrixXd values(kRows, kCols);
+  const double largest[kCols] = {2.0, -3e-4, 7e10};
+  for (PetscInt j = 0; j < kCols; ++j)
+    for (PetscInt i = 0; i < kRows; ++i) {
+      // A decay as along a wire: 10^-(i/2) of the column's largest, sign alternating.
+      values(i, j) = largest[j] * std::pow(10.0, -0.5 * i) * (i % 2 ? -1.0 : 1.0);
+      if (i == 36) values(i, j) = largest[j] * 1e-18;     // exactly at the limit: left out
+      if (i == 37) values(i, j) = largest[j] * 1.01e-18;  // just above: kept
+    }
+  for (PetscInt j = 0; j < kCols; ++j)
+    for (PetscInt i = 0; i < kRows; ++i)
+      PCSIM_PETSC(MatSetValue(dense, i, j, values(i, j), INSERT_VALUES));
+  PCSIM_PETSC(MatAssemblyBegin(dense, MAT_FINAL_ASSEMBLY));
+  PCSIM_PETSC(MatAssemblyEnd(dense, MAT_FINAL_ASSEMBLY));
+  double entries = 0, kept = 0;
+  Mat sparse = dense;
+  pcsim::solvers::drop_negligible(&sparse, &entries, &kept);
+  PetscBool aij = PETSC_FALSE;
+  PCSIM_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(sparse), MATSEQAIJ, &aij));
+  EXPECT_TRUE(aij);
+  EXPECT_EQ(entries, kRows * kCols);
+  // Rows 0..36 are at least 10^-18 (row 36 set to exactly that: out), row 37 in.
+  EXPECT_EQ(kept, kCols * 37.0);
+  Eigen::VectorXd x(kCols), product(kRows);
+  x << 1.0, -2.0, 1e-9;
+  Vec xv, yv;
+  PCSIM_PETSC(VecCreateSeq(PETSC_COMM_SELF, kCols, &xv));
+  PCSIM_PETSC(VecCreateSeq(PETSC_COMM_SELF, kRows, &yv));
+  for (PetscInt j = 0; j < kCols; ++j) PCSIM_PETSC(VecSetValue(xv, j, x(j), INSERT_VALUES));
+  PCSIM_PETSC(VecAssemblyBegin(xv));
+  PCSIM_PETSC(VecAssemblyEnd(xv));
+  PCSIM_PETSC(MatMult(sparse, xv, yv));
+  const PetscScalar* y;
+  PCSIM_PETSC(VecGetArrayRead(yv, &y));
+  const Eigen::VectorXd exact = values * x;
+  double largest_term = 0;
+  for (PetscInt j = 0; j < kCols; ++j)
+    largest_term = std::max(largest_term, std::abs(largest[j] * x(j)));
+  // Dropped: at most 1e-18 of each column's largest term; and the sums'
+  // rounding (3 terms: 4 u of their magnitudes).
+  const Eigen::VectorXd magnitudes = values.cwiseAbs() * x.cwiseAbs();
+  for (PetscInt i = 0; i < kRows; ++i) {
+    EXPECT_LE(std::abs(y[i] - exact(i)), 1e-18 * kCols * largest_term + 4 * 1.1e-16 * magnitudes(i))
+        << "row " << i;
+    PetscInt n;
+    const PetscInt* cols;
+    const PetscScalar* vals;
+    PCSIM_PETSC(MatGetRow(sparse, i, &n, &cols, &vals));
+    for (PetscInt k = 0; k < n; ++k) EXPECT_EQ(vals[k], values(i, cols[k]));
+    EXPECT_EQ(n, i < 36 || i == 37 ? kCols : 0) << "row " << i;
+    PCSIM_PETSC(MatRestoreRow(sparse, i, &n, &cols, &vals));
+  }
+  PCSIM_PETSC(VecRestoreArrayRead(yv, &y));
+  for (Vec* v : {&xv, &yv}) PCSIM_PETSC(VecDestroy(v));
+  PCSIM_PETSC(MatDestroy(&sparse));
+
+  // More than half kept: the matrix stays as it is (dense, every entry).
+  Mat full = nullptr;
+  PCSIM_PETSC(MatCreateSeqDense(PETSC_COMM_SELF, 4, 2, nullptr, &full));
+  for (PetscInt i = 0; i < 4; ++i)
+    for (PetscInt j = 0; j < 2; ++j)
+      PCSIM_PETSC(MatSetValue(full, i, j, i < 3 ? 1.0 + i + j : 0.0, INSERT_VALUES));
+  PCSIM_PETSC(MatAssemblyBegin(full, MAT_FINAL_ASSEMBLY));
+  PCSIM_PETSC(MatAssemblyEnd(full, MAT_FINAL_ASSEMBLY));
+  Mat same = full;
+  pcsim::solvers::drop_negligible(&same, &entries, &kept);
+  EXPECT_EQ(same, full);
+  EXPECT_EQ(entries, 8.0);
+  EXPECT_EQ(kept, 8.0);
+  PCSIM_PETSC(MatDestroy(&full));
 }
 
 }  // namespace

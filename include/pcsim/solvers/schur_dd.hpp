@@ -39,6 +39,9 @@ struct DomainDecompositionInfo {
   PetscInt interface_size = 0;
   PetscInt interface_bandwidth = 0;  // max |i - j| over S's entries, ordered
   PetscInt interface_nonzeros = 0;   // S's entries (gathered at each set-up)
+  // X = A_II^-1 A_IG: its entries on all ranks, and those stored (its
+  // negligible ones left out where that halves them: src/solvers/negligible_entries.hpp).
+  double correction_entries = 0, correction_stored = 0;
 };
 DomainDecompositionInfo domain_decomposition_info(KSP ksp);
 
