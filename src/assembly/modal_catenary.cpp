@@ -92,6 +92,8 @@ void ModalCatenary::build_dropper_rows() {
   }
   elongation_ = stretch_;
   for (double b : bnorm_) bnorm_max_ = std::max(bnorm_max_, b);
+  for (int d : droppers_)
+    force_scale_max_ = std::max(force_scale_max_, bars[tracked[d]].stiffness * bnorm_[d]);
   B_single_ = B_.cast<float>();
 }
 
@@ -188,140 +190,6 @@ void ModalCatenary::load_state(Vec U) {
   if (!same) ++eta_version_;
   update_slack_set();
   slack_set_current_ = true;
-}
-
-// Every tracked bar exactly at the loaded state: the new anchor, and the
-// last exact one (the records make one per step). The change between the
-// last two exact ones is the line of the next bounds (line_candidates).
-void ModalCatenary::exact_anchor() const {
-  slack_set_current_ = false;  // a new anchor: the next load evaluates again
-  anchor_ = eta_;
-  anchor_version_ = eta_version_;
-  anchor_elongation_.noalias() = B_ * eta_;
-  anchor_elongation_ += Eigen::Map<const Eigen::VectorXd>(stretch_.data(), B_.rows());
-  anchor_error_.setZero(B_.rows());
-  line_valid_ = exact_count_ > 0;
-  if (line_valid_) {
-    line_ = eta_ - exact_eta_;
-    line_elongation_ = anchor_elongation_ - exact_elongation_;
-    line_norm2_ = line_.squaredNorm();
-    line_valid_ = line_norm2_ > 0;
-    previous_exact_norm_ = exact_norm_;
-  }
-  exact_eta_ = eta_;
-  exact_norm_ = eta_.norm();
-  exact_elongation_ = anchor_elongation_;
-  ++exact_count_;
-  evaluations_ += B_.rows();
-}
-
-// The droppers not certainly taut at the loaded state, from the line through
-// the last two exact anchors eta_p, eta_e: with d = eta_e - eta_p,
-// eta = eta_e + tau d + r (tau minimising |r|), dl = dl_e + tau (dl_e - dl_p)
-// + b . r, and |b . r| <= min(|b| |r|, |Omega^-1 b| |Omega r|). The states of
-// a time step lie near the line of the last step (r is the change of the
-// change), so this bound leaves a few candidates where the one from the
-// anchor alone (the change itself) leaves most. The rounding of the
-// anchors' products (gamma_n |b| |eta|) and of this arithmetic is added to
-// the bound. False if more than 'few' candidates remain.
-bool ModalCatenary::line_candidates(std::size_t few) {
-  constexpr double u = 1.1102230246251565e-16;  // 2^-53
-  const double gamma = static_cast<double>(m_) * u / (1 - m_ * u);
-  work_ = eta_ - exact_eta_;
-  const double tau = work_.dot(line_) / line_norm2_;
-  work_ -= tau * line_;  // r
-  const double r = work_.norm(), r_omega = (work_.array() * omega_.array()).matrix().norm();
-  const double line_norm = std::sqrt(line_norm2_);
-  const double reach =
-      gamma * (exact_norm_ * (1 + std::abs(tau)) + std::abs(tau) * previous_exact_norm_) +
-      4 * u * (r + 2 * std::abs(tau) * line_norm);
-  candidates_.clear();
-  for (long d = 0; d < B_.rows(); ++d) {
-    const double predicted = exact_elongation_[d] + tau * line_elongation_[d];
-    const double rounding =
-        bnorm_[d] * reach +
-        4 * u * (std::abs(exact_elongation_[d]) + std::abs(tau * line_elongation_[d]));
-    if (predicted - rounding <= std::min(bnorm_[d] * r, bnorm_omega_[d] * r_omega))
-      candidates_.push_back(d);
-    if (candidates_.size() > few) return false;
-  }
-  return true;
-}
-
-// dl = dl_e + fl(B (eta - eta_e)) in single precision from the last exact
-// anchor, with its rounding bound (n + 2) u |b| |eta - eta_e| (Higham, with
-// the conversions), u = 2^-24: it follows the distance from eta_e and does not
-// add up over the updates. False, with no product, if it would exceed 'reset'.
-bool ModalCatenary::single_precision_anchor(double reset) {
-  constexpr double u = 5.9604644775390625e-08;
-  const double gamma = (static_cast<double>(m_) + 2) * u / (1 - (m_ + 2) * u);
-  work_ = eta_ - exact_eta_;
-  const double distance = work_.norm();
-  if (gamma * bnorm_max_ * distance > reset) return false;
-  work_single_ = work_.cast<float>();
-  change_single_.noalias() = B_single_ * work_single_;
-  for (long d = 0; d < B_.rows(); ++d) {
-    anchor_elongation_[d] = exact_elongation_[d] + change_single_[d];
-    anchor_error_[d] = gamma * bnorm_[d] * distance;
-  }
-  anchor_ = eta_;
-  anchor_version_ = eta_version_;
-  ++single_products_;
-  return true;
-}
-
-// The droppers not certainly taut at the loaded state (work_: eta - eta_a).
-void ModalCatenary::find_candidates(double step, double step_omega) {
-  candidates_.clear();
-  for (long d = 0; d < B_.rows(); ++d)
-    if (anchor_elongation_[d] - anchor_error_[d] <=
-        std::min(bnorm_[d] * step, bnorm_omega_[d] * step_omega))
-      candidates_.push_back(d);
-}
-
-// The bounded candidate set (see the header).
-void ModalCatenary::update_slack_set() {
-  constexpr std::size_t kFewCandidates = 4;  // more: one single-precision product for all
-  constexpr double kErrorReset =
-      1e-4;  // [m] rounding bound of a single-precision update (margins ~1 mm): exact anchor
-  slack_now_.clear();
-  if (!slack_active_) return;
-  const long n = B_.rows();
-  bool at_anchor = true;  // eta is the anchor
-  if (settings_.dropper_check == catenary::ModalSettings::DropperCheck::all) {
-    exact_anchor();
-    candidates_.resize(n);
-    for (long d = 0; d < n; ++d) candidates_[d] = d;
-  } else {
-    at_anchor = anchor_version_ == eta_version_;  // eta has not changed since the anchor
-    if (at_anchor) {
-      find_candidates(0, 0);
-    } else if (!records_anchor_ || !line_valid_ || !line_candidates(kFewCandidates)) {
-      // No line without records of the dropper forces (a moving window): it
-      // would join the error resets' anchors, steps apart, and leave no fewer
-      // candidates than the anchor alone (window scene: same counts, same results).
-      work_ = eta_ - anchor_;
-      const double step = work_.norm();
-      const double step_omega = (work_.array() * omega_.array()).matrix().norm();
-      find_candidates(step, step_omega);
-      if (candidates_.size() > kFewCandidates) {
-        if (!single_precision_anchor(kErrorReset)) exact_anchor();
-        find_candidates(0, 0);
-        at_anchor = true;
-      }
-    }
-  }
-  for (long d : candidates_) {
-    double& dl = elongation_[d];
-    if (at_anchor && anchor_error_[d] == 0) {
-      dl = anchor_elongation_[d];
-    } else {
-      dl = stretch_[d] + B_.row(d).dot(eta_);
-      ++evaluations_;
-    }
-    if (dl < 0 && mesh_.bars[slack_bars_[d]].slack != catenary::SlackCriterion::none)
-      slack_now_.push_back(static_cast<std::size_t>(d));
-  }
 }
 
 // The weights of contact wire 'wire' at station x: z = z0 + w . eta with
@@ -454,28 +322,6 @@ std::vector<double> ModalCatenary::support_heights() const {
   heights.noalias() = support_rows_ * eta_;
   for (std::size_t s = 0; s < z.size(); ++s) z[s] += static_values_[6 * mesh_.support_nodes[s] + 2];
   return z;
-}
-
-// N = N_eq + k b.eta (linear bars), k max(s + b.eta, 0) (force), N_eq + k
-// max(b.eta, 0) (length); the elongation's gradient b at the static state.
-std::vector<double> ModalCatenary::dropper_forces() const {
-  std::vector<double> forces(droppers_.size(), 0.0);
-  exact_anchor();  // every rank: the records' states anchor the bounded set
-  records_anchor_ = true;
-  if (!on_owner()) return forces;
-  for (std::size_t i = 0; i < droppers_.size(); ++i) {
-    const auto d = static_cast<std::size_t>(droppers_[i]);
-    const auto& bar = mesh_.bars[slack_bars_[d]];
-    const double stretch = anchor_elongation_[static_cast<long>(d)] - stretch_[d];
-    const bool slack = dropper_slack_;  // else every bar taut
-    if (slack && bar.slack == catenary::SlackCriterion::force)
-      forces[i] = bar.stiffness * std::max(stretch_[d] + stretch, 0.0);
-    else if (slack && bar.slack == catenary::SlackCriterion::length)
-      forces[i] = bar.equilibrium_force + bar.stiffness * std::max(stretch, 0.0);
-    else
-      forces[i] = bar.equilibrium_force + bar.stiffness * stretch;
-  }
-  return forces;
 }
 
 std::vector<double> ModalCatenary::node_positions_to_root(Vec U) const {

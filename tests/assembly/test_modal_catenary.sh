@@ -17,8 +17,12 @@
 #    (a miss: assembled again from the data); a lower cut-off reuses the data. The bounded dropper check equals evaluating every
 #    dropper at every state (the correction of a taut dropper is exactly 0,
 #    only the order of sums differs): measured 3.3e-13 of max Fc, asserted
-#    1e-11, with fewer exact evaluations (12.3 against 48.0 per step, each
-#    record evaluating every dropper).
+#    1e-11, with fewer exact evaluations (0.3 against 24.0 per step). Its
+#    records anchor the droppers in single precision (at least 0.5 per step,
+#    measured 1.00): their dropper forces equal the exact records' within
+#    their rounding (bound 1 N; measured 3.2e-5 N, asserted 1e-3 N: the
+#    rounding's spread between runs, while a stale anchor would be off by a
+#    step's change of a dropper force).
 # 3. Truncated at the default cut-off (1.1 x 20 Hz / (1 - v/c) = 40.5 Hz, 232
 #    of 712 vectors) on the three-span test catenary (three-span-modal.yaml)
 #    against the linearised FE run of the same scene (app/data/study-tiny.yaml),
@@ -120,6 +124,13 @@ print(f"2. cache reused; bounded vs every dropper: {rel:.2e}, {bounded:.1f} vs {
       "exact evaluations per step")
 assert rel <= 1e-11, rel
 assert bounded < checked, (bounded, checked)
+with h5py.File(f"{d}/modal/results.h5") as f, h5py.File(f"{d}/every/results.h5") as g:
+    dn = np.max(np.abs(f["/droppers/force"][:] - g["/droppers/force"][:]))
+single = summary("modal")["modal"]["single_precision_updates_per_step"]
+print(f"2. recorded dropper forces, single-precision records vs exact ones: max |dN| = {dn:.1e} N "
+      f"({single:.2f} single-precision updates per step)")
+assert single >= 0.5, single
+assert dn <= 1e-3, dn
 assert summary("lower")["modal"]["cutoff_hz"] == 30.0
 
 # The accuracy estimate of the modal run (docs/fidelity.md): its cut-off is 1.1

@@ -85,9 +85,11 @@ def modal_figures(summary):
         doc("default cut-off [Hz]", m["cutoff_hz"], ".1f"),  # docs print 0.1 Hz
         doc("basis vectors", m["basis_size"], "d"),  # a count: exact
         doc("wave speed c [m/s]", c, ".1f"),  # docs print 0.1 m/s
-        # docs print 0.1 and 0.001 evaluations per step
-        doc("exact dropper evaluations per step besides the record's",
-            m["dropper_evaluations_per_step"] - m["tracked_bars"], ".1f"),
+        # docs print 0.1 evaluations and 0.001 updates per step
+        doc("exact dropper evaluations per step besides the exact anchors'",
+            m["dropper_evaluations_per_step"]
+            - m["exact_updates_per_step"] * m["tracked_bars"], ".1f"),
+        doc("exact anchors per step", m["exact_updates_per_step"], ".3f"),
         doc("single-precision updates per step", m["single_precision_updates_per_step"], ".3f"),
     ]
 

@@ -18,14 +18,16 @@
 // elongations dl_a of every dropper are known at an anchor state eta_a to
 // within err_a (0 after an exact evaluation). At a state eta a dropper with
 //   dl_a - err_a > min(|b| |eta - eta_a|, |Omega^-1 b| |Omega (eta - eta_a)|)
-// (Cauchy-Schwarz with either weighting) is certainly taut. If that leaves
-// more than a few candidates (measured: the Cauchy-Schwarz bounds are ~1e3
-// times the true change of a step, the modes being global), every dl is
-// updated by one single-precision product B (eta - eta_a) with its rounding
-// bound (n + 2) u |b| |eta - eta_a| (u = 2^-24) and eta becomes the anchor;
-// the droppers still not certainly taut are evaluated exactly. No accuracy is
-// lost: the correction of a taut dropper is exactly 0. With dropper_check =
-// all every dropper is evaluated exactly at every state.
+// (Cauchy-Schwarz with either weighting) is certainly taut; the records'
+// anchors (one a step, for the dropper forces) give a tighter bound from the
+// line through the last two (modal_slack_set.cpp). If that leaves more than
+// a few candidates (measured: the Cauchy-Schwarz bounds are ~1e3 times the
+// true change of a step, the modes being global), every dl is updated by one
+// single-precision product B (eta - eta_E) from the last exact anchor with
+// its rounding bound (n + 2) u |b| |eta - eta_E| (u = 2^-24) and eta becomes
+// the anchor; the droppers still not certainly taut are evaluated exactly.
+// No accuracy is lost: the correction of a taut dropper is exactly 0. With
+// dropper_check = all every dropper is evaluated exactly at every state.
 #pragma once
 
 #include <Eigen/Core>
@@ -126,26 +128,36 @@ class ModalCatenary : public CatenaryModel {
   // anchors too, hence mutable).
   using FloatRowMatrix = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   FloatRowMatrix B_single_;
-  Eigen::VectorXd eta_, work_, incoming_;
+  Eigen::VectorXd eta_, incoming_;
+  mutable Eigen::VectorXd work_;
   long eta_version_ = 0;                    // counts the changes of eta_
   mutable long anchor_version_ = -1;        // the eta_version_ of the anchor
   mutable bool slack_set_current_ = false;  // slack_now_ is that of eta_ and the anchor
-  Eigen::VectorXf work_single_, change_single_;
+  mutable Eigen::VectorXf work_single_, change_single_;
   mutable Eigen::VectorXd anchor_, anchor_elongation_, anchor_error_;
-  // The last exact anchor (eta_e, dl_e), and the line from the one before:
-  // line_ = eta_e - eta_p, line_elongation_ = dl_e - dl_p, |line_|^2, |eta_p|.
-  mutable Eigen::VectorXd exact_eta_, exact_elongation_, line_, line_elongation_;
+  // The last exact anchor (eta_E, dl_E, |eta_E|): the base of the
+  // single-precision ones (modal_slack_set.cpp).
+  mutable Eigen::VectorXd exact_eta_, exact_elongation_;
+  mutable double exact_norm_ = 0;
   mutable long exact_count_ = 0;
+  // The line of the bounds through the last two record or exact anchors:
+  // its newest point (eta_e, dl_e), line_ = eta_e - eta_p, line_elongation_ =
+  // dl_e - dl_p, |line_|^2, and each point's error bound per unit |b|.
+  mutable Eigen::VectorXd line_eta_, line_elongation_end_, line_, line_elongation_;
+  mutable double line_norm2_ = 0, line_bound_end_ = 0, line_bound_start_ = 0;
+  mutable long line_count_ = 0;
   mutable bool line_valid_ = false;
   mutable bool records_anchor_ = false;  // dropper_forces() anchors each recorded state
-  mutable double line_norm2_ = 0, exact_norm_ = 0, previous_exact_norm_ = 0;
+  double force_scale_max_ = 0;           // max over the droppers of k_d |b_d| [N/m]
   std::vector<double> elongation_;
   std::vector<std::size_t> slack_now_;
   std::vector<long> candidates_;
   mutable long evaluations_ = 0, single_products_ = 0;
   long loads_ = 0;
   void exact_anchor() const;
-  bool single_precision_anchor(double reset);
+  void push_line_anchor(double bound) const;
+  void record_anchor() const;
+  bool single_precision_anchor(double reset, double scale_max) const;
   void find_candidates(double step, double step_omega);
   bool line_candidates(std::size_t few);
   // Wire-point weights of the last few x of each contact wire (they depend
