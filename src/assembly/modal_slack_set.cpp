@@ -99,8 +99,9 @@ bool ModalCatenary::line_candidates(std::size_t few) {
 // anchor, with its rounding bound (n + 2) u |b| |eta - eta_e| (Higham, with
 // the conversions), u = 2^-24: it follows the distance from eta_e and does not
 // add up over the updates. False, with no product, if max_d scale_d times
-// that bound would exceed 'reset' (scale_max: max_d scale_d |b_d|).
-bool ModalCatenary::single_precision_anchor(double reset, double scale_max) const {
+// that bound would exceed 'reset' (scale_max: max_d scale_d |b_d|). *bound:
+// the bound per unit |b| (if given).
+bool ModalCatenary::single_precision_anchor(double reset, double scale_max, double* bound) const {
   const double g = gamma(static_cast<double>(m_) + 2, kUnitSingle);
   work_ = eta_ - exact_eta_;
   const double distance = work_.norm();
@@ -114,6 +115,7 @@ bool ModalCatenary::single_precision_anchor(double reset, double scale_max) cons
   anchor_ = eta_;
   anchor_version_ = eta_version_;
   ++single_products_;
+  if (bound) *bound = g * distance;
   return true;
 }
 
@@ -179,14 +181,13 @@ void ModalCatenary::record_anchor() const {
   constexpr double kRecordForceError = 1.0;  // [N] bound on a recorded dropper force
   // Exact here already (a load's reset, or every dropper checked): on the line too.
   if (anchor_version_ == eta_version_ && anchor_error_.isZero(0)) return;
-  if (!single_precision_anchor(kRecordForceError, force_scale_max_)) {
+  double single_bound = 0;
+  if (!single_precision_anchor(kRecordForceError, force_scale_max_, &single_bound)) {
     exact_anchor();
     return;
   }
   slack_set_current_ = false;
-  const double distance = (anchor_ - exact_eta_).norm();
-  push_line_anchor(gamma(static_cast<double>(m_), kUnitDouble) * exact_norm_ +
-                   gamma(static_cast<double>(m_) + 2, kUnitSingle) * distance);
+  push_line_anchor(gamma(static_cast<double>(m_), kUnitDouble) * exact_norm_ + single_bound);
 }
 
 // N = N_eq + k b.eta (linear bars), k max(s + b.eta, 0) (force), N_eq + k
