@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "pcsim/assembly/interaction_terms.hpp"
 #include "pcsim/core/error.hpp"
@@ -66,6 +67,9 @@ CoupledSystem::~CoupledSystem() {
   terms_.clear();
   VecDestroy(&reference_);
   VecDestroy(&work_);
+  VecDestroy(&rest_);
+  VecDestroy(&rest_next_);
+  MatDestroy(&reference_rest_);
   for (Vec& w : part_arguments_) VecDestroy(&w);
 }
 
@@ -114,6 +118,45 @@ void CoupledSystem::load(double t, Vec U, Vec V, Vec A) {
 }
 
 namespace {
+
+// A new matrix holding J's nonzero values alone (its own, smaller pattern).
+Mat copy_nonzeros(Mat J) {
+  PetscInt lo, hi, col_lo, col_hi, m, n, M, N;
+  PCSIM_PETSC(MatGetOwnershipRange(J, &lo, &hi));
+  PCSIM_PETSC(MatGetOwnershipRangeColumn(J, &col_lo, &col_hi));
+  PCSIM_PETSC(MatGetLocalSize(J, &m, &n));
+  PCSIM_PETSC(MatGetSize(J, &M, &N));
+  std::vector<PetscInt> diagonal(m, 0), off(m, 0), columns;
+  std::vector<PetscScalar> values;
+  std::vector<PetscInt> row_start(1, 0);
+  for (PetscInt i = lo; i < hi; ++i) {
+    PetscInt count;
+    const PetscInt* cols;
+    const PetscScalar* vals;
+    PCSIM_PETSC(MatGetRow(J, i, &count, &cols, &vals));
+    for (PetscInt k = 0; k < count; ++k) {
+      if (vals[k] == 0.0) continue;
+      columns.push_back(cols[k]);
+      values.push_back(vals[k]);
+      ++(cols[k] >= col_lo && cols[k] < col_hi ? diagonal : off)[i - lo];
+    }
+    PCSIM_PETSC(MatRestoreRow(J, i, &count, &cols, &vals));
+    row_start.push_back(static_cast<PetscInt>(columns.size()));
+  }
+  Mat T;
+  PCSIM_PETSC(MatCreateAIJ(PetscObjectComm(reinterpret_cast<PetscObject>(J)), m, n, M, N, 0,
+                           diagonal.data(), 0, off.data(), &T));
+  PCSIM_PETSC(MatSetOption(T, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));
+  for (PetscInt i = lo; i < hi; ++i) {
+    const PetscInt first = row_start[i - lo], count = row_start[i - lo + 1] - first;
+    if (count > 0)
+      PCSIM_PETSC(MatSetValues(T, 1, &i, count, columns.data() + first, values.data() + first,
+                               INSERT_VALUES));
+  }
+  PCSIM_PETSC(MatAssemblyBegin(T, MAT_FINAL_ASSEMBLY));
+  PCSIM_PETSC(MatAssemblyEnd(T, MAT_FINAL_ASSEMBLY));
+  return T;
+}
 
 // Whether a part has an argument at this state (V, A may be absent).
 bool part_active(double cu, double cv, double ca, Vec V, Vec A) {
@@ -172,16 +215,50 @@ void CoupledSystem::set_linear_parts(Vec U, Vec V, Vec A, Vec F) {
   if (first) PCSIM_PETSC(VecSet(F, 0.0));
 }
 
-void CoupledSystem::residual(double t, Vec U, Vec V, Vec A, Vec F) {
-  const ScopedEvent timed(log_events().residual);
-  load(t, U, V, A);
-  set_linear_parts(U, V, A, F);
+void CoupledSystem::add_term_residuals(Vec F) {
   for (const auto& term : terms_)
     if (!term->adds_by_set_values()) term->add_residual(state_, F);
   for (const auto& term : terms_)
     if (term->adds_by_set_values()) term->add_residual(state_, F);
   PCSIM_PETSC(VecAssemblyBegin(F));
   PCSIM_PETSC(VecAssemblyEnd(F));
+}
+
+void CoupledSystem::residual(double t, Vec U, Vec V, Vec A, Vec F) {
+  const ScopedEvent timed(log_events().residual);
+  load(t, U, V, A);
+  if (!keep_rest_) {
+    set_linear_parts(U, V, A, F);
+    add_term_residuals(F);
+    return;
+  }
+  PCSIM_PETSC(VecSet(rest_, 0.0));
+  add_term_residuals(rest_);
+  set_linear_parts(U, V, A, F);
+  PCSIM_PETSC(VecAXPY(F, 1.0, rest_));
+  rest_valid_ = true;
+}
+
+bool CoupledSystem::enable_residual_update() {
+  if (parts_.empty()) return false;
+  if (!rest_) {
+    rest_ = catenary_->create_vector();
+    rest_next_ = catenary_->create_vector();
+  }
+  keep_rest_ = true;
+  return true;
+}
+
+bool CoupledSystem::residual_update(double t, Vec U, Vec V, Vec A, Vec Y, Vec F) {
+  if (!keep_rest_ || !rest_valid_ || !reference_rest_) return false;
+  const ScopedEvent timed(log_events().residual_update);
+  load(t, U, V, A);
+  PCSIM_PETSC(VecSet(rest_next_, 0.0));
+  add_term_residuals(rest_next_);
+  PCSIM_PETSC(VecWAXPY(F, -1.0, rest_, rest_next_));
+  PCSIM_PETSC(MatMultAdd(reference_rest_, Y, F, F));
+  std::swap(rest_, rest_next_);
+  return true;
 }
 
 bool CoupledSystem::constant_inertia() const {
@@ -227,6 +304,10 @@ void CoupledSystem::assemble_tangent(Shifts shifts, Mat J, bool reference) {
   }
   PCSIM_PETSC(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
   PCSIM_PETSC(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  if (reference && keep_rest_) {  // T: the terms' reference tangents alone
+    PCSIM_PETSC(MatDestroy(&reference_rest_));
+    reference_rest_ = copy_nonzeros(J);
+  }
   for (std::size_t k = 0; k < parts_.size(); ++k) {
     const auto& part = parts_[k];
     const double c = part.cu + shifts.v * part.cv + shifts.a * part.ca;

@@ -29,6 +29,7 @@ const LogEvents& log_events() {
     LogEvents e;
     e.residual = register_event("pcsimResidual");
     e.linear_parts = register_event("pcsimLinearParts");
+    e.residual_update = register_event("pcsimResidualUpd");
     e.state_load = register_event("pcsimStateLoad");
     e.contact = register_event("pcsimContact");
     e.low_rank_change = register_event("pcsimLowRankChg");

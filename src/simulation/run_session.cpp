@@ -315,6 +315,8 @@ nlohmann::json RunSession::facts() const {
     const auto info = solvers::hht_get_info(solver_.ts());
     j["alpha_terms_reused"] = info.alpha_terms_reused;
     j["alpha_terms_evaluated"] = info.alpha_terms_evaluated;
+    j["residuals_updated"] = info.residuals_updated;
+    if (info.residual_update_checked) j["residual_update_gap_n"] = info.residual_update_gap;
   }
   j["step_time"] = timing_.json();
   return j;

@@ -104,6 +104,9 @@ DynamicSolver::DynamicSolver(assembly::CoupledSystem& system, double dt, double 
   hht_set_alpha(ts_, hht_alpha);  // before the options: -ts_hht_alpha wins
   // F affine in A with a constant M: each step's alpha-term from the last residual.
   if (system.constant_inertia()) hht_set_inertia_product(ts_, inertia_product, this);
+  // The cheap path's exact solves give the residual after an update without the
+  // linear parts' products (two of the three largest products of a step).
+  if (cheap && system.enable_residual_update()) hht_set_residual_update(ts_, residual_update, this);
   PCSIM_PETSC(TSSetFromOptions(ts_));
   configure_direct_solvers();
 }
@@ -143,6 +146,34 @@ PetscErrorCode DynamicSolver::residual(TS, PetscReal t, Vec U, Vec V, Vec A, Vec
 PetscErrorCode DynamicSolver::inertia_product(TS, Vec A, Vec MA, void* ctx) {
   PCSIM_CALLBACK_BEGIN
   static_cast<DynamicSolver*>(ctx)->system_.inertia_product(A, MA);
+  PCSIM_CALLBACK_END
+}
+
+// The SNES's KSP applies the Woodbury solver once (preonly) and J0's solve is
+// exact: an update Y then solves (J0 + D) Y = R to round-off.
+bool DynamicSolver::step_solve_exact() const {
+  SNES snes;
+  KSP ksp;
+  PC pc;
+  KSPType ksp_type;
+  PCType pc_type;
+  PCSIM_PETSC(TSGetSNES(ts_, &snes));
+  PCSIM_PETSC(SNESGetKSP(snes, &ksp));
+  PCSIM_PETSC(KSPGetType(ksp, &ksp_type));
+  PCSIM_PETSC(KSPGetPC(ksp, &pc));
+  PCSIM_PETSC(PCGetType(pc, &pc_type));
+  return low_rank_ && ksp_type && pc_type && std::strcmp(ksp_type, KSPPREONLY) == 0 &&
+         std::strcmp(pc_type, kPCWoodbury) == 0 && low_rank_->solves_exactly();
+}
+
+PetscErrorCode DynamicSolver::residual_update(TS, PetscReal t, Vec X, Vec V, Vec A, Vec Y, Vec F,
+                                              PetscBool* done, void* ctx) {
+  PCSIM_CALLBACK_BEGIN
+  auto* self = static_cast<DynamicSolver*>(ctx);
+  *done = PETSC_FALSE;
+  if (!self->step_solve_exact() || !self->system_.residual_update(t, X, V, A, Y, F)) return 0;
+  self->low_rank_->add_change_product(Y, F);
+  *done = PETSC_TRUE;
   PCSIM_CALLBACK_END
 }
 

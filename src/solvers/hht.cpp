@@ -19,8 +19,6 @@
 
 namespace pcsim::solvers::hht_detail {
 
-namespace {
-
 // V_{n+1}, A_{n+1} and A_{n+1}/(1-α) from the unknown X = U_{n+1} (3.16–3.18),
 // in one pass over the local entries (each entry takes the operations, in
 // order, of PETSc's WAXPY, AXPY, AXPBY, WAXPY, AXPY, Scale that wrote it
@@ -71,8 +69,6 @@ PetscErrorCode stage_vectors(TS ts, Vec X) {
   PetscFunctionReturn(0);
 }
 
-}  // namespace
-
 // SNES residual. Step: R/(1-α) = F(t1, X, V1, A1/(1-α)) + α/(1-α) F(t0, U0, V0, 0) (3.21);
 // with averaged inertia F(t1, X, V1, A1) + α/(1-α) (F(t0, U0, V0, 0) + M(U0) A1).
 // Initial acceleration: F(t0, U0, V0, X).
@@ -87,6 +83,7 @@ PetscErrorCode snes_function(SNES snes, Vec X, Vec F, TS ts) {
   PetscCall(TSComputeI2Function(ts, th->t1, X, th->V1, th->A1_arg, F));
   PetscCall(VecAXPY(F, th->alpha / (1 - th->alpha), th->F0));
   if (th->average_inertia) {
+    if (!th->work) PetscCall(VecDuplicate(F, &th->work));  // only here: one vector less
     PetscCall(MatMult(th->M0, th->A1, th->work));
     PetscCall(VecAXPY(F, th->alpha / (1 - th->alpha), th->work));
   }
@@ -178,6 +175,7 @@ PetscErrorCode converged_energy(SNES snes, PetscInt it, PetscReal xnorm, PetscRe
       th->converged_by_energy = PETSC_TRUE;
     }
   }
+  if (!th->R_prev) PetscCall(VecDuplicate(F, &th->R_prev));
   PetscCall(VecCopy(F, th->R_prev));
   PetscFunctionReturn(0);
 }
@@ -365,7 +363,7 @@ PetscErrorCode ts_setup(TS ts) {
   PetscCheck(ts->vec_dot, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONGSTATE,
              "TS type hht needs the velocity: call TS2SetSolution(ts, U, V)");
   for (Vec* v : {&th->U0, &th->V0, &th->A0, &th->U1, &th->V1, &th->A1, &th->A1_arg, &th->F0,
-                 &th->F0_next, &th->zero, &th->R_prev, &th->work, &th->newton_F, &th->newton_Y})
+                 &th->F0_next, &th->zero, &th->newton_F, &th->newton_Y})
     if (!*v) PetscCall(VecDuplicate(ts->vec_sol, v));
   PetscCall(VecZeroEntries(th->zero));
   PetscCall(TSGetAdapt(ts, &ts->adapt));
@@ -418,6 +416,7 @@ PetscErrorCode ts_set_from_options(TS ts, PetscOptionItems* PetscOptionsObject) 
                              "minus its inertia (when the problem gives it; 0: evaluated)",
                              "hht_set_inertia_product", th->reuse_alpha_term, &th->reuse_alpha_term,
                              nullptr));
+  PetscCall(residual_update_options(ts, PetscOptionsObject));
   PetscOptionsHeadEnd();
   PetscFunctionReturn(0);
 }

@@ -78,6 +78,9 @@ HHTNewtonInfo hht_get_info(TS ts) {
   info.own_newton = th->own_newton;
   info.alpha_terms_reused = th->alpha_terms_reused;
   info.alpha_terms_evaluated = th->alpha_terms_evaluated;
+  info.residuals_updated = th->residuals_updated;
+  info.residual_update_gap = th->residual_update_gap;
+  info.residual_update_checked = th->check_residual_update;
   return info;
 }
 
@@ -86,6 +89,12 @@ void hht_set_inertia_product(TS ts, HHTInertiaProduct product, void* ctx) {
   th->inertia = product;
   th->inertia_ctx = ctx;
   th->next_valid = PETSC_FALSE;
+}
+
+void hht_set_residual_update(TS ts, HHTResidualUpdate update, void* ctx) {
+  HHTData* th = checked_data(ts);
+  th->residual_update = update;
+  th->residual_update_ctx = ctx;
 }
 
 void hht_invalidate_alpha_term(TS ts) {

@@ -28,9 +28,9 @@ struct HHTData {
   Vec A1_arg = nullptr;  // A_{n+1}/(1-α): the acceleration argument of F
   Vec F0 = nullptr;      // F(t_n, U_n, V_n, 0): non-inertial force at the old level
   Vec zero = nullptr;    // zero vector (acceleration argument of F0)
-  Vec R_prev = nullptr;  // SNES residual the last Newton update was computed from
+  Vec R_prev = nullptr;  // SNES residual the last Newton update was computed from (energy test)
   Vec A_user = nullptr;  // user-supplied initial acceleration
-  Vec work = nullptr;    // M(U_n) A_{n+1} (averaged inertia)
+  Vec work = nullptr;    // M(U_n) A_{n+1} (averaged inertia; created where first needed)
   Vec newton_F = nullptr, newton_Y = nullptr;  // residual and update of the own Newton
   Mat M0 = nullptr;      // M(U_n) (averaged inertia), created at the first step
   Mat K_work = nullptr;  // dF/dU while extracting a mass matrix
@@ -65,6 +65,14 @@ struct HHTData {
   PetscObjectState last_F_state = 0, last_X_state = 0;
   PetscInt alpha_terms_reused = 0, alpha_terms_evaluated = 0;
 
+  // The residual after a Newton update from the problem (hht_set_residual_update).
+  HHTResidualUpdate residual_update = nullptr;
+  void* residual_update_ctx = nullptr;
+  PetscBool use_residual_update = PETSC_TRUE;
+  PetscBool check_residual_update = PETSC_FALSE;  // each also evaluated, the gap kept
+  PetscInt residuals_updated = 0;
+  PetscReal residual_update_gap = 0;  // max |R_updated - R_evaluated| (check on)
+
   // Current solve.
   SolveMode mode = SolveMode::kStep;
   PetscReal t0 = 0, t1 = 0, dt = 0;
@@ -92,6 +100,10 @@ inline HHTData* data_of(TS ts) {
 
 // The TS type's constructor (TSRegister) and the SNES test with the energy norm.
 PetscErrorCode ts_create_hht(TS ts);
+// V1, A1 and A1_arg of the unknown X (kept while X and the step stay; hht.cpp).
+PetscErrorCode stage_vectors(TS ts, Vec X);
+// -ts_hht_residual_update and its check (hht_newton.cpp), read by the type's options.
+PetscErrorCode residual_update_options(TS ts, PetscOptionItems* PetscOptionsObject);
 // The SNES callbacks of a step (hht.cpp).
 PetscErrorCode snes_function(SNES snes, Vec X, Vec F, TS ts);
 PetscErrorCode snes_jacobian(SNES snes, Vec X, Mat J, Mat P, TS ts);

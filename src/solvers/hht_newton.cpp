@@ -99,6 +99,36 @@ SNESConvergedReason converged(const Tolerances& tol, PetscInt it, PetscInt nfunc
   return SNES_CONVERGED_ITERATING;
 }
 
+// F = R(X) after the update X -= Y: from the problem's residual update when it
+// gives it (the KSP's solve is exact: preonly with a factorisation or the cheap
+// path's Woodbury solver), else evaluated; kept for the next step's α-term as
+// snes_function() keeps it.
+PetscErrorCode residual_after_update(SNES snes, TS ts, Vec X, Vec Y, Vec F) {
+  HHTData* th = data_of(ts);
+  PetscBool done = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  if (th->residual_update && th->use_residual_update && !th->average_inertia) {
+    PetscCall(stage_vectors(ts, X));
+    PetscCall(th->residual_update(ts, th->t1, X, th->V1, th->A1_arg, Y, F, &done,
+                                  th->residual_update_ctx));
+  }
+  if (!done) PetscFunctionReturn(snes_function(snes, X, F, ts));
+  ++th->residuals_updated;
+  if (th->check_residual_update) {  // work is free: no averaged inertia here
+    PetscReal gap = 0;
+    if (!th->work) PetscCall(VecDuplicate(F, &th->work));
+    PetscCall(snes_function(snes, X, th->work, ts));
+    PetscCall(VecAXPY(th->work, -1.0, F));
+    PetscCall(VecNorm(th->work, NORM_INFINITY, &gap));
+    th->residual_update_gap = PetscMax(th->residual_update_gap, gap);
+  }
+  th->last_F = F;
+  th->last_X = X;
+  PetscCall(PetscObjectStateGet(reinterpret_cast<PetscObject>(F), &th->last_F_state));
+  PetscCall(PetscObjectStateGet(reinterpret_cast<PetscObject>(X), &th->last_X_state));
+  PetscFunctionReturn(0);
+}
+
 // Newton with full steps from X: F(X), J(X) Y = F(X), X -= Y, until the test.
 PetscErrorCode own_newton(TS ts, Vec X, SNESConvergedReason* reason, PetscInt* its,
                           PetscInt* linear_its) {
@@ -139,7 +169,7 @@ PetscErrorCode own_newton(TS ts, Vec X, SNESConvergedReason* reason, PetscInt* i
       break;
     }
     PetscCall(VecAXPY(X, -1.0, Y));
-    PetscCall(snes_function(snes, X, F, ts));
+    PetscCall(residual_after_update(snes, ts, X, Y, F));
     ++nfuncs;
     ++*its;
     // As the line search computes it (a split reduction: not bitwise VecNorm).
@@ -161,6 +191,22 @@ PetscErrorCode own_newton(TS ts, Vec X, SNESConvergedReason* reason, PetscInt* i
 }
 
 }  // namespace
+
+PetscErrorCode residual_update_options(TS ts, PetscOptionItems* PetscOptionsObject) {
+  HHTData* th = data_of(ts);
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsBool("-ts_hht_residual_update",
+                             "The residual after a Newton update from the problem (when it gives "
+                             "it; 0: evaluated)",
+                             "hht_set_residual_update", th->use_residual_update,
+                             &th->use_residual_update, nullptr));
+  PetscCall(PetscOptionsBool("-ts_hht_residual_update_check",
+                             "Evaluate each updated residual too and keep the largest difference "
+                             "(a test of the update, not for production runs)",
+                             "hht_get_info", th->check_residual_update, &th->check_residual_update,
+                             nullptr));
+  PetscFunctionReturn(0);
+}
 
 PetscErrorCode newton_solve(TS ts, Vec X) {
   HHTData* th = data_of(ts);

@@ -3,11 +3,13 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <set>
+#include <string>
 
 #include "block_diagonal.hpp"
 #include "pc_types.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/core/profiling.hpp"
+#include "pcsim/solvers/schur_dd.hpp"
 #include "varying_blocks.hpp"
 
 namespace pcsim::solvers {
@@ -340,6 +342,52 @@ PetscErrorCode LowRankStepSolver::op_mult(Mat A, Vec x, Vec y) {
   for (std::size_t j = 0; j < w.size(); ++j) w[j] *= c[j];
   PCSIM_PETSC(VecMAXPY(y, static_cast<PetscInt>(us.size()), w.data(), us.data()));
   PCSIM_CALLBACK_END
+}
+
+// y += sum_k c_k u_k (u_k . x) + the block changes' products, each u_k from
+// its owned entries (every rank knows every index).
+void LowRankStepSolver::add_change_product(Vec x, Vec y) const {
+  varying_->add_change(x, y);
+  std::vector<const Entry*> terms;
+  for (const auto& [key, e] : entries_)
+    if (e.term.coefficient != 0) terms.push_back(&e);
+  if (terms.empty()) return;
+  PetscInt lo, hi;
+  PCSIM_PETSC(VecGetOwnershipRange(x, &lo, &hi));
+  const PetscScalar* xs;
+  PCSIM_PETSC(VecGetArrayRead(x, &xs));
+  std::vector<double> dots(terms.size(), 0.0);
+  for (std::size_t k = 0; k < terms.size(); ++k) {
+    const auto& t = terms[k]->term;
+    for (std::size_t i = 0; i < t.index.size(); ++i)
+      if (t.index[i] >= lo && t.index[i] < hi) dots[k] += t.weight[i] * xs[t.index[i] - lo];
+  }
+  PCSIM_PETSC(VecRestoreArrayRead(x, &xs));
+  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(x));
+  MPI_Allreduce(MPI_IN_PLACE, dots.data(), static_cast<int>(dots.size()), MPI_DOUBLE, MPI_SUM,
+                comm);
+  PetscScalar* ys;
+  PCSIM_PETSC(VecGetArray(y, &ys));
+  for (std::size_t k = 0; k < terms.size(); ++k) {
+    const auto& t = terms[k]->term;
+    const double scale = t.coefficient * dots[k];
+    for (std::size_t i = 0; i < t.index.size(); ++i)
+      if (t.index[i] >= lo && t.index[i] < hi) ys[t.index[i] - lo] += scale * t.weight[i];
+  }
+  PCSIM_PETSC(VecRestoreArray(y, &ys));
+}
+
+bool LowRankStepSolver::solves_exactly() const {
+  if (blocks_) return true;
+  KSPType ksp_type;
+  PCType pc_type;
+  PC pc;
+  PCSIM_PETSC(KSPGetType(inner_, &ksp_type));
+  PCSIM_PETSC(KSPGetPC(inner_, &pc));
+  PCSIM_PETSC(PCGetType(pc, &pc_type));
+  if (!ksp_type || !pc_type || std::string(ksp_type) != KSPPREONLY) return false;
+  const std::string type = pc_type;
+  return type == PCLU || type == PCCHOLESKY || type == kPCSchur;
 }
 
 }  // namespace pcsim::solvers

@@ -51,6 +51,20 @@ class CoupledSystem {
   Mat create_reference_matrix() const;
 
   void residual(double t, Vec U, Vec V, Vec A, Vec F);
+  // The residual after an exact Newton update on the cheap path, without the
+  // linear parts' products. With F = F_lin + F_rest (F_lin: the linear parts,
+  // F_rest: every term's add_residual) and J0 = L + T (L: the linear parts'
+  // tangent, T: the terms' reference tangents), an update Y that solved
+  // (J0 + D) Y = R exactly (D: the low-rank and block changes) moves the
+  // linear parts by -L Y = -(R - T Y - D Y), so that
+  //   R(X - Y) = F_rest(X - Y) - F_rest(X) + T Y + D Y   (to round-off).
+  // enable_residual_update() makes residual() keep F_rest and
+  // reference_jacobian() keep T; false when the system has no linear parts
+  // (nothing to save). residual_update() sets F = F_rest(new) - F_rest(old) +
+  // T Y (the caller adds D Y); false, F untouched, when F_rest(old) or T is
+  // not at hand.
+  bool enable_residual_update();
+  bool residual_update(double t, Vec U, Vec V, Vec A, Vec Y, Vec F);
   // True when dF/dA is a constant matrix M (no term's add_residual() reads A
   // otherwise); then inertia_product() gives MA = M A.
   bool constant_inertia() const;
@@ -87,6 +101,7 @@ class CoupledSystem {
   void load(double t, Vec U, Vec V, Vec A);
   void form_part_arguments(Vec U, Vec V, Vec A);
   void set_linear_parts(Vec U, Vec V, Vec A, Vec F);
+  void add_term_residuals(Vec F);  // every term's add_residual at the loaded state, assembled
   void assemble_tangent(Shifts shifts, Mat J, bool reference);
   Mat build_pattern(bool reference) const;
 
@@ -101,6 +116,11 @@ class CoupledSystem {
   std::vector<bool> wire_coupled_;
   std::vector<Vec> part_arguments_;  // each part's cu (U - U_ref) + cv V + ca A
   Vec reference_ = nullptr, work_ = nullptr;
+  // Residual update: F_rest at the last residual (rest_valid_) and a work
+  // vector for the next; T of the last reference Jacobian.
+  bool keep_rest_ = false, rest_valid_ = false;
+  Vec rest_ = nullptr, rest_next_ = nullptr;
+  Mat reference_rest_ = nullptr;
   bool record_dropper_forces_ = true;
 };
 

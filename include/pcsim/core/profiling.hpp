@@ -11,6 +11,7 @@ namespace pcsim {
 struct LogEvents {
   PetscLogEvent residual;         // CoupledSystem::residual: the whole residual
   PetscLogEvent linear_parts;     // the constant-matrix products K0 (dU + b V), M (A + a V)
+  PetscLogEvent residual_update;  // CoupledSystem::residual_update: after an exact update
   PetscLogEvent state_load;       // ghost scatter of the catenary state + pantographs' broadcast
   PetscLogEvent contact;          // contact evaluation (wire locator + penalty kernel)
   PetscLogEvent low_rank_change;  // the terms' rank-one changes (droppers, contact)

@@ -42,6 +42,11 @@
 //                                 converged U_n) minus its α-term and its inertia M A_n/(1-α):
 //                                 one inertia product instead of a residual per step. Equal to
 //                                 evaluating it up to round-off; 0 evaluates it.
+//   -ts_hht_residual_update <1>   with hht_set_residual_update(): the own Newton takes the
+//                                 residual after each update from the problem's callback
+//                                 when it gives it; 0 evaluates every residual.
+//   -ts_hht_residual_update_check <0>  evaluates each updated residual as well and keeps the
+//                                 largest difference (hht_get_info): a test, not for runs.
 // The initial acceleration solves F(t0, U0, V0, A0) = 0 with the TS's SNES at the first step
 // (and whenever the time differs from the end of the last step), unless
 // hht_set_initial_acceleration() supplied it. With -ts_hht_energy_norm_tol the TS installs its
@@ -88,6 +93,16 @@ void hht_invalidate_alpha_term(TS ts);
 bool hht_get_alpha_term(TS ts, Vec F0);
 void hht_set_alpha_term(TS ts, Vec F0);
 
+// The residual after an exact Newton update, for problems that can give it for less than
+// an evaluation (the type's own Newton, -ts_hht_residual_update): X has just become
+// X_old - Y, where Y solved J Y = R(X_old) with the Jacobian set at X_old and a direct
+// solve; V and A are the stage's rate and acceleration argument at the new X. The
+// callback sets F = R(X) (F holds R(X_old)) and *done = PETSC_TRUE, or leaves F as it is
+// with *done = PETSC_FALSE (then the residual is evaluated).
+using HHTResidualUpdate = PetscErrorCode (*)(TS ts, PetscReal t, Vec X, Vec V, Vec A, Vec Y, Vec F,
+                                             PetscBool* done, void* ctx);
+void hht_set_residual_update(TS ts, HHTResidualUpdate update, void* ctx);
+
 // Diagnostics of the most recent Newton solve of a step.
 struct HHTNewtonInfo {
   PetscReal last_energy_norm = 0;  // |Δqᵀ R| of the last iteration (0 before any)
@@ -99,6 +114,11 @@ struct HHTNewtonInfo {
   PetscBool own_newton = PETSC_FALSE;
   // Steps whose α-term was taken from the previous step's last residual, and evaluated.
   PetscInt alpha_terms_reused = 0, alpha_terms_evaluated = 0;
+  // Newton residuals given by the residual update (hht_set_residual_update), not evaluated.
+  PetscInt residuals_updated = 0;
+  // With -ts_hht_residual_update_check: the largest |R_updated - R_evaluated| (max norm).
+  PetscReal residual_update_gap = 0;
+  PetscBool residual_update_checked = PETSC_FALSE;
 };
 HHTNewtonInfo hht_get_info(TS ts);
 

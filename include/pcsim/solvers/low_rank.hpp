@@ -59,6 +59,13 @@ class LowRankStepSolver {
   void set_terms(const std::vector<assembly::RankOne>& terms,
                  const std::vector<assembly::BlockChange>& blocks = {});
   KSP inner() const { return inner_; }
+  // y += (op() - J0) x: the rank-one terms and the block changes alone, from
+  // their entries (one reduction), without a product with J0.
+  void add_change_product(Vec x, Vec y) const;
+  // True when the inverse is exact to round-off: J0 inverted by blocks, or the
+  // inner KSP is preonly with a factorisation (LU, Cholesky, pcsim's exact
+  // domain decomposition).
+  bool solves_exactly() const;
   // J0 is inverted block by block (known after the first setup), not by the inner KSP.
   bool block_inverse() const { return blocks_ != nullptr; }
 
