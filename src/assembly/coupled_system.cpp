@@ -1,6 +1,7 @@
 #include "pcsim/assembly/coupled_system.hpp"
 
 #include <mpi.h>
+#include <petsc/private/petscimpl.h>  // PetscObjectStateGet
 
 #include <algorithm>
 #include <cmath>
@@ -112,9 +113,25 @@ Mat CoupledSystem::create_reference_matrix() const {
   return build_pattern(catenary_->has_reference_pattern());
 }
 
+// Skipped when the same vectors, unchanged (PETSc object states), were loaded
+// last at the same time: a step's Jacobian at its last residual's state needs
+// no second ghost exchange and pantographs' broadcast.
 void CoupledSystem::load(double t, Vec U, Vec V, Vec A) {
+  LoadStamp now;
+  now.t = t;
+  const Vec vecs[3] = {U, V, A};
+  for (int k = 0; k < 3; ++k) {
+    if (!vecs[k]) continue;
+    const auto object = reinterpret_cast<PetscObject>(vecs[k]);
+    PCSIM_PETSC(PetscObjectGetId(object, &now.ids[k]));  // unique: never a freed Vec's
+    PCSIM_PETSC(PetscObjectStateGet(object, &now.states[k]));
+  }
+  if (loaded_.valid && now.t == loaded_.t && now.ids == loaded_.ids && now.states == loaded_.states)
+    return;
+  now.valid = true;
   const ScopedEvent timed(log_events().state_load);
   state_.load(t, U, V, A);
+  loaded_ = now;
 }
 
 namespace {

@@ -319,6 +319,11 @@ PetscErrorCode LowRankStepSolver::pc_apply(PC pc, Vec r, Vec x) {
       self->capacitance_lu_.solve(Eigen::Map<Eigen::VectorXd>(w.data(), static_cast<long>(k)));
   s = -s;
   PCSIM_PETSC(VecMAXPY(x, static_cast<PetscInt>(k), s.data(), zs.data()));
+  LastApply& last = self->last_apply_;
+  last.x = x;
+  PCSIM_PETSC(PetscObjectStateGet(reinterpret_cast<PetscObject>(x), &last.state));
+  last.uy = Eigen::Map<Eigen::VectorXd>(w.data(), static_cast<long>(k));
+  last.s = s;
   PCSIM_CALLBACK_END
 }
 
@@ -346,6 +351,21 @@ PetscErrorCode LowRankStepSolver::op_mult(Mat A, Vec x, Vec y) {
 
 // y += sum_k c_k u_k (u_k . x) + the block changes' products, each u_k from
 // its owned entries (every rank knows every index).
+// u_k . x of the active terms from the last application, if x is its result
+// unchanged and the terms are those it used.
+bool LowRankStepSolver::products_of_last_apply(Vec x, std::vector<double>& dots) const {
+  const LastApply& last = last_apply_;
+  PetscObjectState state = 0;
+  PCSIM_PETSC(PetscObjectStateGet(reinterpret_cast<PetscObject>(x), &state));
+  const auto k = static_cast<long>(dots.size());
+  if (x != last.x || state != last.state || capacitance_dirty_ || last.uy.size() != k ||
+      products_.rows() != k || static_cast<long>(active_.size()) != k)
+    return false;
+  const Eigen::VectorXd ux = last.uy + products_ * last.s;
+  std::copy(ux.data(), ux.data() + k, dots.begin());
+  return true;
+}
+
 void LowRankStepSolver::add_change_product(Vec x, Vec y) const {
   varying_->add_change(x, y);
   std::vector<const Entry*> terms;
@@ -354,18 +374,20 @@ void LowRankStepSolver::add_change_product(Vec x, Vec y) const {
   if (terms.empty()) return;
   PetscInt lo, hi;
   PCSIM_PETSC(VecGetOwnershipRange(x, &lo, &hi));
-  const PetscScalar* xs;
-  PCSIM_PETSC(VecGetArrayRead(x, &xs));
   std::vector<double> dots(terms.size(), 0.0);
-  for (std::size_t k = 0; k < terms.size(); ++k) {
-    const auto& t = terms[k]->term;
-    for (std::size_t i = 0; i < t.index.size(); ++i)
-      if (t.index[i] >= lo && t.index[i] < hi) dots[k] += t.weight[i] * xs[t.index[i] - lo];
+  if (!products_of_last_apply(x, dots)) {
+    const PetscScalar* xs;
+    PCSIM_PETSC(VecGetArrayRead(x, &xs));
+    for (std::size_t k = 0; k < terms.size(); ++k) {
+      const auto& t = terms[k]->term;
+      for (std::size_t i = 0; i < t.index.size(); ++i)
+        if (t.index[i] >= lo && t.index[i] < hi) dots[k] += t.weight[i] * xs[t.index[i] - lo];
+    }
+    PCSIM_PETSC(VecRestoreArrayRead(x, &xs));
+    MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(x));
+    MPI_Allreduce(MPI_IN_PLACE, dots.data(), static_cast<int>(dots.size()), MPI_DOUBLE, MPI_SUM,
+                  comm);
   }
-  PCSIM_PETSC(VecRestoreArrayRead(x, &xs));
-  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(x));
-  MPI_Allreduce(MPI_IN_PLACE, dots.data(), static_cast<int>(dots.size()), MPI_DOUBLE, MPI_SUM,
-                comm);
   PetscScalar* ys;
   PCSIM_PETSC(VecGetArray(y, &ys));
   for (std::size_t k = 0; k < terms.size(); ++k) {

@@ -8,6 +8,7 @@
 
 #include <petscmat.h>
 
+#include <array>
 #include <map>
 #include <memory>
 #include <vector>
@@ -121,6 +122,14 @@ class CoupledSystem {
   bool keep_rest_ = false, rest_valid_ = false;
   Vec rest_ = nullptr, rest_next_ = nullptr;
   Mat reference_rest_ = nullptr;
+  // What load() loaded last (its vectors and their object states at the time).
+  struct LoadStamp {
+    bool valid = false;
+    double t = 0;
+    std::array<PetscObjectId, 3> ids{};  // 0: no vector
+    std::array<PetscObjectState, 3> states{};
+  };
+  LoadStamp loaded_;
   bool record_dropper_forces_ = true;
 };
 

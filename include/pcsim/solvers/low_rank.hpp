@@ -59,8 +59,11 @@ class LowRankStepSolver {
   void set_terms(const std::vector<assembly::RankOne>& terms,
                  const std::vector<assembly::BlockChange>& blocks = {});
   KSP inner() const { return inner_; }
-  // y += (op() - J0) x: the rank-one terms and the block changes alone, from
-  // their entries (one reduction), without a product with J0.
+  // y += (op() - J0) x: the rank-one terms and the block changes alone,
+  // without a product with J0. The products u_k . x come from the last
+  // application of the inverse when x is its result (no communication: u_k . x
+  // = w_k - (U^T Z s)_k from its own w and s), else from the terms' entries
+  // (one reduction).
   void add_change_product(Vec x, Vec y) const;
   // True when the inverse is exact to round-off: J0 inverted by blocks, or the
   // inner KSP is preonly with a factorisation (LU, Cholesky, pcsim's exact
@@ -101,6 +104,14 @@ class LowRankStepSolver {
   Eigen::MatrixXd products_;                             // U^T Z over the active terms
   Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_lu_;  // of C^-1 + U^T Z
   std::vector<Entry*> active_;
+  // The last application's result x, its state, U^T y and the correction s
+  // (x = y + Z s): U^T x = U^T y + (U^T Z) s without a reduction.
+  struct LastApply {
+    Vec x = nullptr;
+    PetscObjectState state = 0;
+    Eigen::VectorXd uy, s;
+  } last_apply_;
+  bool products_of_last_apply(Vec x, std::vector<double>& dots) const;
 };
 
 }  // namespace pcsim::solvers
