@@ -4,6 +4,7 @@
 #include <string>
 
 #include "choice_option.hpp"
+#include "pc_types.hpp"
 #include "pcsim/assembly/initial_acceleration.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/solvers/direct.hpp"
@@ -154,16 +155,9 @@ PetscErrorCode DynamicSolver::inertia_product(TS, Vec A, Vec MA, void* ctx) {
 bool DynamicSolver::step_solve_exact() const {
   SNES snes;
   KSP ksp;
-  PC pc;
-  KSPType ksp_type;
-  PCType pc_type;
   PCSIM_PETSC(TSGetSNES(ts_, &snes));
   PCSIM_PETSC(SNESGetKSP(snes, &ksp));
-  PCSIM_PETSC(KSPGetType(ksp, &ksp_type));
-  PCSIM_PETSC(KSPGetPC(ksp, &pc));
-  PCSIM_PETSC(PCGetType(pc, &pc_type));
-  return low_rank_ && ksp_type && pc_type && std::strcmp(ksp_type, KSPPREONLY) == 0 &&
-         std::strcmp(pc_type, kPCWoodbury) == 0 && low_rank_->solves_exactly();
+  return low_rank_ && preonly_with(ksp, {kPCWoodbury}) && low_rank_->solves_exactly();
 }
 
 PetscErrorCode DynamicSolver::residual_update(TS, PetscReal t, Vec X, Vec V, Vec A, Vec Y, Vec F,

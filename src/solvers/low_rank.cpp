@@ -400,16 +400,7 @@ void LowRankStepSolver::add_change_product(Vec x, Vec y) const {
 }
 
 bool LowRankStepSolver::solves_exactly() const {
-  if (blocks_) return true;
-  KSPType ksp_type;
-  PCType pc_type;
-  PC pc;
-  PCSIM_PETSC(KSPGetType(inner_, &ksp_type));
-  PCSIM_PETSC(KSPGetPC(inner_, &pc));
-  PCSIM_PETSC(PCGetType(pc, &pc_type));
-  if (!ksp_type || !pc_type || std::string(ksp_type) != KSPPREONLY) return false;
-  const std::string type = pc_type;
-  return type == PCLU || type == PCCHOLESKY || type == kPCSchur;
+  return blocks_ || preonly_with(inner_, {PCLU, PCCHOLESKY, kPCSchur});
 }
 
 }  // namespace pcsim::solvers

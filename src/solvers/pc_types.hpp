@@ -6,6 +6,8 @@
 
 #include <petsc/private/pcimpl.h>
 
+#include <initializer_list>
+
 namespace pcsim::solvers {
 
 struct PCTypeOps {
@@ -26,5 +28,9 @@ inline void set_pc_type_ops(PC pc, const PCTypeOps& ops) {
 
 // PCRegister(name, create) unless the type is known already.
 void register_pc_type(const char* name, PetscErrorCode (*create)(PC));
+
+// True when ksp applies its PC once (preonly) and that PC's type is one of
+// pc_types (the step solvers' exactness checks).
+bool preonly_with(KSP ksp, std::initializer_list<const char*> pc_types);
 
 }  // namespace pcsim::solvers
