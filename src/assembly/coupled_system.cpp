@@ -333,6 +333,15 @@ void CoupledSystem::assemble_tangent(Shifts shifts, Mat J, bool reference) {
     else
       PCSIM_PETSC(MatAXPY(J, c, part.matrix, part.structure));
   }
+  if (reference && keep_rest_) {  // -info: T's size against J0's
+    MatInfo j0, rest;
+    PCSIM_PETSC(MatGetInfo(J, MAT_GLOBAL_SUM, &j0));
+    PCSIM_PETSC(MatGetInfo(reference_rest_, MAT_GLOBAL_SUM, &rest));
+    PCSIM_PETSC(PetscInfo(J,
+                          "residual update: the terms' reference tangents keep %.0f of J0's %.0f "
+                          "entries\n",
+                          rest.nz_used, j0.nz_used));
+  }
 }
 
 void CoupledSystem::jacobian(double t, Vec U, Vec V, Vec A, Shifts shifts, Mat J) {
