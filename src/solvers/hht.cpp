@@ -87,10 +87,7 @@ PetscErrorCode snes_function(SNES snes, Vec X, Vec F, TS ts) {
     PetscCall(MatMult(th->M0, th->A1, th->work));
     PetscCall(VecAXPY(F, th->alpha / (1 - th->alpha), th->work));
   }
-  th->last_F = F;  // the next step's alpha-term may come from it (prepare_next_alpha_term)
-  th->last_X = X;
-  PetscCall(PetscObjectStateGet(reinterpret_cast<PetscObject>(F), &th->last_F_state));
-  PetscCall(PetscObjectStateGet(reinterpret_cast<PetscObject>(X), &th->last_X_state));
+  PetscCall(keep_last_residual(ts, X, F));
   PetscFunctionReturn(0);
 }
 

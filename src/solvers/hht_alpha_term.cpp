@@ -40,6 +40,18 @@ PetscBool next_alpha_term_current(TS ts) {
              : PETSC_FALSE;
 }
 
+// The step residual F at X (evaluated or updated): the next step's α-term may
+// come from it (prepare_next_alpha_term) while both keep their states.
+PetscErrorCode keep_last_residual(TS ts, Vec X, Vec F) {
+  HHTData* th = data_of(ts);
+  PetscFunctionBeginUser;
+  th->last_F = F;
+  th->last_X = X;
+  th->last_F_state = state_of(F);
+  th->last_X_state = state_of(X);
+  PetscFunctionReturn(0);
+}
+
 // After an accepted step (the solution and its rate copied, the time set): only
 // from a residual at exactly the step's result (no post-stage change, the SNES's
 // line search not at another point) and the step's own end time (not a step

@@ -115,6 +115,8 @@ PetscErrorCode newton_solve(TS ts, Vec X);
 // be (prepare); at a step's start, F0 from it if it still belongs to the solution
 // (take: true), hht.cpp.
 PetscErrorCode prepare_next_alpha_term(TS ts);
+// Marks F as the step residual at X (hht_alpha_term.cpp).
+PetscErrorCode keep_last_residual(TS ts, Vec X, Vec F);
 PetscBool take_next_alpha_term(TS ts);
 // Marks F0_next as belonging to the current solution, rate and time; whether it still does.
 PetscErrorCode stamp_next_alpha_term(TS ts);

@@ -122,10 +122,7 @@ PetscErrorCode residual_after_update(SNES snes, TS ts, Vec X, Vec Y, Vec F) {
     PetscCall(VecNorm(th->work, NORM_INFINITY, &gap));
     th->residual_update_gap = PetscMax(th->residual_update_gap, gap);
   }
-  th->last_F = F;
-  th->last_X = X;
-  PetscCall(PetscObjectStateGet(reinterpret_cast<PetscObject>(F), &th->last_F_state));
-  PetscCall(PetscObjectStateGet(reinterpret_cast<PetscObject>(X), &th->last_X_state));
+  PetscCall(keep_last_residual(ts, X, F));
   PetscFunctionReturn(0);
 }
 

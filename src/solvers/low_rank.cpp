@@ -349,8 +349,6 @@ PetscErrorCode LowRankStepSolver::op_mult(Mat A, Vec x, Vec y) {
   PCSIM_CALLBACK_END
 }
 
-// y += sum_k c_k u_k (u_k . x) + the block changes' products, each u_k from
-// its owned entries (every rank knows every index).
 // u_k . x of the active terms from the last application, if x is its result
 // unchanged and the terms are those it used.
 bool LowRankStepSolver::products_of_last_apply(Vec x, std::vector<double>& dots) const {
@@ -366,6 +364,8 @@ bool LowRankStepSolver::products_of_last_apply(Vec x, std::vector<double>& dots)
   return true;
 }
 
+// y += sum_k c_k u_k (u_k . x) + the block changes' products, each u_k from
+// its owned entries (every rank knows every index).
 void LowRankStepSolver::add_change_product(Vec x, Vec y) const {
   varying_->add_change(x, y);
   std::vector<const Entry*> terms;
