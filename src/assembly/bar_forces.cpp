@@ -39,8 +39,8 @@ double BarForces::energy(const CoupledState&) const {
 }
 
 // Whether each slack-capable bar is stiff (taut) at the loaded state, on
-// every rank.
-std::vector<char> BarForces::bar_states() const {
+// the rank that owns its first node (0 elsewhere).
+std::vector<char> BarForces::local_bar_states() const {
   const auto& L = catenary_.system().layout();
   const auto& bars = catenary_.mesh().bars;
   std::vector<char> states(slack_bars_.size(), 0);
@@ -53,6 +53,13 @@ std::vector<char> BarForces::bar_states() const {
     catenary::bar_axial_force(catenary::bar_parameters(bars[b]), q, &dN_dl);
     states[i] = dN_dl > 0 ? 1 : 0;
   }
+  return states;
+}
+
+// The same on every rank.
+std::vector<char> BarForces::bar_states() const {
+  const auto& L = catenary_.system().layout();
+  std::vector<char> states = local_bar_states();
   if (L.size() > 1)
     MPI_Allreduce(MPI_IN_PLACE, states.data(), static_cast<int>(states.size()), MPI_CHAR, MPI_MAX,
                   L.comm());
@@ -113,8 +120,20 @@ std::vector<RankOne> BarForces::switch_terms(std::size_t i) const {
   return terms;
 }
 
+// Each bar's state from its owner alone: the sum over the ranks is the state.
+void BarForces::append_low_rank_sums(const CoupledState&, std::vector<double>& local) const {
+  for (char s : local_bar_states()) local.push_back(s);
+}
+
+void BarForces::take_low_rank_sums(const double* sums) {
+  summed_states_.resize(slack_bars_.size());
+  for (std::size_t i = 0; i < slack_bars_.size(); ++i) summed_states_[i] = sums[i] > 0.5 ? 1 : 0;
+  states_summed_ = true;
+}
+
 bool BarForces::low_rank_change(const CoupledState&, std::vector<RankOne>& terms) {
-  const std::vector<char> states = bar_states();
+  const std::vector<char> states = states_summed_ ? summed_states_ : bar_states();
+  states_summed_ = false;
   std::vector<std::size_t> switched;
   for (std::size_t i = 0; i < slack_bars_.size(); ++i)
     if (states[i] != reference_states_[i]) switched.push_back(i);

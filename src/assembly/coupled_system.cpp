@@ -307,8 +307,12 @@ void CoupledSystem::inertia_product(Vec A, Vec MA) {
       if (term->adds_by_set_values() == by_set_values &&
           term->acceleration_use() == AccelerationUse::constant)
         term->add_inertia(A, MA);
+  // Terms add inertia on owned entries only (term.hpp): an assembly without
+  // communication (no reduction to find who sends what).
+  PCSIM_PETSC(VecSetOption(MA, VEC_IGNORE_OFF_PROC_ENTRIES, PETSC_TRUE));
   PCSIM_PETSC(VecAssemblyBegin(MA));
   PCSIM_PETSC(VecAssemblyEnd(MA));
+  PCSIM_PETSC(VecSetOption(MA, VEC_IGNORE_OFF_PROC_ENTRIES, PETSC_FALSE));
 }
 
 void CoupledSystem::assemble_tangent(Shifts shifts, Mat J, bool reference) {
@@ -354,12 +358,30 @@ void CoupledSystem::reference_jacobian(double t, Vec U, Vec V, Vec A, Shifts shi
   assemble_tangent(shifts, J0, true);
 }
 
+// Every term's values to sum over the ranks, in one reduction.
+void CoupledSystem::sum_low_rank_values() {
+  std::vector<double> sums;
+  std::vector<std::size_t> first;
+  for (const auto& term : terms_) {
+    first.push_back(sums.size());
+    term->append_low_rank_sums(state_, sums);
+  }
+  first.push_back(sums.size());
+  if (sums.empty()) return;
+  if (state_.size() > 1)
+    MPI_Allreduce(MPI_IN_PLACE, sums.data(), static_cast<int>(sums.size()), MPI_DOUBLE, MPI_SUM,
+                  comm());
+  for (std::size_t k = 0; k < terms_.size(); ++k)
+    if (first[k + 1] > first[k]) terms_[k]->take_low_rank_sums(&sums[first[k]]);
+}
+
 bool CoupledSystem::low_rank_change(double t, Vec U, Vec V, Vec A, std::vector<RankOne>& terms,
                                     Shifts shifts, std::vector<BlockChange>* blocks) {
   const ScopedEvent timed(log_events().low_rank_change);
   load(t, U, V, A);
   terms.clear();
   if (blocks) blocks->clear();
+  sum_low_rank_values();
   bool reference_ok = true;
   for (std::size_t k = 0; k < terms_.size(); ++k) {
     const std::size_t first = terms.size();

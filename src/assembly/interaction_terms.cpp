@@ -213,10 +213,24 @@ void PenaltyContact::add_tangent(const CoupledState& state, Shifts, Mat J) {
 
 // u = [dz/dU; -1] (known on every rank), coefficient kH while in contact: the
 // owner of the contact point decides.
+void PenaltyContact::append_low_rank_sums(const CoupledState& state,
+                                          std::vector<double>& local) const {
+  const Evaluation e = evaluate(state);
+  local.push_back(e.wire->owned && e.force > 0 ? 1.0 : 0.0);
+}
+
+void PenaltyContact::take_low_rank_sums(const double* sums) {
+  summed_in_contact_ = sums[0];
+  in_contact_summed_ = true;
+}
+
 bool PenaltyContact::low_rank_change(const CoupledState& state, std::vector<RankOne>& terms) {
   const Evaluation e = evaluate(state);
   const double in_contact =
-      sum_over_ranks(state.catenary().comm(), e.wire->owned && e.force > 0 ? 1.0 : 0.0);
+      in_contact_summed_
+          ? summed_in_contact_
+          : sum_over_ranks(state.catenary().comm(), e.wire->owned && e.force > 0 ? 1.0 : 0.0);
+  in_contact_summed_ = false;
   if (!e.wire->on_wire) return true;
   RankOne term;
   term.key = 0;

@@ -61,6 +61,10 @@ GracefulStop::~GracefulStop() {
   if (g_previous_term.sa_handler != SIG_IGN) sigaction(SIGTERM, &g_previous_term, nullptr);
 }
 
+int GracefulStop::local_signal() const {
+  return g_signal;
+}
+
 int GracefulStop::agreed_signal(MPI_Comm comm) const {
   int mine = g_signal, agreed = 0;
   MPI_Allreduce(&mine, &agreed, 1, MPI_INT, MPI_MAX, comm);

@@ -3,6 +3,7 @@
 #include <petsctime.h>
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <cmath>
 #include <csignal>
 
@@ -128,12 +129,16 @@ void RunSession::raise_output_failure() const {
   throw FailedOnOtherRank(kExitOutput);
 }
 
-bool RunSession::state_finite(TS ts) const {
+bool RunSession::state_finite_here(TS ts) const {
   Vec U;
   PCSIM_PETSC(TSGetSolution(ts, &U));
-  PetscReal norm = 0;
-  PCSIM_PETSC(VecNorm(U, NORM_INFINITY, &norm));  // collective: NaN on one rank is seen by all
-  return std::isfinite(norm);
+  PetscInt n = 0;
+  const PetscScalar* u = nullptr;
+  PCSIM_PETSC(VecGetLocalSize(U, &n));
+  PCSIM_PETSC(VecGetArrayRead(U, &u));
+  const bool finite = std::all_of(u, u + n, [](PetscScalar x) { return std::isfinite(x); });
+  PCSIM_PETSC(VecRestoreArrayRead(U, &u));
+  return finite;
 }
 
 bool RunSession::stopped_early() const {
@@ -242,14 +247,20 @@ PetscErrorCode RunSession::post_step(TS ts) {
     PCSIM_PETSC(TSGetTime(ts, &t));
     s->options_.window->after_step(t, s->solver_);  // collective
   }
-  s->stop_signal_ = s->stop_ ? s->stop_->agreed_signal(s->ctx_.comm) : 0;
-  if (!s->state_finite(ts)) {
+  // One reduction for the three things every rank must agree on: a signal,
+  // a state no longer finite (NaN on one rank is seen by all), an output
+  // failure.
+  int flags[3] = {s->stop_ ? s->stop_->local_signal() : 0, s->state_finite_here(ts) ? 0 : 1,
+                  s->output_failure_ ? 1 : 0};
+  MPI_Allreduce(MPI_IN_PLACE, flags, 3, MPI_INT, MPI_MAX, s->ctx_.comm);
+  s->stop_signal_ = flags[0];
+  if (flags[1]) {
     s->not_finite_ = true;
     PCSIM_PETSC(TSGetTime(ts, &s->not_finite_time_));
     PCSIM_PETSC(TSSetConvergedReason(ts, TS_DIVERGED_NONLINEAR_SOLVE));
     return 0;
   }
-  const bool output_failed = s->agreed_output_failure();
+  const bool output_failed = flags[2] != 0;
   TSConvergedReason reason;
   PCSIM_PETSC(TSGetConvergedReason(ts, &reason));
   if (reason != TS_CONVERGED_ITERATING)

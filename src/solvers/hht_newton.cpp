@@ -169,18 +169,21 @@ PetscErrorCode own_newton(TS ts, Vec X, SNESConvergedReason* reason, PetscInt* i
     PetscCall(residual_after_update(snes, ts, X, Y, F));
     ++nfuncs;
     ++*its;
-    // As the line search computes it (a split reduction: not bitwise VecNorm).
+    // As the line search computes them (split reductions: not bitwise
+    // VecNorm), here the three in one reduction.
     PetscCall(VecNormBegin(F, NORM_2, &fnorm));
+    if (tol.stol > 0) {
+      PetscCall(VecNormBegin(Y, NORM_2, &ynorm));
+      PetscCall(VecNormBegin(X, NORM_2, &xnorm));
+    }
     PetscCall(VecNormEnd(F, NORM_2, &fnorm));
+    if (tol.stol > 0) {
+      PetscCall(VecNormEnd(Y, NORM_2, &ynorm));
+      PetscCall(VecNormEnd(X, NORM_2, &xnorm));
+    }
     if (PetscIsInfOrNanReal(fnorm)) {
       *reason = SNES_DIVERGED_LINE_SEARCH;  // the basic line search's failure
       break;
-    }
-    if (tol.stol > 0) {  // the line search's norms too
-      PetscCall(VecNormBegin(Y, NORM_2, &ynorm));
-      PetscCall(VecNormBegin(X, NORM_2, &xnorm));
-      PetscCall(VecNormEnd(Y, NORM_2, &ynorm));
-      PetscCall(VecNormEnd(X, NORM_2, &xnorm));
     }
     *reason = converged(tol, *its, nfuncs, fnorm, ttol, fnorm0, xnorm, ynorm);
   }

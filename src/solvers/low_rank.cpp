@@ -32,6 +32,8 @@ LowRankStepSolver::~LowRankStepSolver() {
     VecDestroy(&e.z);
   }
   for (auto& [g, v] : columns_) VecDestroy(&v);
+  VecDestroy(&unit_);
+  VecDestroy(&unit_solution_);
   KSPDestroy(&inner_);
   MatDestroy(&op_);
 }
@@ -117,20 +119,27 @@ void LowRankStepSolver::build_u(Entry& e) const {
   PCSIM_PETSC(VecRestoreArray(e.u, &u));
 }
 
-// J0^-1 e_g, solved once per factorisation and cached.
+// J0^-1 e_g, solved once per factorisation and cached. e_g is set in place
+// in one kept vector and z duplicated from a kept result-side vector (as
+// MatCreateVecs made it before: the same bits; a duplicate of e_g's vector
+// gave round-off differences on 2 ranks): no layout set-up and no assembly,
+// so no communication beyond the solve's own.
 Vec LowRankStepSolver::unit_solution(PetscInt g) {
   auto it = columns_.find(g);
   if (it != columns_.end()) return it->second;
-  Vec e, z;
-  PCSIM_PETSC(MatCreateVecs(J0_, &e, &z));
-  PCSIM_PETSC(VecSet(e, 0.0));
+  if (!unit_) PCSIM_PETSC(MatCreateVecs(J0_, &unit_, &unit_solution_));
+  Vec z;
+  PCSIM_PETSC(VecDuplicate(unit_solution_, &z));
+  PCSIM_PETSC(VecSet(unit_, 0.0));
   PetscInt lo, hi;
-  PCSIM_PETSC(VecGetOwnershipRange(e, &lo, &hi));
-  if (g >= lo && g < hi) PCSIM_PETSC(VecSetValue(e, g, 1.0, INSERT_VALUES));
-  PCSIM_PETSC(VecAssemblyBegin(e));
-  PCSIM_PETSC(VecAssemblyEnd(e));
-  solve_fixed(e, z);
-  PCSIM_PETSC(VecDestroy(&e));
+  PCSIM_PETSC(VecGetOwnershipRange(unit_, &lo, &hi));
+  if (g >= lo && g < hi) {
+    PetscScalar* e;
+    PCSIM_PETSC(VecGetArray(unit_, &e));
+    e[g - lo] = 1.0;
+    PCSIM_PETSC(VecRestoreArray(unit_, &e));
+  }
+  solve_fixed(unit_, z);
   columns_[g] = z;
   return z;
 }
@@ -267,11 +276,12 @@ std::vector<LowRankStepSolver::Entry*> LowRankStepSolver::active() {
   return list;
 }
 
-// C^-1 + U^T Z. With the same active terms as before, only the rows and
-// columns of the terms whose u or z changed are formed again (a moving
-// contact's, not a window end's dashpots): u_i . z_j and z_j . u_i are the
-// same products summed in the same order, so either way gives the same bits.
-void LowRankStepSolver::update_capacitance() {
+// C^-1 + U^T Z and, in the same reduction, ux = U^T x. With the same active
+// terms as before, only the rows and columns of the terms whose u or z
+// changed are formed again (a moving contact's, not a window end's
+// dashpots): u_i . z_j and z_j . u_i are the same products summed in the same
+// order, so either way gives the same bits.
+void LowRankStepSolver::update_capacitance(Vec x, std::vector<PetscScalar>& ux) {
   auto now = active();
   const std::size_t k = now.size();
   const bool same_terms = now == active_ && products_.rows() == static_cast<long>(k);
@@ -282,15 +292,26 @@ void LowRankStepSolver::update_capacitance() {
     zs[j] = active_[j]->z;
   }
   if (!same_terms) products_.resize(k, k);
-  std::vector<PetscScalar> row(k);
-  for (std::size_t i = 0; i < k; ++i) {
-    if (same_terms && !active_[i]->changed) continue;
-    PCSIM_PETSC(VecMDot(active_[i]->u, static_cast<PetscInt>(k), zs.data(), row.data()));
-    for (std::size_t j = 0; j < k; ++j) products_(i, j) = row[j];
+  std::vector<std::size_t> rows;
+  for (std::size_t i = 0; i < k; ++i)
+    if (!same_terms || active_[i]->changed) rows.push_back(i);
+  std::vector<PetscScalar> uz(rows.size() * k), zu(same_terms ? rows.size() * k : 0);
+  ux.assign(k, 0.0);
+  const auto nk = static_cast<PetscInt>(k);
+  for (int end = 0; end < 2 && k > 0; ++end) {  // VecMDotBegin all, then End in that order
+    const auto dot = end ? VecMDotEnd : VecMDotBegin;
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+      PCSIM_PETSC(dot(active_[rows[r]]->u, nk, zs.data(), &uz[r * k]));
+      if (same_terms) PCSIM_PETSC(dot(active_[rows[r]]->z, nk, us.data(), &zu[r * k]));
+    }
+    PCSIM_PETSC(dot(x, nk, us.data(), ux.data()));
+  }
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const std::size_t i = rows[r];
+    for (std::size_t j = 0; j < k; ++j) products_(i, j) = uz[r * k + j];
     if (!same_terms) continue;
-    PCSIM_PETSC(VecMDot(active_[i]->z, static_cast<PetscInt>(k), us.data(), row.data()));
     for (std::size_t j = 0; j < k; ++j)
-      if (!active_[j]->changed) products_(j, i) = row[j];  // a changed row is formed whole
+      if (!active_[j]->changed) products_(j, i) = zu[r * k + j];  // a changed row is formed whole
   }
   for (Entry* e : active_) e->changed = false;
   Eigen::MatrixXd capacitance = products_;
@@ -305,7 +326,8 @@ PetscErrorCode LowRankStepSolver::pc_apply(PC pc, Vec r, Vec x) {
   LowRankStepSolver* self = attached(pc);
   self->solve_j0(r, x);
   const ScopedEvent timed(log_events().woodbury);
-  if (self->capacitance_dirty_) self->update_capacitance();
+  std::vector<PetscScalar> w;
+  if (self->capacitance_dirty_) self->update_capacitance(x, w);  // U^T y in its reduction
   const std::size_t k = self->active_.size();
   if (k == 0) return 0;
   std::vector<Vec> us(k), zs(k);
@@ -313,8 +335,10 @@ PetscErrorCode LowRankStepSolver::pc_apply(PC pc, Vec r, Vec x) {
     us[j] = self->active_[j]->u;
     zs[j] = self->active_[j]->z;
   }
-  std::vector<PetscScalar> w(k);
-  PCSIM_PETSC(VecMDot(x, static_cast<PetscInt>(k), us.data(), w.data()));
+  if (w.size() != k) {
+    w.resize(k);
+    PCSIM_PETSC(VecMDot(x, static_cast<PetscInt>(k), us.data(), w.data()));
+  }
   Eigen::VectorXd s =
       self->capacitance_lu_.solve(Eigen::Map<Eigen::VectorXd>(w.data(), static_cast<long>(k)));
   s = -s;

@@ -65,12 +65,15 @@ class BarForces : public Term {
   void add_tangent(const CoupledState& state, Shifts shifts, Mat J) override;
   void add_reference_tangent(const CoupledState& state, Shifts shifts, Mat J) override;
   bool low_rank_change(const CoupledState& state, std::vector<RankOne>& terms) override;
+  void append_low_rank_sums(const CoupledState& state, std::vector<double>& local) const override;
+  void take_low_rank_sums(const double* sums) override;
   std::vector<double> checkpoint() const override;  // the frozen switch terms
   void restore(const std::vector<double>& state) override;
   double energy(const CoupledState& state) const override;
 
  private:
   std::vector<char> bar_states() const;          // taut (1) / slack (0) per slack bar, all ranks
+  std::vector<char> local_bar_states() const;    // the same, on the owner rank only (else 0)
   Eigen::Matrix3d tangent_block(int bar) const;  // at the loaded state
   std::vector<RankOne> switch_terms(std::size_t i) const;
   FECatenary& catenary_;
@@ -84,6 +87,8 @@ class BarForces : public Term {
     std::vector<RankOne> terms;
   };
   std::map<std::size_t, Frozen> frozen_;  // switched bars, by index in slack_bars_
+  std::vector<char> summed_states_;       // bar_states() from the system's reduction
+  bool states_summed_ = false;
 };
 
 // Inertia M A (consistent cable masses, lumped bar and point masses).

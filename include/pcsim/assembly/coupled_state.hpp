@@ -47,6 +47,7 @@ class CoupledState {
   double head_height(std::size_t p) const;
   bool on_last_rank() const { return rank_ == size_ - 1; }
   int rank() const { return rank_; }
+  int size() const { return size_; }
 
   // Loads (t, U, V, A): the catenary model's state and the pantographs'
   // coordinates on every rank (collective).

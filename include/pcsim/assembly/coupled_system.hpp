@@ -94,6 +94,7 @@ class CoupledSystem {
   void set_record_dropper_forces(bool on) { record_dropper_forces_ = on; }
 
  private:
+  void sum_low_rank_values();  // Term::append_low_rank_sums over the ranks, one reduction
   struct MergedPart {
     Mat matrix;
     double cu, cv, ca;

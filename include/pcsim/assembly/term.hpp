@@ -114,7 +114,8 @@ class Term {
   // Every term whose add_residual() reads A says so (default: it does not).
   virtual AccelerationUse acceleration_use() const { return AccelerationUse::none; }
   // 'constant': F += dF/dA A for add_residual()'s part (by VecSetValues if
-  // adds_by_set_values(), as add_residual does).
+  // adds_by_set_values(), as add_residual does), on entries this rank owns
+  // only: the system assembles it without communication.
   virtual void add_inertia(Vec A, Vec F) const {}
   // Entries the term may ever touch (zeros), so that the Jacobian's pattern
   // never changes during a run.
@@ -131,6 +132,13 @@ class Term {
   virtual bool low_rank_change(const CoupledState& state, std::vector<RankOne>& terms) {
     return true;
   }
+  // Values low_rank_change() needs summed over the ranks (which bars are
+  // taut, whether a contact is closed): the term appends this rank's part,
+  // the same count on every rank; the system sums every term's in one
+  // reduction and gives each its sums back before low_rank_change(). A term
+  // called without them sums its own.
+  virtual void append_low_rank_sums(const CoupledState& state, std::vector<double>& local) const {}
+  virtual void take_low_rank_sums(const double* sums) {}
   // 'block' terms: the change of the exact tangent (shifts as J0's) against
   // the reference one, on its own unknowns only (collective).
   virtual void block_change(const CoupledState& state, Shifts shifts,

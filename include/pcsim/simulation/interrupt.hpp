@@ -23,6 +23,9 @@ class GracefulStop {
   // The signal any rank has received (SIGINT or SIGTERM), 0 if none
   // (collective: one reduction).
   int agreed_signal(MPI_Comm comm) const;
+  // This rank's own signal (no communication), for a caller that folds the
+  // agreement into a reduction of its own.
+  int local_signal() const;
 };
 
 // "SIGINT", "SIGTERM", or the number.

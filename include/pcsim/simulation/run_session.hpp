@@ -74,7 +74,7 @@ class RunSession {
   bool hold_output_failure(std::exception_ptr error);  // false: not an output failure
   bool agreed_output_failure() const;                  // collective
   void raise_output_failure() const;                   // collective: throws if any rank failed
-  bool state_finite(TS ts) const;                      // collective
+  bool state_finite_here(TS ts) const;                 // this rank's part of the state
   double wall_time() const;                            // of the integration, earlier runs included
 
   const Context& ctx_;

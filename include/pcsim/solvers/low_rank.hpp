@@ -88,7 +88,7 @@ class LowRankStepSolver {
   void update_z(Entry& e);
   Vec unit_solution(PetscInt g);
   void evict_unused_columns();
-  void update_capacitance();
+  void update_capacitance(Vec x, std::vector<PetscScalar>& ux);
   void choose_inner(Mat P);
   void solve_j0(Vec r, Vec x) const;     // with the varying blocks' current values
   void solve_fixed(Vec r, Vec x) const;  // J0 as factored
@@ -101,6 +101,8 @@ class LowRankStepSolver {
   bool factored_ = false, capacitance_dirty_ = true, inner_chosen_ = false;
   std::map<int, Entry> entries_;
   std::map<PetscInt, Vec> columns_;                      // J0^-1 e_g
+  Vec unit_ = nullptr;                                   // e_g during its solve
+  Vec unit_solution_ = nullptr;                          // a template of J0^-1 e_g
   Eigen::MatrixXd products_;                             // U^T Z over the active terms
   Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_lu_;  // of C^-1 + U^T Z
   std::vector<Entry*> active_;
