@@ -121,7 +121,7 @@ std::vector<RankOne> BarForces::switch_terms(std::size_t i) const {
 }
 
 // Each bar's state from its owner alone: the sum over the ranks is the state.
-void BarForces::append_low_rank_sums(const CoupledState&, std::vector<double>& local) {
+void BarForces::append_low_rank_sums(const CoupledState&, std::vector<double>& local) const {
   for (char s : local_bar_states()) local.push_back(s);
 }
 

@@ -211,9 +211,12 @@ void PenaltyContact::add_tangent(const CoupledState& state, Shifts, Mat J) {
   PCSIM_PETSC(MatSetValues(J, n, idx.data(), n, idx.data(), K.data(), ADD_VALUES));
 }
 
-void PenaltyContact::append_low_rank_sums(const CoupledState& state, std::vector<double>& local) {
-  pending_ = evaluate(state);
-  local.push_back(pending_.wire->owned && pending_.force > 0 ? 1.0 : 0.0);
+// u = [dz/dU; -1] (known on every rank), coefficient kH while in contact: the
+// owner of the contact point decides.
+void PenaltyContact::append_low_rank_sums(const CoupledState& state,
+                                          std::vector<double>& local) const {
+  const Evaluation e = evaluate(state);
+  local.push_back(e.wire->owned && e.force > 0 ? 1.0 : 0.0);
 }
 
 void PenaltyContact::take_low_rank_sums(const double* sums) {
@@ -221,12 +224,8 @@ void PenaltyContact::take_low_rank_sums(const double* sums) {
   in_contact_summed_ = true;
 }
 
-// u = [dz/dU; -1] (known on every rank), coefficient kH while in contact: the
-// owner of the contact point decides. With the sums, at the state
-// append_low_rank_sums() evaluated (the system calls both at one load);
-// alone, evaluated and summed here.
 bool PenaltyContact::low_rank_change(const CoupledState& state, std::vector<RankOne>& terms) {
-  const Evaluation e = in_contact_summed_ ? pending_ : evaluate(state);
+  const Evaluation e = evaluate(state);
   const double in_contact =
       in_contact_summed_
           ? summed_in_contact_

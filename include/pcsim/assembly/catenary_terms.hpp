@@ -65,7 +65,7 @@ class BarForces : public Term {
   void add_tangent(const CoupledState& state, Shifts shifts, Mat J) override;
   void add_reference_tangent(const CoupledState& state, Shifts shifts, Mat J) override;
   bool low_rank_change(const CoupledState& state, std::vector<RankOne>& terms) override;
-  void append_low_rank_sums(const CoupledState& state, std::vector<double>& local) override;
+  void append_low_rank_sums(const CoupledState& state, std::vector<double>& local) const override;
   void take_low_rank_sums(const double* sums) override;
   std::vector<double> checkpoint() const override;  // the frozen switch terms
   void restore(const std::vector<double>& state) override;

@@ -74,7 +74,7 @@ class PenaltyContact : public Term {
   void add_reference_tangent(const CoupledState&, Shifts, Mat) override {}
   bool low_rank_change(const CoupledState& state, std::vector<RankOne>& terms) override;
   // Whether the contact is closed (its owner rank's 1, summed).
-  void append_low_rank_sums(const CoupledState& state, std::vector<double>& local) override;
+  void append_low_rank_sums(const CoupledState& state, std::vector<double>& local) const override;
   void take_low_rank_sums(const double* sums) override;
   double energy(const CoupledState& state) const override;    // 1/2 kH dz^2 in contact
   TermPower power(const CoupledState& state) const override;  // the moving contact's work
@@ -97,7 +97,6 @@ class PenaltyContact : public Term {
   int wire_;
   std::vector<PetscInt> remote_index_;  // add_residual's entries of other ranks
   std::vector<double> remote_value_;
-  Evaluation pending_;  // append_low_rank_sums()'s, for low_rank_change() at the same state
   double summed_in_contact_ = 0;
   bool in_contact_summed_ = false;
 };

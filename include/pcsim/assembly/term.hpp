@@ -137,7 +137,7 @@ class Term {
   // the same count on every rank; the system sums every term's in one
   // reduction and gives each its sums back before low_rank_change(). A term
   // called without them sums its own.
-  virtual void append_low_rank_sums(const CoupledState& state, std::vector<double>& local) {}
+  virtual void append_low_rank_sums(const CoupledState& state, std::vector<double>& local) const {}
   virtual void take_low_rank_sums(const double* sums) {}
   // 'block' terms: the change of the exact tangent (shifts as J0's) against
   // the reference one, on its own unknowns only (collective).
