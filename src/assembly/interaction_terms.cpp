@@ -211,8 +211,6 @@ void PenaltyContact::add_tangent(const CoupledState& state, Shifts, Mat J) {
   PCSIM_PETSC(MatSetValues(J, n, idx.data(), n, idx.data(), K.data(), ADD_VALUES));
 }
 
-// u = [dz/dU; -1] (known on every rank), coefficient kH while in contact: the
-// owner of the contact point decides.
 void PenaltyContact::append_low_rank_sums(const CoupledState& state,
                                           std::vector<double>& local) const {
   const Evaluation e = evaluate(state);
@@ -224,6 +222,10 @@ void PenaltyContact::take_low_rank_sums(const double* sums) {
   in_contact_summed_ = true;
 }
 
+// u = [dz/dU; -1] (known on every rank), coefficient kH while in contact: the
+// owner of the contact point decides. Evaluated again, not kept from
+// append_low_rank_sums(): the wire point is valid only until the next
+// wire_point() of the same wire, which another pantograph's contact makes.
 bool PenaltyContact::low_rank_change(const CoupledState& state, std::vector<RankOne>& terms) {
   const Evaluation e = evaluate(state);
   const double in_contact =
