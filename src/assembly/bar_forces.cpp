@@ -128,12 +128,10 @@ void BarForces::append_low_rank_sums(const CoupledState&, std::vector<double>& l
 void BarForces::take_low_rank_sums(const double* sums) {
   summed_states_.resize(slack_bars_.size());
   for (std::size_t i = 0; i < slack_bars_.size(); ++i) summed_states_[i] = sums[i] > 0.5 ? 1 : 0;
-  states_summed_ = true;
 }
 
 bool BarForces::low_rank_change(const CoupledState&, std::vector<RankOne>& terms) {
-  const std::vector<char> states = states_summed_ ? summed_states_ : bar_states();
-  states_summed_ = false;
+  const std::vector<char>& states = summed_states_;  // take_low_rank_sums(), just before
   std::vector<std::size_t> switched;
   for (std::size_t i = 0; i < slack_bars_.size(); ++i)
     if (states[i] != reference_states_[i]) switched.push_back(i);

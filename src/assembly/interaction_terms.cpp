@@ -219,7 +219,6 @@ void PenaltyContact::append_low_rank_sums(const CoupledState& state,
 
 void PenaltyContact::take_low_rank_sums(const double* sums) {
   summed_in_contact_ = sums[0];
-  in_contact_summed_ = true;
 }
 
 // u = [dz/dU; -1] (known on every rank), coefficient kH while in contact: the
@@ -228,11 +227,7 @@ void PenaltyContact::take_low_rank_sums(const double* sums) {
 // wire_point() of the same wire, which another pantograph's contact makes.
 bool PenaltyContact::low_rank_change(const CoupledState& state, std::vector<RankOne>& terms) {
   const Evaluation e = evaluate(state);
-  const double in_contact =
-      in_contact_summed_
-          ? summed_in_contact_
-          : sum_over_ranks(state.catenary().comm(), e.wire->owned && e.force > 0 ? 1.0 : 0.0);
-  in_contact_summed_ = false;
+  const double in_contact = summed_in_contact_;  // take_low_rank_sums(), just before
   if (!e.wire->on_wire) return true;
   RankOne term;
   term.key = 0;

@@ -88,7 +88,6 @@ class BarForces : public Term {
   };
   std::map<std::size_t, Frozen> frozen_;  // switched bars, by index in slack_bars_
   std::vector<char> summed_states_;       // bar_states() from the system's reduction
-  bool states_summed_ = false;
 };
 
 // Inertia M A (consistent cable masses, lumped bar and point masses).

@@ -98,7 +98,6 @@ class PenaltyContact : public Term {
   std::vector<PetscInt> remote_index_;  // add_residual's entries of other ranks
   std::vector<double> remote_value_;
   double summed_in_contact_ = 0;
-  bool in_contact_summed_ = false;
 };
 
 }  // namespace pcsim::assembly

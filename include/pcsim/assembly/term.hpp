@@ -135,8 +135,8 @@ class Term {
   // Values low_rank_change() needs summed over the ranks (which bars are
   // taut, whether a contact is closed): the term appends this rank's part,
   // the same count on every rank; the system sums every term's in one
-  // reduction and gives each its sums back before low_rank_change(). A term
-  // called without them sums its own.
+  // reduction and gives each its sums back before low_rank_change()
+  // (CoupledSystem::low_rank_change, the only caller).
   virtual void append_low_rank_sums(const CoupledState& state, std::vector<double>& local) const {}
   virtual void take_low_rank_sums(const double* sums) {}
   // 'block' terms: the change of the exact tangent (shifts as J0's) against
