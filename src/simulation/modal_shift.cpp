@@ -1,5 +1,11 @@
 // The products G = V^T M S V of a moving window's shift over the modal
 // data's vectors (modal_basis_internal.hpp, ShiftProducts).
+// petscblaslapack.h needs petscsys.h first.
+// clang-format off
+#include <petscsys.h>
+#include <petscblaslapack.h>
+// clang-format on
+
 #include <Eigen/Core>
 #include <algorithm>
 
@@ -27,6 +33,22 @@ void product_column(Mat A, Vec x, Vec y, bool transpose, Eigen::MatrixXd& W, lon
   PCSIM_PETSC(VecGetArrayRead(y, &r));
   std::copy(r, r + W.rows(), W.col(j).data());
   PCSIM_PETSC(VecRestoreArrayRead(y, &r));
+}
+
+// C = A^T B (column-major; A: k x m, B: k x n, C: m x n with leading
+// dimension ldc) by the system's BLAS (Debian's libblas.so.3: BLIS with
+// scripts/setup-deps.sh, ~3 x Eigen's kernels at pcsim's portable flags;
+// runs/bench_blas.sh).
+void product_tn(long m, long n, long k, const double* A, const double* B, double* C, long ldc) {
+  if (m == 0 || n == 0) return;
+  PetscBLASInt bm, bn, bk, lead, bldc;
+  PCSIM_PETSC(PetscBLASIntCast(m, &bm));
+  PCSIM_PETSC(PetscBLASIntCast(n, &bn));
+  PCSIM_PETSC(PetscBLASIntCast(k, &bk));
+  PCSIM_PETSC(PetscBLASIntCast(std::max(k, 1L), &lead));  // BLAS wants >= 1 (no local rows)
+  PCSIM_PETSC(PetscBLASIntCast(ldc, &bldc));
+  const double one = 1, zero = 0;
+  BLASgemm_("T", "N", &bm, &bn, &bk, &one, A, &lead, B, &lead, &zero, C, &bldc);
 }
 
 }  // namespace
@@ -71,10 +93,11 @@ void ShiftProducts::new_columns(Vec like) {
       PCSIM_PETSC(MatMult(S_, column, shifted));
       product_column(M_, shifted, w, false, W, j);
     }
+    // G (row-major) block (I, new columns) as the column-major W^T V_I.
     for (std::size_t I = 0; I < store_->blocks(); ++I)
-      G_.block(static_cast<long>(I) * kBlock, first + j0, store_->width(I), width - j0).noalias() =
-          store_->block(I, scratch).leftCols(store_->width(I)).transpose() *
-          W.middleCols(j0, width - j0);
+      product_tn(width - j0, store_->width(I), local_, W.col(j0).data(),
+                 store_->block(I, scratch).data(),
+                 G_.data() + static_cast<long>(I) * kBlock * G_.cols() + first + j0, G_.cols());
   }
   for (Vec* v : {&column, &shifted, &w}) PCSIM_PETSC(VecDestroy(v));
 }
@@ -101,8 +124,9 @@ void ShiftProducts::new_rows_of_old_columns(Vec like) {
   for (std::size_t I = 0; static_cast<long>(I) * kBlock < computed_; ++I) {
     const long first = static_cast<long>(I) * kBlock;
     const long cols = std::min(store_->width(I), computed_ - first);  // old columns of block I
-    G_.block(computed_, first, fresh, cols).noalias() =
-        Z.transpose() * store_->block(I, scratch).leftCols(cols);
+    // G (row-major) block (new rows, old columns of I) as the column-major V_I^T Z.
+    product_tn(cols, fresh, local_, store_->block(I, scratch).data(), Z.data(),
+               G_.data() + computed_ * G_.cols() + first, G_.cols());
   }
   for (Vec* v : {&column, &mass, &z}) PCSIM_PETSC(VecDestroy(v));
 }
