@@ -2,6 +2,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 
 #include "pcsim/catenary/reduced_basis.hpp"
@@ -95,31 +96,51 @@ RitzCoefficients append_ritz_vectors(const ModalData& data, const std::vector<lo
 }
 
 // The window's shift in the basis B = [Phi_keep, Psi X - Phi_keep CX]:
-// P = B^T M S B from G = V^T M S V over the computed vectors V = [Phi, Psi].
-std::vector<double> shift_in_basis(const ModalData& data, const std::vector<long>& keep,
-                                   const RitzCoefficients& ritz) {
-  const long modes = static_cast<long>(data.modes()), nd = static_cast<long>(data.shapes());
-  const long total = modes + nd, m = static_cast<long>(keep.size()), r = ritz.X.cols();
-  const ConstMap G(data.shift_products.data(), total, total);
-  // G T and T^T (G T), T = [E_keep, -E_keep CX; 0, X] (E_keep: the kept
-  // modes), without forming T (mostly a selection).
-  Eigen::MatrixXd GT(total, m + r);
-  for (long i = 0; i < m; ++i) GT.col(i) = G.col(keep[i]);
-  if (r > 0) GT.rightCols(r) = G.rightCols(nd) * ritz.X - GT.leftCols(m) * ritz.CX;
-  RowMatrix P(m + r, m + r);
-  for (long i = 0; i < m; ++i) P.row(i) = GT.row(keep[i]);
-  if (r > 0) {
-    Eigen::MatrixXd kept_rows(m, m + r);
-    for (long i = 0; i < m; ++i) kept_rows.row(i) = GT.row(keep[i]);
-    P.bottomRows(r) = ritz.X.transpose() * GT.bottomRows(nd) - ritz.CX.transpose() * kept_rows;
+// P = T^T G T from G = V^T M S V over the computed vectors V = [Phi, Psi]
+// (row-major, total x total), T = [E_keep, -E_keep CX; 0, X] (E_keep: the
+// kept modes, ascending), formed in G's own storage: G T by blocks of rows
+// into each row's first c = m + r entries, then T^T (G T) by moving the kept
+// rows up and appending the r Ritz rows. Peak: G and blocks of 256 rows
+// (G T and P were copies of G's size each).
+std::vector<double> shift_in_basis(std::vector<double> g, long total, long modes,
+                                   const std::vector<long>& keep, const RitzCoefficients& ritz) {
+  using Rows = Eigen::Map<RowMatrix, 0, Eigen::OuterStride<>>;
+  constexpr long kRows = 256;
+  const long nd = total - modes, m = static_cast<long>(keep.size()), r = ritz.X.cols();
+  const long c = m + r;
+  const Eigen::OuterStride<> stride(total);
+  RowMatrix block(kRows, c);
+  for (long i0 = 0; i0 < total; i0 += kRows) {  // (G T)(i, :) into G(i, 0:c)
+    const long n = std::min(kRows, total - i0);
+    Rows rows(g.data() + i0 * total, n, total, stride);
+    for (long i = 0; i < m; ++i) block.col(i).head(n) = rows.col(keep[i]);
+    if (r > 0)
+      block.topRightCorner(n, r).noalias() =
+          rows.rightCols(nd) * ritz.X - block.topLeftCorner(n, m) * ritz.CX;
+    rows.leftCols(c) = block.topRows(n);
   }
-  return std::vector<double>(P.data(), P.data() + P.size());
+  RowMatrix bottom(r, c);  // X^T (G T)(shapes, :) - CX^T (G T)(keep, :)
+  if (r > 0) {
+    bottom.noalias() = ritz.X.transpose() * Rows(g.data() + modes * total, nd, c, stride);
+    for (long i0 = 0; i0 < m; i0 += kRows) {
+      const long n = std::min(kRows, m - i0);
+      for (long i = 0; i < n; ++i)
+        block.row(i) = Rows(g.data() + keep[i0 + i] * total, 1, c, stride);
+      bottom.noalias() -= ritz.CX.middleRows(i0, n).transpose() * block.topRows(n);
+    }
+  }
+  // Row i of P from row keep[i] >= i of G T: no later source is overwritten.
+  for (long i = 0; i < m; ++i)
+    std::memmove(g.data() + i * c, g.data() + keep[i] * total, sizeof(double) * c);
+  std::copy(bottom.data(), bottom.data() + bottom.size(), g.data() + m * c);
+  g.resize(static_cast<std::size_t>(c * c));
+  if (c < total) g.shrink_to_fit();  // data above the cut-off: the run keeps P only
+  return g;
 }
 
-}  // namespace
-
-ReducedBasis assemble_basis(const ModalData& data, const CatenaryMesh& mesh,
-                            const ModalSettings& s) {
+// assemble_basis with the data's shift products given apart (moved or copied).
+ReducedBasis assemble(const ModalData& data, std::vector<double> shift_products,
+                      const CatenaryMesh& mesh, const ModalSettings& s) {
   if (s.max_frequency_hz > data.cutoff_hz * (1 + 1e-12) && data.cutoff_hz > 0)
     throw std::logic_error("reduced basis: the data stop below the cut-off asked for");
   ReducedBasis b;
@@ -141,8 +162,9 @@ ReducedBasis assemble_basis(const ModalData& data, const CatenaryMesh& mesh,
     for (long i = 0; i < m; ++i) b.wind_damping[i] = data.wind_damping[keep[i]];
   }
   const std::size_t vectors = data.modes() + data.shapes();
-  if (!data.shift_products.empty() && data.shift_products.size() == vectors * vectors)
-    b.shift = shift_in_basis(data, keep, ritz);
+  if (!shift_products.empty() && shift_products.size() == vectors * vectors)
+    b.shift = shift_in_basis(std::move(shift_products), static_cast<long>(vectors),
+                             static_cast<long>(data.modes()), keep, ritz);
   b.rows.resize(static_cast<std::size_t>(nr * (m + ritz_rows.cols())));
   Eigen::Map<RowMatrix> rows(b.rows.data(), nr, m + ritz_rows.cols());
   rows << mode_rows, ritz_rows;
@@ -157,6 +179,19 @@ ReducedBasis assemble_basis(const ModalData& data, const CatenaryMesh& mesh,
       }
   }
   return b;
+}
+
+}  // namespace
+
+ReducedBasis assemble_basis(const ModalData& data, const CatenaryMesh& mesh,
+                            const ModalSettings& settings) {
+  return assemble(data, data.shift_products, mesh, settings);
+}
+
+ReducedBasis assemble_basis(ModalData&& data, const CatenaryMesh& mesh,
+                            const ModalSettings& settings) {
+  std::vector<double> shift_products = std::move(data.shift_products);
+  return assemble(data, std::move(shift_products), mesh, settings);
 }
 
 }  // namespace pcsim::catenary

@@ -282,7 +282,7 @@ catenary::ReducedBasis modal_basis(const Context& ctx, const scene::RunScene& ru
   catenary::ReducedBasis basis;
   std::string failure;  // an error on rank 0 fails every rank (none waits)
   if (ctx.rank == 0) try {
-      basis = catenary::assemble_basis(data, statics.mesh, settings);
+      basis = catenary::assemble_basis(std::move(data), statics.mesh, settings);
     } catch (const std::exception& e) {
       failure = e.what();
     }

@@ -119,6 +119,10 @@ struct ReducedBasis {
 // contact-wire nodes.
 ReducedBasis assemble_basis(const ModalData& data, const CatenaryMesh& mesh,
                             const ModalSettings& settings);
+// The same, consuming the data's shift products (the window's shift is
+// formed in their storage: no copy of their size).
+ReducedBasis assemble_basis(ModalData&& data, const CatenaryMesh& mesh,
+                            const ModalSettings& settings);
 
 // The nodes of every contact wire, wire after wire (mesh.contact_wire_list()
 // order): the order of the contact compliance and residual flexibility.
