@@ -264,9 +264,21 @@ void print_pilot(const Context& ctx, const PilotEstimate& pilot) {
          pilot.cached ? " (cached)" : "", pilot.from_x, pilot.to_x,
          modal ? "discretisation against converged linear FE, reduction against linear FE"
                : "discretisation against converged linear FE");
-  if (modal && pilot.cutoff_raises > 0)
+  const auto outside = pilot.outside_targets();
+  if (modal && pilot.cutoff_raises > 0 && outside.empty())
     print0(ctx, "    modal cut-off raised %d time(s) to %.1f Hz to meet the targets\n",
            pilot.cutoff_raises, pilot.cutoff_hz);
+  else if (modal && pilot.cutoff_raises > 0)
+    print0(ctx, "    modal cut-off raised %d time(s) to %.1f Hz, the most the pilot raises it\n",
+           pilot.cutoff_raises, pilot.cutoff_hz);
+  for (const auto& t : outside) {
+    const char* unit = t.figure == 7 ? "pt" : (t.figure == 5 || t.figure == 6) ? "%Fm" : "%";
+    print0(ctx,
+           "    outside the targets at %.1f Hz: %s of '%s', reduction %.2f %s in the pilot "
+           "(target %.1f %s; catenary.max_frequency_hz raises the cut-off)\n",
+           pilot.cutoff_hz, kPilotFigureLabels[t.figure], t.pantograph.c_str(), t.measured, unit,
+           kPilotTargets[t.figure], unit);
+  }
   for (std::size_t p = 0; p < discretisation.size(); ++p) {
     print0(ctx, "    %-16s %16s%s\n", discretisation[p].pantograph.c_str(), "discretisation",
            modal ? "   reduction" : "");

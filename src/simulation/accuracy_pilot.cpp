@@ -49,43 +49,43 @@ struct PilotFigures {
   double uplift_m = 0;
 };
 
-// Where the pilot runs: its pantographs start 'shift' later than the run's,
-// the statistics over [from_x, to_x], the leading pantograph stops at end_x.
-struct Stretch {
-  double shift = 0, from_x = 0, to_x = 0, end_x = 0;
-  int from_span = 0, to_span = 0;
-};
+}  // namespace
 
-Stretch pilot_stretch(const scene::RunScene& run) {
+PilotStretch pilot_stretch(const scene::RunScene& run) {
   const auto& support_x = run.catenary.mesh.support_x;
-  Stretch s;
+  PilotStretch s;
   s.from_span = run.analysis_from_span;
   s.to_span = std::min(run.analysis_to_span, run.analysis_from_span + 1);
   s.from_x = support_x[s.from_span - 1];
   s.to_x = support_x[s.to_span];
-  double first = run.pantographs.front().start_x;
-  for (const auto& p : run.pantographs) first = std::min(first, p.start_x);
+  double rear = run.pantographs.front().start_x, front = rear;
+  for (const auto& p : run.pantographs) {
+    rear = std::min(rear, p.start_x);
+    front = std::max(front, p.start_x);
+  }
   // Lead-in: two spans (the start's transient), at least a ramp and the
   // filter's edge (3 / cutoff_hz of travel, scene/run_scene_edges.cpp) more
-  // than one span.
+  // than one span, before the train's front: every pantograph has it.
   const int lead_from = std::max(0, s.from_span - 3);
   double ramp = 0;
   for (const auto& p : run.pantographs) ramp = std::max(ramp, p.ramps() ? p.ramp_distance : 0.0);
   const double edge = 3 / run.cutoff_hz * run.speed;
   const double lead = std::max(s.from_x - support_x[lead_from],
                                ramp + edge + (s.to_x - s.from_x) / (s.to_span - s.from_span + 1));
-  s.shift = std::max(0.0, s.from_x - lead - first);
+  s.shift = std::max(0.0, s.from_x - lead - front);
   // A later start that saves less than half of the run's travel is not worth
   // the difference it makes (the pilot then repeats the run's own start).
   // A moving window starts where the line starts: its pantographs too.
   if (s.shift < 0.5 * (run.end_x - run.pantographs.front().start_x) || run.window) s.shift = 0;
-  // The trailing pantograph passes to_x by the filter's edge and a metre.
-  const double front = run.pantographs.front().start_x;
-  s.end_x = std::min(run.end_x, s.to_x + edge + 1.0 + (front - first));
+  // The rearmost pantograph passes to_x by the filter's edge and a metre
+  // (end_x is where the scene's first pantograph stops).
+  s.end_x = std::min(run.end_x, s.to_x + edge + 1.0 + (run.pantographs.front().start_x - rear));
   return s;
 }
 
-void apply_stretch(const Stretch& s, scene::RunScene& run) {
+namespace {
+
+void apply_stretch(const PilotStretch& s, scene::RunScene& run) {
   for (auto& p : run.pantographs) p.start_x += s.shift;
   run.end_x = s.end_x;
   run.analysis_from_span = s.from_span;
@@ -99,7 +99,7 @@ void apply_stretch(const Stretch& s, scene::RunScene& run) {
 // A -ts_max_steps or -ts_max_time (they bind the pilot's runs too) that
 // would stop a pilot run before it crosses its stretch: a SolverError before
 // any pilot run (the run goes on without the estimate, app/cmd_run.cpp).
-void check_not_cut_short(const scene::RunScene& run, const Stretch& stretch) {
+void check_not_cut_short(const scene::RunScene& run, const PilotStretch& stretch) {
   // RunScene::duration() of the scene apply_stretch makes.
   const double duration =
       (stretch.end_x - (run.pantographs.front().start_x + stretch.shift)) / run.speed;
@@ -127,7 +127,7 @@ void check_not_cut_short(const scene::RunScene& run, const Stretch& stretch) {
 
 // One pilot run, quietly, in a folder of the cache that is removed after.
 PilotFigures run_pilot(const Context& ctx, const SceneSource& source, const StudyVariant& variant,
-                       const Stretch& stretch, double dt, double cutoff_hz,
+                       const PilotStretch& stretch, double dt, double cutoff_hz,
                        const std::string& dir) {
   const double h = design_element_length(source.scene) * variant.h_factor;
   auto run = variant_scene(source, variant, h);
@@ -193,11 +193,16 @@ std::vector<FigureErrors> with_margin(std::vector<FigureErrors> measured) {
   return measured;
 }
 
-bool within_targets(const std::vector<FigureErrors>& measured) {
+std::vector<PilotEstimate::OutsideTarget> outside(const std::vector<FigureErrors>& measured) {
+  std::vector<PilotEstimate::OutsideTarget> out;
   for (const auto& e : measured)
     for (int f = 0; f < kPilotFigures; ++f)
-      if (e.value[f] > kPilotTargets[f]) return false;
-  return true;
+      if (e.value[f] > kPilotTargets[f]) out.push_back({e.pantograph, f, e.value[f]});
+  return out;
+}
+
+bool within_targets(const std::vector<FigureErrors>& measured) {
+  return outside(measured).empty();
 }
 
 nlohmann::json errors_json(const std::vector<FigureErrors>& errors) {
@@ -336,6 +341,10 @@ std::vector<FigureErrors> PilotEstimate::reduction() const {
   return with_margin(reduction_measured);
 }
 
+std::vector<PilotEstimate::OutsideTarget> PilotEstimate::outside_targets() const {
+  return outside(reduction_measured);
+}
+
 nlohmann::json PilotEstimate::json() const {
   nlohmann::json j = {{"cached", cached},
                       {"seconds", seconds},
@@ -353,6 +362,13 @@ nlohmann::json PilotEstimate::json() const {
     j["cutoff_raises"] = cutoff_raises;
     j["reduction"] = errors_json(reduction());
     j["reduction_measured"] = errors_json(reduction_measured);
+    nlohmann::json o = nlohmann::json::array();
+    for (const auto& t : outside_targets())
+      o.push_back({{"pantograph", t.pantograph},
+                   {"figure", kPilotFigureKeys[t.figure]},
+                   {"measured", t.measured},
+                   {"target", kPilotTargets[t.figure]}});
+    j["reduction_outside_targets"] = o;
   }
   return j;
 }
@@ -415,7 +431,7 @@ PilotEstimate run_accuracy_pilot(const Context& ctx, const SceneSource& source,
     return pilot;
   }
   const double start = now_s();
-  const Stretch stretch = pilot_stretch(run);
+  const PilotStretch stretch = pilot_stretch(run);
   check_not_cut_short(run, stretch);
   pilot.done = true;
   pilot.from_x = stretch.from_x;

@@ -1,8 +1,8 @@
 // The accuracy estimate of a run from its own scene (docs/fidelity.md,
 // "Accuracy estimate"): before the run, short pilot runs of the same scene
-// over a stretch of its analysis section (its first two spans; the
-// pantographs start two spans before it when that saves more than half of
-// the run's travel, else where the run starts them) give every EN 50318
+// over a stretch of its analysis section (its first two spans; the train
+// starts with its front two spans before it when that saves more than half
+// of the run's travel, else where the run starts it) give every EN 50318
 // figure's
 //  - discretisation error: linear FE at the run's time step and element
 //    length against linear FE at half of both, extrapolated to the converged
@@ -64,10 +64,32 @@ struct PilotEstimate {
   // The estimates: the measured differences with safety and floor applied.
   std::vector<FigureErrors> discretisation() const;
   std::vector<FigureErrors> reduction() const;
+  // The figures whose measured reduction error is above its target
+  // (kPilotTargets) at the cut-off the run uses: the most raises did not
+  // bring them within, or the scene set the cut-off.
+  struct OutsideTarget {
+    std::string pantograph;
+    int figure = 0;  // index into kPilotFigureKeys
+    double measured = 0;
+  };
+  std::vector<OutsideTarget> outside_targets() const;
 
   nlohmann::json json() const;
   static PilotEstimate from_json(const nlohmann::json& j);
 };
+
+// Where the pilot runs: every pantograph starts 'shift' later than in the
+// run, the figures are taken over [from_x, to_x] (spans from_span..to_span,
+// 1-based), and the scene's first pantograph stops at end_x, when the
+// rearmost one has passed to_x by the filter's edge. The shift leaves every
+// pantograph at least two spans (and its ramp, the filter's edge and a span)
+// before from_x; it is 0 with a moving window or when it would save less
+// than half of the run's travel.
+struct PilotStretch {
+  double shift = 0, from_x = 0, to_x = 0, end_x = 0;
+  int from_span = 0, to_span = 0;
+};
+PilotStretch pilot_stretch(const scene::RunScene& run);
 
 // -pcsim_accuracy_pilot: auto (the default: runs of the modal level, whose
 // cut-off the pilot chooses; a run of an FE level would pay several times its

@@ -1,0 +1,78 @@
+// Where the accuracy pilot runs (simulation::pilot_stretch): on a long line
+// whose analysis section lies far from the start, the pilot's train starts
+// later, and every pantograph of it, the leading one too, must start at
+// least two spans before the pilot's stretch and cross all of it. (The shift
+// was once taken from the rearmost pantograph: on two pantographs 200 m
+// apart the leading one started inside its stretch and the pilot gave up.)
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "pcsim/scene/composition.hpp"
+#include "pcsim/scene/run_scene.hpp"
+#include "pcsim/simulation/accuracy_pilot.hpp"
+
+namespace {
+
+using namespace pcsim;
+
+scene::RunScene load(const std::string& relative, const std::vector<std::string>& sets) {
+  std::vector<scene::InputOverride> overrides;
+  for (const auto& set : sets)
+    overrides.push_back(scene::parse_override(set, {"", "--set " + set}));
+  return scene::load_run_scene(
+      scene::load_composed(std::string(PCSIM_SOURCE_DIR) + "/" + relative, overrides));
+}
+
+// Every pantograph's lead-in before the stretch, and the rearmost one's
+// travel past it when the first one stops (filter edge 3 / cutoff_hz).
+void expect_crossed(const scene::RunScene& run, const simulation::PilotStretch& s) {
+  const double span = run.catenary.mesh.support_x[1] - run.catenary.mesh.support_x[0];
+  const double edge = 3 / run.cutoff_hz * run.speed;
+  double rear = run.pantographs.front().start_x;
+  for (const auto& p : run.pantographs) {
+    rear = std::min(rear, p.start_x);
+    EXPECT_LE(p.start_x + s.shift, s.from_x - 2 * span + 1e-9) << p.name;
+  }
+  const double rear_at_end = s.end_x - (run.pantographs.front().start_x - rear);
+  EXPECT_GE(rear_at_end, s.to_x + edge);
+}
+
+TEST(PilotStretch, TwoPantographsFarAlongALongLine) {
+  // 40 spans of 60 m, the section at spans 29-32 (1680-1920 m), the train's
+  // front at 205 m, its rear at 5 m.
+  const auto run = load("runs/interaction/two-pantographs-300.yaml",
+                        {"catenary.design.spans.count=40", "simulation.end_x=2300",
+                         "analysis.from_span=29", "analysis.to_span=32"});
+  const auto s = simulation::pilot_stretch(run);
+  EXPECT_EQ(s.from_span, 29);
+  EXPECT_EQ(s.to_span, 30);
+  EXPECT_DOUBLE_EQ(s.from_x, 1680);
+  EXPECT_DOUBLE_EQ(s.to_x, 1800);
+  // The front two spans (120 m: more than ramp 20 m + edge 12.5 m + a span)
+  // before the stretch.
+  EXPECT_NEAR(s.shift, 1680 - 120 - 205, 1e-9);
+  expect_crossed(run, s);
+}
+
+TEST(PilotStretch, OnePantographFarAlongALongLine) {
+  const auto run = load("runs/interaction/en50318-300.yaml",
+                        {"catenary.design.spans.count=40", "simulation.end_x=2300",
+                         "analysis.from_span=29", "analysis.to_span=32"});
+  const auto s = simulation::pilot_stretch(run);
+  EXPECT_NEAR(s.shift, 1680 - 120 - run.pantographs.front().start_x, 1e-9);
+  expect_crossed(run, s);
+}
+
+TEST(PilotStretch, ShortLineRepeatsTheRunsStart) {
+  // The 20-span scene: a later start would save less than half the travel.
+  const auto run = load("runs/interaction/two-pantographs-300.yaml", {});
+  const auto s = simulation::pilot_stretch(run);
+  EXPECT_EQ(s.shift, 0);
+  EXPECT_DOUBLE_EQ(s.from_x, 480);
+  EXPECT_DOUBLE_EQ(s.to_x, 600);
+  expect_crossed(run, s);
+  EXPECT_LT(s.end_x, run.end_x);  // the pilot stops once the trailing one is past
+}
+
+}  // namespace
