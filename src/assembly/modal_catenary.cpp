@@ -278,18 +278,21 @@ const WirePoint& ModalCatenary::wire_point(double x, int wire) const {
   return p;
 }
 
-// eta = Omega^-2 w(x) F: the modal statics under the force (slack ignored).
-// eta = D^-1 f with D = Omega^2, f = phi(x)^T F; with active pins (a
-// moving window's end that is the line's: k u u^T each) by Woodbury:
-// eta = y - D^-1 U (I / k + U^T D^-1 U)^-1 U^T y, y = D^-1 f.
-bool ModalCatenary::closed_form_point_load(double x, int wire, double force, Vec U) const {
-  const WirePoint& p = wire_point(x, wire);
-  if (!p.on_wire) return false;
+// eta = Omega^-2 sum_p w(x_p) F_p: the modal statics under the forces (slack
+// ignored). eta = D^-1 f with D = Omega^2, f = sum_p phi(x_p)^T F_p; with
+// active pins (a moving window's end that is the line's: k u u^T each) by
+// Woodbury: eta = y - D^-1 U (I / k + U^T D^-1 U)^-1 U^T y, y = D^-1 f.
+bool ModalCatenary::closed_form_point_loads(const std::vector<PointForce>& loads, Vec U) const {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(m_);
+  for (const auto& load : loads) {
+    const WirePoint& p = wire_point(load.x, load.wire);
+    if (!p.on_wire) return false;
+    if (on_owner()) f += Eigen::Map<const Eigen::VectorXd>(p.weight.data(), m_) * load.force;
+  }
   PCSIM_PETSC(VecSet(U, 0.0));
   if (!on_owner()) return true;
   const Eigen::Map<const Eigen::VectorXd> omega2(basis_.omega2.data(), m_);
-  Eigen::VectorXd y(m_);
-  for (PetscInt k = 0; k < m_; ++k) y[k] = p.weight[k] * force / omega2[k];
+  Eigen::VectorXd y = f.cwiseQuotient(omega2);
   std::vector<const catenary::NodePin*> active;
   for (const auto& pin : mesh_.pins)
     if (pin.active) active.push_back(&pin);

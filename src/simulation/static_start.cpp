@@ -61,22 +61,25 @@ bool any_static_start(assembly::CoupledSystem& system) {
 }
 
 // The catenary part of U0: the static configuration, or with static starts the
-// FE catenary under every such pantograph's static force F0 at its start point
-// on the lowest contact wire there (a guess for the coupled equilibrium).
+// catenary under every such pantograph's static force F0 at its start point
+// on the lowest contact wire there (a modal catenary's exact equilibrium, an
+// FE catenary's guess for the coupled one).
 PetscInt catenary_start(assembly::CoupledSystem& system, Vec U0) {
   auto& catenary = system.catenary();
   catenary.reference_state(U0);
   if (!any_static_start(system)) return 0;
-  const auto& first = system.pantographs().front();
-  std::size_t static_count = 0;
-  for (const auto& slot : system.pantographs()) static_count += slot.run.static_start ? 1 : 0;
-  if (static_count == 1 && first.run.static_start) {
-    const int wire = lowest_wire(catenary, U0, first.run.start_x).first;
+  // A modal catenary: the static forces superposed, exact (slack ignored),
+  // no guess needed.
+  std::vector<assembly::CatenaryModel::PointForce> loads;
+  for (std::size_t p = 0; p < system.pantographs().size(); ++p) {
+    const auto& run = system.pantographs()[p].run;
+    if (!run.static_start) continue;
+    const int wire = lowest_wire(catenary, U0, run.start_x).first;
     if (wire < 0)
-      throw InputError("", start_key(0), "the pantograph starts outside the contact wire");
-    if (catenary.closed_form_point_load(first.run.start_x, wire, first.run.static_force, U0))
-      return 0;  // a modal catenary: exact, no guess needed
+      throw InputError("", start_key(p), "the pantograph starts outside the contact wire");
+    loads.push_back({run.start_x, wire, run.static_force});
   }
+  if (catenary.closed_form_point_loads(loads, U0)) return 0;
   auto* fe = dynamic_cast<assembly::FECatenary*>(&catenary);
   if (!fe) return 0;
   // Active pins (a moving window's end that is the line's) hold their DOF.

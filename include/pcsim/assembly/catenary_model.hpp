@@ -86,10 +86,16 @@ class CatenaryModel {
   virtual const WirePoint& wire_point(double x, int wire) const = 0;
   virtual double wire_x_min(int wire) const = 0;
   virtual double wire_x_max(int wire) const = 0;
-  // The catenary part of U in static equilibrium under an upward force at
-  // station x on contact wire 'wire', when the model has it in closed form (a
-  // modal model, slack ignored); false otherwise (the caller solves for it).
-  virtual bool closed_form_point_load(double x, int wire, double force, Vec U) const {
+  // The catenary part of U in static equilibrium under upward forces, each
+  // at station x on contact wire 'wire', when the model has it in closed form
+  // (a modal model, slack ignored: the loads superposed); false otherwise (the
+  // caller solves for it).
+  struct PointForce {
+    double x = 0;
+    int wire = 0;
+    double force = 0;
+  };
+  virtual bool closed_form_point_loads(const std::vector<PointForce>& loads, Vec U) const {
     return false;
   }
   // Contact-wire height at every support and axial force of every dropper at

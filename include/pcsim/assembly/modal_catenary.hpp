@@ -65,7 +65,7 @@ class ModalCatenary : public CatenaryModel {
   const WirePoint& wire_point(double x, int wire) const override;
   double wire_x_min(int wire) const override { return locators_[wire]->x_min(); }
   double wire_x_max(int wire) const override { return locators_[wire]->x_max(); }
-  bool closed_form_point_load(double x, int wire, double force, Vec U) const override;
+  bool closed_form_point_loads(const std::vector<PointForce>& loads, Vec U) const override;
   std::vector<double> support_heights() const override;
   std::vector<double> dropper_forces() const override;
   std::vector<double> node_positions_to_root(Vec U) const override;
