@@ -41,7 +41,7 @@ extern const std::array<double, kPilotFigures> kPilotTargets;
 constexpr double kPilotSafety = 2.0;  // estimate = safety x the pilot's difference ...
 constexpr double kPilotFloor = 0.1;   // ... and at least this (% or percentage points)
 constexpr double kCutoffRaise = 1.25;
-constexpr int kMaxCutoffRaises = 2;
+constexpr int kMaxCutoffRaises = 3;
 
 struct FigureErrors {
   std::string pantograph;
