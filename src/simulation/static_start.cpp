@@ -71,6 +71,7 @@ PetscInt catenary_start(assembly::CoupledSystem& system, Vec U0) {
   // A modal catenary: the static forces superposed, exact (slack ignored),
   // no guess needed.
   std::vector<assembly::CatenaryModel::PointForce> loads;
+  std::vector<std::size_t> loaded_by;  // the pantograph of each load
   for (std::size_t p = 0; p < system.pantographs().size(); ++p) {
     const auto& run = system.pantographs()[p].run;
     if (!run.static_start) continue;
@@ -78,6 +79,7 @@ PetscInt catenary_start(assembly::CoupledSystem& system, Vec U0) {
     if (wire < 0)
       throw InputError("", start_key(p), "the pantograph starts outside the contact wire");
     loads.push_back({run.start_x, wire, run.static_force});
+    loaded_by.push_back(p);
   }
   if (catenary.closed_form_point_loads(loads, U0)) return 0;
   auto* fe = dynamic_cast<assembly::FECatenary*>(&catenary);
@@ -88,16 +90,13 @@ PetscInt catenary_start(assembly::CoupledSystem& system, Vec U0) {
     if (pin.active) held.nodes[pin.node].fixed[pin.dof] = true;
   assembly::CatenarySystem loaded(system.comm(), std::move(held), 0,
                                   &fe->system().layout().node_owner());
-  const auto& pantographs = system.pantographs();
-  for (std::size_t p = 0; p < pantographs.size(); ++p) {
-    const auto& run = pantographs[p].run;
-    if (!run.static_start) continue;
-    const int wire = lowest_wire(catenary, U0, run.start_x).first;
+  for (std::size_t i = 0; i < loads.size(); ++i) {
     int element;
     double chi;
-    if (wire < 0 || !fe->locator(wire).locate(run.start_x, element, chi))
-      throw InputError("", start_key(p), "the pantograph starts outside the contact wire");
-    loaded.point_loads().push_back({element, chi, Eigen::Vector3d(0, 0, run.static_force)});
+    if (!fe->locator(loads[i].wire).locate(loads[i].x, element, chi))
+      throw InputError("", start_key(loaded_by[i]),
+                       "the pantograph starts outside the contact wire");
+    loaded.point_loads().push_back({element, chi, Eigen::Vector3d(0, 0, loads[i].force)});
   }
   Vec x = loaded.create_vector();
   assembly::set_state_from_node_values(loaded, fe->static_node_values(), x);
