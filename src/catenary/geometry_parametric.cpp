@@ -407,6 +407,13 @@ void check_overrides_have_effect(const ParametricDesign& in, const detail::LineL
 
 }  // namespace
 
+std::string spans_differ(const ParametricDesign& design) {
+  if (!design.sections.empty()) return "sections (tension sections, overlaps, curves)";
+  if (!design.support_overrides.empty()) return "support overrides";
+  if (!design.irregularities.empty()) return "irregularities";
+  return "";
+}
+
 CatenaryMesh build_parametric(const ParametricDesign& design) {
   detail::check_parametric(design);
   const detail::LineLayout line = detail::make_line_layout(design);
@@ -414,6 +421,7 @@ CatenaryMesh build_parametric(const ParametricDesign& design) {
   CatenaryMesh mesh;
   detail::set_common(mesh, design.file, design.name, design.gravity, design.damping);
   mesh.form_finding_default = true;
+  mesh.identical_spans = spans_differ(design).empty();
   mesh.track = line.track;
   const detail::IrregularProfile profile(design.irregularities, line.spans * line.L);
   std::vector<std::unique_ptr<detail::SectionBuilder>> sections;

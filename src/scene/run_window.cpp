@@ -15,11 +15,8 @@ namespace {
 // The line must repeat every two spans: one straight section of identical
 // spans, nothing that changes from span to span. Empty if it does.
 std::string not_periodic(const catenary::ParametricDesign& d) {
-  std::string why;
-  if (!d.sections.empty()) why = "sections (tension sections, overlaps, curves)";
-  if (d.stitch_wire) why = "a stitch wire";
-  if (!d.support_overrides.empty()) why = "support overrides";
-  if (!d.irregularities.empty()) why = "irregularities";
+  const std::string why = catenary::spans_differ(d);
+  if (why.empty() && d.stitch_wire) return "a stitch wire";
   return why;
 }
 

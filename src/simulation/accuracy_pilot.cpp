@@ -51,38 +51,6 @@ struct PilotFigures {
 
 }  // namespace
 
-PilotStretch pilot_stretch(const scene::RunScene& run) {
-  const auto& support_x = run.catenary.mesh.support_x;
-  PilotStretch s;
-  s.from_span = run.analysis_from_span;
-  s.to_span = std::min(run.analysis_to_span, run.analysis_from_span + 1);
-  s.from_x = support_x[s.from_span - 1];
-  s.to_x = support_x[s.to_span];
-  double rear = run.pantographs.front().start_x, front = rear;
-  for (const auto& p : run.pantographs) {
-    rear = std::min(rear, p.start_x);
-    front = std::max(front, p.start_x);
-  }
-  // Lead-in: two spans (the start's transient), at least a ramp and the
-  // filter's edge (3 / cutoff_hz of travel, scene/run_scene_edges.cpp) more
-  // than one span, before the train's front: every pantograph has it.
-  const int lead_from = std::max(0, s.from_span - 3);
-  double ramp = 0;
-  for (const auto& p : run.pantographs) ramp = std::max(ramp, p.ramps() ? p.ramp_distance : 0.0);
-  const double edge = 3 / run.cutoff_hz * run.speed;
-  const double lead = std::max(s.from_x - support_x[lead_from],
-                               ramp + edge + (s.to_x - s.from_x) / (s.to_span - s.from_span + 1));
-  s.shift = std::max(0.0, s.from_x - lead - front);
-  // A later start that saves less than half of the run's travel is not worth
-  // the difference it makes (the pilot then repeats the run's own start).
-  // A moving window starts where the line starts: its pantographs too.
-  if (s.shift < 0.5 * (run.end_x - run.pantographs.front().start_x) || run.window) s.shift = 0;
-  // The rearmost pantograph passes to_x by the filter's edge and a metre
-  // (end_x is where the scene's first pantograph stops).
-  s.end_x = std::min(run.end_x, s.to_x + edge + 1.0 + (run.pantographs.front().start_x - rear));
-  return s;
-}
-
 namespace {
 
 void apply_stretch(const PilotStretch& s, scene::RunScene& run) {
@@ -438,8 +406,9 @@ PilotEstimate run_accuracy_pilot(const Context& ctx, const SceneSource& source,
   pilot.to_x = stretch.to_x;
   pilot.start_shift_m = stretch.shift;
   const std::string dir = ctx.cache_dir + "/accuracy-pilot-" + key.substr(0, 12);
-  print0(ctx, "  accuracy pilot: spans %d-%d (x %.0f-%.0f m), pantographs %.0f m later\n",
-         stretch.from_span, stretch.to_span, stretch.from_x, stretch.to_x, stretch.shift);
+  print0(ctx, "  accuracy pilot: spans %d-%d (x %.0f-%.0f m), pantographs %.0f m later%s\n",
+         stretch.from_span, stretch.to_span, stretch.from_x, stretch.to_x, stretch.shift,
+         pilot_stretch_note(stretch, run).c_str());
   // One pilot run, its line printed before it starts and its time after.
   auto timed = [&](const std::string& label, const StudyVariant& variant, double dt,
                    double cutoff_hz) {

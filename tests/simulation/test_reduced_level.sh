@@ -3,7 +3,7 @@
 # same dt and mesh (issue 21's "Done means"), on two scenes no default was
 # tuned on, each with its accuracy pilot (docs/fidelity.md):
 #  - the short three-section line at 250 km/h (runs/lines/three-sections-short-250.yaml:
-#    two overlaps, analysis spans 2-8, of which the pilot runs only spans 2-3);
+#    two overlaps, analysis spans 2-8, all of which the pilot runs: the spans differ);
 #  - the rigid DSA-380 (nonlinear, damper) on the three-span test catenary
 #    (tests/contact/data/three-span-dsa380.yaml with the linearised catenary).
 # Every figure's actual error is within the targets (mean 0.5 %, σ, Fm+3σ and

@@ -285,6 +285,10 @@ struct ExplicitDesign {
 // on a mesh that fails mesh_consistency_error.
 CatenaryMesh build_parametric(const ParametricDesign& design);
 CatenaryMesh build_explicit(const ExplicitDesign& design);
+// Why the spans of 'design' are not all alike, "" if they are (one straight
+// section, no support overrides, no irregularities; a stitch wire is in
+// every span): CatenaryMesh::identical_spans.
+std::string spans_differ(const ParametricDesign& design);
 
 // ---------------------------------------------------------------- sizes ----
 

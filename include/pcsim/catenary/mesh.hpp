@@ -353,6 +353,10 @@ struct CatenaryMesh {
   std::vector<HeightTarget> height_targets;
   std::vector<TensionSegment> tension_segments;
   bool form_finding_default = false;  // true for parametric designs
+  // Every span alike between the line's end anchors (a parametric design
+  // that spans_differ, geometry.hpp, finds nothing in): what two spans show
+  // holds for the others.
+  bool identical_spans = false;
   // Track description (parametric designs; empty otherwise). 'x' of the
   // track is the station along the track centre (= x on straight track).
   TrackAlignment track;            // straight along x unless curved

@@ -1,6 +1,7 @@
 // The accuracy estimate of a run from its own scene (docs/fidelity.md,
 // "Accuracy estimate"): before the run, short pilot runs of the same scene
-// over a stretch of its analysis section (its first two spans; the train
+// over a stretch of its analysis section (its first two spans on a line of
+// identical spans, else its first kPilotMaxSpans or all of it; the train
 // starts with its front two spans before it when that saves more than half
 // of the run's travel, else where the run starts it) give every EN 50318
 // figure's
@@ -42,6 +43,10 @@ constexpr double kPilotSafety = 2.0;  // estimate = safety x the pilot's differe
 constexpr double kPilotFloor = 0.1;   // ... and at least this (% or percentage points)
 constexpr double kCutoffRaise = 1.25;
 constexpr int kMaxCutoffRaises = 3;
+// The most spans a pilot covers on a line whose spans differ (on
+// runs/lines/supports-300.yaml, the loss of contact at an overridden support
+// in the section's fourth span was outside a two-span pilot).
+constexpr int kPilotMaxSpans = 8;
 
 struct FigureErrors {
   std::string pantograph;
@@ -80,7 +85,8 @@ struct PilotEstimate {
 
 // Where the pilot runs: every pantograph starts 'shift' later than in the
 // run, the figures are taken over [from_x, to_x] (spans from_span..to_span,
-// 1-based), and the scene's first pantograph stops at end_x, when the
+// 1-based: two on a line of identical spans, CatenaryMesh::identical_spans,
+// else the section up to kPilotMaxSpans), and the scene's first pantograph stops at end_x, when the
 // rearmost one has passed to_x by the filter's edge. The shift leaves every
 // pantograph at least two spans (and its ramp, the filter's edge and a span)
 // before from_x; it is 0 with a moving window or when it would save less
@@ -88,8 +94,12 @@ struct PilotEstimate {
 struct PilotStretch {
   double shift = 0, from_x = 0, to_x = 0, end_x = 0;
   int from_span = 0, to_span = 0;
+  bool spans_alike = true;  // the line's spans are identical: two stand for all
 };
 PilotStretch pilot_stretch(const scene::RunScene& run);
+// What the console adds to the stretch's line where the spans differ ("" on
+// a line of identical spans).
+std::string pilot_stretch_note(const PilotStretch& s, const scene::RunScene& run);
 
 // -pcsim_accuracy_pilot: auto (the default: runs of the modal level, whose
 // cut-off the pilot chooses; a run of an FE level would pay several times its

@@ -1,0 +1,53 @@
+// Where the accuracy pilot runs (accuracy_pilot.hpp, PilotStretch).
+#include <algorithm>
+#include <string>
+
+#include "pcsim/simulation/accuracy_pilot.hpp"
+
+namespace pcsim::simulation {
+
+PilotStretch pilot_stretch(const scene::RunScene& run) {
+  const auto& support_x = run.catenary.mesh.support_x;
+  PilotStretch s;
+  s.from_span = run.analysis_from_span;
+  // Two spans stand for the others where every span is alike; elsewhere the
+  // whole section, at most kPilotMaxSpans of it.
+  s.spans_alike = run.catenary.mesh.identical_spans;
+  const int spans = s.spans_alike ? 2 : kPilotMaxSpans;
+  s.to_span = std::min(run.analysis_to_span, run.analysis_from_span + spans - 1);
+  s.from_x = support_x[s.from_span - 1];
+  s.to_x = support_x[s.to_span];
+  double rear = run.pantographs.front().start_x, front = rear;
+  for (const auto& p : run.pantographs) {
+    rear = std::min(rear, p.start_x);
+    front = std::max(front, p.start_x);
+  }
+  // Lead-in: two spans (the start's transient), at least a ramp and the
+  // filter's edge (3 / cutoff_hz of travel, scene/run_scene_edges.cpp) more
+  // than one span, before the train's front: every pantograph has it.
+  const int lead_from = std::max(0, s.from_span - 3);
+  double ramp = 0;
+  for (const auto& p : run.pantographs) ramp = std::max(ramp, p.ramps() ? p.ramp_distance : 0.0);
+  const double edge = 3 / run.cutoff_hz * run.speed;
+  const double lead = std::max(s.from_x - support_x[lead_from],
+                               ramp + edge + (s.to_x - s.from_x) / (s.to_span - s.from_span + 1));
+  s.shift = std::max(0.0, s.from_x - lead - front);
+  // A later start that saves less than half of the run's travel is not worth
+  // the difference it makes (the pilot then repeats the run's own start).
+  // A moving window starts where the line starts: its pantographs too.
+  if (s.shift < 0.5 * (run.end_x - run.pantographs.front().start_x) || run.window) s.shift = 0;
+  // The rearmost pantograph passes to_x by the filter's edge and a metre
+  // (end_x is where the scene's first pantograph stops).
+  s.end_x = std::min(run.end_x, s.to_x + edge + 1.0 + (run.pantographs.front().start_x - rear));
+  return s;
+}
+
+// Why the pilot's stretch is what it is, where the line's spans differ.
+std::string pilot_stretch_note(const PilotStretch& s, const scene::RunScene& run) {
+  if (s.spans_alike) return "";
+  if (s.to_span == run.analysis_to_span) return " (the spans differ: the whole analysis section)";
+  return " (the spans differ: the section's first " + std::to_string(kPilotMaxSpans) + " of " +
+         std::to_string(run.analysis_to_span - run.analysis_from_span + 1) + " spans)";
+}
+
+}  // namespace pcsim::simulation
