@@ -94,11 +94,31 @@ def row(scene, fe_run, modal_run):
             cells.append(f"| {scene} | {fe['name']} | (no statistics) |")
             continue
         e = errors(fe, modal, fe_run, modal_run)
-        figures = " | ".join(f"{e[k]:+.2f}" for k in
-                             ("mean", "sigma", "Fm+3s", "max", "Fm-3s", "min", "uplift", "loss"))
+        figures = " | ".join(f"{e[k]:+.2f}" for k in FIGURES)
         held = estimates_held(pilot_rows.get(fe["name"]), e)
         cells.append(f"| {scene} | {fe['name']} | {method(modal_run)} | {figures} | "
                      f"{sigma_estimate} | {held} | {'yes' if passes(e) else '**no**'} | {cost} |")
+    return cells
+
+
+FIGURES = ("mean", "sigma", "Fm+3s", "max", "Fm-3s", "min", "uplift", "loss")
+
+
+def estimate_rows(scene, fe_run, modal_run):
+    """Every figure's actual error and, in brackets, the pilot's reduction estimate."""
+    pilot = {p["pantograph"]: p for p in
+             modal_run.get("accuracy_estimate", {}).get("pilot", {}).get("reduction", [])}
+    by_figure = {k: key for key, k in PILOT_KEYS.items()}
+    cells = []
+    for fe, modal in zip(fe_run["pantographs"], modal_run["pantographs"]):
+        if "std_N" not in fe or "std_N" not in modal:
+            continue
+        e = errors(fe, modal, fe_run, modal_run)
+        p = pilot.get(fe["name"], {})
+        figures = " | ".join(
+            f"{e[k]:+.2f} ({p[by_figure[k]]:.2f})" if by_figure[k] in p else f"{e[k]:+.2f} (-)"
+            for k in FIGURES)
+        cells.append(f"| {scene} | {fe['name']} | {figures} |")
     return cells
 
 
@@ -118,6 +138,17 @@ def main():
         for line in row(scene, fe_run, modal_run):
             print(line)
     print("\n*max: over the steps without an involuntary context switch, the first step apart")
+    print("\nEvery figure's actual error against linear FE and, in brackets, the run's own "
+          "estimate of it (the pilot's reduction estimate); units as above:\n")
+    print("| scene | pantograph | mean % | σ % | Fm+3σ % | max % | Fm−3σ %Fm | min %Fm | "
+          "uplift % | loss pp |")
+    print("|" + "---|" * 10)
+    for scene in scenes:
+        fe_run = load(os.path.join(work, scene, "linear"))
+        modal_run = load(os.path.join(work, scene, "modal"))
+        if fe_run and modal_run:
+            for line in estimate_rows(scene, fe_run, modal_run):
+                print(line)
 
 
 if __name__ == "__main__":
