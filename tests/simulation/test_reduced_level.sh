@@ -30,6 +30,9 @@ check() {  # name scene [--set ...]
     --reference "$name-linear" --check --targets
 }
 check three-sections "$PCSIM_SOURCE_DIR/runs/lines/three-sections-short-250.yaml"
+# Its spans differ (overlaps): the pilot covers the whole section, not two spans.
+grep -q "accuracy pilot: spans 2-8 .*(the spans differ: the whole analysis section)" \
+  three-sections-modal.log || { echo "the pilot did not cover spans 2-8"; exit 1; }
 check dsa380 "$PCSIM_SOURCE_DIR/tests/contact/data/three-span-dsa380.yaml" \
   --set effects.catenary_nonlinear=false
 echo "reduced level: ok"
