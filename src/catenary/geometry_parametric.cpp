@@ -411,6 +411,7 @@ std::string spans_differ(const ParametricDesign& design) {
   if (!design.sections.empty()) return "sections (tension sections, overlaps, curves)";
   if (!design.support_overrides.empty()) return "support overrides";
   if (!design.irregularities.empty()) return "irregularities";
+  if (!design.droppers.spans.empty()) return "spans with droppers of their own (droppers.spans)";
   return "";
 }
 

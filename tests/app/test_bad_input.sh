@@ -141,6 +141,17 @@ for c in "window-size:{spans_behind: 1, spans_ahead: 1}" "window-behind:{spans_b
   run_scene "${c%%:*}" "$one"
   echo "window: ${c#*:}" >> "$w/${c%%:*}.yaml"
 done
+# A window on a line whose spans 3 and 4 have droppers of their own: it
+# would carry them along with every shift (once accepted without a word).
+cat > "$w/window-droppers.yaml" << YAML
+name: window-droppers
+catenary: {design: $S/meshes/lines/presag-heights.yaml}
+set: {catenary.design.spans.count: 30}
+pantographs: [{name: p, model: $two_mass, start_x: 5}]
+simulation: {speed_kmh: 200, end_x: 200}
+analysis: {from_span: 2, to_span: 3}
+window: {spans_behind: 1, spans_ahead: 1}
+YAML
 cat > "$w/window-energy.yaml" << YAML
 name: window-energy
 catenary: {design: $S/meshes/en50318-reference.yaml}
@@ -304,6 +315,7 @@ expect window-size 2 "window-size.yaml|key 'window'|4 spans|not shorter than the
 expect window-behind 2 "window-behind.yaml|key 'window.spans_behind'|at least 1" yes run window-behind.yaml
 expect window-typo 2 "window-typo.yaml|key 'window.spans_ahed'|unknown key" yes run window-typo.yaml
 expect window-train 2 "window-train.yaml|key 'window'|a window of 11 spans (spans_behind + 4 spans of the train|not shorter than the line (10 spans)" yes run window-train.yaml
+expect window-droppers 2 "window-droppers.yaml|key 'window'|needs a line of identical spans|droppers.spans" yes run window-droppers.yaml
 expect window-energy 2 "window-energy.yaml|key 'output.energy'|moving window" yes run window-energy.yaml
 expect too-fast 2 "too-fast.yaml|key 'simulation.speed_kmh'|wave speed" yes run too-fast.yaml
 expect panto-key 2 "panto-key.yaml|key 'pantographs[0].stiffnes'|unknown key" yes run panto-key.yaml

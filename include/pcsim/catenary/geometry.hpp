@@ -286,8 +286,8 @@ struct ExplicitDesign {
 CatenaryMesh build_parametric(const ParametricDesign& design);
 CatenaryMesh build_explicit(const ExplicitDesign& design);
 // Why the spans of 'design' are not all alike, "" if they are (one straight
-// section, no support overrides, no irregularities; a stitch wire is in
-// every span): CatenaryMesh::identical_spans.
+// section, no support overrides, no irregularities, the same droppers in
+// every span; a stitch wire is in every span): CatenaryMesh::identical_spans.
 std::string spans_differ(const ParametricDesign& design);
 
 // ---------------------------------------------------------------- sizes ----
