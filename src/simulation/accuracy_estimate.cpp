@@ -280,11 +280,13 @@ void print_pilot(const Context& ctx, const PilotEstimate& pilot) {
            pilot.cutoff_raises, pilot.cutoff_hz);
   for (const auto& t : outside) {
     const char* unit = figure_unit(t.figure);
+    // A third decimal where two would print the target itself (0.104 pt, not 0.10).
+    const int decimals = std::round(t.measured * 100) / 100 <= kPilotTargets[t.figure] ? 3 : 2;
     print0(ctx,
-           "    outside the targets at %.1f Hz: %s of '%s', reduction %.2f %s in the pilot "
+           "    outside the targets at %.1f Hz: %s of '%s', reduction %.*f %s in the pilot "
            "(target %.1f %s; catenary.max_frequency_hz raises the cut-off)\n",
-           pilot.cutoff_hz, kPilotFigureLabels[t.figure], t.pantograph.c_str(), t.measured, unit,
-           kPilotTargets[t.figure], unit);
+           pilot.cutoff_hz, kPilotFigureLabels[t.figure], t.pantograph.c_str(), decimals,
+           t.measured, unit, kPilotTargets[t.figure], unit);
   }
   for (std::size_t p = 0; p < discretisation.size(); ++p) {
     print0(ctx, "    %-16s %16s%s\n", discretisation[p].pantograph.c_str(), "discretisation",
