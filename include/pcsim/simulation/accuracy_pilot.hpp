@@ -87,10 +87,10 @@ struct PilotEstimate {
 // run, the figures are taken over [from_x, to_x] (spans from_span..to_span,
 // 1-based: two on a line of identical spans, CatenaryMesh::identical_spans,
 // else the section up to kPilotMaxSpans), and the scene's first pantograph
-// stops at end_x, when the rearmost one has passed to_x by the filter's edge. The shift leaves every
-// pantograph at least two spans (and its ramp, the filter's edge and a span)
-// before from_x; it is 0 with a moving window or when it would save less
-// than half of the run's travel.
+// stops at end_x, when the rearmost one has passed to_x by the filter's
+// edge. The shift leaves every pantograph at least two spans (and its ramp,
+// the filter's edge and a span) before from_x; it is 0 with a moving window
+// or when it would save less than half of the run's travel.
 struct PilotStretch {
   double shift = 0, from_x = 0, to_x = 0, end_x = 0;
   int from_span = 0, to_span = 0;
