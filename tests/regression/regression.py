@@ -260,6 +260,28 @@ def fidelity_cheap_path(run):
     return out
 
 
+def readme_fast_level(run):
+    """README, "The fast level on other scenes": en50318-300's row of the
+    table of every figure's error against linear FE and the run's own
+    (pilot's) estimate of it, and the cut-off and basis the pilot keeps
+    (runs/bench_fast_level.sh's two runs; about 2 minutes)."""
+    sys.path.insert(0, os.path.join(ROOT, "runs", "bench"))
+    import fast_level_table as table
+    scene = "runs/interaction/en50318-300.yaml"
+    _, fe, _ = run("run", scene, "--set", "catenary.model=linear", "-pcsim_accuracy_pilot", "false",
+                   "--no-report")
+    _, modal, _ = run("run", scene, "--set", "catenary.model=modal", "-pcsim_accuracy_pilot", "true",
+                      "--no-report")
+    e = table.errors(fe["pantographs"][0], modal["pantographs"][0], fe, modal)
+    estimate = modal["accuracy_estimate"]["pilot"]["reduction"][0]
+    out = [doc("cut-off [Hz]", modal["modal"]["cutoff_hz"], ".1f"),  # README prints 0.1 Hz
+           doc("basis vectors", modal["modal"]["basis_size"], "d")]  # a count: exact
+    for key, figure in table.PILOT_KEYS.items():  # README prints 0.01 (% or points)
+        out += [doc(f"{figure} error", e[figure], "+.2f"),
+                doc(f"{figure} estimate", estimate[key], ".2f")]
+    return out
+
+
 DOC_CASES = {
     "catenary-en50318": catenary_en50318,
     "catenary-100-spans": catenary_100_spans,  # ~15 s (modes of 100 spans)
@@ -272,6 +294,7 @@ DOC_CASES = {
     "lines-irregular-2mm": lines_irregular(2),
     "fidelity-time-step": fidelity_time_step,
     "fidelity-cheap-path": fidelity_cheap_path,
+    "readme-fast-level": readme_fast_level,  # ~2 min (a pilot of 3 runs, modes included)
 }
 
 
