@@ -6,8 +6,10 @@
 # percentile. Modes and bases come from the cache (a first run computes
 # them); the accuracy pilot is off (its runs are not the step's cost).
 #   runs/bench_modal_step.sh BEFORE_BIN AFTER_BIN
-# Environment: REPS=3, SCENES="en300 win70 win109 two20 three". Run it on an
-# otherwise idle machine: it measures wall time.
+# Environment: REPS=3, SCENES="en300 win70 win109 two20 three" (also two109:
+# two20 at 108.8 Hz, the cut-off its pilot chooses; dsa136: dsa380-300-base
+# at 136.1 Hz, its pilot's). Run it on an otherwise idle machine: it
+# measures wall time.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [ $# -eq 2 ] || { echo "usage: $0 BEFORE_BIN AFTER_BIN" >&2; exit 2; }
@@ -20,6 +22,8 @@ declare -A S=(
   [win109]="runs/interaction/two-pantographs-300-window.yaml --set catenary.model=modal --set catenary.max_frequency_hz=108.8"
   [two20]="runs/interaction/two-pantographs-300.yaml --set catenary.model=modal"
   [three]="runs/interaction/three-pantographs-300.yaml --set catenary.model=modal"
+  [two109]="runs/interaction/two-pantographs-300.yaml --set catenary.model=modal --set catenary.max_frequency_hz=108.8"
+  [dsa136]="runs/interaction/dsa380-300-base.yaml --set catenary.model=modal --set catenary.max_frequency_hz=136.1"
 )
 OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT

@@ -3,16 +3,22 @@
 // x86-64: SSE2): Eigen's float product (the single-precision anchor), its
 // double product (the exact anchor), and a float matrix times a double vector
 // accumulated in double (a tighter single-precision bound, tried 2026-11-30
-// and not kept: slower than the double product). B is ROWS x COLS (tracked
-// bars x basis vectors: 90 x 4804 on dsa380-300-base at 136.1 Hz).
+// and not kept: slower than the double product), and the records in batches
+// (src/assembly/modal_records.cpp): the BLAS dgemm of B and 32 states, per
+// state. B is ROWS x COLS (tracked bars x basis vectors: 90 x 4804 on
+// dsa380-300-base at 136.1 Hz, 180 x 8014 on two-pantographs-300 at 108.8 Hz).
 // Prints microseconds per product (mean of REPEAT).
 //   g++ -O2 -DNDEBUG -I/usr/include/eigen3 -o record_product_rate
-//   runs/bench/record_product_rate.cpp
+//   runs/bench/record_product_rate.cpp -lblas
 //   ./record_product_rate [ROWS] [COLS] [REPEAT]
 #include <Eigen/Core>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+
+extern "C" void dgemm_(const char*, const char*, const int*, const int*, const int*, const double*,
+                       const double*, const int*, const double*, const int*, const double*,
+                       double*, const int*);
 
 using FloatRows = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 using DoubleRows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
@@ -55,7 +61,17 @@ int main(int argc, char** argv) {
     for (long d = 0; d < rows; ++d)
       out[d] = mixed_dot(b_single.data() + d * cols, eta.data(), cols);
   });
-  std::printf("B %ld x %ld: float %.1f us, double %.1f us, float x double in double %.1f us (%g)\n",
-              rows, cols, single, exact, mixed, out.sum() + out_single.sum());
+  constexpr int kBatch = 32;
+  const Eigen::MatrixXd states = Eigen::MatrixXd::Random(cols, kBatch);
+  Eigen::MatrixXd batch(rows, kBatch);
+  const int m = static_cast<int>(rows), n = kBatch, k = static_cast<int>(cols);
+  const double one = 1, zero = 0;
+  const double batched = time_us([&] {
+    dgemm_("T", "N", &m, &n, &k, &one, b.data(), &k, states.data(), &k, &zero, batch.data(), &m);
+  }) / kBatch;
+  std::printf("B %ld x %ld: float %.1f us, double %.1f us, float x double in double %.1f us, "
+              "BLAS dgemm of %d states %.1f us a state (%g)\n",
+              rows, cols, single, exact, mixed, kBatch, batched,
+              out.sum() + out_single.sum() + batch.sum());
   return 0;
 }

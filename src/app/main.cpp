@@ -18,6 +18,7 @@
 #include "pcsim/core/error.hpp"
 #include "pcsim/core/version.hpp"
 #include "pcsim/simulation/accuracy_pilot.hpp"
+#include "pcsim/simulation/run_session.hpp"
 #include "rerun.hpp"
 
 namespace {
@@ -66,6 +67,7 @@ void print_usage() {
       "  -ts_dt, -ts_type hht|alpha2, -ts_hht_alpha [0, 1/3], -pcsim_path auto|full|cheap (run);\n"
       "  -pcsim_accuracy_pilot auto|true|false: the pilot runs of the accuracy estimate\n"
       "  (run; auto: runs of the modal level; docs/fidelity.md);\n"
+      "  -pcsim_record_batches auto|true|false: a modal run's records in batches (run);\n"
       "  -pc_type pcsimwoodbury|pcsimschur: pcsim's step solvers as PETSc PC types (run;\n"
       "  pcsimwoodbury is the cheap path's; docs/architecture.md);\n"
       "  -eps_nev N, -modes_fmax F (modes); -pcsim_debug_* (tests).\n"
@@ -253,6 +255,7 @@ int main(int argc, char** argv) {
   try {
     refuse_unknown_options(ctx);
     pcsim::simulation::accuracy_pilot_choice();  // checked (exit 2) and read by every command
+    pcsim::simulation::record_batches_choice();
     debug_fail_if_asked(ctx);
     status = it->second.run(ctx);
     if (status == 0) warn_unread_options(ctx);

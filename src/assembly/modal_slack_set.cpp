@@ -4,9 +4,11 @@
 // Anchors. An exact anchor is every tracked bar's elongation dl = s + B eta
 // in double precision; a single-precision one is dl_E + fl(B (eta - eta_E))
 // from the last exact anchor eta_E, within (n + 2) u |b| |eta - eta_E|
-// (u = 2^-24). The records make one anchor per step: single precision while
-// that bound keeps every recorded force within kRecordForceError, else
-// exact. The last two record (or exact) anchors are the line of the bounds
+// (u = 2^-24). Records made one at a time (dropper_forces(): a run's where
+// batches do not pay, modal_records.cpp; a stepper's) make one anchor per
+// step: single precision while that bound keeps every recorded force within
+// kRecordForceError, else exact. The last two record (or exact) anchors are
+// the line of the bounds
 // of the next states (line_candidates), each with its error bound per unit
 // |b| (the exact product's rounding gamma_n |eta_E| plus the single-precision
 // part).
@@ -22,6 +24,9 @@ namespace {
 
 constexpr double kUnitDouble = 1.1102230246251565e-16;  // 2^-53
 constexpr double kUnitSingle = 5.9604644775390625e-08;  // 2^-24
+// [m] rounding bound of a single-precision update of the bounded check
+// (margins ~1 mm): an exact anchor instead.
+constexpr double kErrorReset = 1e-4;
 
 // gamma_n = n u / (1 - n u) (Higham): the bound of an n-term product.
 double gamma(double n, double u) {
@@ -131,8 +136,6 @@ void ModalCatenary::find_candidates(double step, double step_omega) {
 // The bounded candidate set (see the header).
 void ModalCatenary::update_slack_set() {
   constexpr std::size_t kFewCandidates = 4;  // more: one single-precision product for all
-  constexpr double kErrorReset =
-      1e-4;  // [m] rounding bound of a single-precision update (margins ~1 mm): exact anchor
   slack_now_.clear();
   if (!slack_active_) return;
   const long n = B_.rows();
@@ -190,8 +193,8 @@ void ModalCatenary::record_anchor() const {
   push_line_anchor(gamma(static_cast<double>(m_), kUnitDouble) * exact_norm_ + single_bound);
 }
 
-// N = N_eq + k b.eta (linear bars), k max(s + b.eta, 0) (force), N_eq + k
-// max(b.eta, 0) (length); the elongation's gradient b at the static state.
+// The dropper forces at the loaded state from the record's anchor (forces:
+// record_force, modal_records.cpp).
 std::vector<double> ModalCatenary::dropper_forces() const {
   std::vector<double> forces(droppers_.size(), 0.0);
   record_anchor();  // every rank: the records' states anchor the bounded set
@@ -199,15 +202,7 @@ std::vector<double> ModalCatenary::dropper_forces() const {
   if (!on_owner()) return forces;
   for (std::size_t i = 0; i < droppers_.size(); ++i) {
     const auto d = static_cast<std::size_t>(droppers_[i]);
-    const auto& bar = mesh_.bars[slack_bars_[d]];
-    const double stretch = anchor_elongation_[static_cast<long>(d)] - stretch_[d];
-    const bool slack = dropper_slack_;  // else every bar taut
-    if (slack && bar.slack == catenary::SlackCriterion::force)
-      forces[i] = bar.stiffness * std::max(stretch_[d] + stretch, 0.0);
-    else if (slack && bar.slack == catenary::SlackCriterion::length)
-      forces[i] = bar.equilibrium_force + bar.stiffness * std::max(stretch, 0.0);
-    else
-      forces[i] = bar.equilibrium_force + bar.stiffness * stretch;
+    forces[i] = record_force(d, anchor_elongation_[static_cast<long>(d)]);
   }
   return forces;
 }

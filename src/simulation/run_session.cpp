@@ -41,6 +41,29 @@ PetscErrorCode read_debug_options(MPI_Comm comm, PetscInt* step, PetscInt* rank)
 
 }  // namespace
 
+RecordBatches record_batches_choice() {
+  char value[64] = "";
+  PetscBool given = PETSC_FALSE;
+  auto read = [&]() -> PetscErrorCode {  // in an options block: -help lists it
+    PetscFunctionBeginUser;
+    PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "pcsim run", "");
+    PetscCall(PetscOptionsString("-pcsim_record_batches",
+                                 "a reduced catenary's records (support heights, dropper forces) "
+                                 "computed for 32 states at once (auto: where that pays; true; "
+                                 "false; docs/fidelity.md)",
+                                 "", "auto", value, sizeof value, &given));
+    PetscOptionsEnd();
+    PetscFunctionReturn(0);
+  };
+  PCSIM_PETSC(read());
+  const std::string v = value;
+  if (!given || v == "auto") return RecordBatches::automatic;
+  if (v.empty() || v == "true" || v == "1" || v == "yes") return RecordBatches::on;
+  if (v == "false" || v == "0" || v == "no") return RecordBatches::off;
+  throw InputError("command line", "-pcsim_record_batches",
+                   "'" + v + "' is not auto, true or false");
+}
+
 RunSession::RunSession(const Context& ctx, assembly::CoupledSystem& system,
                        solvers::DynamicSolver& solver, output::RunStream* stream, Options options,
                        const RunCheckpoint* restart, const GracefulStop* stop)
@@ -50,7 +73,11 @@ RunSession::RunSession(const Context& ctx, assembly::CoupledSystem& system,
       stream_(stream),
       options_(std::move(options)),
       stop_(stop),
-      path_(solver.cheap_path() ? "cheap" : "full") {
+      path_(solver.cheap_path() ? "cheap" : "full"),
+      batch_records_(
+          system.batches_records() && !options_.window &&
+          (options_.record_batches == RecordBatches::on ||
+           (options_.record_batches == RecordBatches::automatic && system.records_batch_pays()))) {
   if (restart) {
     first_step_ = restart->state.step;
     skip_first_record_ = true;
@@ -84,6 +111,12 @@ int RunSession::integrate() {
   // A failed step ends TSSolve with an error and a negative reason: the
   // reason, the time and the likely inputs make the message, not PETSc's.
   const PetscErrorCode solved = TSSolve(ts, nullptr);
+  raise_output_failure();
+  try {
+    complete_pending_records();  // collective
+  } catch (...) {
+    if (!hold_output_failure(std::current_exception())) throw;
+  }
   raise_output_failure();
   if (not_finite_) throw SolverError(not_finite_message(not_finite_time_));
   raise_if_step_failed(ts, solved, time_, ", and any -snes_*/-ksp_* options given");
@@ -196,10 +229,13 @@ void RunSession::time_step(long step, double start, long newton_iterations) {
   if (step_end_ > 0) timing_.add(step, start - step_end_, events);
 }
 
+// A reduced catenary's support heights and dropper forces wait for a batch
+// of kRecordBatch records (one product for them all: modal_records.cpp); a
+// snapshot, a checkpoint and the run's end complete the batch first.
 bool RunSession::record(TS ts, PetscInt step, PetscReal t, Vec U) {
-  auto rec = system_.record(t, U);  // collective
+  const bool snapshot = options_.snapshot_every > 0 && step % options_.snapshot_every == 0;
+  auto rec = system_.record(t, U, batch_records_);  // collective
   if (options_.window) options_.window->to_line(rec);
-  if (!options_.keep_dropper_forces) rec.dropper_force.clear();
   output::EnergySample energy;
   if (options_.energy) {  // collective
     Vec Ut, V;
@@ -209,15 +245,38 @@ bool RunSession::record(TS ts, PetscInt step, PetscReal t, Vec U) {
     energy.power_external = power.external;
     energy.power_dissipative = power.dissipative;
   }
-  if (options_.observer) options_.observer->on_record(rec);
-  if (stream_) stream_->append(rec, energy);
-  if (options_.snapshot_every > 0 && step % options_.snapshot_every == 0) {
+  if (batch_records_) {
+    // The snapshot reads the contact only, complete already.
+    const contact::StepRecord contact = snapshot ? rec : contact::StepRecord();
+    pending_.emplace_back(std::move(rec), energy);
+    if (pending_.size() >= kRecordBatch || snapshot) complete_pending_records();  // collective
+    if (snapshot) rec = contact;
+  } else {
+    deliver(rec, energy);
+  }
+  if (snapshot) {
     auto positions = system_.catenary().node_positions_to_root(U);  // collective
     if (stream_) stream_->append_snapshot(positions, rec);
   }
   if (!stream_ || !stream_->flush_due()) return false;
   stream_->flush();
   return true;
+}
+
+void RunSession::deliver(contact::StepRecord& rec, const output::EnergySample& energy) {
+  if (!options_.keep_dropper_forces) rec.dropper_force.clear();
+  if (options_.observer) options_.observer->on_record(rec);
+  if (stream_) stream_->append(rec, energy);
+}
+
+void RunSession::complete_pending_records() {
+  if (!batch_records_ || pending_.empty()) return;  // the same on every rank
+  std::vector<contact::StepRecord*> records;
+  for (auto& p : pending_) records.push_back(&p.first);
+  system_.complete_records(records);  // collective
+  auto pending = std::move(pending_);
+  pending_.clear();
+  for (auto& p : pending) deliver(p.first, p.second);
 }
 
 void RunSession::print_progress(PetscInt step, PetscReal t) const {
@@ -271,6 +330,7 @@ PetscErrorCode RunSession::post_step(TS ts) {
 }
 
 void RunSession::write_checkpoint() {
+  complete_pending_records();  // collective: the records up to this step
   RunCheckpoint c;
   c.state = solver_.save_state();  // collective
   on_rank0(ctx_, [&] {
@@ -319,6 +379,7 @@ nlohmann::json RunSession::facts() const {
   j["ranks"] = ctx_.size;
   j["dofs"] = system_.global_size();
   j["path"] = path_;
+  j["records_in_batches"] = batch_records_;
   TSType type;
   PCSIM_PETSC(TSGetType(solver_.ts(), &type));
   j["rejected_steps"] = std::string(type) == solvers::kTSHHT ? rejected_steps() : 0;

@@ -103,6 +103,22 @@ class CatenaryModel {
   // caller sums over ranks).
   virtual std::vector<double> support_heights() const = 0;
   virtual std::vector<double> dropper_forces() const = 0;
+  // The same in batches, for a model that pays a product per state for them
+  // (the reduced catenary): keep_record_state() keeps the loaded state, and
+  // kept_record_quantities() gives the support heights and (if asked) the
+  // dropper forces of every kept state, state after state, in one product,
+  // and forgets the states. Set on the owning ranks, zero elsewhere.
+  struct RecordQuantities {
+    std::size_t states = 0;
+    std::vector<double> support_z;      // states x support_heights().size()
+    std::vector<double> dropper_force;  // states x dropper_forces().size(), or empty
+  };
+  virtual bool batches_records() const { return false; }
+  // Whether batches cost less than records one at a time (which also anchor
+  // the next step's checks, as a batch does not).
+  virtual bool records_batch_pays() const { return false; }
+  virtual void keep_record_state() {}
+  virtual RecordQuantities kept_record_quantities(bool dropper_forces) { return {}; }
 
   // Node positions (3 per node) of state U on rank 0, empty elsewhere
   // (field snapshots; collective).

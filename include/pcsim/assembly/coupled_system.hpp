@@ -90,7 +90,13 @@ class CoupledSystem {
   TermPower power(double t, Vec U, Vec V);
   // Measured quantities at state U (collective; filled on rank 0). Dropper
   // forces only if asked (a reduced catenary pays a product for them).
-  contact::StepRecord record(double t, Vec U);
+  // batched: a catenary that batches its records (batches_records) keeps the
+  // state, and complete_records() fills the support heights and dropper
+  // forces of the records kept so far, in order, in one product.
+  contact::StepRecord record(double t, Vec U, bool batched = false);
+  bool batches_records() const { return catenary_->batches_records(); }
+  bool records_batch_pays() const { return catenary_->records_batch_pays(); }
+  void complete_records(std::vector<contact::StepRecord*>& records);
   void set_record_dropper_forces(bool on) { record_dropper_forces_ = on; }
 
  private:

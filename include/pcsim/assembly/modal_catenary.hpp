@@ -18,9 +18,11 @@
 // elongations dl_a of every dropper are known at an anchor state eta_a to
 // within err_a (0 after an exact evaluation). At a state eta a dropper with
 //   dl_a - err_a > min(|b| |eta - eta_a|, |Omega^-1 b| |Omega (eta - eta_a)|)
-// (Cauchy-Schwarz with either weighting) is certainly taut; the records'
-// anchors (one a step, for the dropper forces) give a tighter bound from the
-// line through the last two (modal_slack_set.cpp). If that leaves more than
+// (Cauchy-Schwarz with either weighting) is certainly taut; records made one
+// at a time (dropper_forces()) anchor each recorded state and give a tighter
+// bound from the line through the last two (modal_slack_set.cpp). Where
+// that does not pay, a run's records come in batches instead
+// (keep_record_state, kept_record_quantities: modal_records.cpp). If that leaves more than
 // a few candidates (measured: the Cauchy-Schwarz bounds are ~1e3 times the
 // true change of a step, the modes being global), every dl is updated by one
 // single-precision product B (eta - eta_E) from the last exact anchor with
@@ -68,6 +70,10 @@ class ModalCatenary : public CatenaryModel {
   bool closed_form_point_loads(const std::vector<PointForce>& loads, Vec U) const override;
   std::vector<double> support_heights() const override;
   std::vector<double> dropper_forces() const override;
+  bool batches_records() const override { return true; }
+  bool records_batch_pays() const override;
+  void keep_record_state() override;
+  RecordQuantities kept_record_quantities(bool dropper_forces) override;
   std::vector<double> node_positions_to_root(Vec U) const override;
   std::vector<std::unique_ptr<Term>> make_terms(const contact::InteractionEffects& e,
                                                 Mat pattern) override;
@@ -154,6 +160,11 @@ class ModalCatenary : public CatenaryModel {
   std::vector<long> candidates_;
   mutable long evaluations_ = 0, single_products_ = 0;
   long loads_ = 0;
+  // The records' states kept for one product (modal_records.cpp), a column each.
+  Eigen::MatrixXd kept_states_;
+  long kept_ = 0;
+  // The recorded axial force of tracked bar d at elongation dl.
+  double record_force(std::size_t d, double dl) const;
   void exact_anchor() const;
   void push_line_anchor(double bound) const;
   void record_anchor() const;

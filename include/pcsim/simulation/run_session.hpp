@@ -22,12 +22,19 @@ namespace pcsim::simulation {
 
 class RunObserver;  // run.hpp
 
+// -pcsim_record_batches auto|true|false: a reduced catenary's records (support
+// heights, dropper forces) in batches of states (auto: where that pays,
+// ModalCatenary::records_batch_pays). Checked (InputError) on every call.
+enum class RecordBatches { automatic, on, off };
+RecordBatches record_batches_choice();
+
 class RunSession {
  public:
   struct Options {
     double duration = 0;  // [s]
     long snapshot_every = 0, checkpoint_every = 0;
     bool keep_dropper_forces = true;
+    RecordBatches record_batches = RecordBatches::automatic;
     bool energy = false;              // E(t) and the powers every step (output.energy)
     std::string checkpoint_file;      // in the partial output folder
     std::vector<InputFile> inputs;    // fingerprint stored in checkpoints
@@ -67,6 +74,8 @@ class RunSession {
   static PetscErrorCode monitor(TS ts, PetscInt step, PetscReal t, Vec U, void* ptr);
   static PetscErrorCode post_step(TS ts);
   bool record(TS ts, PetscInt step, PetscReal t, Vec U);  // true: results.h5 was flushed
+  void deliver(contact::StepRecord& rec, const output::EnergySample& energy);  // observer, stream
+  void complete_pending_records();                                             // collective
   void time_step(long step, double start, long newton_iterations);
   long rejected_steps() const;  // earlier runs included
   void print_progress(PetscInt step, PetscReal t) const;
@@ -100,6 +109,11 @@ class RunSession {
   std::exception_ptr output_failure_;  // this rank's OutputError (or its FailedOnOtherRank)
   bool not_finite_ = false;            // the state became NaN or inf
   double not_finite_time_ = 0;
+  // Records waiting for their support heights and dropper forces (a reduced
+  // catenary computes them for kRecordBatch states at once).
+  static constexpr std::size_t kRecordBatch = 32;
+  bool batch_records_ = false;
+  std::vector<std::pair<contact::StepRecord, output::EnergySample>> pending_;
 };
 
 // After TSSolve returned 'solved': a failed step is a SolverError naming the

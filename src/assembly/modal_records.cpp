@@ -1,0 +1,109 @@
+// The reduced catenary's records in batches: the support heights and dropper
+// forces of many recorded states in one product. A record of one state costs
+// a matrix-vector product over the whole basis (tracked bars x modes: 180 x
+// 8014 on two-pantographs-300 at 108.8 Hz), bound by the memory traffic of
+// the matrix; the same product for 32 states at once is a matrix-matrix
+// product that reads the matrix once (runs/bench/record_product_rate.cpp:
+// ~5 times less time per state), exact in double precision.
+// petscblaslapack.h needs petscsys.h first.
+#include <petscsys.h>
+// clang-format off
+#include <petscblaslapack.h>
+// clang-format on
+
+#include <unistd.h>
+
+#include <algorithm>
+
+#include "pcsim/assembly/modal_catenary.hpp"
+#include "pcsim/core/error.hpp"
+
+namespace pcsim::assembly {
+
+namespace {
+
+constexpr long kKeptStatesGrowth = 32;  // columns added when the kept states are full
+
+// C (rows x states, column-major, leading dimension rows) = A S, A a
+// row-major rows x m matrix, S the first 'states' columns of an m x n
+// column-major matrix, by the system's BLAS (BLIS: runs/bench_blas.sh).
+void product(const ModalCatenary::RowMatrix& a, const Eigen::MatrixXd& s, long states,
+             std::vector<double>& c) {
+  c.assign(static_cast<std::size_t>(a.rows() * states), 0.0);
+  if (a.rows() == 0 || states == 0 || a.cols() == 0) return;
+  PetscBLASInt rows, n, m, lead_a, lead_s;
+  PCSIM_PETSC(PetscBLASIntCast(a.rows(), &rows));
+  PCSIM_PETSC(PetscBLASIntCast(states, &n));
+  PCSIM_PETSC(PetscBLASIntCast(a.cols(), &m));
+  PCSIM_PETSC(PetscBLASIntCast(a.cols(), &lead_a));
+  PCSIM_PETSC(PetscBLASIntCast(s.rows(), &lead_s));
+  const PetscScalar one = 1, zero = 0;
+  // A row-major is A^T column-major (m x rows).
+  BLASgemm_("T", "N", &rows, &n, &m, &one, a.data(), &lead_a, s.data(), &lead_s, &zero, c.data(),
+            &rows);
+}
+
+}  // namespace
+
+// N = N_eq + k (dl - s) (linear bars), k max(dl, 0) (force), N_eq + k
+// max(dl - s, 0) (length); dl = s + b.eta, b the elongation's gradient at the
+// static state.
+double ModalCatenary::record_force(std::size_t d, double dl) const {
+  const auto& bar = mesh_.bars[slack_bars_[d]];
+  const double stretch = dl - stretch_[d];
+  if (dropper_slack_ && bar.slack == catenary::SlackCriterion::force)
+    return bar.stiffness * std::max(dl, 0.0);
+  if (dropper_slack_ && bar.slack == catenary::SlackCriterion::length)
+    return bar.equilibrium_force + bar.stiffness * std::max(stretch, 0.0);
+  return bar.equilibrium_force + bar.stiffness * stretch;  // else every bar taut
+}
+
+// Records one at a time cost a single-precision product of the tracked
+// bars' rows (B in float) per step, and anchor the next step's bounded check
+// (modal_slack_set.cpp) at no extra cost; batched, the step makes its own
+// product (0.97 per step on EN 50318) and the batch adds its share. Measured
+// (docs/benchmarks.md, "Records in batches"): one at a time is faster while
+// the float rows fit in a core's level-2 cache (EN 50318: 90 x 2736 floats,
+// 1.0 MB), batches beyond (two-pantographs-300: 180 x 5474, 3.9 MB).
+bool ModalCatenary::records_batch_pays() const {
+  long cache = sysconf(_SC_LEVEL2_CACHE_SIZE);
+  if (cache <= 0) cache = 1L << 21;  // not known: 2 MiB
+  return static_cast<long>(B_single_.size() * sizeof(float)) > cache;
+}
+
+// Every rank counts the kept states; the owner keeps them.
+void ModalCatenary::keep_record_state() {
+  if (on_owner()) {
+    if (kept_ == kept_states_.cols())
+      kept_states_.conservativeResize(m_, kept_ + kKeptStatesGrowth);
+    kept_states_.col(kept_) = eta_;
+  }
+  ++kept_;
+}
+
+CatenaryModel::RecordQuantities ModalCatenary::kept_record_quantities(bool with_droppers) {
+  RecordQuantities q;
+  const long states = kept_;
+  q.states = static_cast<std::size_t>(states);
+  const std::size_t ns = mesh_.support_nodes.size(), nd = with_droppers ? droppers_.size() : 0;
+  q.support_z.assign(q.states * ns, 0.0);
+  q.dropper_force.assign(q.states * nd, 0.0);
+  kept_ = 0;
+  if (!on_owner()) return q;
+  product(support_rows_, kept_states_, states, q.support_z);
+  for (std::size_t k = 0; k < q.states; ++k)
+    for (std::size_t s = 0; s < ns; ++s)
+      q.support_z[k * ns + s] += static_values_[6 * mesh_.support_nodes[s] + 2];
+  if (nd == 0) return q;
+  std::vector<double> change;  // tracked bars x states: B eta
+  product(B_, kept_states_, states, change);
+  const auto tracked = static_cast<std::size_t>(B_.rows());
+  for (std::size_t k = 0; k < q.states; ++k)
+    for (std::size_t i = 0; i < nd; ++i) {
+      const auto d = static_cast<std::size_t>(droppers_[i]);
+      q.dropper_force[k * nd + i] = record_force(d, stretch_[d] + change[k * tracked + d]);
+    }
+  return q;
+}
+
+}  // namespace pcsim::assembly
