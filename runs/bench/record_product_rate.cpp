@@ -17,8 +17,8 @@
 #include <cstdlib>
 
 extern "C" void dgemm_(const char*, const char*, const int*, const int*, const int*, const double*,
-                       const double*, const int*, const double*, const int*, const double*,
-                       double*, const int*);
+                       const double*, const int*, const double*, const int*, const double*, double*,
+                       const int*);
 
 using FloatRows = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 using DoubleRows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
@@ -67,11 +67,14 @@ int main(int argc, char** argv) {
   const int m = static_cast<int>(rows), n = kBatch, k = static_cast<int>(cols);
   const double one = 1, zero = 0;
   const double batched = time_us([&] {
-    dgemm_("T", "N", &m, &n, &k, &one, b.data(), &k, states.data(), &k, &zero, batch.data(), &m);
-  }) / kBatch;
-  std::printf("B %ld x %ld: float %.1f us, double %.1f us, float x double in double %.1f us, "
-              "BLAS dgemm of %d states %.1f us a state (%g)\n",
-              rows, cols, single, exact, mixed, kBatch, batched,
-              out.sum() + out_single.sum() + batch.sum());
+                           dgemm_("T", "N", &m, &n, &k, &one, b.data(), &k, states.data(), &k,
+                                  &zero, batch.data(), &m);
+                         }) /
+                         kBatch;
+  std::printf(
+      "B %ld x %ld: float %.1f us, double %.1f us, float x double in double %.1f us, "
+      "BLAS dgemm of %d states %.1f us a state (%g)\n",
+      rows, cols, single, exact, mixed, kBatch, batched,
+      out.sum() + out_single.sum() + batch.sum());
   return 0;
 }
