@@ -360,28 +360,9 @@ PilotEstimate PilotEstimate::from_json(const nlohmann::json& j) {
 }
 
 PilotChoice accuracy_pilot_choice() {
-  char value[64] = "";
-  PetscBool given = PETSC_FALSE;
-  // Read inside an options block so that -help lists it (PETSc's macros
-  // return an error code: a function of their own).
-  auto read = [&]() -> PetscErrorCode {
-    PetscFunctionBeginUser;
-    PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "pcsim run", "");
-    PetscCall(PetscOptionsString(
-        "-pcsim_accuracy_pilot",
-        "pilot runs of the accuracy estimate before the run, and a "
-        "modal cut-off chosen by them (auto: modal runs; true; false; docs/fidelity.md)",
-        "", "auto", value, sizeof value, &given));
-    PetscOptionsEnd();
-    PetscFunctionReturn(0);
-  };
-  PCSIM_PETSC(read());
-  const std::string v = value;
-  if (!given || v == "auto") return PilotChoice::automatic;
-  if (v.empty() || v == "true" || v == "1" || v == "yes") return PilotChoice::on;
-  if (v == "false" || v == "0" || v == "no") return PilotChoice::off;
-  throw InputError("command line", "-pcsim_accuracy_pilot",
-                   "'" + v + "' is not auto, true or false");
+  return read_auto_option("pcsim run", "-pcsim_accuracy_pilot",
+                          "pilot runs of the accuracy estimate before the run, and a modal cut-off "
+                          "chosen by them (auto: modal runs; true; false; docs/fidelity.md)");
 }
 
 bool wants_accuracy_pilot(PilotChoice choice, const scene::RunScene& run) {

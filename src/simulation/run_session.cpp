@@ -42,26 +42,10 @@ PetscErrorCode read_debug_options(MPI_Comm comm, PetscInt* step, PetscInt* rank)
 }  // namespace
 
 RecordBatches record_batches_choice() {
-  char value[64] = "";
-  PetscBool given = PETSC_FALSE;
-  auto read = [&]() -> PetscErrorCode {  // in an options block: -help lists it
-    PetscFunctionBeginUser;
-    PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "pcsim run", "");
-    PetscCall(PetscOptionsString("-pcsim_record_batches",
-                                 "a reduced catenary's records (support heights, dropper forces) "
-                                 "computed for 32 states at once (auto: where that pays; true; "
-                                 "false; docs/fidelity.md)",
-                                 "", "auto", value, sizeof value, &given));
-    PetscOptionsEnd();
-    PetscFunctionReturn(0);
-  };
-  PCSIM_PETSC(read());
-  const std::string v = value;
-  if (!given || v == "auto") return RecordBatches::automatic;
-  if (v.empty() || v == "true" || v == "1" || v == "yes") return RecordBatches::on;
-  if (v == "false" || v == "0" || v == "no") return RecordBatches::off;
-  throw InputError("command line", "-pcsim_record_batches",
-                   "'" + v + "' is not auto, true or false");
+  return read_auto_option("pcsim run: a modal run's records", "-pcsim_record_batches",
+                          "a reduced catenary's records (support heights, dropper forces) "
+                          "computed for 32 states at once (auto: where that pays; true; false; "
+                          "docs/fidelity.md)");
 }
 
 RunSession::RunSession(const Context& ctx, assembly::CoupledSystem& system,

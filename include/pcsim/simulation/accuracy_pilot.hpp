@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "pcsim/scene/run_scene.hpp"
+#include "pcsim/simulation/auto_option.hpp"
 #include "pcsim/simulation/context.hpp"
 #include "pcsim/simulation/study_run.hpp"
 
@@ -105,7 +106,7 @@ std::string pilot_stretch_note(const PilotStretch& s, const scene::RunScene& run
 // cut-off the pilot chooses; a run of an FE level would pay several times its
 // own cost, mostly for the run at dt/2 and h/2), true, false; InputError on
 // another value.
-enum class PilotChoice { automatic, on, off };
+using PilotChoice = AutoChoice;
 PilotChoice accuracy_pilot_choice();
 // Whether 'run' gets a pilot under 'choice'.
 bool wants_accuracy_pilot(PilotChoice choice, const scene::RunScene& run);

@@ -24,7 +24,8 @@ struct InputFile {
 
 // The scene (composed), its design, every pantograph's model and the
 // criteria set file it names, if any (every rank).
-std::vector<InputFile> run_input_files(const std::string& scene_path, const scene::InputNode& scene);
+std::vector<InputFile> run_input_files(const std::string& scene_path,
+                                       const scene::InputNode& scene);
 
 // Every input file of a scene as the command reads it, with its content: the
 // scene (composed), and every file it names under a key 'design', 'model',
@@ -37,7 +38,8 @@ struct RecordedInput {
   std::string role, path, sha256;
   std::string content;  // the composed YAML the command read
 };
-std::vector<RecordedInput> recorded_inputs(const std::string& scene_path, const scene::InputNode& scene);
+std::vector<RecordedInput> recorded_inputs(const std::string& scene_path,
+                                           const scene::InputNode& scene);
 
 // One SHA-256 (hex) over the command and the contents of its inputs: two
 // results with the same fingerprint were made from the same inputs.

@@ -11,6 +11,7 @@
 
 #include "pcsim/assembly/coupled_system.hpp"
 #include "pcsim/output/run_stream.hpp"
+#include "pcsim/simulation/auto_option.hpp"
 #include "pcsim/simulation/context.hpp"
 #include "pcsim/simulation/interrupt.hpp"
 #include "pcsim/simulation/moving_window.hpp"
@@ -25,7 +26,7 @@ class RunObserver;  // run.hpp
 // -pcsim_record_batches auto|true|false: a reduced catenary's records (support
 // heights, dropper forces) in batches of states (auto: where that pays,
 // ModalCatenary::records_batch_pays). Checked (InputError) on every call.
-enum class RecordBatches { automatic, on, off };
+using RecordBatches = AutoChoice;
 RecordBatches record_batches_choice();
 
 class RunSession {

@@ -26,7 +26,7 @@ struct StudyVariant {
 struct SceneSource {
   std::string path;                    // the scene file
   std::vector<std::string> overrides;  // KEY=VALUE, in order (--set)
-  scene::InputNode scene;                     // composed from both
+  scene::InputNode scene;              // composed from both
   nlohmann::json provenance;           // of the study (output/provenance.hpp)
 };
 

@@ -1,0 +1,14 @@
+// A pcsim command-line option that is auto, true or false
+// (-pcsim_accuracy_pilot, -pcsim_record_batches): read in an options block,
+// so that -help lists it under 'title' (PETSc lists a title once: one each).
+#pragma once
+
+namespace pcsim::simulation {
+
+enum class AutoChoice { automatic, on, off };
+
+// The option's value (automatic when not given; a bare name is true);
+// InputError naming the option for another value.
+AutoChoice read_auto_option(const char* title, const char* name, const char* help);
+
+}  // namespace pcsim::simulation

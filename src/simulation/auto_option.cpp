@@ -1,0 +1,30 @@
+#include "pcsim/simulation/auto_option.hpp"
+
+#include <petscsys.h>
+
+#include <string>
+
+#include "pcsim/core/error.hpp"
+
+namespace pcsim::simulation {
+
+AutoChoice read_auto_option(const char* title, const char* name, const char* help) {
+  char value[64] = "";
+  PetscBool given = PETSC_FALSE;
+  // PETSc's macros return an error code: a function of their own.
+  auto read = [&]() -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, title, "");
+    PetscCall(PetscOptionsString(name, help, "", "auto", value, sizeof value, &given));
+    PetscOptionsEnd();
+    PetscFunctionReturn(0);
+  };
+  PCSIM_PETSC(read());
+  const std::string v = value;
+  if (!given || v == "auto") return AutoChoice::automatic;
+  if (v.empty() || v == "true" || v == "1" || v == "yes") return AutoChoice::on;
+  if (v == "false" || v == "0" || v == "no") return AutoChoice::off;
+  throw InputError("command line", name, "'" + v + "' is not auto, true or false");
+}
+
+}  // namespace pcsim::simulation
