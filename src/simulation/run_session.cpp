@@ -231,10 +231,11 @@ bool RunSession::record(TS ts, PetscInt step, PetscReal t, Vec U) {
   }
   if (batch_records_) {
     // The snapshot reads the contact only, complete already.
-    const contact::StepRecord contact = snapshot ? rec : contact::StepRecord();
+    contact::StepRecord snapshot_record;
+    if (snapshot) snapshot_record = rec;
     pending_.emplace_back(std::move(rec), energy);
     if (pending_.size() >= kRecordBatch || snapshot) complete_pending_records();  // collective
-    if (snapshot) rec = contact;
+    if (snapshot) rec = std::move(snapshot_record);
   } else {
     deliver(rec, energy);
   }

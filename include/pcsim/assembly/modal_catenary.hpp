@@ -20,16 +20,16 @@
 //   dl_a - err_a > min(|b| |eta - eta_a|, |Omega^-1 b| |Omega (eta - eta_a)|)
 // (Cauchy-Schwarz with either weighting) is certainly taut; records made one
 // at a time (dropper_forces()) anchor each recorded state and give a tighter
-// bound from the line through the last two (modal_slack_set.cpp). Where
-// that does not pay, a run's records come in batches instead
-// (keep_record_state, kept_record_quantities: modal_records.cpp). If that leaves more than
-// a few candidates (measured: the Cauchy-Schwarz bounds are ~1e3 times the
+// bound from the line through the last two (modal_slack_set.cpp). If that
+// leaves more than a few candidates (measured: the Cauchy-Schwarz bounds are ~1e3 times the
 // true change of a step, the modes being global), every dl is updated by one
 // single-precision product B (eta - eta_E) from the last exact anchor with
 // its rounding bound (n + 2) u |b| |eta - eta_E| (u = 2^-24) and eta becomes
 // the anchor; the droppers still not certainly taut are evaluated exactly.
 // No accuracy is lost: the correction of a taut dropper is exactly 0. With
 // dropper_check = all every dropper is evaluated exactly at every state.
+// Where records one at a time do not pay, a run's records come in batches
+// instead (keep_record_state, kept_record_quantities: modal_records.cpp).
 #pragma once
 
 #include <Eigen/Core>
