@@ -48,6 +48,8 @@ def passes(e):
     return all(abs(e[k]) <= t for k, t in TARGETS.items())
 
 
+# errors()'s figures, in the tables' order.
+FIGURES = ("mean", "sigma", "Fm+3s", "max", "Fm-3s", "min", "uplift", "loss")
 # The pilot's figures (simulation/accuracy_pilot.hpp) against errors()'s.
 PILOT_KEYS = {"mean_percent": "mean", "sigma_percent": "sigma", "mean_plus_3sigma_percent": "Fm+3s",
               "actual_max_percent": "max", "uplift_percent": "uplift",
@@ -101,9 +103,6 @@ def row(scene, fe_run, modal_run):
     return cells
 
 
-FIGURES = ("mean", "sigma", "Fm+3s", "max", "Fm-3s", "min", "uplift", "loss")
-
-
 def estimate_rows(scene, fe_run, modal_run):
     """Every figure's actual error and, in brackets, the pilot's reduction estimate."""
     pilot = {p["pantograph"]: p for p in
@@ -129,9 +128,9 @@ def main():
           "targets met | set-up s | ms/step | RTF | step median / p99.99 / max* ms | memory MB | "
           "linear FE ms/step |")
     print("|" + "---|" * 20)
-    for scene in scenes:
-        fe_run = load(os.path.join(work, scene, "linear"))
-        modal_run = load(os.path.join(work, scene, "modal"))
+    runs = {scene: (load(os.path.join(work, scene, "linear")),
+                    load(os.path.join(work, scene, "modal"))) for scene in scenes}
+    for scene, (fe_run, modal_run) in runs.items():
         if not fe_run or not modal_run:
             print(f"| {scene} | (a run failed: see {work}/{scene}/*.log) |")
             continue
@@ -143,9 +142,7 @@ def main():
     print("| scene | pantograph | mean % | σ % | Fm+3σ % | max % | Fm−3σ %Fm | min %Fm | "
           "uplift % | loss pp |")
     print("|" + "---|" * 10)
-    for scene in scenes:
-        fe_run = load(os.path.join(work, scene, "linear"))
-        modal_run = load(os.path.join(work, scene, "modal"))
+    for scene, (fe_run, modal_run) in runs.items():
         if fe_run and modal_run:
             for line in estimate_rows(scene, fe_run, modal_run):
                 print(line)
