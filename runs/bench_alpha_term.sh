@@ -6,8 +6,9 @@
 # ms/step of each, their ratio and the largest difference of the contact force
 # between the two (round-off: <= 1e-9 of its maximum; runs/bench/step_pair.sh).
 #   runs/bench_alpha_term.sh [extra pcsim options]
-# Environment: SPANS="10 40 100" RANKS="1 2" STEPS=600 REPEAT=3. Run it on an
-# otherwise idle machine: it measures wall time.
+# Environment: SPANS="10 40 100" RANKS="1 2" STEPS=600 REPEAT=3, SCENE (another
+# run scene, e.g. runs/interaction/dsa380-300-base.yaml: a configuration-
+# dependent mass). Run it on an otherwise idle machine: it measures wall time.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh >/dev/null

@@ -278,15 +278,21 @@ bool CoupledSystem::residual_update(double t, Vec U, Vec V, Vec A, Vec Y, Vec F)
   return true;
 }
 
-bool CoupledSystem::constant_inertia() const {
+bool CoupledSystem::affine_in_acceleration() const {
   return std::none_of(terms_.begin(), terms_.end(), [](const auto& term) {
-    return term->acceleration_use() == AccelerationUse::varying;
+    return term->acceleration_use() == AccelerationUse::nonaffine;
   });
 }
 
-// The linear parts' ca A products and the terms' constant inertia, in the
+// The linear parts' ca A products and the terms' inertia at (t, U, V), in the
 // residual's order (vector operations first, VecSetValues last, one assembly).
-void CoupledSystem::inertia_product(Vec A, Vec MA) {
+// A configuration-dependent mass reads the state: loaded here (at the step's
+// last residual's state, as the integrator calls it, the load is skipped).
+void CoupledSystem::inertia_product(double t, Vec U, Vec V, Vec A, Vec MA) {
+  const bool varying = std::any_of(terms_.begin(), terms_.end(), [](const auto& term) {
+    return term->acceleration_use() == AccelerationUse::varying;
+  });
+  if (varying) load(t, U, V, A);
   bool first = true;
   for (const auto& part : parts_) {
     if (part.ca == 0) continue;
@@ -305,8 +311,9 @@ void CoupledSystem::inertia_product(Vec A, Vec MA) {
   for (bool by_set_values : {false, true})
     for (const auto& term : terms_)
       if (term->adds_by_set_values() == by_set_values &&
-          term->acceleration_use() == AccelerationUse::constant)
-        term->add_inertia(A, MA);
+          (term->acceleration_use() == AccelerationUse::constant ||
+           term->acceleration_use() == AccelerationUse::varying))
+        term->add_inertia(state_, A, MA);
   // Terms add inertia on owned entries only (term.hpp): an assembly without
   // communication (no reduction to find who sends what).
   PCSIM_PETSC(VecSetOption(MA, VEC_IGNORE_OFF_PROC_ENTRIES, PETSC_TRUE));

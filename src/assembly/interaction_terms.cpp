@@ -38,18 +38,18 @@ void PantographTerm::add_residual(const CoupledState& state, Vec F) {
   PCSIM_PETSC(VecSetValues(F, model.dof_count(), idx.data(), R.data(), ADD_VALUES));
 }
 
-// dF/dA A = M q'' on the pantograph's own unknowns (owned by one rank).
-void PantographTerm::add_inertia(Vec A, Vec F) const {
+// dF/dA A = M q'' on the pantograph's own unknowns (owned by one rank); a
+// nonlinear model's M(q) at the state (thesis 3.27-3.30: the DSA-380's
+// residual is affine in q'', M its tangent in q'').
+void PantographTerm::add_inertia(const CoupledState& state, Vec A, Vec F) const {
   PetscInt begin = 0, end = 0;
   PCSIM_PETSC(VecGetOwnershipRange(A, &begin, &end));
   if (slot_.first_dof < begin || slot_.first_dof >= end) return;
   const auto& model = *slot_.model;
   const int n = model.dof_count();
-  if (mass_.rows() != n) {  // constant: a linear model's tangents at any state
-    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
-    Eigen::MatrixXd Kq(n, n), Cq(n, n);
+  if (!model.is_linear() || mass_.rows() != n) {  // a linear model's is constant
     mass_.resize(n, n);
-    model.tangents(0.0, zero, zero, zero, Kq, Cq, mass_);
+    model.mass(state.t, state.q(index_), state.qd(index_), mass_);
   }
   const auto idx = dof_range(slot_);
   Eigen::VectorXd qdd(n);

@@ -101,7 +101,7 @@ void ModalOscillators::add_residual(const CoupledState& state, Vec F) {
   PCSIM_PETSC(VecRestoreArray(F, &f));
 }
 
-void ModalOscillators::add_inertia(Vec A, Vec F) const {
+void ModalOscillators::add_inertia(const CoupledState&, Vec A, Vec F) const {
   if (!catenary_.on_owner()) return;
   const PetscInt m = catenary_.catenary_dofs();
   const PetscScalar* a;

@@ -92,7 +92,7 @@ void FlexibleDsa380Pantograph::add_head(double ab, const Eigen::VectorXd& q,
     (*R)[3] +=
         m7 * LG7 * (c * qdd[2] - s * qdd[1]) + (I7 + m7 * LG7 * LG7) * qdd[3] + m7 * g * LG7 * c;
   }
-  if (K) {
+  if (M) {
     (*M)(1, 1) += m7;
     (*M)(1, 3) += -m7 * LG7 * s;
     (*M)(2, 2) += m7;
@@ -100,12 +100,15 @@ void FlexibleDsa380Pantograph::add_head(double ab, const Eigen::VectorXd& q,
     (*M)(3, 1) += -m7 * LG7 * s;
     (*M)(3, 2) += m7 * LG7 * c;
     (*M)(3, 3) += I7 + m7 * LG7 * LG7;
+  }
+  if (K) {
     (*K)(1, 3) += -m7 * LG7 * (c * qdd[3] - s * th7d * th7d);
     (*K)(2, 3) += m7 * LG7 * (-s * qdd[3] - c * th7d * th7d);
     (*K)(3, 3) += m7 * LG7 * (-s * qdd[2] - c * qdd[1]) - m7 * g * LG7 * s;
     (*C)(1, 3) += -2 * m7 * LG7 * c * th7d;
     (*C)(2, 3) += -2 * m7 * LG7 * s * th7d;
   }
+  if (!R && !K) return;
   // Springs from point 5 to the head ends 11, 12 (A.11): l = |P5 − P10 ± (L7/2) e(θ7)|,
   // force f(l) ∇l, tangent f' ∇l∇lᵀ + f ∇²l (3.34); variables {x5, y5, x10, y10, θ7}.
   const int v[5] = {mesh_.x5, mesh_.y5, 1, 2, 3};
@@ -177,8 +180,8 @@ void FlexibleDsa380Pantograph::apply_restraints(const Eigen::VectorXd& qdd, Eige
   if (K) {
     K->row(row).setZero();
     C->row(row).setZero();
-    M->row(row).setZero();
   }
+  if (M) M->row(row).setZero();
   if (row == 3) {  // θ̈7 = 0 (A.37)
     const double J = p_.rigid.I[6] + m7 * LG7 * LG7;
     if (R) (*R)[3] = J * qdd[3];
@@ -201,13 +204,18 @@ void FlexibleDsa380Pantograph::assemble(double ab, const Eigen::VectorXd& q,
   if (K) {
     K->setZero(dof_count(), dof_count());
     C->setZero(dof_count(), dof_count());
-    *M = bar_mass_;
   }
-  add_beams(q, R, K);
+  if (M) *M = bar_mass_;
+  if (R || K) add_beams(q, R, K);
   add_head(ab, q, qd, qdd, R, K, C, M);
-  add_drive(q, qd, R, K, C);
+  if (R || K) add_drive(q, qd, R, K, C);
   if (R) bellows_.add_residual(p_.rigid, 0, bellows_dof(), q, qd, qdd, *R);
-  if (K) bellows_.add_tangents(p_.rigid, 0, bellows_dof(), q, *K, *C, *M);
+  if (K) {
+    bellows_.add_tangents(p_.rigid, 0, bellows_dof(), q, *K, *C, *M);
+  } else if (M) {  // its M entries alone
+    Eigen::MatrixXd K0 = Eigen::MatrixXd::Zero(dof_count(), dof_count()), C0 = K0;
+    bellows_.add_tangents(p_.rigid, 0, bellows_dof(), q, K0, C0, *M);
+  }
   apply_restraints(qdd, R, K, C, M);
 }
 
@@ -229,6 +237,14 @@ void FlexibleDsa380Pantograph::tangents(double t, const Eigen::VectorXd& q,
   dR_dq = K;
   dR_dqd = C;
   dR_dqdd = M;
+}
+
+void FlexibleDsa380Pantograph::mass(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                                    Eigen::Ref<Eigen::MatrixXd> M) const {
+  Eigen::MatrixXd m;
+  assemble(frame_.acceleration(t), q, qd, Eigen::VectorXd::Zero(dof_count()), nullptr, nullptr,
+           nullptr, &m);
+  M = m;
 }
 
 double FlexibleDsa380Pantograph::kinetic_energy(const Eigen::VectorXd& q,

@@ -103,8 +103,9 @@ DynamicSolver::DynamicSolver(assembly::CoupledSystem& system, double dt, double 
     use_step_lu(ksp);
   }
   hht_set_alpha(ts_, hht_alpha);  // before the options: -ts_hht_alpha wins
-  // F affine in A with a constant M: each step's alpha-term from the last residual.
-  if (system.constant_inertia()) hht_set_inertia_product(ts_, inertia_product, this);
+  // F affine in A (M constant or the pantographs' configuration-dependent mass):
+  // each step's alpha-term from the last residual.
+  if (system.affine_in_acceleration()) hht_set_inertia_product(ts_, inertia_product, this);
   // The cheap path's exact solves give the residual after an update without the
   // linear parts' products (two of the three largest products of a step).
   if (cheap && system.enable_residual_update()) hht_set_residual_update(ts_, residual_update, this);
@@ -144,9 +145,10 @@ PetscErrorCode DynamicSolver::residual(TS, PetscReal t, Vec U, Vec V, Vec A, Vec
   PCSIM_CALLBACK_END
 }
 
-PetscErrorCode DynamicSolver::inertia_product(TS, Vec A, Vec MA, void* ctx) {
+PetscErrorCode DynamicSolver::inertia_product(TS, PetscReal t, Vec U, Vec V, Vec A, Vec MA,
+                                              void* ctx) {
   PCSIM_CALLBACK_BEGIN
-  static_cast<DynamicSolver*>(ctx)->system_.inertia_product(A, MA);
+  static_cast<DynamicSolver*>(ctx)->system_.inertia_product(t, U, V, A, MA);
   PCSIM_CALLBACK_END
 }
 

@@ -2,8 +2,9 @@
 // (-ts_hht_reuse_alpha_term, include/pcsim/solvers/hht.hpp). A step's residual at the
 // converged U_{n+1} is
 //   R = F(t_{n+1}, U_{n+1}, V_{n+1}, A_{n+1}/(1-α)) + α/(1-α) F0,
-// so with F affine in A and dF/dA = M constant the next step's alpha-term is
-//   F(t_{n+1}, U_{n+1}, V_{n+1}, 0) = R - α/(1-α) F0 - M A_{n+1}/(1-α):
+// so with F affine in A and dF/dA = M(t, U, V) (constant, or a configuration-
+// dependent mass: the DSA-380's, thesis 3.27-3.30) the next step's alpha-term is
+//   F(t_{n+1}, U_{n+1}, V_{n+1}, 0) = R - α/(1-α) F0 - M(U_{n+1}) A_{n+1}/(1-α):
 // one product with M instead of a residual (equal up to round-off).
 #include "hht_data.hpp"
 
@@ -64,7 +65,7 @@ PetscErrorCode prepare_next_alpha_term(TS ts) {
   if (th->t1 != ts->ptime || th->last_X != th->U1 || !th->last_F) PetscFunctionReturn(0);
   if (state_of(th->U1) != th->last_X_state || state_of(th->last_F) != th->last_F_state)
     PetscFunctionReturn(0);
-  PetscCall(th->inertia(ts, th->A1_arg, th->F0_next, th->inertia_ctx));
+  PetscCall(th->inertia(ts, th->t1, th->U1, th->V1, th->A1_arg, th->F0_next, th->inertia_ctx));
   PetscCall(VecAYPX(th->F0_next, -1.0, th->last_F));  // R - M A_arg
   PetscCall(VecAXPY(th->F0_next, -th->alpha / (1 - th->alpha), th->F0));
   PetscCall(stamp_next_alpha_term(ts));

@@ -208,6 +208,11 @@ TEST(FlexibleDsa380, TangentsMatchFiniteDifferences) {
       EXPECT_LT(eK, 1e-7) << c.name;
       EXPECT_LT(eC, 2e-6) << c.name;
       EXPECT_LT(eM, 1e-9) << c.name;
+      // mass() alone (the HHT alpha-term's inertia product): the tangents' M, the same
+      // arithmetic.
+      Eigen::MatrixXd Mm(n, n);
+      m.mass(0, s.q, s.qd, Mm);
+      EXPECT_EQ((Mm - M).cwiseAbs().maxCoeff(), 0.0) << c.name;
     }
 }
 

@@ -59,6 +59,17 @@ void check_tangents(const PantographModel& m, const Eigen::VectorXd& q, const Ei
   if (Cq.cwiseAbs().maxCoeff() > 0 || Cfd.cwiseAbs().maxCoeff() > 0)
     EXPECT_LE(max_rel(Cq, Cfd), tol) << "dR/dqd\n" << Cq << "\nFD\n" << Cfd;
   EXPECT_LE(max_rel(Mq, Mfd), tol) << "dR/dqdd\n" << Mq << "\nFD\n" << Mfd;
+  // mass() is the tangents' dR/dq̈ (the same arithmetic: equal), and R is affine in q̈:
+  // R(q̈) - R(0) = M q̈ to rounding (1e-12 of |R(q̈)| + |R(0)|; a term quadratic in q̈
+  // would leave its own size).
+  Eigen::MatrixXd Mm(n, n);
+  m.mass(0.3, q, qd, Mm);
+  EXPECT_EQ(max_rel(Mq, Mm), 0.0) << "mass()\n" << Mm << "\ntangents\n" << Mq;
+  Eigen::VectorXd R0(n), R1(n);
+  m.residual(0.3, q, qd, Eigen::VectorXd::Zero(n), R0);
+  m.residual(0.3, q, qd, qdd, R1);
+  const double scale = R0.cwiseAbs().maxCoeff() + R1.cwiseAbs().maxCoeff();
+  EXPECT_LE((R1 - R0 - Mq * qdd).cwiseAbs().maxCoeff(), 1e-12 * scale) << "R not affine in qdd";
 }
 
 struct State {

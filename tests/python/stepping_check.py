@@ -95,8 +95,8 @@ if MPI.COMM_WORLD.Get_rank() == 0:
 # 5. the DSA-380 (moving frame) step-wise: without the acceleration an
 #    InputError; with z_b, v_b, a_b of 5 mm at 5 Hz set before each step at the
 #    step's end time, the contact force of the scene with that harmonic
-#    base_motion (three-span-dsa380-base.yaml), bit for bit on one rank (two:
-#    6.1e-9 N). The values set hold after the current time: the step's
+#    base_motion (three-span-dsa380-base.yaml), to round-off. The values set
+#    hold after the current time: the step's
 #    alpha-term at its start reads the ones before, as the scene's motion is
 #    read.
 flat = {"effects.catenary_nonlinear": False}
@@ -128,10 +128,12 @@ if MPI.COMM_WORLD.Get_rank() == 0:
     gap = np.max(np.abs(np.array(stepped) - expected))
     print(f"ok   DSA-380 base moved step-wise: contact force within {gap:.3g} N of the scene's "
           f"harmonic base_motion ({len(stepped)} values)")
-    # one rank: bitwise; two: measured 6.1e-9 N (1e-7 allowed: 1e-9 of the
+    # Round-off: the two runs take different steps' alpha-terms from the last
+    # residual (the DSA-380's inertia at the state) and evaluate the others;
+    # measured 9.7e-9 N on one rank, 1.5e-8 N on two (1e-7 allowed: 1e-9 of the
     # ~120 N force), while a base motion read at the wrong time or not at all
     # moves the force by over 1 N (test_run_base_motion_dsa380.sh)
-    assert gap <= (0.0 if ranks == 1 else 1e-7), gap
+    assert gap <= 1e-7, gap
 
 # 6. A head force changed between steps reaches the next step's HHT alpha-term:
 #    Simulation.set_head_force makes the next step evaluate it instead of taking

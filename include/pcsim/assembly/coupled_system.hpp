@@ -66,10 +66,11 @@ class CoupledSystem {
   // not at hand.
   bool enable_residual_update();
   bool residual_update(double t, Vec U, Vec V, Vec A, Vec Y, Vec F);
-  // True when dF/dA is a constant matrix M (no term's add_residual() reads A
-  // otherwise); then inertia_product() gives MA = M A.
-  bool constant_inertia() const;
-  void inertia_product(Vec A, Vec MA);
+  // True when F is affine in A (every term's AccelerationUse is); then
+  // inertia_product() gives MA = M A, M = dF/dA at the state (t, U, V): a
+  // constant matrix, with the pantographs' configuration-dependent masses.
+  bool affine_in_acceleration() const;
+  void inertia_product(double t, Vec U, Vec V, Vec A, Vec MA);
   // The exact tangent, assembled into J.
   void jacobian(double t, Vec U, Vec V, Vec A, Shifts shifts, Mat J);
   // Cheap path: J0 (every term's reference tangent), assembled; then the

@@ -22,11 +22,12 @@ class PantographTerm : public Term {
   }
   bool adds_by_set_values() const override { return true; }
   void add_residual(const CoupledState& state, Vec F) override;
-  // The model's M q'' (a linear model's M is constant).
+  // The model's M q'' (a linear model's M is constant; the DSA-380's depends
+  // on q, its residual stays affine in q'').
   AccelerationUse acceleration_use() const override {
     return slot_.model->is_linear() ? AccelerationUse::constant : AccelerationUse::varying;
   }
-  void add_inertia(Vec A, Vec F) const override;
+  void add_inertia(const CoupledState& state, Vec A, Vec F) const override;
   void add_tangent(const CoupledState& state, Shifts shifts, Mat J) override;
   void insert_pattern(Mat J) const override;
   void add_reference_tangent(const CoupledState& state, Shifts shifts, Mat J) override;

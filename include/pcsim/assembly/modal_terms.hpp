@@ -34,7 +34,7 @@ class ModalOscillators : public Term {
   TangentKind tangent_kind() const override { return TangentKind::constant; }
   void add_residual(const CoupledState& state, Vec F) override;
   AccelerationUse acceleration_use() const override { return AccelerationUse::constant; }
-  void add_inertia(Vec A, Vec F) const override;  // the unit modal mass: F += A
+  void add_inertia(const CoupledState& state, Vec A, Vec F) const override;  // unit mass: F += A
   void add_tangent(const CoupledState& state, Shifts shifts, Mat J) override;
   double energy(const CoupledState& state) const override;
   TermPower power(const CoupledState& state) const override;

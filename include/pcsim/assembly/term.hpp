@@ -88,10 +88,11 @@ struct TermPower {
 };
 
 // How a term's add_residual() (not its linear parts) depends on the acceleration A:
-// not at all, through a constant matrix (add_inertia gives the product), or otherwise
-// (a configuration-dependent mass). With no 'varying' term the system's dF/dA is
-// constant and the integrator may take its HHT alpha-term from the last residual.
-enum class AccelerationUse { none, constant, varying };
+// not at all, through a constant matrix, through a configuration-dependent mass
+// M(t, U, V) (F affine in A: 'varying'; add_inertia gives the product M A for both),
+// or otherwise. With no 'nonaffine' term the system's F is affine in A and the
+// integrator may take its HHT alpha-term from the last residual.
+enum class AccelerationUse { none, constant, varying, nonaffine };
 
 // v^T C v over the ranks (a constant damping matrix C dissipates -v^T C v).
 double quadratic_form(Mat C, Vec v);
@@ -113,10 +114,11 @@ class Term {
   virtual void add_tangent(const CoupledState& state, Shifts shifts, Mat J) {}
   // Every term whose add_residual() reads A says so (default: it does not).
   virtual AccelerationUse acceleration_use() const { return AccelerationUse::none; }
-  // 'constant': F += dF/dA A for add_residual()'s part (by VecSetValues if
-  // adds_by_set_values(), as add_residual does), on entries this rank owns
-  // only: the system assembles it without communication.
-  virtual void add_inertia(Vec A, Vec F) const {}
+  // 'constant' and 'varying': F += dF/dA A for add_residual()'s part, dF/dA at
+  // the state (by VecSetValues if adds_by_set_values(), as add_residual does),
+  // on entries this rank owns only: the system assembles it without
+  // communication.
+  virtual void add_inertia(const CoupledState& state, Vec A, Vec F) const {}
   // Entries the term may ever touch (zeros), so that the Jacobian's pattern
   // never changes during a run.
   virtual void insert_pattern(Mat J) const {}

@@ -103,6 +103,9 @@ class FlexibleDsa380Pantograph : public PantographModel {
                 const Eigen::VectorXd& qdd, Eigen::Ref<Eigen::MatrixXd> dR_dq,
                 Eigen::Ref<Eigen::MatrixXd> dR_dqd,
                 Eigen::Ref<Eigen::MatrixXd> dR_dqdd) const override;
+  // M alone (no beam stiffness): the constant bars' mass, the head's and the bellows'.
+  void mass(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+            Eigen::Ref<Eigen::MatrixXd> M) const override;
   bool is_linear() const override { return false; }
   // Newton on R(q, 0, 0) + F0 e_y10 = 0 with y10 = h0 − L7p, solving for q and the bellows
   // torque M0 together (prestressed bars), from the rigid model's equilibrium (2.12–2.14).

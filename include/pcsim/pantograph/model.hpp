@@ -81,6 +81,10 @@ class PantographModel {
                         const Eigen::VectorXd& qdd, Eigen::Ref<Eigen::MatrixXd> dR_dq,
                         Eigen::Ref<Eigen::MatrixXd> dR_dqd,
                         Eigen::Ref<Eigen::MatrixXd> dR_dqdd) const = 0;
+  // dR/dq̈ at (t, q, q̇): every model's R is affine in q̈, R(q̈) = R(0) + M q̈ (the HHT
+  // α-term's inertia product, solvers/hht.hpp). Default: the tangents' (at q̈ = 0).
+  virtual void mass(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                    Eigen::Ref<Eigen::MatrixXd> M) const;
   // True if R is linear in (q, q̇, q̈) with constant tangents.
   virtual bool is_linear() const = 0;
 

@@ -88,7 +88,7 @@ class DynamicSolver {
 
  private:
   static PetscErrorCode residual(TS, PetscReal t, Vec U, Vec V, Vec A, Vec F, void* ctx);
-  static PetscErrorCode inertia_product(TS, Vec A, Vec MA, void* ctx);
+  static PetscErrorCode inertia_product(TS, PetscReal t, Vec U, Vec V, Vec A, Vec MA, void* ctx);
   // The residual after an exact Newton update on the cheap path
   // (CoupledSystem::residual_update, hht_set_residual_update).
   static PetscErrorCode residual_update(TS, PetscReal t, Vec X, Vec V, Vec A, Vec Y, Vec F,

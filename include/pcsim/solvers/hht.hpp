@@ -39,7 +39,7 @@
 //                                 for the SNES.
 //   -ts_hht_reuse_alpha_term <1>  with hht_set_inertia_product(): the next step's α-term
 //                                 F(t_n, U_n, V_n, 0) is the step's last residual (at the
-//                                 converged U_n) minus its α-term and its inertia M A_n/(1-α):
+//                                 converged U_n) minus its α-term and its inertia M(U_n) A_n/(1-α):
 //                                 one inertia product instead of a residual per step. Equal to
 //                                 evaluating it up to round-off; 0 evaluates it.
 //   -ts_hht_residual_update <1>   with hht_set_residual_update(): the own Newton takes the
@@ -78,12 +78,15 @@ void hht_get_params(TS ts, PetscReal* alpha, PetscReal* gamma, PetscReal* beta);
 // Sets the energy-norm tolerance (<= 0 disables the test); takes effect at TSSetUp.
 void hht_set_energy_norm_tol(TS ts, PetscReal tol);
 
-// The problem's inertia, when F is affine in A with a constant dF/dA = M: MA = M A.
-// With it the type takes each step's α-term from the previous step's last residual
+// The problem's inertia, when F is affine in A: MA = M A with M = dF/dA at the state
+// (t, U, V) (constant, or a configuration-dependent mass; the type calls it at the state
+// of the step's last residual). With it the type takes each step's α-term from the
+// previous step's last residual
 // (-ts_hht_reuse_alpha_term) while nothing but the steps changed the solution, its
 // rate and the time; call hht_invalidate_alpha_term() when F itself changed between
 // steps (e.g. a held load set from outside).
-using HHTInertiaProduct = PetscErrorCode (*)(TS ts, Vec A, Vec MA, void* ctx);
+using HHTInertiaProduct = PetscErrorCode (*)(TS ts, PetscReal t, Vec U, Vec V, Vec A, Vec MA,
+                                             void* ctx);
 void hht_set_inertia_product(TS ts, HHTInertiaProduct product, void* ctx);
 void hht_invalidate_alpha_term(TS ts);
 // Checkpoint/restart: the α-term the next step will use, if the type holds one for the
