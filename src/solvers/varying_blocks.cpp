@@ -92,9 +92,14 @@ void VaryingBlocks::check_decoupled(Mat P) const {
   if (coupled) throw SolverError("J0 couples a varying block's column with other unknowns");
 }
 
+// Singular (or not finite) when a pivot of U is zero (or not finite): with
+// partial pivoting a zero pivot means a column without a nonzero left. The
+// pivots alone, not Eigen's rcond() estimate (a fifth of a flexible DSA-380
+// step's refactoring: its own triangular solves).
 void VaryingBlocks::refactor(Block& b) const {
   b.lu.compute(b.reference + b.delta);
-  if (!(b.lu.rcond() > 0))
+  const auto pivots = b.lu.matrixLU().diagonal().array();
+  if (!(pivots.isFinite().all() && (pivots != 0.0).all()))
     throw SolverError("the step matrix has a singular varying block at row " +
                       std::to_string(b.first));
 }
