@@ -278,12 +278,6 @@ bool CoupledSystem::residual_update(double t, Vec U, Vec V, Vec A, Vec Y, Vec F)
   return true;
 }
 
-bool CoupledSystem::affine_in_acceleration() const {
-  return std::none_of(terms_.begin(), terms_.end(), [](const auto& term) {
-    return term->acceleration_use() == AccelerationUse::nonaffine;
-  });
-}
-
 // The linear parts' ca A products and the terms' inertia at (t, U, V), in the
 // residual's order (vector operations first, VecSetValues last, one assembly).
 // A configuration-dependent mass reads the state: loaded here (at the step's
@@ -311,8 +305,7 @@ void CoupledSystem::inertia_product(double t, Vec U, Vec V, Vec A, Vec MA) {
   for (bool by_set_values : {false, true})
     for (const auto& term : terms_)
       if (term->adds_by_set_values() == by_set_values &&
-          (term->acceleration_use() == AccelerationUse::constant ||
-           term->acceleration_use() == AccelerationUse::varying))
+          term->acceleration_use() != AccelerationUse::none)
         term->add_inertia(state_, A, MA);
   // Terms add inertia on owned entries only (term.hpp): an assembly without
   // communication (no reduction to find who sends what).

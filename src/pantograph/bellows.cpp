@@ -116,7 +116,11 @@ void Bellows::add_tangents(const Dsa380Parameters& p, int theta, int m, const Ei
   K(m, m) = 1;
   K(m, theta) = -d;
   C(m, m) = t1 + t2;
-  M(m, m) = t1 * t2;
+  add_mass(m, M);
+}
+
+void Bellows::add_mass(int m, Eigen::Ref<Eigen::MatrixXd> M) const {
+  if (on_ && m >= 0) M(m, m) = b_.time_constant * b_.valve_time_constant;
 }
 
 double Bellows::kinetic_energy(int m, const Eigen::VectorXd& qd) const {

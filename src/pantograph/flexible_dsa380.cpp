@@ -210,12 +210,10 @@ void FlexibleDsa380Pantograph::assemble(double ab, const Eigen::VectorXd& q,
   add_head(ab, q, qd, qdd, R, K, C, M);
   if (R || K) add_drive(q, qd, R, K, C);
   if (R) bellows_.add_residual(p_.rigid, 0, bellows_dof(), q, qd, qdd, *R);
-  if (K) {
+  if (K)
     bellows_.add_tangents(p_.rigid, 0, bellows_dof(), q, *K, *C, *M);
-  } else if (M) {  // its M entries alone
-    Eigen::MatrixXd K0 = Eigen::MatrixXd::Zero(dof_count(), dof_count()), C0 = K0;
-    bellows_.add_tangents(p_.rigid, 0, bellows_dof(), q, K0, C0, *M);
-  }
+  else if (M)
+    bellows_.add_mass(bellows_dof(), *M);
   apply_restraints(qdd, R, K, C, M);
 }
 

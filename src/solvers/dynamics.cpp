@@ -103,9 +103,9 @@ DynamicSolver::DynamicSolver(assembly::CoupledSystem& system, double dt, double 
     use_step_lu(ksp);
   }
   hht_set_alpha(ts_, hht_alpha);  // before the options: -ts_hht_alpha wins
-  // F affine in A (M constant or the pantographs' configuration-dependent mass):
-  // each step's alpha-term from the last residual.
-  if (system.affine_in_acceleration()) hht_set_inertia_product(ts_, inertia_product, this);
+  // F affine in A (M constant or the pantographs' configuration-dependent mass,
+  // assembly/term.hpp): each step's alpha-term from the last residual.
+  hht_set_inertia_product(ts_, inertia_product, this);
   // The cheap path's exact solves give the residual after an update without the
   // linear parts' products (two of the three largest products of a step).
   if (cheap && system.enable_residual_update()) hht_set_residual_update(ts_, residual_update, this);

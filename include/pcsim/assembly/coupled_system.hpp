@@ -66,10 +66,8 @@ class CoupledSystem {
   // not at hand.
   bool enable_residual_update();
   bool residual_update(double t, Vec U, Vec V, Vec A, Vec Y, Vec F);
-  // True when F is affine in A (every term's AccelerationUse is); then
-  // inertia_product() gives MA = M A, M = dF/dA at the state (t, U, V): a
-  // constant matrix, with the pantographs' configuration-dependent masses.
-  bool affine_in_acceleration() const;
+  // F is affine in A (term.hpp): MA = M A, M = dF/dA at the state (t, U, V),
+  // a constant matrix with the pantographs' configuration-dependent masses.
   void inertia_product(double t, Vec U, Vec V, Vec A, Vec MA);
   // The exact tangent, assembled into J.
   void jacobian(double t, Vec U, Vec V, Vec A, Shifts shifts, Mat J);

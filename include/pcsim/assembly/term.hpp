@@ -88,11 +88,11 @@ struct TermPower {
 };
 
 // How a term's add_residual() (not its linear parts) depends on the acceleration A:
-// not at all, through a constant matrix, through a configuration-dependent mass
-// M(t, U, V) (F affine in A: 'varying'; add_inertia gives the product M A for both),
-// or otherwise. With no 'nonaffine' term the system's F is affine in A and the
+// not at all, through a constant matrix, or through a configuration-dependent mass
+// M(t, U, V) ('varying'); add_inertia gives the product M A for both. Every term's
+// residual is affine in A (the pantograph models': tests/pantograph), so the
 // integrator may take its HHT alpha-term from the last residual.
-enum class AccelerationUse { none, constant, varying, nonaffine };
+enum class AccelerationUse { none, constant, varying };
 
 // v^T C v over the ranks (a constant damping matrix C dissipates -v^T C v).
 double quadratic_form(Mat C, Vec v);

@@ -70,6 +70,7 @@ class Bellows {
   void add_tangents(const Dsa380Parameters& p, int theta, int m, const Eigen::VectorXd& q,
                     Eigen::Ref<Eigen::MatrixXd> K, Eigen::Ref<Eigen::MatrixXd> C,
                     Eigen::Ref<Eigen::MatrixXd> M) const;
+  void add_mass(int m, Eigen::Ref<Eigen::MatrixXd> M) const;  // add_tangents' M part alone
   double kinetic_energy(int m, const Eigen::VectorXd& qd) const;
   double potential_energy(int m, const Eigen::VectorXd& q) const;
   // Adds the bellows' power beyond M0 θ̇ (external) and the loop's (dissipative).
