@@ -16,15 +16,8 @@ cd "$(dirname "$0")/.."
 BINS=("$1" "$2")
 REPS=${REPS:-3}
 SCENES=${SCENES:-en300 win70 win109 two20 three}
-declare -A S=(
-  [en300]="runs/en50318-300-modal.yaml"
-  [win70]="runs/interaction/two-pantographs-300-window.yaml --set catenary.model=modal"
-  [win109]="runs/interaction/two-pantographs-300-window.yaml --set catenary.model=modal --set catenary.max_frequency_hz=108.8"
-  [two20]="runs/interaction/two-pantographs-300.yaml --set catenary.model=modal"
-  [three]="runs/interaction/three-pantographs-300.yaml --set catenary.model=modal"
-  [two109]="runs/interaction/two-pantographs-300.yaml --set catenary.model=modal --set catenary.max_frequency_hz=108.8"
-  [dsa136]="runs/interaction/dsa380-300-base.yaml --set catenary.model=modal --set catenary.max_frequency_hz=136.1"
-)
+# shellcheck source=runs/bench/modal_scenes.sh
+source runs/bench/modal_scenes.sh
 OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
 echo "load before: $(cut -d' ' -f1-3 /proc/loadavg)"
@@ -32,7 +25,7 @@ for rep in $(seq "$REPS"); do
   for s in $SCENES; do
     for b in 0 1; do
       # shellcheck disable=SC2086
-      "${BINS[$b]}" run ${S[$s]} -pcsim_accuracy_pilot false --no-report -o "$OUT/run" \
+      "${BINS[$b]}" run ${MODAL_SCENES[$s]} -pcsim_accuracy_pilot false --no-report -o "$OUT/run" \
         --overwrite >/dev/null 2>&1 || { echo "run failed: $s with ${BINS[$b]}"; exit 1; }
       /usr/bin/python3 -c "
 import json, sys

@@ -13,21 +13,14 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=${1:-build/pcsim}
 SCENES=${SCENES:-en300 win109 dsa136}
-declare -A S=(
-  [en300]="runs/en50318-300-modal.yaml"
-  [win70]="runs/interaction/two-pantographs-300-window.yaml --set catenary.model=modal"
-  [win109]="runs/interaction/two-pantographs-300-window.yaml --set catenary.model=modal --set catenary.max_frequency_hz=108.8"
-  [two20]="runs/interaction/two-pantographs-300.yaml --set catenary.model=modal"
-  [three]="runs/interaction/three-pantographs-300.yaml --set catenary.model=modal"
-  [two109]="runs/interaction/two-pantographs-300.yaml --set catenary.model=modal --set catenary.max_frequency_hz=108.8"
-  [dsa136]="runs/interaction/dsa380-300-base.yaml --set catenary.model=modal --set catenary.max_frequency_hz=136.1"
-)
+# shellcheck source=runs/bench/modal_scenes.sh
+source runs/bench/modal_scenes.sh
 OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
 echo "load before: $(cut -d' ' -f1-3 /proc/loadavg)"
 for s in $SCENES; do
   # shellcheck disable=SC2086
-  "$BIN" run ${S[$s]} -pcsim_accuracy_pilot false --no-report -o "$OUT/$s" --overwrite \
+  "$BIN" run ${MODAL_SCENES[$s]} -pcsim_accuracy_pilot false --no-report -o "$OUT/$s" --overwrite \
     -log_view ":$OUT/$s.log" >/dev/null 2>&1 || { echo "run failed: $s"; exit 1; }
 done
 echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)"
