@@ -8,7 +8,8 @@
 #   runs/bench_modal_step.sh BEFORE_BIN AFTER_BIN
 # Environment: REPS=3, SCENES="en300 win70 win109 two20 three" (also two109:
 # two20 at 108.8 Hz, the cut-off its pilot chooses; dsa136: dsa380-300-base
-# at 136.1 Hz, its pilot's). Run it on an otherwise idle machine: it
+# at 136.1 Hz, its pilot's; flex136: dsa380-300-flexible at 136.1 Hz; the
+# names: runs/bench/modal_scenes.sh). Run it on an otherwise idle machine: it
 # measures wall time.
 set -euo pipefail
 cd "$(dirname "$0")/.."
