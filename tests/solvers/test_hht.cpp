@@ -208,6 +208,14 @@ Model duffing(double c, double k, double k3) {
   return m;
 }
 
+// The largest difference between two trajectories of the same steps.
+double max_gap(const std::vector<VectorXd>& a, const std::vector<VectorXd>& b) {
+  double gap = 0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    gap = std::max(gap, (a[i] - b[i]).cwiseAbs().maxCoeff());
+  return gap;
+}
+
 double max_abs(const std::vector<VectorXd>& xs) {
   double m = 0;
   for (const auto& x : xs) m = std::max(m, x.cwiseAbs().maxCoeff());
@@ -760,11 +768,7 @@ TEST(HHT, AlphaTermFromLastResidualEqualsEvaluated) {
   EXPECT_EQ(info.alpha_terms_evaluated, 1);
   EXPECT_EQ(pcsim::solvers::hht_get_info(evaluated->ts).alpha_terms_reused, 0);
   const double scale = max_abs(evaluated->u);
-  double same = 0, off = 0;
-  for (std::size_t i = 0; i < evaluated->u.size(); ++i) {
-    same = std::max(same, (reused->u[i] - evaluated->u[i]).cwiseAbs().maxCoeff());
-    off = std::max(off, (broken->u[i] - evaluated->u[i]).cwiseAbs().maxCoeff());
-  }
+  const double same = max_gap(reused->u, evaluated->u), off = max_gap(broken->u, evaluated->u);
   EXPECT_LT(same / scale, 1e-12);
   EXPECT_GT(off / scale, 1e-4);
   EXPECT_GT(scale, 0.01);
@@ -791,11 +795,7 @@ TEST(HHT, AlphaTermFromLastResidualWithVaryingMass) {
   const auto evaluated = run_with(nullptr), reused = run_with(&right), broken = run_with(&frozen);
   EXPECT_EQ(pcsim::solvers::hht_get_info(reused->ts).alpha_terms_reused, 399);
   const double scale = max_abs(evaluated->u);
-  double same = 0, off = 0;
-  for (std::size_t i = 0; i < evaluated->u.size(); ++i) {
-    same = std::max(same, (reused->u[i] - evaluated->u[i]).cwiseAbs().maxCoeff());
-    off = std::max(off, (broken->u[i] - evaluated->u[i]).cwiseAbs().maxCoeff());
-  }
+  const double same = max_gap(reused->u, evaluated->u), off = max_gap(broken->u, evaluated->u);
   std::printf("varying mass: reused alpha-term within %.1e of the swing, frozen M %.1e\n",
               same / scale, off / scale);
   EXPECT_LT(same / scale, 1e-12);
