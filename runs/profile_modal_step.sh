@@ -32,7 +32,7 @@ EVENTS = ["TSStep", "pcsimResidual", "pcsimStateLoad", "pcsimContact", "pcsimWoo
           "pcsimLowRankChg", "pcsimRecord"]
 print("| scene | vectors | time loop µs/step | TSStep | residuals (per step) | state loads "
       "(per step) | contacts | Woodbury | low-rank changes | records | outside TSStep, "
-      "records apart | window shifts | dropper products per step: single, exact | MB read "
+      "records apart | window shifts | dropper products per step: half, single, exact | MB read "
       "per step |")
 print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
 for s in scenes:
@@ -52,11 +52,12 @@ for s in scenes:
     outside = 1e6 * loop / n - us("TSStep") - us("pcsimRecord")
     rows, vectors = m["tracked_bars"], m["basis_size"]
     single, exact = m["single_precision_updates_per_step"], m["exact_updates_per_step"]
-    mb = rows * vectors * (4 * single + 8 * exact) / 1e6
+    half = m.get("half_precision_updates_per_step", 0.0)
+    mb = rows * vectors * (2 * half + 4 * single + 8 * exact) / 1e6
     print(f"| {s} | {vectors} | {1e6 * loop / n:.0f} | {us('TSStep'):.0f} "
           f"| {us('pcsimResidual'):.0f} ({per('pcsimResidual'):.2f}) "
           f"| {us('pcsimStateLoad'):.0f} ({per('pcsimStateLoad'):.2f}) "
           f"| {us('pcsimContact'):.0f} | {us('pcsimWoodbury'):.0f} | {us('pcsimLowRankChg'):.0f} "
           f"| {us('pcsimRecord'):.0f} | {outside:.0f} | {j.get('window_shifts', 0)} "
-          f"| {single:.3f}, {exact:.3f} | {mb:.2f} |")
+          f"| {half:.3f}, {single:.3f}, {exact:.3f} | {mb:.2f} |")
 PY

@@ -94,7 +94,8 @@ void ModalCatenary::build_dropper_rows() {
   for (double b : bnorm_) bnorm_max_ = std::max(bnorm_max_, b);
   for (int d : droppers_)
     force_scale_max_ = std::max(force_scale_max_, bars[tracked[d]].stiffness * bnorm_[d]);
-  B_single_ = B_.cast<float>();
+  B_single_ = RoundedRows(B_, RoundedRows::Precision::single);
+  B_half_ = RoundedRows(B_, RoundedRows::Precision::half);
 }
 
 // VECSTANDARD: sequential on one rank (no reductions over the

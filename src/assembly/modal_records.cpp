@@ -61,14 +61,16 @@ double ModalCatenary::record_force(std::size_t d, double dl) const {
 // Records one at a time cost a single-precision product of the tracked
 // bars' rows (B in float) per step, and anchor the next step's bounded check
 // (modal_slack_set.cpp) at no extra cost; batched, the step makes its own
-// product (0.97 per step on EN 50318) and the batch adds its share. Measured
-// (docs/benchmarks.md, "Records in batches"): one at a time is faster while
-// the float rows fit in a core's level-2 cache (EN 50318: 90 x 2736 floats,
-// 1.0 MB), batches beyond (two-pantographs-300: 180 x 5474, 3.9 MB).
+// product in half precision (0.97 per step on EN 50318: half the float
+// rows' bytes) and the batch adds its share. Measured (docs/benchmarks.md,
+// "Rounded rows"): batches pay once the float rows exceed half a core's
+// level-2 cache (the DSA-380 at 136.1 Hz: 90 x 4804 floats, 1.7 MB, a real-
+// time factor 9 % higher), and not below (EN 50318: 90 x 2736, 1.0 MB, the
+// same either way).
 bool ModalCatenary::records_batch_pays() const {
   long cache = sysconf(_SC_LEVEL2_CACHE_SIZE);
   if (cache <= 0) cache = 1L << 21;  // not known: 2 MiB
-  return static_cast<long>(B_single_.size() * sizeof(float)) > cache;
+  return static_cast<long>(B_single_.bytes()) > cache / 2;
 }
 
 // Every rank counts the kept states; the owner keeps them.

@@ -2,12 +2,14 @@
 // records (modal_catenary.hpp: which droppers are evaluated at each state).
 //
 // Anchors. An exact anchor is every tracked bar's elongation dl = s + B eta
-// in double precision; a single-precision one is dl_E + fl(B (eta - eta_E))
-// from the last exact anchor eta_E, within (n + 2) u |b| |eta - eta_E|
-// (u = 2^-24). Records made one at a time (dropper_forces(): a run's where
+// in double precision; a rounded one is dl_E + fl(B (eta - eta_E)) from the
+// last exact anchor eta_E by B's rows in single or half precision, within
+// g |b| |eta - eta_E| (rounded_rows.hpp: g ~ 2^-24 + n/8 2^-24 in single,
+// 2^-11 more in half). The step's check takes the half rows (half the
+// bytes). Records made one at a time (dropper_forces(): a run's where
 // batches do not pay, modal_records.cpp; a stepper's) make one anchor per
-// step: single precision while that bound keeps every recorded force within
-// kRecordForceError, else exact. The last two record (or exact) anchors are
+// step: in single precision while that bound keeps every recorded force
+// within kRecordForceError, else exact. The last two record (or exact) anchors are
 // the line of the bounds
 // of the next states (line_candidates), each with its error bound per unit
 // |b| (the exact product's rounding gamma_n |eta_E| plus the single-precision
@@ -23,7 +25,6 @@ namespace pcsim::assembly {
 namespace {
 
 constexpr double kUnitDouble = 1.1102230246251565e-16;  // 2^-53
-constexpr double kUnitSingle = 5.9604644775390625e-08;  // 2^-24
 // [m] rounding bound of a single-precision update of the bounded check
 // (margins ~1 mm): an exact anchor instead.
 constexpr double kErrorReset = 1e-4;
@@ -100,26 +101,26 @@ bool ModalCatenary::line_candidates(std::size_t few) {
   return true;
 }
 
-// dl = dl_e + fl(B (eta - eta_e)) in single precision from the last exact
-// anchor, with its rounding bound (n + 2) u |b| |eta - eta_e| (Higham, with
-// the conversions), u = 2^-24: it follows the distance from eta_e and does not
-// add up over the updates. False, with no product, if max_d scale_d times
-// that bound would exceed 'reset' (scale_max: max_d scale_d |b_d|). *bound:
-// the bound per unit |b| (if given).
-bool ModalCatenary::single_precision_anchor(double reset, double scale_max, double* bound) const {
-  const double g = gamma(static_cast<double>(m_) + 2, kUnitSingle);
+// dl = dl_e + fl(B (eta - eta_e)) from the last exact anchor by the rows
+// in half or single precision, within g |b| |eta - eta_e|
+// (RoundedRows::error_factor): it follows the distance from eta_e and does
+// not add up over the updates. False, with no product, if max_d scale_d
+// times that bound would exceed 'reset' (scale_max: max_d scale_d |b_d|).
+// *bound: the bound per unit |b| (if given).
+bool ModalCatenary::single_precision_anchor(double reset, double scale_max, const RoundedRows& rows,
+                                            double* bound) const {
+  const double g = rows.error_factor();
   work_ = eta_ - exact_eta_;
   const double distance = work_.norm();
   if (g * scale_max * distance > reset) return false;
-  work_single_ = work_.cast<float>();
-  change_single_.noalias() = B_single_ * work_single_;
+  rows.multiply(work_, change_);
   for (long d = 0; d < B_.rows(); ++d) {
-    anchor_elongation_[d] = exact_elongation_[d] + change_single_[d];
+    anchor_elongation_[d] = exact_elongation_[d] + change_[d];
     anchor_error_[d] = g * bnorm_[d] * distance;
   }
   anchor_ = eta_;
   anchor_version_ = eta_version_;
-  ++single_products_;
+  ++(&rows == &B_half_ ? half_products_ : single_products_);
   if (bound) *bound = g * distance;
   return true;
 }
@@ -157,7 +158,7 @@ void ModalCatenary::update_slack_set() {
       const double step_omega = (work_.array() * omega_.array()).matrix().norm();
       find_candidates(step, step_omega);
       if (candidates_.size() > kFewCandidates) {
-        if (!single_precision_anchor(kErrorReset, bnorm_max_)) exact_anchor();
+        if (!single_precision_anchor(kErrorReset, bnorm_max_, B_half_)) exact_anchor();
         find_candidates(0, 0);
         at_anchor = true;
       }
@@ -185,7 +186,7 @@ void ModalCatenary::record_anchor() const {
   // Exact here already (a load's reset, or every dropper checked): on the line too.
   if (anchor_version_ == eta_version_ && anchor_error_.isZero(0)) return;
   double single_bound = 0;
-  if (!single_precision_anchor(kRecordForceError, force_scale_max_, &single_bound)) {
+  if (!single_precision_anchor(kRecordForceError, force_scale_max_, B_single_, &single_bound)) {
     exact_anchor();
     return;
   }

@@ -103,6 +103,7 @@ def modal_figures(summary):
             - m["exact_updates_per_step"] * m["tracked_bars"], ".1f"),
         doc("exact anchors per step", m["exact_updates_per_step"], ".3f"),
         doc("single-precision updates per step", m["single_precision_updates_per_step"], ".3f"),
+        doc("half-precision updates per step", m["half_precision_updates_per_step"], ".3f"),
     ]
 
 

@@ -38,6 +38,7 @@
 #include <vector>
 
 #include "pcsim/assembly/catenary_model.hpp"
+#include "pcsim/assembly/rounded_rows.hpp"
 #include "pcsim/catenary/reduced_basis.hpp"
 #include "pcsim/contact/wire_locator.hpp"
 
@@ -99,10 +100,11 @@ class ModalCatenary : public CatenaryModel {
   // their elongations dl < 0.
   const std::vector<std::size_t>& slack_now() const { return slack_now_; }
   double elongation(std::size_t d) const { return elongation_[d]; }
-  // Bars evaluated exactly so far, single-precision updates of all of them
-  // and states loaded (bounded set statistics).
+  // Bars evaluated exactly so far, single- and half-precision updates of
+  // all of them and states loaded (bounded set statistics).
   long dropper_evaluations() const { return evaluations_; }
   long single_precision_updates() const { return single_products_; }
+  long half_precision_updates() const { return half_products_; }
   long exact_anchors() const { return exact_count_; }
   long loads() const { return loads_; }
 
@@ -132,14 +134,15 @@ class ModalCatenary : public CatenaryModel {
   Eigen::VectorXd omega_;
   // Loaded state and the bounded set's bookkeeping (the records make exact
   // anchors too, hence mutable).
-  using FloatRowMatrix = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  FloatRowMatrix B_single_;
+  // B rounded (rounded_rows.hpp): in single precision for the records'
+  // anchors (their 1 N bound), in half precision for the step's check.
+  RoundedRows B_single_, B_half_;
   Eigen::VectorXd eta_, incoming_;
   mutable Eigen::VectorXd work_;
   long eta_version_ = 0;                    // counts the changes of eta_
   mutable long anchor_version_ = -1;        // the eta_version_ of the anchor
   mutable bool slack_set_current_ = false;  // slack_now_ is that of eta_ and the anchor
-  mutable Eigen::VectorXf work_single_, change_single_;
+  mutable Eigen::VectorXd change_;          // B (eta - eta_E) of a single- or half-precision anchor
   mutable Eigen::VectorXd anchor_, anchor_elongation_, anchor_error_;
   // The last exact anchor (eta_E, dl_E, |eta_E|): the base of the
   // single-precision ones (modal_slack_set.cpp).
@@ -158,7 +161,7 @@ class ModalCatenary : public CatenaryModel {
   std::vector<double> elongation_;
   std::vector<std::size_t> slack_now_;
   std::vector<long> candidates_;
-  mutable long evaluations_ = 0, single_products_ = 0;
+  mutable long evaluations_ = 0, single_products_ = 0, half_products_ = 0;
   long loads_ = 0;
   // The records' states kept for one product (modal_records.cpp), a column each.
   Eigen::MatrixXd kept_states_;
@@ -168,7 +171,8 @@ class ModalCatenary : public CatenaryModel {
   void exact_anchor() const;
   void push_line_anchor(double bound) const;
   void record_anchor() const;
-  bool single_precision_anchor(double reset, double scale_max, double* bound = nullptr) const;
+  bool single_precision_anchor(double reset, double scale_max, const RoundedRows& rows,
+                               double* bound = nullptr) const;
   void find_candidates(double step, double step_omega);
   bool line_candidates(std::size_t few);
   // Wire-point weights of the last few x of each contact wire (they depend
