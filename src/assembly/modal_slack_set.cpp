@@ -107,8 +107,8 @@ bool ModalCatenary::line_candidates(std::size_t few) {
 // not add up over the updates. False, with no product, if max_d scale_d
 // times that bound would exceed 'reset' (scale_max: max_d scale_d |b_d|).
 // *bound: the bound per unit |b| (if given).
-bool ModalCatenary::single_precision_anchor(double reset, double scale_max, const RoundedRows& rows,
-                                            double* bound) const {
+bool ModalCatenary::rounded_anchor(double reset, double scale_max, const RoundedRows& rows,
+                                   double* bound) const {
   const double g = rows.error_factor();
   work_ = eta_ - exact_eta_;
   const double distance = work_.norm();
@@ -158,7 +158,7 @@ void ModalCatenary::update_slack_set() {
       const double step_omega = (work_.array() * omega_.array()).matrix().norm();
       find_candidates(step, step_omega);
       if (candidates_.size() > kFewCandidates) {
-        if (!single_precision_anchor(kErrorReset, bnorm_max_, B_half_)) exact_anchor();
+        if (!rounded_anchor(kErrorReset, bnorm_max_, B_half_)) exact_anchor();
         find_candidates(0, 0);
         at_anchor = true;
       }
@@ -186,7 +186,7 @@ void ModalCatenary::record_anchor() const {
   // Exact here already (a load's reset, or every dropper checked): on the line too.
   if (anchor_version_ == eta_version_ && anchor_error_.isZero(0)) return;
   double single_bound = 0;
-  if (!single_precision_anchor(kRecordForceError, force_scale_max_, B_single_, &single_bound)) {
+  if (!rounded_anchor(kRecordForceError, force_scale_max_, B_single_, &single_bound)) {
     exact_anchor();
     return;
   }

@@ -1,11 +1,14 @@
 #include "pcsim/assembly/rounded_rows.hpp"
 
-#include <immintrin.h>
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <type_traits>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#define PCSIM_X86_KERNEL 1
+#endif
 
 namespace pcsim::assembly {
 
@@ -41,8 +44,9 @@ void portable_rows(const Stored* h, long rows, long stride, const float* x, floa
   }
 }
 
+#ifdef PCSIM_X86_KERNEL
 // 8 stored values in float (a half's conversion is exact).
-#define PCSIM_HALF_LOAD(p)                                  \
+#define PCSIM_LOAD_LANES(p)                                 \
   (std::is_same_v<Stored, float>                            \
        ? _mm256_loadu_ps(reinterpret_cast<const float*>(p)) \
        : _mm256_cvtph_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p))))
@@ -61,14 +65,14 @@ __attribute__((target("avx2,fma,f16c"))) void vector_rows(const Stored* h, long 
     __m256 a0 = _mm256_setzero_ps(), a1 = a0, a2 = a0, a3 = a0, a4 = a0, a5 = a0, a6 = a0, a7 = a0;
     for (long j = 0; j < stride; j += kLanes) {
       const __m256 xv = _mm256_loadu_ps(x + j);
-      a0 = _mm256_fmadd_ps(PCSIM_HALF_LOAD(r + j), xv, a0);
-      a1 = _mm256_fmadd_ps(PCSIM_HALF_LOAD(r + stride + j), xv, a1);
-      a2 = _mm256_fmadd_ps(PCSIM_HALF_LOAD(r + 2 * stride + j), xv, a2);
-      a3 = _mm256_fmadd_ps(PCSIM_HALF_LOAD(r + 3 * stride + j), xv, a3);
-      a4 = _mm256_fmadd_ps(PCSIM_HALF_LOAD(r + 4 * stride + j), xv, a4);
-      a5 = _mm256_fmadd_ps(PCSIM_HALF_LOAD(r + 5 * stride + j), xv, a5);
-      a6 = _mm256_fmadd_ps(PCSIM_HALF_LOAD(r + 6 * stride + j), xv, a6);
-      a7 = _mm256_fmadd_ps(PCSIM_HALF_LOAD(r + 7 * stride + j), xv, a7);
+      a0 = _mm256_fmadd_ps(PCSIM_LOAD_LANES(r + j), xv, a0);
+      a1 = _mm256_fmadd_ps(PCSIM_LOAD_LANES(r + stride + j), xv, a1);
+      a2 = _mm256_fmadd_ps(PCSIM_LOAD_LANES(r + 2 * stride + j), xv, a2);
+      a3 = _mm256_fmadd_ps(PCSIM_LOAD_LANES(r + 3 * stride + j), xv, a3);
+      a4 = _mm256_fmadd_ps(PCSIM_LOAD_LANES(r + 4 * stride + j), xv, a4);
+      a5 = _mm256_fmadd_ps(PCSIM_LOAD_LANES(r + 5 * stride + j), xv, a5);
+      a6 = _mm256_fmadd_ps(PCSIM_LOAD_LANES(r + 6 * stride + j), xv, a6);
+      a7 = _mm256_fmadd_ps(PCSIM_LOAD_LANES(r + 7 * stride + j), xv, a7);
     }
     _mm256_store_ps(lanes[0], a0);
     _mm256_store_ps(lanes[1], a1);
@@ -84,13 +88,14 @@ __attribute__((target("avx2,fma,f16c"))) void vector_rows(const Stored* h, long 
     const Stored* r = h + d * stride;
     __m256 a0 = _mm256_setzero_ps();
     for (long j = 0; j < stride; j += kLanes)
-      a0 = _mm256_fmadd_ps(PCSIM_HALF_LOAD(r + j), _mm256_loadu_ps(x + j), a0);
+      a0 = _mm256_fmadd_ps(PCSIM_LOAD_LANES(r + j), _mm256_loadu_ps(x + j), a0);
     _mm256_store_ps(lanes[0], a0);
     y[d] = lane_tree(lanes[0]);
   }
 }
 
-#undef PCSIM_HALF_LOAD
+#undef PCSIM_LOAD_LANES
+#endif  // PCSIM_X86_KERNEL
 
 double gamma(double n, double u) {
   return n * u / (1 - n * u);
@@ -99,9 +104,13 @@ double gamma(double n, double u) {
 }  // namespace
 
 bool RoundedRows::vector_kernel_available() {
+#ifdef PCSIM_X86_KERNEL
   __builtin_cpu_init();
   return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
          __builtin_cpu_supports("f16c");
+#else
+  return false;
+#endif
 }
 
 std::uint16_t RoundedRows::to_half(double v) {
@@ -187,15 +196,18 @@ void RoundedRows::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y, Kernel 
   const double scale_x = std::ldexp(1.0, 1 - e2);  // a power of two: x[i] * scale_x is exact
   for (long i = 0; i < cols_; ++i) x_single_[i] = static_cast<float>(x[i] * scale_x);
   sums_.resize(static_cast<std::size_t>(rows_));
-  static const bool vector = vector_kernel_available();
   const float* xs = x_single_.data();
   float* sums = sums_.data();
+#ifdef PCSIM_X86_KERNEL
+  static const bool vector = vector_kernel_available();
   if (kernel == Kernel::automatic && vector) {
     if (halves_.empty())
       vector_rows(singles_.data(), rows_, stride_, xs, sums);
     else
       vector_rows(halves_.data(), rows_, stride_, xs, sums);
-  } else {
+  } else
+#endif
+  {
     if (halves_.empty())
       portable_rows(singles_.data(), rows_, stride_, xs, sums);
     else

@@ -171,8 +171,8 @@ class ModalCatenary : public CatenaryModel {
   void exact_anchor() const;
   void push_line_anchor(double bound) const;
   void record_anchor() const;
-  bool single_precision_anchor(double reset, double scale_max, const RoundedRows& rows,
-                               double* bound = nullptr) const;
+  bool rounded_anchor(double reset, double scale_max, const RoundedRows& rows,
+                      double* bound = nullptr) const;
   void find_candidates(double step, double step_omega);
   bool line_candidates(std::size_t few);
   // Wire-point weights of the last few x of each contact wire (they depend
