@@ -25,14 +25,9 @@ namespace pcsim::assembly {
 namespace {
 
 constexpr double kUnitDouble = 1.1102230246251565e-16;  // 2^-53
-// [m] rounding bound of a single-precision update of the bounded check
+// [m] rounding bound of a half-precision update of the bounded check
 // (margins ~1 mm): an exact anchor instead.
 constexpr double kErrorReset = 1e-4;
-
-// gamma_n = n u / (1 - n u) (Higham): the bound of an n-term product.
-double gamma(double n, double u) {
-  return n * u / (1 - n * u);
-}
 
 }  // namespace
 
@@ -50,7 +45,7 @@ void ModalCatenary::exact_anchor() const {
   exact_elongation_ = anchor_elongation_;
   ++exact_count_;
   evaluations_ += B_.rows();
-  push_line_anchor(gamma(static_cast<double>(m_), kUnitDouble) * exact_norm_);
+  push_line_anchor(rounding_gamma(static_cast<double>(m_), kUnitDouble) * exact_norm_);
 }
 
 // The anchor just made (anchor_, anchor_elongation_), within 'bound' |b| of
@@ -191,7 +186,8 @@ void ModalCatenary::record_anchor() const {
     return;
   }
   slack_set_current_ = false;
-  push_line_anchor(gamma(static_cast<double>(m_), kUnitDouble) * exact_norm_ + single_bound);
+  push_line_anchor(rounding_gamma(static_cast<double>(m_), kUnitDouble) * exact_norm_ +
+                   single_bound);
 }
 
 // The dropper forces at the loaded state from the record's anchor (forces:

@@ -97,10 +97,6 @@ __attribute__((target("avx2,fma,f16c"))) void vector_rows(const Stored* h, long 
 #undef PCSIM_LOAD_LANES
 #endif  // PCSIM_X86_KERNEL
 
-double gamma(double n, double u) {
-  return n * u / (1 - n * u);
-}
-
 }  // namespace
 
 bool RoundedRows::vector_kernel_available() {
@@ -168,7 +164,7 @@ RoundedRows::RoundedRows(const RowMatrix& rows, Precision precision)
   // multiply-adds and 3 additions in float (gamma_K); 2^-100 covers the
   // products of the absolute parts and the float underflows (2^-150).
   const double n = static_cast<double>(std::max(cols_, 1L));
-  const double g = gamma(static_cast<double>(stride_ / kLanes + 3), kUnitSingle);
+  const double g = rounding_gamma(static_cast<double>(stride_ / kLanes + 3), kUnitSingle);
   const double unit = half ? kUnitHalf : kUnitSingle, absolute = half ? 0x1p-39 : 0.0;
   error_factor_ = unit * (1 + kUnitSingle) + kUnitSingle + g * (1 + unit) * (1 + kUnitSingle) +
                   (1 + g) * absolute * (1 + kUnitSingle) * std::sqrt(n) + 0x1p-100;

@@ -20,6 +20,12 @@
 
 namespace pcsim::assembly {
 
+// gamma_n = n u / (1 - n u) (Higham): the rounding bound of an n-term sum of
+// products with unit roundoff u.
+inline double rounding_gamma(double n, double u) {
+  return n * u / (1 - n * u);
+}
+
 class RoundedRows {
  public:
   using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
