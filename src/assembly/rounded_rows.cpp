@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <type_traits>
 
@@ -182,6 +183,10 @@ std::size_t RoundedRows::bytes() const {
 void RoundedRows::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y, Kernel kernel) const {
   y.resize(rows_);
   const double largest = cols_ > 0 ? x.cwiseAbs().maxCoeff() : 0.0;
+  if (!std::isfinite(largest) || x.hasNaN()) {  // as a product in floating point would
+    y.setConstant(std::numeric_limits<double>::quiet_NaN());
+    return;
+  }
   if (!(largest > 0)) {
     y.setZero();
     return;

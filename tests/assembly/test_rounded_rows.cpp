@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "pcsim/assembly/rounded_rows.hpp"
@@ -104,6 +105,19 @@ TEST_P(Product, WithinItsBound) {
   // of the precision asked for (margin 3).
   RecordProperty("worst", std::to_string(worst));
   EXPECT_GT(worst, is_half(GetParam()) ? 0.02 : 5e-4);
+}
+
+// A state that is not finite (a diverging run) gives NaN, as a product in
+// floating point would, never a finite elongation.
+TEST_P(Product, NotFiniteStateGivesNaN) {
+  const RoundedRows rounded(rows_, GetParam());
+  Eigen::VectorXd x = states_[0], y;
+  x[7] = std::numeric_limits<double>::infinity();
+  rounded.multiply(x, y);
+  EXPECT_TRUE(y.array().isNaN().all());
+  x[7] = std::numeric_limits<double>::quiet_NaN();
+  rounded.multiply(x, y);
+  EXPECT_TRUE(y.array().isNaN().all());
 }
 
 // On a processor without AVX2/F16C/FMA both calls take the portable kernel.
