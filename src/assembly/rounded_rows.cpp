@@ -144,6 +144,8 @@ RoundedRows::RoundedRows(const RowMatrix& rows, Precision precision)
   else
     singles_.assign(size, 0.0f);
   unscale_.assign(static_cast<std::size_t>(rows_), 1.0);
+  x_single_.assign(static_cast<std::size_t>(stride_), 0.0f);
+  sums_.assign(static_cast<std::size_t>(rows_), 0.0f);
   for (long d = 0; d < rows_; ++d) {
     const double largest = rows.row(d).cwiseAbs().maxCoeff();
     if (!(largest > 0)) continue;  // a zero row stays zero
@@ -182,8 +184,14 @@ std::size_t RoundedRows::bytes() const {
 
 void RoundedRows::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y, Kernel kernel) const {
   y.resize(rows_);
-  const double largest = cols_ > 0 ? x.cwiseAbs().maxCoeff() : 0.0;
-  if (!std::isfinite(largest) || x.hasNaN()) {  // as a product in floating point would
+  double largest = 0;
+  bool finite = true;  // one pass: the largest |x_i| and whether every x_i is finite
+  for (long i = 0; i < cols_; ++i) {
+    const double a = std::abs(x[i]);
+    finite = finite && a <= std::numeric_limits<double>::max();  // false for inf and NaN
+    largest = std::max(largest, a);
+  }
+  if (!finite) {  // as a product in floating point would
     y.setConstant(std::numeric_limits<double>::quiet_NaN());
     return;
   }
@@ -192,11 +200,10 @@ void RoundedRows::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y, Kernel 
     return;
   }
   int e2 = 0;
-  std::frexp(largest, &e2);  // x scaled by 2^(1 - e2): max |x_i| in [1, 2)
-  x_single_.assign(static_cast<std::size_t>(stride_), 0.0f);
+  std::frexp(largest, &e2);                        // x scaled by 2^(1 - e2): max |x_i| in [1, 2)
   const double scale_x = std::ldexp(1.0, 1 - e2);  // a power of two: x[i] * scale_x is exact
+  // x_single_'s padding beyond cols_ stays zero (the constructor's).
   for (long i = 0; i < cols_; ++i) x_single_[i] = static_cast<float>(x[i] * scale_x);
-  sums_.resize(static_cast<std::size_t>(rows_));
   const float* xs = x_single_.data();
   float* sums = sums_.data();
 #ifdef PCSIM_X86_KERNEL

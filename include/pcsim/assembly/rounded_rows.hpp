@@ -60,7 +60,8 @@ class RoundedRows {
   std::vector<float> singles_;
   std::vector<double> unscale_;  // a power of two per row
   double error_factor_ = 0;
-  mutable std::vector<float> x_single_, sums_;  // x in float, padded with zeros; row sums
+  // x in float (zero beyond cols_) and the row sums: sized once, by the constructor
+  mutable std::vector<float> x_single_, sums_;
 };
 
 }  // namespace pcsim::assembly
