@@ -20,15 +20,12 @@ Eigen::VectorXd FlexibleDsa380Pantograph::static_equilibrium(double contact_forc
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
   Eigen::VectorXd R(n);
   Eigen::MatrixXd K, C, M;
-  double weight = p_.rigid.m[6] * p_.rigid.g, stiffest = 0;
+  double weight = p_.rigid.m[6] * p_.rigid.g;
   for (const auto& t : sections_) weight += t.mass * p_.rigid.g;
-  for (const auto& e : mesh_.elements)
-    stiffest = std::max(stiffest, e.beam.section.EA / e.beam.length0);
   // Converged when |R| < 1e-9 of the load, or when the step has vanished and |R| is at the
-  // rounding floor of the element forces: EA/l0 (up to ~5e10 N/m) times the rounding of
-  // coordinates of ~2 m.
+  // rounding floor of the element forces.
   const double tol = 1e-9 * (std::abs(contact_force) + weight);
-  const double floor = 100 * DBL_EPSILON * 2.0 * stiffest;
+  const double floor = static_residual_floor();
   double last_step = 1;
   for (int it = 0; it < 50; ++it) {
     assemble(0.0, q, zero, zero, &R, &K, &C, &M);
@@ -58,6 +55,14 @@ Eigen::VectorXd FlexibleDsa380Pantograph::static_equilibrium(double contact_forc
     last_step = scale * big;
   }
   throw SolverError("dsa380_flexible: static equilibrium (Newton on q and M0) did not converge");
+}
+
+// EA/l0 (up to ~5e10 N/m) times the rounding of coordinates of ~2 m.
+double FlexibleDsa380Pantograph::static_residual_floor() const {
+  double stiffest = 0;
+  for (const auto& e : mesh_.elements)
+    stiffest = std::max(stiffest, e.beam.section.EA / e.beam.length0);
+  return 100 * DBL_EPSILON * 2.0 * stiffest;
 }
 
 std::array<FlexibleDsa380Pantograph::BarEnergy, 9> FlexibleDsa380Pantograph::bar_strain_energies(

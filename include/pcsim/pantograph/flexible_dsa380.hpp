@@ -113,6 +113,8 @@ class FlexibleDsa380Pantograph : public PantographModel {
   Eigen::VectorXd static_equilibrium(double contact_force, double working_height) override;
   // Heights above the base, as the rigid model: nominal working height 1.2 m.
   double default_working_height() const override { return 1.2; }
+  // 100 eps times the stiffest bar's EA/l0 times coordinates of ~2 m (~2e-3 N).
+  double static_residual_floor() const override;
   double kinetic_energy(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const override;
   double potential_energy(const Eigen::VectorXd& q) const override;
   PowerSplit power(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const override;

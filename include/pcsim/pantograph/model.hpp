@@ -96,6 +96,9 @@ class PantographModel {
   // above their base (DSA-380) state their nominal height; models in absolute heights
   // (lumped) return 0: the coupling then takes the height of the point the head meets.
   virtual double default_working_height() const { return 0.0; }
+  // The rounding floor of |R| at a static equilibrium [N]: Newton cannot go below it
+  // (a coupled start in equilibrium to it is in equilibrium). 0: below any tolerance.
+  virtual double static_residual_floor() const { return 0.0; }
 
   // Energies for the balance [T+V]_t − [T+V]_0 − W_dissipative − W_external = 0 (2.30–2.34).
   virtual double kinetic_energy(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const = 0;
