@@ -2,6 +2,7 @@
 
 #include <mpi.h>
 
+#include <cmath>
 #include <set>
 #include <string>
 
@@ -96,12 +97,58 @@ void VaryingBlocks::check_decoupled(Mat P) const {
 // partial pivoting a zero pivot means a column without a nonzero left. The
 // pivots alone, not Eigen's rcond() estimate (a fifth of a flexible DSA-380
 // step's refactoring: its own triangular solves).
-void VaryingBlocks::refactor(Block& b) const {
-  b.lu.compute(b.reference + b.delta);
-  const auto pivots = b.lu.matrixLU().diagonal().array();
-  if (!(pivots.isFinite().all() && (pivots != 0.0).all()))
+void VaryingBlocks::refactor(Block& b) {
+  const Eigen::MatrixXd value = b.reference + b.delta;
+  bool regular = true;
+  if (refactor_sparse(b, value)) {
+    // SparseLU stops at a zero pivot; log |det| sums log |pivot|: not finite
+    // for a zero or not finite one.
+    regular =
+        b.sparse_lu.info() == Eigen::Success && std::isfinite(b.sparse_lu.logAbsDeterminant());
+  } else {
+    b.lu.compute(value);
+    const auto pivots = b.lu.matrixLU().diagonal().array();
+    regular = pivots.isFinite().all() && (pivots != 0.0).all();
+  }
+  if (!regular)
     throw SolverError("the step matrix has a singular varying block at row " +
                       std::to_string(b.first));
+}
+
+// A block of at least kSparseSize unknowns with at most kSparseFill of its
+// entries nonzero takes the sparse LU (the flexible DSA-380: 150 unknowns,
+// 1310 entries; measured 3 times faster than the dense LU, which was a
+// quarter of its modal step). Its ordering (COLAMD) and symbolic analysis
+// are kept while every nonzero lies on the analysed pattern. False: dense.
+bool VaryingBlocks::refactor_sparse(Block& b, const Eigen::MatrixXd& value) {
+  constexpr int kSparseSize = 32;
+  constexpr double kSparseFill = 0.2;
+  if (b.size < kSparseSize) return false;
+  long nonzeros = 0, on_pattern = 0;
+  for (Eigen::Index j = 0; j < value.cols(); ++j)
+    for (Eigen::Index i = 0; i < value.rows(); ++i) nonzeros += value(i, j) != 0.0;
+  if (b.sparse && b.matrix.rows() == b.size) {
+    for (Eigen::Index j = 0; j < b.matrix.outerSize(); ++j)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(b.matrix, j); it; ++it) {
+        it.valueRef() = value(it.row(), it.col());
+        on_pattern += it.value() != 0.0;
+      }
+  }
+  if (!b.sparse || on_pattern != nonzeros) {  // not analysed yet, or an entry off the pattern
+    b.sparse = nonzeros <= kSparseFill * b.size * b.size;
+    if (!b.sparse) return false;
+    b.matrix = value.sparseView(0.0, 0.0);  // exact zeros left out only
+    b.sparse_lu.analyzePattern(b.matrix);
+    ++analyses_;
+  }
+  b.sparse_lu.factorize(b.matrix);
+  return true;
+}
+
+int VaryingBlocks::sparse_blocks() const {
+  int count = 0;
+  for (const auto& [key, b] : blocks_) count += b.owned && b.sparse;
+  return count;
 }
 
 namespace {
@@ -127,8 +174,12 @@ void each_owned_block(const Blocks& blocks, Vec in, Vec out, F&& f) {
 }  // namespace
 
 void VaryingBlocks::solve_rows(Vec r, Vec x) const {
-  each_owned_block(blocks_, r, x,
-                   [](const auto& b, const auto& rb, auto xb) { xb = b.lu.solve(rb); });
+  each_owned_block(blocks_, r, x, [](const auto& b, const auto& rb, auto xb) {
+    if (b.sparse)
+      xb = b.sparse_lu.solve(rb);
+    else
+      xb = b.lu.solve(rb);
+  });
 }
 
 void VaryingBlocks::add_change(Vec x, Vec y) const {
