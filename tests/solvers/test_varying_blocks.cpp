@@ -18,31 +18,8 @@ namespace {
 
 using pcsim::solvers::VaryingBlocks;
 
-// J0: 2 x 2 identity rows, then the block (rows 2..4), decoupled.
-Mat step_matrix(const Eigen::Matrix3d& block) {
-  Mat P;
-  PCSIM_PETSC(MatCreateSeqAIJ(PETSC_COMM_SELF, 5, 5, 3, nullptr, &P));
-  for (PetscInt i = 0; i < 2; ++i) PCSIM_PETSC(MatSetValue(P, i, i, 1.0, INSERT_VALUES));
-  for (PetscInt i = 0; i < 3; ++i)
-    for (PetscInt j = 0; j < 3; ++j)
-      PCSIM_PETSC(MatSetValue(P, 2 + i, 2 + j, block(i, j), INSERT_VALUES));
-  PCSIM_PETSC(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY));
-  PCSIM_PETSC(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY));
-  return P;
-}
-
-pcsim::assembly::BlockChange change(const Eigen::Matrix3d& delta) {
-  pcsim::assembly::BlockChange c;
-  c.key = 7;
-  c.first = 2;
-  c.size = 3;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) c.delta.push_back(delta(i, j));  // row-major
-  return c;
-}
-
 // J0: 2 identity rows, then an n x n block, decoupled (any size).
-Mat large_step_matrix(const Eigen::MatrixXd& block) {
+Mat step_matrix(const Eigen::MatrixXd& block) {
   const auto n = static_cast<PetscInt>(block.rows());
   Mat P;
   PCSIM_PETSC(MatCreateSeqAIJ(PETSC_COMM_SELF, 2 + n, 2 + n, n, nullptr, &P));
@@ -55,7 +32,7 @@ Mat large_step_matrix(const Eigen::MatrixXd& block) {
   return P;
 }
 
-pcsim::assembly::BlockChange large_change(const Eigen::MatrixXd& delta) {
+pcsim::assembly::BlockChange change(const Eigen::MatrixXd& delta) {
   pcsim::assembly::BlockChange c;
   c.key = 7;
   c.first = 2;
@@ -113,10 +90,10 @@ Eigen::VectorXd block_solution(const VaryingBlocks& blocks, Mat P, const Eigen::
 TEST(VaryingBlocks, LargeSparseBlockTakesTheSparseLU) {
   const int n = 64;
   const Eigen::MatrixXd j0 = chain_block(n);
-  Mat P = large_step_matrix(j0);
+  Mat P = step_matrix(j0);
   VaryingBlocks blocks;
   Eigen::MatrixXd delta = Eigen::MatrixXd::Zero(n, n);
-  blocks.set({large_change(delta)});
+  blocks.set({change(delta)});
   blocks.setup(P);
   EXPECT_EQ(blocks.sparse_blocks(), 1);
   EXPECT_EQ(blocks.pattern_analyses(), 1);
@@ -130,16 +107,16 @@ TEST(VaryingBlocks, LargeSparseBlockTakesTheSparseLU) {
   check(delta);
   for (int i = 0; i < n; ++i) delta(i, i) = 0.5 * std::sin(i);  // on the pattern
   delta(3, 4) = 0.25;
-  blocks.set({large_change(delta)});
+  blocks.set({change(delta)});
   EXPECT_EQ(blocks.pattern_analyses(), 1);
   check(delta);
   delta(10, 40) = 0.7;  // off the pattern: a new analysis
-  blocks.set({large_change(delta)});
+  blocks.set({change(delta)});
   EXPECT_EQ(blocks.pattern_analyses(), 2);
   EXPECT_EQ(blocks.sparse_blocks(), 1);
   check(delta);
   Eigen::MatrixXd full = Eigen::MatrixXd::Constant(n, n, 0.01);  // every entry: dense LU
-  blocks.set({large_change(full)});
+  blocks.set({change(full)});
   EXPECT_EQ(blocks.sparse_blocks(), 0);
   check(full);
   PCSIM_PETSC(MatDestroy(&P));
@@ -149,18 +126,18 @@ TEST(VaryingBlocks, LargeSparseBlockTakesTheSparseLU) {
 TEST(VaryingBlocks, LargeSparseBlockRefusesASingularOrNotFiniteOne) {
   const int n = 64;
   const Eigen::MatrixXd j0 = chain_block(n);
-  Mat P = large_step_matrix(j0);
+  Mat P = step_matrix(j0);
   VaryingBlocks blocks;
-  blocks.set({large_change(Eigen::MatrixXd::Zero(n, n))});
+  blocks.set({change(Eigen::MatrixXd::Zero(n, n))});
   blocks.setup(P);
   ASSERT_EQ(blocks.sparse_blocks(), 1);
   Eigen::MatrixXd singular = Eigen::MatrixXd::Zero(n, n);
   singular.row(5) = -j0.row(5);  // a zero row
-  EXPECT_THROW(blocks.set({large_change(singular)}), pcsim::SolverError);
+  EXPECT_THROW(blocks.set({change(singular)}), pcsim::SolverError);
   Eigen::MatrixXd not_finite = Eigen::MatrixXd::Zero(n, n);
   not_finite(7, 7) = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_THROW(blocks.set({large_change(not_finite)}), pcsim::SolverError);
-  EXPECT_NO_THROW(blocks.set({large_change(Eigen::MatrixXd::Identity(n, n))}));
+  EXPECT_THROW(blocks.set({change(not_finite)}), pcsim::SolverError);
+  EXPECT_NO_THROW(blocks.set({change(Eigen::MatrixXd::Identity(n, n))}));
   EXPECT_EQ(blocks.sparse_blocks(), 1);
   PCSIM_PETSC(MatDestroy(&P));
 }
