@@ -117,8 +117,8 @@ void VaryingBlocks::refactor(Block& b) {
 
 // A block of at least kSparseSize unknowns with at most kSparseFill of its
 // entries nonzero takes the sparse LU (the flexible DSA-380: 150 unknowns,
-// 1310 entries; measured 3 times faster than the dense LU, which was a
-// quarter of its modal step). Its ordering (COLAMD) and symbolic analysis
+// 1310 entries, where the dense LU was a quarter of its modal step:
+// docs/benchmarks.md, "The flexible DSA-380's block"). Its ordering (COLAMD) and symbolic analysis
 // are kept while every nonzero lies on the analysed pattern. False: dense.
 bool VaryingBlocks::refactor_sparse(Block& b, const Eigen::MatrixXd& value) {
   constexpr int kSparseSize = 32;
