@@ -118,8 +118,10 @@ void VaryingBlocks::refactor(Block& b) {
 // A block of at least kSparseSize unknowns with at most kSparseFill of its
 // entries nonzero takes the sparse LU (the flexible DSA-380: 150 unknowns,
 // 1310 entries, where the dense LU was a quarter of its modal step:
-// docs/benchmarks.md, "The flexible DSA-380's block"). Its ordering (COLAMD) and symbolic analysis
-// are kept while every nonzero lies on the analysed pattern. False: dense.
+// docs/benchmarks.md, "The flexible DSA-380's block"). Its ordering (COLAMD)
+// and symbolic analysis are kept while its nonzeros are those analysed: the
+// factors are a function of the block's value alone, so a restarted run
+// computes the same ones as an uninterrupted run. False: dense.
 bool VaryingBlocks::refactor_sparse(Block& b, const Eigen::MatrixXd& value) {
   constexpr int kSparseSize = 32;
   constexpr double kSparseFill = 0.2;
@@ -134,7 +136,8 @@ bool VaryingBlocks::refactor_sparse(Block& b, const Eigen::MatrixXd& value) {
         on_pattern += it.value() != 0.0;
       }
   }
-  if (!b.sparse || on_pattern != nonzeros) {  // not analysed yet, or an entry off the pattern
+  // Not analysed yet, an entry off the pattern, or one of it now zero.
+  if (!b.sparse || on_pattern != nonzeros || on_pattern != b.matrix.nonZeros()) {
     b.sparse = nonzeros <= kSparseFill * b.size * b.size;
     if (!b.sparse) return false;
     b.matrix = value.sparseView(0.0, 0.0);  // exact zeros left out only
