@@ -15,8 +15,9 @@
 // and no -cheap_pc_type is given, inverted block by block (block_diagonal.hpp).
 // 'Block' terms (a nonlinear pantograph, assembly/term.hpp) change a small
 // dense diagonal block of J0 that J0 couples with nothing else: the operator
-// adds the change, and J0^-1 takes those rows from the block's dense LU,
-// refactored at every Jacobian (varying_blocks.hpp); J0 stays factored.
+// adds the change, and J0^-1 takes those rows from the block's LU (dense, or
+// sparse for a large block with few entries), refactored at every Jacobian
+// (varying_blocks.hpp); J0 stays factored.
 #pragma once
 
 #include <petscksp.h>
