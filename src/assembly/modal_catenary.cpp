@@ -195,34 +195,6 @@ void ModalCatenary::load_state(Vec U) {
 
 // The weights of contact wire 'wire' at station x: z = z0 + w . eta with
 // w = S_z(chi) Phi_e (thesis 3.13), and the parts of the slope dz/dx.
-// The point's rows over the modes from the basis rows of z, z' at the
-// element's ends (thesis 3.13): weight = sum s_k r_k, z_chi = sum ds_k r_k,
-// and y_eta from the lateral rows y, y' where the basis keeps them (under a
-// wind). One pass over the rows: they come from memory at each new x (the
-// basis is far larger than the caches), and two Eigen sums read them twice.
-void ModalCatenary::combine_point_rows(const int node[4], const std::array<double, 4>& s,
-                                       const std::array<double, 4>& ds, CachedPoint& c) const {
-  const int comp[4] = {2, 5, 2, 5};
-  const double* r[4];
-  for (int k = 0; k < 4; ++k) r[k] = row(node[k], comp[k]).data();
-  c.point.weight.resize(m_);
-  c.z_chi.resize(m_);
-  double* weight = c.point.weight.data();
-  double* z_chi = c.z_chi.data();
-  for (PetscInt i = 0; i < m_; ++i) {
-    const double a = r[0][i], b = r[1][i], e = r[2][i], f = r[3][i];
-    weight[i] = s[0] * a + s[1] * b + s[2] * e + s[3] * f;
-    z_chi[i] = ds[0] * a + ds[1] * b + ds[2] * e + ds[3] * f;
-  }
-  c.y_eta.resize(0);
-  const int lateral[4] = {1, 4, 1, 4};  // y, y' (kept under a wind): lateral motion
-  bool kept = true;
-  for (int k = 0; k < 4; ++k) kept = kept && row_index_[basis_row_key(node[k], lateral[k])] >= 0;
-  if (kept)
-    c.y_eta = s[0] * row(node[0], 1) + s[1] * row(node[1], 4) + s[2] * row(node[2], 1) +
-              s[3] * row(node[3], 4);
-}
-
 ModalCatenary::CachedPoint& ModalCatenary::cached_point(double x, int wire) const {
   auto& entries = cached_[wire];
   CachedPoint* oldest = &entries[0];
@@ -256,7 +228,19 @@ ModalCatenary::CachedPoint& ModalCatenary::cached_point(double x, int wire) cons
     const auto& ds = h.ds;
     const int node[4] = {el.nodes[0], el.nodes[0], el.nodes[1], el.nodes[1]};
     const int comp[4] = {2, 5, 2, 5};  // z, z' at each end (thesis 3.13)
-    combine_point_rows(node, s, ds, c);
+    const auto r0 = row(node[0], comp[0]), r1 = row(node[1], comp[1]);
+    const auto r2 = row(node[2], comp[2]), r3 = row(node[3], comp[3]);
+    p.weight.resize(m_);
+    Eigen::Map<Eigen::RowVectorXd>(p.weight.data(), m_) =
+        s[0] * r0 + s[1] * r1 + s[2] * r2 + s[3] * r3;
+    c.z_chi = ds[0] * r0 + ds[1] * r1 + ds[2] * r2 + ds[3] * r3;
+    c.y_eta.resize(0);
+    const int lateral[4] = {1, 4, 1, 4};  // y, y' (kept under a wind): lateral motion
+    bool kept = true;
+    for (int k = 0; k < 4; ++k) kept = kept && row_index_[basis_row_key(node[k], lateral[k])] >= 0;
+    if (kept)
+      c.y_eta = s[0] * row(node[0], 1) + s[1] * row(node[1], 4) + s[2] * row(node[2], 1) +
+                s[3] * row(node[3], 4);
     c.x_chi = 0;
     for (int k = 0; k < 4; ++k) {
       c.z0 += s[k] * static_values_[6 * node[k] + comp[k]];

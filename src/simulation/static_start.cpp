@@ -136,20 +136,24 @@ PetscErrorCode coupled_jacobian(SNES, Vec U, Mat J, Mat P, void* ptr) {
   PCSIM_CALLBACK_END
 }
 
-// The start's tolerance: kStartTolerance, or the pantographs' own rounding
-// floor where it is higher (the flexible DSA-380's stiff bars: ~2e-3 N, where
-// Newton from the closed form measured 1.5e-4 N -> 8.3e-5 N, one dense LU of
-// 25 s on the modal level, and stopped on its step).
+// A pantograph's rows of the start's residual are held to kStartTolerance,
+// or to its own rounding floor where that is higher (the flexible DSA-380's
+// stiff bars: ~2e-3 N, where Newton from the closed form measured 1.5e-4 N ->
+// 8.3e-5 N, one dense LU of 25 s on the modal level, and stopped on its step).
+double pantograph_tolerance(const assembly::PantographSlot& slot) {
+  return std::max(kStartTolerance, slot.model->static_residual_floor());
+}
+
+// The coupled Newton's tolerance: the largest of them.
 double start_tolerance(assembly::CoupledSystem& system) {
   double tolerance = kStartTolerance;
   for (const auto& slot : system.pantographs())
-    tolerance = std::max(tolerance, slot.model->static_residual_floor());
+    tolerance = std::max(tolerance, pantograph_tolerance(slot));
   return tolerance;
 }
 
-// In equilibrium: each pantograph's rows of F within its tolerance (its
-// floor or kStartTolerance), the other rows (the catenary's) within
-// kStartTolerance (collective).
+// In equilibrium: each pantograph's rows of F within its tolerance, the
+// other rows (the catenary's) within kStartTolerance (collective).
 bool in_equilibrium(assembly::CoupledSystem& system, Vec F) {
   const auto& pantographs = system.pantographs();
   std::vector<double> squares(pantographs.size() + 1, 0.0);  // the pantographs', the rest's
@@ -170,8 +174,7 @@ bool in_equilibrium(assembly::CoupledSystem& system, Vec F) {
                 system.comm());
   bool within = std::sqrt(squares.back()) < kStartTolerance;
   for (std::size_t p = 0; p < pantographs.size(); ++p)
-    within = within && std::sqrt(squares[p]) <
-                           std::max(kStartTolerance, pantographs[p].model->static_residual_floor());
+    within = within && std::sqrt(squares[p]) < pantograph_tolerance(pantographs[p]);
   return within;
 }
 

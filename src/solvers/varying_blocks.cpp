@@ -126,9 +126,8 @@ bool VaryingBlocks::refactor_sparse(Block& b, const Eigen::MatrixXd& value) {
   constexpr int kSparseSize = 32;
   constexpr double kSparseFill = 0.2;
   if (b.size < kSparseSize) return false;
-  long nonzeros = 0, on_pattern = 0;
-  for (Eigen::Index j = 0; j < value.cols(); ++j)
-    for (Eigen::Index i = 0; i < value.rows(); ++i) nonzeros += value(i, j) != 0.0;
+  const long nonzeros = (value.array() != 0.0).count();
+  long on_pattern = 0;
   if (b.sparse && b.matrix.rows() == b.size) {
     for (Eigen::Index j = 0; j < b.matrix.outerSize(); ++j)
       for (Eigen::SparseMatrix<double>::InnerIterator it(b.matrix, j); it; ++it) {

@@ -193,8 +193,6 @@ class ModalCatenary : public CatenaryModel {
   mutable std::vector<std::array<CachedPoint, kCachedPointsPerWire>> cached_;
   mutable long point_uses_ = 0;
   CachedPoint& cached_point(double x, int wire) const;
-  void combine_point_rows(const int node[4], const std::array<double, 4>& s,
-                          const std::array<double, 4>& ds, CachedPoint& c) const;
 };
 
 }  // namespace pcsim::assembly
