@@ -136,7 +136,9 @@ def main():
             continue
         for line in row(scene, fe_run, modal_run):
             print(line)
-    print("\n*max: over the steps without an involuntary context switch, the first step apart")
+    print("\n*max: over the steps without an involuntary context switch, the first step apart. "
+          "set-up: the run's own, its modes read from the cache its pilot filled; the pilot's "
+          "runs (the rest of a first run's set-up) are timed in OUT/SCENE/modal.log (\"pilot runs in\")")
     print("\nEvery figure's actual error against linear FE and, in brackets, the run's own "
           "estimate of it (the pilot's reduction estimate); units as above:\n")
     print("| scene | pantograph | mean % | σ % | Fm+3σ % | max % | Fm−3σ %Fm | min %Fm | "
