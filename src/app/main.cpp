@@ -68,6 +68,8 @@ void print_usage() {
       "  -pcsim_accuracy_pilot auto|true|false: the pilot runs of the accuracy estimate\n"
       "  (run; auto: runs of the modal level; docs/fidelity.md);\n"
       "  -pcsim_record_batches auto|true|false: a modal run's records in batches (run);\n"
+      "  -pcsim_record_thread auto|true|false: a batch's product on its own thread (run;\n"
+      "  auto: where every rank has a core to spare);\n"
       "  -pc_type pcsimwoodbury|pcsimschur: pcsim's step solvers as PETSc PC types (run;\n"
       "  pcsimwoodbury is the cheap path's; docs/architecture.md);\n"
       "  -eps_nev N, -modes_fmax F (modes); -pcsim_debug_* (tests).\n"
@@ -256,6 +258,7 @@ int main(int argc, char** argv) {
     refuse_unknown_options(ctx);
     pcsim::simulation::accuracy_pilot_choice();  // checked (exit 2) and read by every command
     pcsim::simulation::record_batches_choice();
+    pcsim::simulation::record_thread_choice();
     debug_fail_if_asked(ctx);
     status = it->second.run(ctx);
     if (status == 0) warn_unread_options(ctx);

@@ -81,7 +81,16 @@ contact::StepRecord CoupledSystem::record(double t, Vec U, bool batched) {
 // on rank 0).
 void CoupledSystem::complete_records(std::vector<contact::StepRecord*>& records) {
   const ScopedEvent timed(log_events().record);
-  auto q = catenary_->kept_record_quantities(record_dropper_forces_);
+  finish_records(records, take_records()());
+}
+
+std::function<CatenaryModel::RecordQuantities()> CoupledSystem::take_records() {
+  return catenary_->take_kept_records(record_dropper_forces_);
+}
+
+// Collective: the ranks' parts summed on rank 0, which fills the records.
+void CoupledSystem::finish_records(std::vector<contact::StepRecord*>& records,
+                                   CatenaryModel::RecordQuantities q) {
   if (q.states != records.size())
     throw SolverError("records: " + std::to_string(records.size()) + " waiting for " +
                       std::to_string(q.states) + " kept states");

@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <memory>
 
 #include "pcsim/assembly/modal_catenary.hpp"
 #include "pcsim/core/error.hpp"
@@ -83,29 +84,39 @@ void ModalCatenary::keep_record_state() {
   ++kept_;
 }
 
-CatenaryModel::RecordQuantities ModalCatenary::kept_record_quantities(bool with_droppers) {
-  RecordQuantities q;
-  const long states = kept_;
-  q.states = static_cast<std::size_t>(states);
-  const std::size_t ns = mesh_.support_nodes.size(), nd = with_droppers ? droppers_.size() : 0;
-  q.support_z.assign(q.states * ns, 0.0);
-  q.dropper_force.assign(q.states * nd, 0.0);
+// The kept states leave with the job (their columns, the count): the next
+// keep_record_state() starts a new batch while the job may still run. The job
+// reads B, the support rows, the static values and the bars, which a run does
+// not change.
+std::function<CatenaryModel::RecordQuantities()> ModalCatenary::take_kept_records(
+    bool with_droppers) {
+  auto states = std::make_shared<Eigen::MatrixXd>();
+  states->swap(kept_states_);
+  const long count = kept_;
   kept_ = 0;
-  if (!on_owner()) return q;
-  product(support_rows_, kept_states_, states, q.support_z);
-  for (std::size_t k = 0; k < q.states; ++k)
-    for (std::size_t s = 0; s < ns; ++s)
-      q.support_z[k * ns + s] += static_values_[6 * mesh_.support_nodes[s] + 2];
-  if (nd == 0) return q;
-  std::vector<double> change;  // tracked bars x states: B eta
-  product(B_, kept_states_, states, change);
-  const auto tracked = static_cast<std::size_t>(B_.rows());
-  for (std::size_t k = 0; k < q.states; ++k)
-    for (std::size_t i = 0; i < nd; ++i) {
-      const auto d = static_cast<std::size_t>(droppers_[i]);
-      q.dropper_force[k * nd + i] = record_force(d, stretch_[d] + change[k * tracked + d]);
-    }
-  return q;
+  const bool owner = on_owner();
+  return [this, states, count, with_droppers, owner] {
+    RecordQuantities q;
+    q.states = static_cast<std::size_t>(count);
+    const std::size_t ns = mesh_.support_nodes.size(), nd = with_droppers ? droppers_.size() : 0;
+    q.support_z.assign(q.states * ns, 0.0);
+    q.dropper_force.assign(q.states * nd, 0.0);
+    if (!owner) return q;
+    product(support_rows_, *states, count, q.support_z);
+    for (std::size_t k = 0; k < q.states; ++k)
+      for (std::size_t s = 0; s < ns; ++s)
+        q.support_z[k * ns + s] += static_values_[6 * mesh_.support_nodes[s] + 2];
+    if (nd == 0) return q;
+    std::vector<double> change;  // tracked bars x states: B eta
+    product(B_, *states, count, change);
+    const auto tracked = static_cast<std::size_t>(B_.rows());
+    for (std::size_t k = 0; k < q.states; ++k)
+      for (std::size_t i = 0; i < nd; ++i) {
+        const auto d = static_cast<std::size_t>(droppers_[i]);
+        q.dropper_force[k * nd + i] = record_force(d, stretch_[d] + change[k * tracked + d]);
+      }
+    return q;
+  };
 }
 
 }  // namespace pcsim::assembly

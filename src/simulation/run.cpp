@@ -111,6 +111,7 @@ RunSession::Options session_options(const scene::RunScene& run, const output::Ou
   options.checkpoint_every = run.checkpoint_every;
   options.keep_dropper_forces = run.dropper_forces;
   options.record_batches = record_batches_choice();
+  options.record_thread = record_thread_choice();
   options.energy = run.energy;
   options.checkpoint_file = out.file(output::kCheckpointName);
   options.inputs = request.inputs;

@@ -1,13 +1,16 @@
 #include "pcsim/simulation/run_session.hpp"
 
 #include <petsctime.h>
+#include <sched.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <csignal>
 
 #include "pcsim/core/error.hpp"
+#include "pcsim/core/profiling.hpp"
 #include "pcsim/simulation/run.hpp"
 #include "pcsim/solvers/hht.hpp"
 
@@ -48,6 +51,40 @@ RecordBatches record_batches_choice() {
                           "docs/fidelity.md)");
 }
 
+RecordThread record_thread_choice() {
+  return read_auto_option("pcsim run: a modal run's record thread", "-pcsim_record_thread",
+                          "a batch of records computed on a thread of its own while the steps "
+                          "go on (auto: where every rank has a core to spare; true; false; "
+                          "docs/fidelity.md)");
+}
+
+namespace {
+
+// Whether every rank has a core to spare for a record thread: its affinity
+// allows more than one CPU and its node has more online CPUs than ranks, and
+// MPI allows threads that make no MPI calls (MPI_THREAD_FUNNELED: PETSc's
+// default when it starts MPI). Agreed by all ranks (the batches' sums are
+// collective, in one order).
+bool cores_to_spare(MPI_Comm comm) {
+  int level = MPI_THREAD_SINGLE;
+  MPI_Query_thread(&level);
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  const int cpus = sched_getaffinity(0, sizeof allowed, &allowed) == 0 ? CPU_COUNT(&allowed) : 1;
+  MPI_Comm node;
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  int ranks_here = 1;
+  MPI_Comm_size(node, &ranks_here);
+  MPI_Comm_free(&node);
+  int spare = level >= MPI_THREAD_FUNNELED && cpus > 1 && sysconf(_SC_NPROCESSORS_ONLN) > ranks_here
+                  ? 1
+                  : 0;
+  MPI_Allreduce(MPI_IN_PLACE, &spare, 1, MPI_INT, MPI_MIN, comm);
+  return spare != 0;
+}
+
+}  // namespace
+
 RunSession::RunSession(const Context& ctx, assembly::CoupledSystem& system,
                        solvers::DynamicSolver& solver, output::RunStream* stream, Options options,
                        const RunCheckpoint* restart, const GracefulStop* stop)
@@ -62,6 +99,9 @@ RunSession::RunSession(const Context& ctx, assembly::CoupledSystem& system,
           system.batches_records() && !options_.window &&
           (options_.record_batches == RecordBatches::on ||
            (options_.record_batches == RecordBatches::automatic && system.records_batch_pays()))) {
+  const bool spare =
+      options_.record_thread == RecordThread::automatic && cores_to_spare(ctx.comm);  // collective
+  record_thread_ = batch_records_ && (options_.record_thread == RecordThread::on || spare);
   if (restart) {
     first_step_ = restart->state.step;
     skip_first_record_ = true;
@@ -234,7 +274,10 @@ bool RunSession::record(TS ts, PetscInt step, PetscReal t, Vec U) {
     contact::StepRecord snapshot_record;
     if (snapshot) snapshot_record = rec;
     pending_.emplace_back(std::move(rec), energy);
-    if (pending_.size() >= kRecordBatch || snapshot) complete_pending_records();  // collective
+    if (pending_.size() >= kRecordBatch && record_thread_ && !snapshot)
+      start_computing_records();  // collective
+    else if (pending_.size() >= kRecordBatch || snapshot)
+      complete_pending_records();  // collective
     if (snapshot) rec = std::move(snapshot_record);
   } else {
     deliver(rec, energy);
@@ -254,7 +297,29 @@ void RunSession::deliver(contact::StepRecord& rec, const output::EnergySample& e
   if (stream_) stream_->append(rec, energy);
 }
 
+// The full batch's product on a thread of its own; the batch before it,
+// whose thread has had a batch's steps to run, is delivered first.
+void RunSession::start_computing_records() {
+  finish_computing_records();  // collective
+  computing_ = std::move(pending_);
+  pending_.clear();
+  computing_job_ = std::async(std::launch::async, system_.take_records());
+}
+
+void RunSession::finish_computing_records() {
+  if (!computing_job_.valid()) return;  // the same on every rank
+  const ScopedEvent timed(log_events().record);
+  auto quantities = computing_job_.get();  // waits; rethrows what the product threw
+  std::vector<contact::StepRecord*> records;
+  for (auto& p : computing_) records.push_back(&p.first);
+  system_.finish_records(records, std::move(quantities));  // collective
+  auto done = std::move(computing_);
+  computing_.clear();
+  for (auto& p : done) deliver(p.first, p.second);
+}
+
 void RunSession::complete_pending_records() {
+  finish_computing_records();                       // collective: the batch before, in order
   if (!batch_records_ || pending_.empty()) return;  // the same on every rank
   std::vector<contact::StepRecord*> records;
   for (auto& p : pending_) records.push_back(&p.first);
@@ -365,6 +430,7 @@ nlohmann::json RunSession::facts() const {
   j["dofs"] = system_.global_size();
   j["path"] = path_;
   j["records_in_batches"] = batch_records_;
+  j["records_thread"] = record_thread_;
   TSType type;
   PCSIM_PETSC(TSGetType(solver_.ts(), &type));
   j["rejected_steps"] = std::string(type) == solvers::kTSHHT ? rejected_steps() : 0;

@@ -415,6 +415,7 @@ expect ts-unknown 2 "command line|key '-ts_type'|unknown" yes run good-run.yaml 
 expect path-bad 2 "command line|key '-pcsim_path'|auto, full or cheap" yes run good-run.yaml -pcsim_path fast
 expect path-cheap 2 "command line|key '-pcsim_path'|cheap path needs" yes run dsa-cheap.yaml -pcsim_path cheap
 expect record-batches 2 "command line|key '-pcsim_record_batches'|not auto, true or false" yes run good-run.yaml -pcsim_record_batches sometimes
+expect record-thread 2 "command line|key '-pcsim_record_thread'|not auto, true or false" yes run good-run.yaml -pcsim_record_thread sometimes
 
 # ---- found by the static solve (pcsim check solves nothing) ----
 expect hanging 2 "hanging-design.yaml|key 'wires'|form-finding found no tension distribution|wire 'hanger'" no \

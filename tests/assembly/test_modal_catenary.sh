@@ -19,7 +19,8 @@
 #    only the order of sums differs): measured 3.3e-13 of max Fc, asserted
 #    1e-11, with fewer exact evaluations (0.3 against 24.0 per step). The
 #    records' dropper forces and support heights are exact products, 32
-#    states at a time (modal_records.cpp): the two runs' dropper forces
+#    states at a time (modal_records.cpp), each batch's on a thread of its
+#    own: bit for bit those made on the stepping thread. The two runs' dropper forces
 #    agree within 6.0e-11 N (asserted 1e-9 N: the states' round-off above,
 #    while a record given another step's state would be off by a step's
 #    change of a dropper force, ~1 N). A run stopped at step 70 (a checkpoint
@@ -68,9 +69,12 @@ sed -e "s#design: \.\./\.\./contact#design: $PCSIM_SOURCE_DIR/tests/contact#" \
 sed 's#^  model: modal#  model: modal\n  modal: {droppers: all}#' "$tmp/base.yaml" > "$tmp/all-droppers.yaml"
 sed 's#^  model: modal#  model: modal\n  max_frequency_hz: 30#' "$tmp/base.yaml" > "$tmp/lower.yaml"
 # Records in batches (-pcsim_record_batches true: this small line's records
-# would come one at a time).
-batches=(-pcsim_record_batches true)
+# would come one at a time), each batch's product on a thread of its own
+# (-pcsim_record_thread true: forced, whatever cores the machine spares); the
+# same batches without the thread.
+batches=(-pcsim_record_batches true -pcsim_record_thread true)
 run modal "$tmp/base.yaml" "${batches[@]}"
+run unthreaded "$tmp/base.yaml" -pcsim_record_batches true -pcsim_record_thread false
 run again "$tmp/base.yaml"
 run every "$tmp/all-droppers.yaml" "${batches[@]}"
 run lower "$tmp/lower.yaml"
@@ -149,6 +153,11 @@ def records(name):
                                   "/pantographs/pantograph/contact_force")]
 whole = records("modal")
 assert summary("modal")["records_in_batches"] and not summary("again")["records_in_batches"]
+# The batches' products on their own thread: the same bits as on the stepping
+# thread (the same product of the same states, delivered in order).
+assert summary("modal")["records_thread"] and not summary("unthreaded")["records_thread"]
+assert summary("unthreaded")["records_in_batches"]
+assert all(np.array_equal(a, b) for a, b in zip(whole, records("unthreaded"))), "thread"
 # One at a time: single-precision anchors within their bound (1 N); measured
 # 3.2e-5 N from the exact ones, asserted 1e-3 N (the rounding's spread,
 # while a stale anchor would be off by a step's change of a dropper force).

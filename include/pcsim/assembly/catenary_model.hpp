@@ -15,6 +15,7 @@
 #include <petscmat.h>
 #include <petscvec.h>
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -105,9 +106,12 @@ class CatenaryModel {
   virtual std::vector<double> dropper_forces() const = 0;
   // The same in batches, for a model that pays a product per state for them
   // (the reduced catenary): keep_record_state() keeps the loaded state, and
-  // kept_record_quantities() gives the support heights and (if asked) the
-  // dropper forces of every kept state, state after state, in one product,
-  // and forgets the states. Set on the owning ranks, zero elsewhere.
+  // take_kept_records() hands the kept states over (the next one starts a new
+  // batch) with the computation of their support heights and (if asked)
+  // dropper forces, state after state, in one product. The computation reads
+  // the states it holds and the model's constant data only: it may run on
+  // another thread while the model steps on (RunSession). Set on the owning
+  // ranks, zero elsewhere.
   struct RecordQuantities {
     std::size_t states = 0;
     std::vector<double> support_z;      // states x support_heights().size()
@@ -118,7 +122,9 @@ class CatenaryModel {
   // the next step's checks, as a batch does not).
   virtual bool records_batch_pays() const { return false; }
   virtual void keep_record_state() {}
-  virtual RecordQuantities kept_record_quantities(bool dropper_forces) { return {}; }
+  virtual std::function<RecordQuantities()> take_kept_records(bool dropper_forces) {
+    return [] { return RecordQuantities{}; };
+  }
 
   // Node positions (3 per node) of state U on rank 0, empty elsewhere
   // (field snapshots; collective).

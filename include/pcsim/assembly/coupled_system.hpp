@@ -9,10 +9,12 @@
 #include <petscmat.h>
 
 #include <array>
+#include <functional>
 #include <map>
 #include <memory>
 #include <vector>
 
+#include "pcsim/assembly/catenary_model.hpp"
 #include "pcsim/assembly/coupled_state.hpp"
 #include "pcsim/assembly/subset_axpy.hpp"
 #include "pcsim/assembly/term.hpp"
@@ -96,6 +98,13 @@ class CoupledSystem {
   bool batches_records() const { return catenary_->batches_records(); }
   bool records_batch_pays() const { return catenary_->records_batch_pays(); }
   void complete_records(std::vector<contact::StepRecord*>& records);
+  // complete_records() in two parts: take_records() hands the kept states
+  // over with their computation (which may run on another thread: it reads
+  // no state of the system), finish_records() fills the records from its
+  // result (collective).
+  std::function<CatenaryModel::RecordQuantities()> take_records();
+  void finish_records(std::vector<contact::StepRecord*>& records,
+                      CatenaryModel::RecordQuantities quantities);
   void set_record_dropper_forces(bool on) { record_dropper_forces_ = on; }
 
  private:

@@ -29,7 +29,7 @@
 // No accuracy is lost: the correction of a taut dropper is exactly 0. With
 // dropper_check = all every dropper is evaluated exactly at every state.
 // Where records one at a time do not pay, a run's records come in batches
-// instead (keep_record_state, kept_record_quantities: modal_records.cpp).
+// instead (keep_record_state, take_kept_records: modal_records.cpp).
 #pragma once
 
 #include <Eigen/Core>
@@ -74,7 +74,7 @@ class ModalCatenary : public CatenaryModel {
   bool batches_records() const override { return true; }
   bool records_batch_pays() const override;
   void keep_record_state() override;
-  RecordQuantities kept_record_quantities(bool dropper_forces) override;
+  std::function<RecordQuantities()> take_kept_records(bool dropper_forces) override;
   std::vector<double> node_positions_to_root(Vec U) const override;
   std::vector<std::unique_ptr<Term>> make_terms(const contact::InteractionEffects& e,
                                                 Mat pattern) override;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <exception>
+#include <future>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -28,6 +29,11 @@ class RunObserver;  // run.hpp
 // ModalCatenary::records_batch_pays). Checked (InputError) on every call.
 using RecordBatches = AutoChoice;
 RecordBatches record_batches_choice();
+// -pcsim_record_thread auto|true|false: a batch's product on a thread of its
+// own while the steps go on (auto: where every rank of the node has a core
+// to spare, agreed by all ranks). Checked (InputError) on every call.
+using RecordThread = AutoChoice;
+RecordThread record_thread_choice();
 
 class RunSession {
  public:
@@ -36,6 +42,7 @@ class RunSession {
     long snapshot_every = 0, checkpoint_every = 0;
     bool keep_dropper_forces = true;
     RecordBatches record_batches = RecordBatches::automatic;
+    RecordThread record_thread = RecordThread::automatic;
     bool energy = false;              // E(t) and the powers every step (output.energy)
     std::string checkpoint_file;      // in the partial output folder
     std::vector<InputFile> inputs;    // fingerprint stored in checkpoints
@@ -77,6 +84,8 @@ class RunSession {
   bool record(TS ts, PetscInt step, PetscReal t, Vec U);  // true: results.h5 was flushed
   void deliver(contact::StepRecord& rec, const output::EnergySample& energy);  // observer, stream
   void complete_pending_records();                                             // collective
+  void start_computing_records();                                              // collective
+  void finish_computing_records();                                             // collective
   void time_step(long step, double start, long newton_iterations);
   long rejected_steps() const;  // earlier runs included
   void print_progress(PetscInt step, PetscReal t) const;
@@ -115,6 +124,12 @@ class RunSession {
   static constexpr std::size_t kRecordBatch = 32;
   bool batch_records_ = false;
   std::vector<std::pair<contact::StepRecord, output::EnergySample>> pending_;
+  // The batch before, whose product runs on its own thread (record_thread_):
+  // delivered when the next batch is full, or at a snapshot, a checkpoint or
+  // the run's end, before the records that follow it.
+  bool record_thread_ = false;
+  std::vector<std::pair<contact::StepRecord, output::EnergySample>> computing_;
+  std::future<assembly::CatenaryModel::RecordQuantities> computing_job_;
 };
 
 // After TSSolve returned 'solved': a failed step is a SolverError naming the
