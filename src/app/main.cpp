@@ -247,6 +247,7 @@ int main(int argc, char** argv) {
   ctx.comm = PETSC_COMM_WORLD;
   MPI_Comm_rank(ctx.comm, &ctx.rank);
   MPI_Comm_size(ctx.comm, &ctx.size);
+  pcsim::simulation::count_node_processes(ctx.comm);  // before a sweep splits the ranks
 
   // Exit status agreed by all ranks (exit_status.hpp); may MPI_Abort.
   MPI_Comm agreement_comm;

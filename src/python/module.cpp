@@ -26,6 +26,7 @@
 #include "pcsim/scene/run_scene.hpp"
 #include "pcsim/simulation/run.hpp"
 #include "pcsim/simulation/run_checkpoint.hpp"
+#include "pcsim/simulation/run_session.hpp"
 #include "pcsim/simulation/statics.hpp"
 #include "pcsim/simulation/stepper.hpp"
 
@@ -297,6 +298,7 @@ void initialize() {
   setenv("HWLOC_COMPONENTS", "-gl", 0);  // no X display probing (src/app/main.cpp)
   if (SlepcInitialize(&argc, &argv, nullptr, nullptr) != 0)
     throw std::runtime_error("pcsim: PETSc/SLEPc could not start");
+  pcsim::simulation::count_node_processes(PETSC_COMM_WORLD);  // collective, as the start is
   py::module_::import("atexit").attr("register")(py::cpp_function([] {
     for (auto& [serial, sim] : live_simulations()) sim->stepper.reset();  // PETSc objects first
     SlepcFinalize();

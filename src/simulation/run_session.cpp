@@ -60,8 +60,34 @@ RecordThread record_thread_choice() {
 
 namespace {
 
+int node_processes =
+    0;  // count_node_processes(): this node's processes of the job (0: not counted)
+
+}  // namespace
+
+void count_node_processes(MPI_Comm world) {
+  MPI_Comm node;
+  MPI_Comm_split_type(world, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  MPI_Comm_size(node, &node_processes);
+  MPI_Comm_free(&node);
+}
+
+namespace {
+
+// The processes on this node: the job's (count_node_processes), else the
+// run's ranks here (collective on comm).
+int processes_here(MPI_Comm comm) {
+  if (node_processes > 0) return node_processes;
+  MPI_Comm node;
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  int ranks = 1;
+  MPI_Comm_size(node, &ranks);
+  MPI_Comm_free(&node);
+  return ranks;
+}
+
 // Whether every rank has a core to spare for a record thread: its affinity
-// allows more than one CPU and its node has more online CPUs than ranks, and
+// allows more than one CPU and its node has more online CPUs than processes, and
 // MPI allows threads that make no MPI calls (MPI_THREAD_FUNNELED: PETSc's
 // default when it starts MPI). Agreed by all ranks (the batches' sums are
 // collective, in one order).
@@ -71,11 +97,7 @@ bool cores_to_spare(MPI_Comm comm) {
   cpu_set_t allowed;
   CPU_ZERO(&allowed);
   const int cpus = sched_getaffinity(0, sizeof allowed, &allowed) == 0 ? CPU_COUNT(&allowed) : 1;
-  MPI_Comm node;
-  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
-  int ranks_here = 1;
-  MPI_Comm_size(node, &ranks_here);
-  MPI_Comm_free(&node);
+  const int ranks_here = processes_here(comm);
   int spare = level >= MPI_THREAD_FUNNELED && cpus > 1 && sysconf(_SC_NPROCESSORS_ONLN) > ranks_here
                   ? 1
                   : 0;

@@ -75,6 +75,7 @@ sed 's#^  model: modal#  model: modal\n  max_frequency_hz: 30#' "$tmp/base.yaml"
 batches=(-pcsim_record_batches true -pcsim_record_thread true)
 run modal "$tmp/base.yaml" "${batches[@]}"
 run unthreaded "$tmp/base.yaml" -pcsim_record_batches true -pcsim_record_thread false
+run auto "$tmp/base.yaml" -pcsim_record_batches true -ts_max_steps 40
 run again "$tmp/base.yaml"
 run every "$tmp/all-droppers.yaml" "${batches[@]}"
 run lower "$tmp/lower.yaml"
@@ -157,6 +158,11 @@ assert summary("modal")["records_in_batches"] and not summary("again")["records_
 # thread (the same product of the same states, delivered in order).
 assert summary("modal")["records_thread"] and not summary("unthreaded")["records_thread"]
 assert summary("unthreaded")["records_in_batches"]
+# auto: a thread where the process may run on more than one CPU and its node
+# has more CPUs than processes (this one alone).
+import os
+spare = len(os.sched_getaffinity(0)) > 1 and os.cpu_count() > 1
+assert summary("auto")["records_thread"] == spare, (summary("auto")["records_thread"], spare)
 assert all(np.array_equal(a, b) for a, b in zip(whole, records("unthreaded"))), "thread"
 # One at a time: single-precision anchors within their bound (1 N); measured
 # 3.2e-5 N from the exact ones, asserted 1e-3 N (the rounding's spread,

@@ -34,6 +34,11 @@ RecordBatches record_batches_choice();
 // to spare, agreed by all ranks). Checked (InputError) on every call.
 using RecordThread = AutoChoice;
 RecordThread record_thread_choice();
+// Counts the job's processes on this node once, for the record thread's auto
+// (collective on 'world': pcsim's main and the Python module call it at
+// start-up, before a sweep splits the ranks into groups). Uncounted, a run
+// counts its own ranks on the node.
+void count_node_processes(MPI_Comm world);
 
 class RunSession {
  public:
