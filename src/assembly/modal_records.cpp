@@ -85,13 +85,16 @@ void ModalCatenary::keep_record_state() {
 }
 
 // The kept states leave with the job (their columns, the count): the next
-// keep_record_state() starts a new batch while the job may still run. The job
-// reads B, the support rows, the static values and the bars, which a run does
-// not change.
+// keep_record_state() starts a new batch while the job may still run, in the
+// storage of the job before once that job is done with it (none is allocated
+// per batch). The job reads B, the support rows, the static values and the
+// bars, which a run does not change.
 std::function<CatenaryModel::RecordQuantities()> ModalCatenary::take_kept_records(
     bool with_droppers) {
-  auto states = std::make_shared<Eigen::MatrixXd>();
+  auto states = job_states_ && job_states_.use_count() == 1 ? job_states_
+                                                            : std::make_shared<Eigen::MatrixXd>();
   states->swap(kept_states_);
+  job_states_ = states;
   const long count = kept_;
   kept_ = 0;
   const bool owner = on_owner();

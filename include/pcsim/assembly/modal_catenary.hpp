@@ -165,6 +165,7 @@ class ModalCatenary : public CatenaryModel {
   long loads_ = 0;
   // The records' states kept for one product (modal_records.cpp), a column each.
   Eigen::MatrixXd kept_states_;
+  std::shared_ptr<Eigen::MatrixXd> job_states_;  // the last batch's, its job's (take_kept_records)
   long kept_ = 0;
   // The recorded axial force of tracked bar d at elongation dl.
   double record_force(std::size_t d, double dl) const;
