@@ -1,6 +1,6 @@
 // CoupledSystem's records: the measured quantities of a state (record), and
 // those that a reduced catenary computes for many states at once
-// (complete_records).
+// (take_records, finish_records).
 #include <mpi.h>
 
 #include <cmath>
@@ -76,19 +76,14 @@ contact::StepRecord CoupledSystem::record(double t, Vec U, bool batched) {
   return rec;
 }
 
-// The support heights and dropper forces of the records kept for a batch
-// (record(t, U, true)), in the order they were recorded (collective; filled
-// on rank 0).
-void CoupledSystem::complete_records(std::vector<contact::StepRecord*>& records) {
-  const ScopedEvent timed(log_events().record);
-  finish_records(records, take_records()());
-}
-
 std::function<CatenaryModel::RecordQuantities()> CoupledSystem::take_records() {
   return catenary_->take_kept_records(record_dropper_forces_);
 }
 
-// Collective: the ranks' parts summed on rank 0, which fills the records.
+// The support heights and dropper forces of the records kept for a batch
+// (record(t, U, true)), in the order they were recorded, from the batch's
+// computation (collective: the ranks' parts summed on rank 0, which fills
+// the records).
 void CoupledSystem::finish_records(std::vector<contact::StepRecord*>& records,
                                    CatenaryModel::RecordQuantities q) {
   if (q.states != records.size())

@@ -60,30 +60,22 @@ RecordThread record_thread_choice() {
 
 namespace {
 
-int node_processes =
-    0;  // count_node_processes(): this node's processes of the job (0: not counted)
+// This node's processes of the job (count_node_processes; 0: not counted).
+int node_processes = 0;
 
-}  // namespace
-
-void count_node_processes(MPI_Comm world) {
-  MPI_Comm node;
-  MPI_Comm_split_type(world, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
-  MPI_Comm_size(node, &node_processes);
-  MPI_Comm_free(&node);
-}
-
-namespace {
-
-// The processes on this node: the job's (count_node_processes), else the
-// run's ranks here (collective on comm).
-int processes_here(MPI_Comm comm) {
-  if (node_processes > 0) return node_processes;
+// The ranks of comm on this node (collective on comm).
+int ranks_on_node(MPI_Comm comm) {
   MPI_Comm node;
   MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
   int ranks = 1;
   MPI_Comm_size(node, &ranks);
   MPI_Comm_free(&node);
   return ranks;
+}
+
+// The processes on this node: the job's, else the run's ranks here.
+int processes_here(MPI_Comm comm) {
+  return node_processes > 0 ? node_processes : ranks_on_node(comm);
 }
 
 // Whether every rank has a core to spare for a record thread: its affinity
@@ -106,6 +98,10 @@ bool cores_to_spare(MPI_Comm comm) {
 }
 
 }  // namespace
+
+void count_node_processes(MPI_Comm world) {
+  node_processes = ranks_on_node(world);
+}
 
 RunSession::RunSession(const Context& ctx, assembly::CoupledSystem& system,
                        solvers::DynamicSolver& solver, output::RunStream* stream, Options options,
@@ -331,24 +327,26 @@ void RunSession::start_computing_records() {
 void RunSession::finish_computing_records() {
   if (!computing_job_.valid()) return;  // the same on every rank
   const ScopedEvent timed(log_events().record);
-  auto quantities = computing_job_.get();  // waits; rethrows what the product threw
-  std::vector<contact::StepRecord*> records;
-  for (auto& p : computing_) records.push_back(&p.first);
-  system_.finish_records(records, std::move(quantities));  // collective
-  auto done = std::move(computing_);
-  computing_.clear();
-  for (auto& p : done) deliver(p.first, p.second);
+  deliver_batch(computing_, computing_job_.get());  // waits; rethrows what the product threw
 }
 
 void RunSession::complete_pending_records() {
   finish_computing_records();                       // collective: the batch before, in order
   if (!batch_records_ || pending_.empty()) return;  // the same on every rank
+  const ScopedEvent timed(log_events().record);
+  deliver_batch(pending_, system_.take_records()());
+}
+
+// The batch's records filled from its quantities (collective), delivered in
+// order; the batch is left empty.
+void RunSession::deliver_batch(std::vector<PendingRecord>& batch,
+                               assembly::CatenaryModel::RecordQuantities quantities) {
   std::vector<contact::StepRecord*> records;
-  for (auto& p : pending_) records.push_back(&p.first);
-  system_.complete_records(records);  // collective
-  auto pending = std::move(pending_);
-  pending_.clear();
-  for (auto& p : pending) deliver(p.first, p.second);
+  for (auto& p : batch) records.push_back(&p.first);
+  system_.finish_records(records, std::move(quantities));  // collective
+  auto done = std::move(batch);
+  batch.clear();
+  for (auto& p : done) deliver(p.first, p.second);
 }
 
 void RunSession::print_progress(PetscInt step, PetscReal t) const {

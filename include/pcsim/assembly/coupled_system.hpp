@@ -92,16 +92,13 @@ class CoupledSystem {
   // Measured quantities at state U (collective; filled on rank 0). Dropper
   // forces only if asked (a reduced catenary pays a product for them).
   // batched: a catenary that batches its records (batches_records) keeps the
-  // state, and complete_records() fills the support heights and dropper
-  // forces of the records kept so far, in order, in one product.
+  // state; take_records() hands the states kept so far over with their
+  // computation (one product; it reads no state of the system, so it may run
+  // on another thread), and finish_records() fills the support heights and
+  // dropper forces of those records, in order, from its result (collective).
   contact::StepRecord record(double t, Vec U, bool batched = false);
   bool batches_records() const { return catenary_->batches_records(); }
   bool records_batch_pays() const { return catenary_->records_batch_pays(); }
-  void complete_records(std::vector<contact::StepRecord*>& records);
-  // complete_records() in two parts: take_records() hands the kept states
-  // over with their computation (which may run on another thread: it reads
-  // no state of the system), finish_records() fills the records from its
-  // result (collective).
   std::function<CatenaryModel::RecordQuantities()> take_records();
   void finish_records(std::vector<contact::StepRecord*>& records,
                       CatenaryModel::RecordQuantities quantities);

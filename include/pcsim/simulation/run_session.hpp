@@ -91,6 +91,9 @@ class RunSession {
   void complete_pending_records();                                             // collective
   void start_computing_records();                                              // collective
   void finish_computing_records();                                             // collective
+  using PendingRecord = std::pair<contact::StepRecord, output::EnergySample>;
+  void deliver_batch(std::vector<PendingRecord>& batch,
+                     assembly::CatenaryModel::RecordQuantities quantities);  // collective
   void time_step(long step, double start, long newton_iterations);
   long rejected_steps() const;  // earlier runs included
   void print_progress(PetscInt step, PetscReal t) const;
@@ -128,12 +131,12 @@ class RunSession {
   // catenary computes them for kRecordBatch states at once).
   static constexpr std::size_t kRecordBatch = 32;
   bool batch_records_ = false;
-  std::vector<std::pair<contact::StepRecord, output::EnergySample>> pending_;
+  std::vector<PendingRecord> pending_;
   // The batch before, whose product runs on its own thread (record_thread_):
   // delivered when the next batch is full, or at a snapshot, a checkpoint or
   // the run's end, before the records that follow it.
   bool record_thread_ = false;
-  std::vector<std::pair<contact::StepRecord, output::EnergySample>> computing_;
+  std::vector<PendingRecord> computing_;
   std::future<assembly::CatenaryModel::RecordQuantities> computing_job_;
 };
 
