@@ -58,19 +58,28 @@ void PantographTerm::add_inertia(const CoupledState& state, Vec A, Vec F) const 
   PCSIM_PETSC(VecSetValues(F, n, idx.data(), force.data(), ADD_VALUES));
 }
 
-std::vector<double> PantographTerm::block_tangent(const CoupledState& state, Shifts shifts) const {
+void PantographTerm::block_tangent(const CoupledState& state, Shifts shifts, bool change,
+                                   std::vector<double>& values) const {
   const auto& model = *slot_.model;
   const int n = model.dof_count();
-  Eigen::MatrixXd Kq(n, n), Cq(n, n), Mq(n, n);
-  model.tangents(state.t, state.q(index_), state.qd(index_), state.qdd(index_), Kq, Cq, Mq);
-  std::vector<double> values(static_cast<std::size_t>(n) * n);
-  Eigen::Map<RowMatrix>(values.data(), n, n) = Kq + shifts.v * Cq + shifts.a * Mq;
-  return values;
+  tangent_k_.resize(n, n);  // allocated once: a flexible model's blocks are 150 x 150
+  tangent_c_.resize(n, n);
+  tangent_m_.resize(n, n);
+  model.tangents(state.t, state.q(index_), state.qd(index_), state.qdd(index_), tangent_k_,
+                 tangent_c_, tangent_m_);
+  values.resize(static_cast<std::size_t>(n) * n);
+  Eigen::Map<RowMatrix> J(values.data(), n, n);
+  if (change)
+    J = tangent_k_ + shifts.v * tangent_c_ + shifts.a * tangent_m_ -
+        Eigen::Map<const RowMatrix>(reference_.data(), n, n);
+  else
+    J = tangent_k_ + shifts.v * tangent_c_ + shifts.a * tangent_m_;
 }
 
 void PantographTerm::add_tangent(const CoupledState& state, Shifts shifts, Mat J) {
   if (!state.on_last_rank()) return;
-  const auto values = block_tangent(state, shifts);
+  std::vector<double> values;
+  block_tangent(state, shifts, false, values);
   const auto idx = dof_range(slot_);
   const auto n = static_cast<PetscInt>(idx.size());
   PCSIM_PETSC(MatSetValues(J, n, idx.data(), n, idx.data(), values.data(), ADD_VALUES));
@@ -79,7 +88,7 @@ void PantographTerm::add_tangent(const CoupledState& state, Shifts shifts, Mat J
 // The reference is kept: block_change() reports the difference to it.
 void PantographTerm::add_reference_tangent(const CoupledState& state, Shifts shifts, Mat J) {
   if (!state.on_last_rank()) return;
-  reference_ = block_tangent(state, shifts);
+  block_tangent(state, shifts, false, reference_);
   const auto idx = dof_range(slot_);
   const auto n = static_cast<PetscInt>(idx.size());
   PCSIM_PETSC(MatSetValues(J, n, idx.data(), n, idx.data(), reference_.data(), ADD_VALUES));
@@ -93,8 +102,7 @@ void PantographTerm::block_change(const CoupledState& state, Shifts shifts,
   change.size = slot_.dof_count();
   if (state.on_last_rank()) {
     if (reference_.empty()) throw SolverError("pantograph block change before its reference");
-    change.delta = block_tangent(state, shifts);
-    for (std::size_t i = 0; i < change.delta.size(); ++i) change.delta[i] -= reference_[i];
+    block_tangent(state, shifts, true, change.delta);
   }
   blocks.push_back(std::move(change));
 }

@@ -34,6 +34,7 @@ FlexibleDsa380Pantograph::FlexibleDsa380Pantograph(FlexibleDsa380Parameters para
         if (e.dof[b] >= 0) bar_mass_(e.dof[a], e.dof[b]) += Me(a, b);
     }
   }
+  bar_mass_sparse_ = bar_mass_.sparseView(0.0, 0.0);  // exact zeros left out only
 }
 
 std::vector<std::string> FlexibleDsa380Pantograph::dof_names() const {
@@ -64,7 +65,7 @@ Jet damper_length(const Dsa380Parameters& p, double theta) {
 }  // namespace
 
 void FlexibleDsa380Pantograph::add_beams(const Eigen::VectorXd& q, Eigen::VectorXd* R,
-                                         Eigen::MatrixXd* K) const {
+                                         MatrixRef* K) const {
   for (const auto& e : mesh_.elements) {
     const PlanarBeamState s = planar_beam_evaluate(e.beam, gather(e, q), K != nullptr);
     for (int a = 0; a < 6; ++a) {
@@ -80,8 +81,8 @@ void FlexibleDsa380Pantograph::add_beams(const Eigen::VectorXd& q, Eigen::Vector
 
 void FlexibleDsa380Pantograph::add_head(double ab, const Eigen::VectorXd& q,
                                         const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd,
-                                        Eigen::VectorXd* R, Eigen::MatrixXd* K, Eigen::MatrixXd* C,
-                                        Eigen::MatrixXd* M) const {
+                                        Eigen::VectorXd* R, MatrixRef* K, MatrixRef* C,
+                                        MatrixRef* M) const {
   const Dsa380Parameters& p = p_.rigid;
   const double g = p.g + ab;  // a moving base: g + a_b (dsa380_base.cpp)
   const double m7 = p.m[6], LG7 = p.LG[6], I7 = p.I[6], th7d = qd[3];
@@ -136,8 +137,7 @@ void FlexibleDsa380Pantograph::add_head(double ab, const Eigen::VectorXd& q,
 }
 
 void FlexibleDsa380Pantograph::add_drive(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                                         Eigen::VectorXd* R, Eigen::MatrixXd* K,
-                                         Eigen::MatrixXd* C) const {
+                                         Eigen::VectorXd* R, MatrixRef* K, MatrixRef* C) const {
   const Dsa380Parameters& p = p_.rigid;
   if (R) (*R)[0] += p.kr * (q[0] - p.theta_r0) - M0_;  // drive spring, bellows torque
   if (K) (*K)(0, 0) += p.kr;
@@ -170,8 +170,7 @@ void FlexibleDsa380Pantograph::add_drive(const Eigen::VectorXd& q, const Eigen::
 }
 
 void FlexibleDsa380Pantograph::apply_restraints(const Eigen::VectorXd& qdd, Eigen::VectorXd* R,
-                                                Eigen::MatrixXd* K, Eigen::MatrixXd* C,
-                                                Eigen::MatrixXd* M) const {
+                                                MatrixRef* K, MatrixRef* C, MatrixRef* M) const {
   const double m7 = p_.rigid.m[6], LG7 = p_.rigid.LG[6];
   int row = -1;
   if (e_.head_restraint == Dsa380Effects::HeadRestraint::rotation) row = 3;
@@ -197,13 +196,13 @@ void FlexibleDsa380Pantograph::apply_restraints(const Eigen::VectorXd& qdd, Eige
 
 void FlexibleDsa380Pantograph::assemble(double ab, const Eigen::VectorXd& q,
                                         const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd,
-                                        Eigen::VectorXd* R, Eigen::MatrixXd* K, Eigen::MatrixXd* C,
-                                        Eigen::MatrixXd* M) const {
-  if (R) R->noalias() = bar_mass_ * qdd + bar_weight_;
+                                        Eigen::VectorXd* R, MatrixRef* K, MatrixRef* C,
+                                        MatrixRef* M) const {
+  if (R) R->noalias() = bar_mass_sparse_ * qdd + bar_weight_;
   if (R && ab != 0) *R += ab * bar_masses_;
   if (K) {
-    K->setZero(dof_count(), dof_count());
-    C->setZero(dof_count(), dof_count());
+    K->setZero();
+    C->setZero();
   }
   if (M) *M = bar_mass_;
   if (R || K) add_beams(q, R, K);
@@ -230,19 +229,15 @@ void FlexibleDsa380Pantograph::tangents(double t, const Eigen::VectorXd& q,
                                         Eigen::Ref<Eigen::MatrixXd> dR_dq,
                                         Eigen::Ref<Eigen::MatrixXd> dR_dqd,
                                         Eigen::Ref<Eigen::MatrixXd> dR_dqdd) const {
-  Eigen::MatrixXd K, C, M;
+  MatrixRef K(dR_dq), C(dR_dqd), M(dR_dqdd);
   assemble(frame_.acceleration(t), q, qd, qdd, nullptr, &K, &C, &M);
-  dR_dq = K;
-  dR_dqd = C;
-  dR_dqdd = M;
 }
 
 void FlexibleDsa380Pantograph::mass(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                                     Eigen::Ref<Eigen::MatrixXd> M) const {
-  Eigen::MatrixXd m;
+  MatrixRef m(M);
   assemble(frame_.acceleration(t), q, qd, Eigen::VectorXd::Zero(dof_count()), nullptr, nullptr,
            nullptr, &m);
-  M = m;
 }
 
 double FlexibleDsa380Pantograph::kinetic_energy(const Eigen::VectorXd& q,

@@ -19,7 +19,8 @@ Eigen::VectorXd FlexibleDsa380Pantograph::static_equilibrium(double contact_forc
   const int n = dof_count(), x5 = mesh_.x5;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
   Eigen::VectorXd R(n);
-  Eigen::MatrixXd K, C, M;
+  Eigen::MatrixXd K(n, n), C(n, n), M(n, n);
+  MatrixRef k(K), c(C), m(M);
   double weight = p_.rigid.m[6] * p_.rigid.g;
   for (const auto& t : sections_) weight += t.mass * p_.rigid.g;
   // Converged when |R| < 1e-9 of the load, or when the step has vanished and |R| is at the
@@ -28,7 +29,7 @@ Eigen::VectorXd FlexibleDsa380Pantograph::static_equilibrium(double contact_forc
   const double floor = static_residual_floor();
   double last_step = 1;
   for (int it = 0; it < 50; ++it) {
-    assemble(0.0, q, zero, zero, &R, &K, &C, &M);
+    assemble(0.0, q, zero, zero, &R, &k, &c, &m);
     R[2] += contact_force;
     if (e_.head_restraint == Dsa380Effects::HeadRestraint::rotation) {
       R[3] = q[3];

@@ -10,10 +10,6 @@
 
 namespace pcsim::solvers {
 
-namespace {
-using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-}  // namespace
-
 void VaryingBlocks::set(const std::vector<assembly::BlockChange>& changes) {
   std::set<int> keys;
   for (const auto& change : changes) {
@@ -25,8 +21,7 @@ void VaryingBlocks::set(const std::vector<assembly::BlockChange>& changes) {
     b.first = change.first;
     b.size = change.size;
     b.owned = !change.delta.empty();
-    if (b.owned)
-      b.delta = Eigen::Map<const RowMatrix>(change.delta.data(), change.size, change.size);
+    if (b.owned) b.delta = change.delta;  // keeps its storage from the last iteration
     if (ready_ && b.owned) refactor(b);
   }
   for (auto it = blocks_.begin(); it != blocks_.end();)
@@ -41,7 +36,7 @@ void VaryingBlocks::setup(Mat P) {
     if (here != b.owned || (!here && b.first < hi && b.first + b.size > lo))
       throw SolverError("a varying block of the step matrix is not on the rank of its change");
     if (!b.owned) continue;
-    b.reference = Eigen::MatrixXd::Zero(b.size, b.size);
+    b.reference = RowMatrix::Zero(b.size, b.size);
     for (PetscInt r = b.first; r < b.first + b.size; ++r) {
       PetscInt n;
       const PetscInt* cols;
@@ -98,15 +93,14 @@ void VaryingBlocks::check_decoupled(Mat P) const {
 // pivots alone, not Eigen's rcond() estimate (a fifth of a flexible DSA-380
 // step's refactoring: its own triangular solves).
 void VaryingBlocks::refactor(Block& b) {
-  const Eigen::MatrixXd value = b.reference + b.delta;
   bool regular = true;
-  if (refactor_sparse(b, value)) {
+  if (refactor_sparse(b)) {
     // SparseLU stops at a zero pivot; log |det| sums log |pivot|: not finite
     // for a zero or not finite one.
     regular =
         b.sparse_lu.info() == Eigen::Success && std::isfinite(b.sparse_lu.logAbsDeterminant());
   } else {
-    b.lu.compute(value);
+    b.lu.compute(b.reference + Eigen::Map<const RowMatrix>(b.delta.data(), b.size, b.size));
     const auto pivots = b.lu.matrixLU().diagonal().array();
     regular = pivots.isFinite().all() && (pivots != 0.0).all();
   }
@@ -121,27 +115,36 @@ void VaryingBlocks::refactor(Block& b) {
 // docs/benchmarks.md, "The flexible DSA-380's block"). Its ordering (COLAMD)
 // and symbolic analysis are kept while its nonzeros are those analysed: the
 // factors are a function of the block's value alone, so a restarted run
-// computes the same ones as an uninterrupted run. False: dense.
-bool VaryingBlocks::refactor_sparse(Block& b, const Eigen::MatrixXd& value) {
+// computes the same ones as an uninterrupted run. No dense n x n value is
+// formed unless the pattern is analysed anew. False: dense.
+bool VaryingBlocks::refactor_sparse(Block& b) {
   constexpr int kSparseSize = 32;
   constexpr double kSparseFill = 0.2;
   if (b.size < kSparseSize) return false;
-  const long nonzeros = (value.array() != 0.0).count();
+  const int n = b.size;
+  const Eigen::Map<const RowMatrix> delta(b.delta.data(), n, n);
+  const long nonzeros = ((b.reference.array() + delta.array()) != 0.0).count();
   long on_pattern = 0;
-  if (b.sparse && b.matrix.rows() == b.size) {
+  if (b.sparse && b.matrix.rows() == n) {
     for (Eigen::Index j = 0; j < b.matrix.outerSize(); ++j)
       for (Eigen::SparseMatrix<double>::InnerIterator it(b.matrix, j); it; ++it) {
-        it.valueRef() = value(it.row(), it.col());
+        it.valueRef() = b.reference(it.row(), it.col()) + delta(it.row(), it.col());
         on_pattern += it.value() != 0.0;
       }
   }
   // Not analysed yet, an entry off the pattern, or one of it now zero.
   if (!b.sparse || on_pattern != nonzeros || on_pattern != b.matrix.nonZeros()) {
-    b.sparse = nonzeros <= kSparseFill * b.size * b.size;
+    b.sparse = nonzeros <= kSparseFill * n * n;
     if (!b.sparse) return false;
+    const RowMatrix value = b.reference + delta;
     b.matrix = value.sparseView(0.0, 0.0);  // exact zeros left out only
     b.sparse_lu.analyzePattern(b.matrix);
     ++analyses_;
+    b.reference_off_pattern.clear();
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        if (value(i, j) == 0.0 && b.reference(i, j) != 0.0)
+          b.reference_off_pattern.emplace_back(i, j, b.reference(i, j));
   }
   b.sparse_lu.factorize(b.matrix);
   return true;
@@ -184,9 +187,19 @@ void VaryingBlocks::solve_rows(Vec r, Vec x) const {
   });
 }
 
+// A sparse block's change is its value less J0 on the pattern, and -J0 where
+// J0 has an entry off it (the value is 0 there while the pattern holds).
 void VaryingBlocks::add_change(Vec x, Vec y) const {
-  each_owned_block(blocks_, x, y,
-                   [](const auto& b, const auto& xb, auto yb) { yb += b.delta * xb; });
+  each_owned_block(blocks_, x, y, [](const auto& b, const auto& xb, auto yb) {
+    if (!b.sparse) {
+      yb += Eigen::Map<const RowMatrix>(b.delta.data(), b.size, b.size) * xb;
+      return;
+    }
+    for (Eigen::Index j = 0; j < b.matrix.outerSize(); ++j)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(b.matrix, j); it; ++it)
+        yb[it.row()] += (it.value() - b.reference(it.row(), it.col())) * xb[j];
+    for (const auto& e : b.reference_off_pattern) yb[e.row()] -= e.value() * xb[e.col()];
+  });
 }
 
 }  // namespace pcsim::solvers

@@ -43,19 +43,23 @@ class VaryingBlocks {
   long pattern_analyses() const { return analyses_; }
 
  private:
+  using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   struct Block {
     PetscInt first = 0;
     int size = 0;
     bool owned = false;
-    Eigen::MatrixXd reference, delta;  // J0's values and the change (owner)
+    RowMatrix reference;        // J0's values (owner)
+    std::vector<double> delta;  // the change, row-major (owner)
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;
     bool sparse = false;
     Eigen::SparseMatrix<double> matrix;  // J0_b + delta, on the pattern of the last analysis
     Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> sparse_lu;
+    // J0's nonzeros off the pattern (sparse blocks): there the value is 0, the change -J0.
+    std::vector<Eigen::Triplet<double>> reference_off_pattern;
   };
   void check_decoupled(Mat P) const;
   void refactor(Block& b);
-  bool refactor_sparse(Block& b, const Eigen::MatrixXd& value);
+  bool refactor_sparse(Block& b);
 
   std::map<int, Block> blocks_;
   bool ready_ = false;

@@ -6,6 +6,7 @@
 #include <petscmat.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -146,6 +147,59 @@ TEST(VaryingBlocks, SparseFactorsDependOnTheValueAlone) {
   const Eigen::VectorXd rb = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
   const Eigen::VectorXd a = block_solution(fresh, P, rb), b = block_solution(seasoned, P, rb);
   for (int i = 0; i < n; ++i) EXPECT_EQ(a[i], b[i]) << i;
+  PCSIM_PETSC(MatDestroy(&P));
+}
+
+// add_change() adds delta x_b to the block rows of y, for a sparse block from
+// its pattern: the value less J0 there, and -J0 where an entry of J0 is now
+// zero (off the pattern). To rounding of the value J0_b + delta (each entry's
+// change is the value less J0, within eps of the value): 1e-15 of the sum of
+// |J0_b| + |delta| times |x|, measured 5.5e-17 (2.2e-16 is one rounding).
+TEST(VaryingBlocks, SparseBlockAddsItsChange) {
+  const int n = 64;
+  const Eigen::MatrixXd j0 = chain_block(n);
+  Mat P = step_matrix(j0);
+  VaryingBlocks blocks;
+  blocks.set({change(Eigen::MatrixXd::Zero(n, n))});
+  blocks.setup(P);
+  Eigen::MatrixXd delta = Eigen::MatrixXd::Zero(n, n);
+  for (int i = 0; i < n; ++i) delta(i, i) = 0.5 * std::sin(i) + 1e-9 * i;  // on the pattern
+  delta(0, 5) = -j0(0, 5);  // J0's entry cancelled: off the new pattern
+  delta(10, 40) = 0.7;      // a new entry
+  blocks.set({change(delta)});
+  ASSERT_EQ(blocks.sparse_blocks(), 1);
+  ASSERT_EQ(blocks.pattern_analyses(), 2);
+  Vec x, y;
+  PCSIM_PETSC(MatCreateVecs(P, &x, &y));
+  Eigen::VectorXd xb(n), yb0(n);
+  for (int i = 0; i < n; ++i) {
+    xb[i] = std::cos(0.3 * i) - 0.2;
+    yb0[i] = 0.1 * i;
+    PCSIM_PETSC(VecSetValue(x, 2 + i, xb[i], INSERT_VALUES));
+    PCSIM_PETSC(VecSetValue(y, 2 + i, yb0[i], INSERT_VALUES));
+  }
+  for (PetscInt i = 0; i < 2; ++i) {
+    PCSIM_PETSC(VecSetValue(x, i, 5.0, INSERT_VALUES));
+    PCSIM_PETSC(VecSetValue(y, i, 7.0, INSERT_VALUES));
+  }
+  for (Vec v : {x, y}) {
+    PCSIM_PETSC(VecAssemblyBegin(v));
+    PCSIM_PETSC(VecAssemblyEnd(v));
+  }
+  blocks.add_change(x, y);
+  const Eigen::VectorXd expected = yb0 + delta * xb;
+  const double scale = ((j0.cwiseAbs() + delta.cwiseAbs()) * xb.cwiseAbs()).maxCoeff();
+  const PetscScalar* ya;
+  PCSIM_PETSC(VecGetArrayRead(y, &ya));
+  EXPECT_EQ(ya[0], 7.0);  // rows outside the block left as given
+  EXPECT_EQ(ya[1], 7.0);
+  double error = 0;
+  for (int i = 0; i < n; ++i) error = std::max(error, std::abs(ya[2 + i] - expected[i]));
+  std::printf("  largest difference from delta x: %.1e of the scale\n", error / scale);
+  EXPECT_LE(error, 1e-15 * scale);
+  PCSIM_PETSC(VecRestoreArrayRead(y, &ya));
+  PCSIM_PETSC(VecDestroy(&x));
+  PCSIM_PETSC(VecDestroy(&y));
   PCSIM_PETSC(MatDestroy(&P));
 }
 

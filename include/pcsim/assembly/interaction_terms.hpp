@@ -39,13 +39,16 @@ class PantographTerm : public Term {
   TermPower power(const CoupledState& state) const override;
 
  private:
-  // K + v C + a M at the loaded state, row-major (last rank).
-  std::vector<double> block_tangent(const CoupledState& state, Shifts shifts) const;
+  // values = K + v C + a M at the loaded state, row-major (last rank), less
+  // reference_ when 'change'.
+  void block_tangent(const CoupledState& state, Shifts shifts, bool change,
+                     std::vector<double>& values) const;
 
   std::size_t index_;
   const PantographSlot& slot_;
   std::vector<double> reference_;  // block_tangent() at J0's state (last rank)
-  mutable Eigen::MatrixXd mass_;   // a linear model's M (last rank, at the first add_inertia)
+  mutable Eigen::MatrixXd tangent_k_, tangent_c_, tangent_m_;  // block_tangent()'s, kept
+  mutable Eigen::MatrixXd mass_;  // a linear model's M (last rank, at the first add_inertia)
 };
 
 // Penalty contact of one pantograph with one contact wire at the moving point

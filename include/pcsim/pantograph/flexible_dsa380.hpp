@@ -33,6 +33,7 @@
 // ΔM(θ) from the flexible equilibrium's M0 (the bars' deflection changes little with θ).
 #pragma once
 
+#include <Eigen/SparseCore>
 #include <array>
 #include <string>
 #include <vector>
@@ -146,18 +147,21 @@ class FlexibleDsa380Pantograph : public PantographModel {
                                                const Eigen::VectorXd& dq) const;
 
  private:
-  // ab: the base's acceleration (0: at rest, as the static equilibrium).
+  // ab: the base's acceleration (0: at rest, as the static equilibrium). K, C
+  // and M are written in place (n x n, sized by the caller): the tangents go
+  // straight into the caller's storage, no copy of three dense n x n blocks.
+  using MatrixRef = Eigen::Ref<Eigen::MatrixXd>;
   void assemble(double ab, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                const Eigen::VectorXd& qdd, Eigen::VectorXd* R, Eigen::MatrixXd* K,
-                Eigen::MatrixXd* C, Eigen::MatrixXd* M) const;
-  void add_beams(const Eigen::VectorXd& q, Eigen::VectorXd* R, Eigen::MatrixXd* K) const;
+                const Eigen::VectorXd& qdd, Eigen::VectorXd* R, MatrixRef* K, MatrixRef* C,
+                MatrixRef* M) const;
+  void add_beams(const Eigen::VectorXd& q, Eigen::VectorXd* R, MatrixRef* K) const;
   void add_head(double ab, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                const Eigen::VectorXd& qdd, Eigen::VectorXd* R, Eigen::MatrixXd* K,
-                Eigen::MatrixXd* C, Eigen::MatrixXd* M) const;
+                const Eigen::VectorXd& qdd, Eigen::VectorXd* R, MatrixRef* K, MatrixRef* C,
+                MatrixRef* M) const;
   void add_drive(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Eigen::VectorXd* R,
-                 Eigen::MatrixXd* K, Eigen::MatrixXd* C) const;
-  void apply_restraints(const Eigen::VectorXd& qdd, Eigen::VectorXd* R, Eigen::MatrixXd* K,
-                        Eigen::MatrixXd* C, Eigen::MatrixXd* M) const;
+                 MatrixRef* K, MatrixRef* C) const;
+  void apply_restraints(const Eigen::VectorXd& qdd, Eigen::VectorXd* R, MatrixRef* K, MatrixRef* C,
+                        MatrixRef* M) const;
   Vector6 gather(const FlexibleDsa380Mesh::Element& e, const Eigen::VectorXd& q) const;
   bool damper_active(const Eigen::VectorXd& qd) const;
   int bellows_dof() const {
@@ -169,8 +173,9 @@ class FlexibleDsa380Pantograph : public PantographModel {
   double speed_ = 0;
   std::array<TubeSection, 9> sections_;
   FlexibleDsa380Mesh mesh_;
-  Eigen::MatrixXd bar_mass_;    // constant mass matrix of the beams
-  Eigen::VectorXd bar_weight_;  // dVg/dq of the beams
+  Eigen::MatrixXd bar_mass_;                     // constant mass matrix of the beams
+  Eigen::SparseMatrix<double> bar_mass_sparse_;  // the same, for the residual's product
+  Eigen::VectorXd bar_weight_;                   // dVg/dq of the beams
   Eigen::VectorXd bar_masses_;  // the same per unit g: the beams' Σ m_i ∂z_i/∂q
   MovingFrame frame_;
   double aero_force_ = 0;
