@@ -9,13 +9,22 @@
 
 namespace pcsim::solvers {
 
-bool BlockDiagonalInverse::analyse(Mat P, PetscInt max_block) {
+bool BlockDiagonalInverse::analyse(Mat P, PetscInt max_block, const std::vector<Range>& skipped) {
   PetscInt lo, hi;
   PCSIM_PETSC(MatGetOwnershipRange(P, &lo, &hi));
   sizes_.clear();
   int ok = 1;
   PetscInt start = lo, reach = lo;
   for (PetscInt r = lo; r < hi && ok; ++r) {
+    const auto skip =
+        std::find_if(skipped.begin(), skipped.end(), [r](const Range& s) { return s.first == r; });
+    if (skip != skipped.end()) {  // its coupling is checked by its owner (VaryingBlocks)
+      ok = start == r && r + skip->second <= hi;  // no open block reaches into it
+      sizes_.push_back(-skip->second);
+      r += skip->second - 1;
+      start = reach = r + 1;
+      continue;
+    }
     PetscInt n;
     const PetscInt* cols;
     PCSIM_PETSC(MatGetRow(P, r, &n, &cols, nullptr));
@@ -48,6 +57,10 @@ void BlockDiagonalInverse::factor(Mat P) {
   blocks_.clear();
   PetscInt first = lo;
   for (PetscInt size : sizes_) {
+    if (size < 0) {  // skipped: its rows of inverse_diagonal_ stay 0
+      first -= size;
+      continue;
+    }
     Eigen::MatrixXd block = Eigen::MatrixXd::Zero(size, size);
     for (PetscInt r = first; r < first + size; ++r) {
       PetscInt n;

@@ -9,20 +9,25 @@
 #include <petscmat.h>
 
 #include <Eigen/Dense>
+#include <utility>
 #include <vector>
 
 namespace pcsim::solvers {
 
 class BlockDiagonalInverse {
  public:
+  // Global rows [first, first + size) of a block solved elsewhere (the cheap
+  // path's varying blocks: their rows of every solve are replaced).
+  using Range = std::pair<PetscInt, PetscInt>;
   // The blocks of P's pattern on this rank: true if it is block diagonal with
   // blocks of at most max_block rows, each within this rank's rows and holding
-  // its diagonal (collective: the same answer on every rank).
-  bool analyse(Mat P, PetscInt max_block = 32);
+  // its diagonal (collective: the same answer on every rank). A block that is
+  // one of 'skipped' (this rank's) may be of any size: it is not factored.
+  bool analyse(Mat P, PetscInt max_block = 32, const std::vector<Range>& skipped = {});
   // Inverts the blocks of P's current values; throws SolverError on a
   // singular one.
   void factor(Mat P);
-  // x = P^-1 r (local to each rank).
+  // x = P^-1 r (local to each rank); 0 in the rows of the skipped blocks.
   void solve(Vec r, Vec x) const;
 
  private:
@@ -30,7 +35,7 @@ class BlockDiagonalInverse {
     PetscInt first = 0;  // local row
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;
   };
-  std::vector<PetscInt> sizes_;
+  std::vector<PetscInt> sizes_;      // each block's rows, negative for a skipped one
   Eigen::ArrayXd inverse_diagonal_;  // 1/d on the rows of 1 x 1 blocks, 0 elsewhere
   std::vector<Block> blocks_;        // the larger blocks
 };

@@ -186,6 +186,8 @@ void LowRankStepSolver::set_terms(const std::vector<assembly::RankOne>& terms,
                                   const std::vector<assembly::BlockChange>& blocks) {
   varying_->set(blocks);
   if (!varying_->empty()) capacitance_dirty_ = true;  // on every rank alike
+  if (blocks_ && factored_ && varying_->owned_ranges() != skipped_)
+    throw SolverError("a varying block of the step matrix changed after J0's setup");
   std::set<int> keys;
   for (const auto& term : terms) {
     keys.insert(term.key);
@@ -223,7 +225,11 @@ void LowRankStepSolver::set_terms(const std::vector<assembly::RankOne>& terms,
 // A J0 whose pattern is block diagonal with small blocks (the modal
 // catenary's: its modes and each pantograph's block) is inverted block by
 // block (block_diagonal.hpp) instead of factored by the inner KSP, unless the
-// options give the inner solver a -cheap_pc_type.
+// options give the inner solver a -cheap_pc_type. A varying block (a
+// nonlinear pantograph's) is left out of it whatever its size: solve_j0()
+// replaces its rows (the flexible DSA-380's 150 unknowns, which made the
+// inner KSP factor the whole J0: docs/benchmarks.md, "The flexible DSA-380's
+// block").
 void LowRankStepSolver::choose_inner(Mat P) {
   inner_chosen_ = true;
   const char* prefix = nullptr;
@@ -231,7 +237,8 @@ void LowRankStepSolver::choose_inner(Mat P) {
   PCSIM_PETSC(KSPGetOptionsPrefix(inner_, &prefix));
   PCSIM_PETSC(PetscOptionsHasName(nullptr, prefix, "-pc_type", &pc_option));
   auto blocks = std::make_unique<BlockDiagonalInverse>();
-  if (!pc_option && blocks->analyse(P)) blocks_ = std::move(blocks);
+  skipped_ = varying_->owned_ranges();
+  if (!pc_option && blocks->analyse(P, 32, skipped_)) blocks_ = std::move(blocks);
 }
 
 // x = J0^-1 r, J0 as factored.

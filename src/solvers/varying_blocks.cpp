@@ -150,6 +150,13 @@ bool VaryingBlocks::refactor_sparse(Block& b) {
   return true;
 }
 
+std::vector<std::pair<PetscInt, PetscInt>> VaryingBlocks::owned_ranges() const {
+  std::vector<std::pair<PetscInt, PetscInt>> ranges;
+  for (const auto& [key, b] : blocks_)
+    if (b.owned) ranges.emplace_back(b.first, b.size);
+  return ranges;
+}
+
 int VaryingBlocks::sparse_blocks() const {
   int count = 0;
   for (const auto& [key, b] : blocks_) count += b.owned && b.sparse;

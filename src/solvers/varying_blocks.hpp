@@ -16,6 +16,7 @@
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
 #include <map>
+#include <utility>
 #include <vector>
 
 #include "pcsim/assembly/term.hpp"
@@ -40,6 +41,8 @@ class VaryingBlocks {
   // Owned blocks factored by the sparse LU, and the sparse LUs' analyses of
   // a new pattern of entries so far.
   int sparse_blocks() const;
+  // The global rows [first, first + size) of the blocks this rank owns.
+  std::vector<std::pair<PetscInt, PetscInt>> owned_ranges() const;
   long pattern_analyses() const { return analyses_; }
 
  private:

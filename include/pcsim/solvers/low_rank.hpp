@@ -26,6 +26,7 @@
 #include <Eigen/LU>
 #include <map>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "pcsim/assembly/term.hpp"
@@ -97,8 +98,9 @@ class LowRankStepSolver {
 
   Mat J0_, op_ = nullptr;
   KSP inner_ = nullptr;
-  std::unique_ptr<BlockDiagonalInverse> blocks_;  // J0 block diagonal: inverted by blocks
-  std::unique_ptr<VaryingBlocks> varying_;        // 'block' terms' changes
+  std::unique_ptr<BlockDiagonalInverse> blocks_;        // J0 block diagonal: inverted by blocks
+  std::unique_ptr<VaryingBlocks> varying_;              // 'block' terms' changes
+  std::vector<std::pair<PetscInt, PetscInt>> skipped_;  // varying rows blocks_ leaves out
   bool factored_ = false, capacitance_dirty_ = true, inner_chosen_ = false;
   std::map<int, Entry> entries_;
   std::map<PetscInt, Vec> columns_;                      // J0^-1 e_g
