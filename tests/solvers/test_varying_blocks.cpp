@@ -150,18 +150,26 @@ TEST(VaryingBlocks, SparseFactorsDependOnTheValueAlone) {
   PCSIM_PETSC(MatDestroy(&P));
 }
 
+// A 64-row chain block set up as J0 with no change yet.
+class SparseChainBlock : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    blocks.set({change(Eigen::MatrixXd::Zero(n, n))});
+    blocks.setup(P);
+  }
+  void TearDown() override { PCSIM_PETSC(MatDestroy(&P)); }
+  const int n = 64;
+  const Eigen::MatrixXd j0 = chain_block(n);
+  Mat P = step_matrix(j0);
+  VaryingBlocks blocks;
+};
+
 // add_change() adds delta x_b to the block rows of y, for a sparse block from
 // its pattern: the value less J0 there, and -J0 where an entry of J0 is now
 // zero (off the pattern). To rounding of the value J0_b + delta (each entry's
 // change is the value less J0, within eps of the value): 1e-15 of the sum of
 // |J0_b| + |delta| times |x|, measured 5.5e-17 (2.2e-16 is one rounding).
-TEST(VaryingBlocks, SparseBlockAddsItsChange) {
-  const int n = 64;
-  const Eigen::MatrixXd j0 = chain_block(n);
-  Mat P = step_matrix(j0);
-  VaryingBlocks blocks;
-  blocks.set({change(Eigen::MatrixXd::Zero(n, n))});
-  blocks.setup(P);
+TEST_F(SparseChainBlock, AddsItsChange) {
   Eigen::MatrixXd delta = Eigen::MatrixXd::Zero(n, n);
   for (int i = 0; i < n; ++i) delta(i, i) = 0.5 * std::sin(i) + 1e-9 * i;  // on the pattern
   delta(0, 5) = -j0(0, 5);  // J0's entry cancelled: off the new pattern
@@ -200,17 +208,10 @@ TEST(VaryingBlocks, SparseBlockAddsItsChange) {
   PCSIM_PETSC(VecRestoreArrayRead(y, &ya));
   PCSIM_PETSC(VecDestroy(&x));
   PCSIM_PETSC(VecDestroy(&y));
-  PCSIM_PETSC(MatDestroy(&P));
 }
 
 // The sparse LU refuses a singular or not finite block as the dense one does.
-TEST(VaryingBlocks, LargeSparseBlockRefusesASingularOrNotFiniteOne) {
-  const int n = 64;
-  const Eigen::MatrixXd j0 = chain_block(n);
-  Mat P = step_matrix(j0);
-  VaryingBlocks blocks;
-  blocks.set({change(Eigen::MatrixXd::Zero(n, n))});
-  blocks.setup(P);
+TEST_F(SparseChainBlock, RefusesASingularOrNotFiniteValue) {
   ASSERT_EQ(blocks.sparse_blocks(), 1);
   Eigen::MatrixXd singular = Eigen::MatrixXd::Zero(n, n);
   singular.row(5) = -j0.row(5);  // a zero row
@@ -220,7 +221,6 @@ TEST(VaryingBlocks, LargeSparseBlockRefusesASingularOrNotFiniteOne) {
   EXPECT_THROW(blocks.set({change(not_finite)}), pcsim::SolverError);
   EXPECT_NO_THROW(blocks.set({change(Eigen::MatrixXd::Identity(n, n))}));
   EXPECT_EQ(blocks.sparse_blocks(), 1);
-  PCSIM_PETSC(MatDestroy(&P));
 }
 
 // The block rows of the solution are (J0_b + delta)^-1 r_b (to rounding:
