@@ -55,11 +55,9 @@ double entry(PetscInt i, PetscInt j, bool coupled) {
   return 0.0;
 }
 
-// J0 over kLocal rows per rank (entry()); n its global size.
-Mat make_j0(bool coupled, PetscInt& n) {
-  int size;
-  MPI_Comm_size(PETSC_COMM_WORLD, &size);
-  n = kLocal * size;
+// An n x n matrix of kLocal rows per rank with the entries value(i, j).
+template <class Value>
+Mat make_matrix(PetscInt n, Value value) {
   Mat J0;
   PCSIM_PETSC(
       MatCreateAIJ(PETSC_COMM_WORLD, kLocal, kLocal, n, n, kLocal, nullptr, kLocal, nullptr, &J0));
@@ -67,11 +65,18 @@ Mat make_j0(bool coupled, PetscInt& n) {
   PCSIM_PETSC(MatGetOwnershipRange(J0, &lo, &hi));
   for (PetscInt i = lo; i < hi; ++i)
     for (PetscInt j = 0; j < n; ++j)
-      if (entry(i, j, coupled) != 0)
-        PCSIM_PETSC(MatSetValue(J0, i, j, entry(i, j, coupled), INSERT_VALUES));
+      if (value(i, j) != 0) PCSIM_PETSC(MatSetValue(J0, i, j, value(i, j), INSERT_VALUES));
   PCSIM_PETSC(MatAssemblyBegin(J0, MAT_FINAL_ASSEMBLY));
   PCSIM_PETSC(MatAssemblyEnd(J0, MAT_FINAL_ASSEMBLY));
   return J0;
+}
+
+// J0 over kLocal rows per rank (entry()); n its global size.
+Mat make_j0(bool coupled, PetscInt& n) {
+  int size;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  n = kLocal * size;
+  return make_matrix(n, [coupled](PetscInt i, PetscInt j) { return entry(i, j, coupled); });
 }
 
 // The step solver as a PC of a KSP that applies it once.
@@ -122,6 +127,25 @@ double error_against_dense(Eigen::MatrixXd A, const std::vector<pcsim::assembly:
   return err / expected.cwiseAbs().maxCoeff();
 }
 
+// The step solver's solution (J0 + the blocks' changes + sum c u u^T) x = b
+// for right_hand_side()'s b; by_blocks: whether it inverted J0 by blocks.
+Vec solve_step(Mat J0, const char* prefix, const std::vector<pcsim::assembly::RankOne>& terms,
+               const std::vector<pcsim::assembly::BlockChange>& blocks, bool* by_blocks) {
+  pcsim::solvers::LowRankStepSolver solver(J0, prefix);
+  pcsim::solvers::use_step_lu(solver.inner());
+  PCSIM_PETSC(KSPSetFromOptions(solver.inner()));
+  solver.set_terms(terms, blocks);
+  KSP ksp = preonly_ksp(solver, J0);
+  solver.set_terms(terms, blocks);
+  Vec b, x;
+  right_hand_side(J0, &x, &b);
+  PCSIM_PETSC(KSPSolve(ksp, b, x));
+  *by_blocks = solver.block_inverse();
+  KSPDestroy(&ksp);
+  VecDestroy(&b);
+  return x;
+}
+
 double solve_error(bool coupled, bool* by_blocks) {
   PetscInt n;
   Mat J0 = make_j0(coupled, n);
@@ -139,22 +163,11 @@ double solve_error(bool coupled, bool* by_blocks) {
   terms[1].weight = {1.0, -0.5, 0.25};
   terms[1].coefficient = -0.8;
   terms[1].reuse_columns = true;
-  pcsim::solvers::LowRankStepSolver solver(J0, "test_j0_");
-  pcsim::solvers::use_step_lu(solver.inner());
-  PCSIM_PETSC(KSPSetFromOptions(solver.inner()));
-  solver.set_terms(terms);
-  KSP ksp = preonly_ksp(solver, J0);
-  solver.set_terms(terms);
-  Vec b, x;
-  right_hand_side(J0, &x, &b);
-  PCSIM_PETSC(KSPSolve(ksp, b, x));
-  *by_blocks = solver.block_inverse();
+  Vec x = solve_step(J0, "test_j0_", terms, {}, by_blocks);
   Eigen::MatrixXd A(n, n);  // the same system densely on every rank
   for (PetscInt i = 0; i < n; ++i)
     for (PetscInt j = 0; j < n; ++j) A(i, j) = entry(i, j, coupled);
   const double err = error_against_dense(A, terms, x);
-  KSPDestroy(&ksp);
-  VecDestroy(&b);
   VecDestroy(&x);
   MatDestroy(&J0);
   return err;
@@ -223,16 +236,7 @@ double varying_block_error(bool* by_blocks) {
       return in_block(i) && in_block(j) ? varying_entry(i, j, first) : 0.0;
     return entry(i, j, false);
   };
-  Mat J0;
-  PCSIM_PETSC(
-      MatCreateAIJ(PETSC_COMM_WORLD, kLocal, kLocal, n, n, kLocal, nullptr, kLocal, nullptr, &J0));
-  PetscInt lo, hi;
-  PCSIM_PETSC(MatGetOwnershipRange(J0, &lo, &hi));
-  for (PetscInt i = lo; i < hi; ++i)
-    for (PetscInt j = 0; j < n; ++j)
-      if (value(i, j) != 0) PCSIM_PETSC(MatSetValue(J0, i, j, value(i, j), INSERT_VALUES));
-  PCSIM_PETSC(MatAssemblyBegin(J0, MAT_FINAL_ASSEMBLY));
-  PCSIM_PETSC(MatAssemblyEnd(J0, MAT_FINAL_ASSEMBLY));
+  Mat J0 = make_matrix(n, value);
   Eigen::MatrixXd delta = Eigen::MatrixXd::Zero(kVaryingSize, kVaryingSize);
   for (PetscInt i = 0; i < kVaryingSize; ++i)
     for (PetscInt j = std::max<PetscInt>(0, i - 2); j < std::min(kVaryingSize, i + 3); ++j)
@@ -245,23 +249,12 @@ double varying_block_error(bool* by_blocks) {
     for (PetscInt i = 0; i < kVaryingSize; ++i)
       for (PetscInt j = 0; j < kVaryingSize; ++j) change.delta.push_back(delta(i, j));
   const std::vector<pcsim::assembly::RankOne> terms = {dense_term(1, n, 1.0, 3.0)};
-  pcsim::solvers::LowRankStepSolver solver(J0, "test_varying_");
-  pcsim::solvers::use_step_lu(solver.inner());
-  PCSIM_PETSC(KSPSetFromOptions(solver.inner()));
-  solver.set_terms(terms, {change});
-  KSP ksp = preonly_ksp(solver, J0);
-  solver.set_terms(terms, {change});
-  Vec b, x;
-  right_hand_side(J0, &x, &b);
-  PCSIM_PETSC(KSPSolve(ksp, b, x));
-  *by_blocks = solver.block_inverse();
+  Vec x = solve_step(J0, "test_varying_", terms, {change}, by_blocks);
   Eigen::MatrixXd A(n, n);
   for (PetscInt i = 0; i < n; ++i)
     for (PetscInt j = 0; j < n; ++j) A(i, j) = value(i, j);
   A.bottomRightCorner(kVaryingSize, kVaryingSize) += delta;
   const double err = error_against_dense(A, terms, x);
-  KSPDestroy(&ksp);
-  VecDestroy(&b);
   VecDestroy(&x);
   MatDestroy(&J0);
   return err;
