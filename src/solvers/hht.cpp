@@ -288,7 +288,10 @@ PetscErrorCode attempt_step(TS ts, PetscReal dt, PetscBool* converged) {
 }
 
 // A step: retried with Δt halved after a Newton failure (at most max_reject
-// times); Δt doubles back after regrow_steps accepted steps.
+// times); Δt doubles back after regrow_steps accepted steps. Δt never falls
+// below the scene's Δt / 2^max_reject: steps that each fail once and pass at
+// half their Δt would otherwise shrink it step after step, the run creeping
+// at t = 0 for ever (seen with -ksp_type cg -pc_type none -ksp_max_it 2).
 PetscErrorCode ts_step(TS ts) {
   HHTData* th = data_of(ts);
   PetscFunctionBeginUser;
@@ -310,7 +313,8 @@ PetscErrorCode ts_step(TS ts) {
     ++ts->num_snes_failures;
     ++th->rejected;
     th->accepted_since_cut = 0;
-    if (++rejections > th->max_reject) {
+    const PetscReal floor = th->dt_user > 0 ? std::ldexp(th->dt_user, -th->max_reject) : 0;
+    if (++rejections > th->max_reject || 0.5 * dt < floor * (1 - 1e-12)) {
       ts->reason = TS_DIVERGED_NONLINEAR_SOLVE;
       break;
     }
