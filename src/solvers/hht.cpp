@@ -313,8 +313,8 @@ PetscErrorCode ts_step(TS ts) {
     ++ts->num_snes_failures;
     ++th->rejected;
     th->accepted_since_cut = 0;
-    const PetscReal floor = th->dt_user > 0 ? std::ldexp(th->dt_user, -th->max_reject) : 0;
-    if (++rejections > th->max_reject || 0.5 * dt < floor * (1 - 1e-12)) {
+    const PetscReal smallest_dt = th->dt_user > 0 ? std::ldexp(th->dt_user, -th->max_reject) : 0;
+    if (++rejections > th->max_reject || 0.5 * dt < smallest_dt * (1 - 1e-12)) {
       ts->reason = TS_DIVERGED_NONLINEAR_SOLVE;
       break;
     }
