@@ -11,6 +11,7 @@
 #include "pcsim/assembly/static_problem.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/solvers/direct.hpp"
+#include "pcsim/solvers/spectrum.hpp"
 
 namespace pcsim::solvers {
 
@@ -160,6 +161,23 @@ std::string judge_convergence(SNESConvergedReason reason, double residual_inf, d
       sci(kStagnationTolerance * scale) + " N); try -snes_monitor -snes_linesearch_type bt");
 }
 
+// The tangent without form-finding is symmetric (a potential's Hessian):
+// Cholesky, on one rank PETSc's with RCM ordering (the line's band), as the
+// modes (spectrum.hpp); the elasticity of stitched.yaml took 75 s with MUMPS's
+// LU and 7 s so (docs/lines.md). Form-finding's rows make it unsymmetric: LU.
+void use_static_factorisation(KSP ksp, Mat J, bool form_finding) {
+  if (form_finding) {
+    use_direct_lu(ksp, MATSOLVERMUMPS);
+    return;
+  }
+  PCSIM_PETSC(MatSetOption(J, MAT_SYMMETRIC, PETSC_TRUE));
+  PCSIM_PETSC(MatSetOption(J, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
+  PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
+  PC pc;
+  PCSIM_PETSC(KSPGetPC(ksp, &pc));
+  use_line_cholesky(pc);
+}
+
 }  // namespace
 
 catenary::StaticResult solve_static(assembly::CatenarySystem& system, Vec x, bool form_finding,
@@ -183,7 +201,7 @@ catenary::StaticResult solve_static(assembly::CatenarySystem& system, Vec x, boo
   PCSIM_PETSC(SNESSetTolerances(snes, target, 1e-12, 1e-14, 50, 10000));
   KSP ksp;
   PCSIM_PETSC(SNESGetKSP(snes, &ksp));
-  use_direct_lu(ksp, MATSOLVERMUMPS);
+  use_static_factorisation(ksp, J, form_finding);
   std::vector<PetscReal> history(60, 0.0);
   PCSIM_PETSC(SNESSetConvergenceHistory(snes, history.data(), nullptr,
                                         static_cast<PetscInt>(history.size()), PETSC_TRUE));

@@ -1,4 +1,5 @@
 #!/bin/bash
+# pcsim-test-processors: 2
 # Rank independence of `pcsim modes runs/en50318-static.yaml` (form-finding,
 # static configuration and the first 20 catenary frequencies of the EN 50318
 # reference catenary): 1, 2 and 3 ranks agree to 1e-9 (relative).

@@ -1,4 +1,5 @@
 #!/bin/bash
+# pcsim-test-processors: 2
 # The exact step solvers (-pcsim_step_solver, solvers/schur_dd.hpp) on 1 to
 # 8 ranks: the EN 50318 case on a 4-span catenary (5.7k DOFs), 80 steps
 # (5 -> 11.7 m past the first dropper). The domain decomposition on 1 (one
