@@ -164,7 +164,7 @@ std::string judge_convergence(SNESConvergedReason reason, double residual_inf, d
 // The tangent without form-finding is symmetric (a potential's Hessian):
 // Cholesky, on one rank PETSc's with RCM ordering (the line's band), as the
 // modes (spectrum.hpp); the elasticity of stitched.yaml took 75 s with MUMPS's
-// LU and 7 s so (docs/lines.md). Form-finding's rows make it unsymmetric: LU.
+// LU and 7 s so (docs/catenary.md). Form-finding's rows make it unsymmetric: LU.
 void use_static_factorisation(KSP ksp, Mat J, bool form_finding) {
   if (form_finding) {
     use_direct_lu(ksp, MATSOLVERMUMPS);

@@ -1,5 +1,4 @@
 #!/bin/bash
-# pcsim-test-processors: 2
 # Exit codes on 2 ranks (README "Exit codes": 2 input, 3 solver failure,
 # 4 internal error): mpirun returns the code, one pcsim message is printed, the
 # job never hangs (each run under `timeout 60`, which would give 124), and no

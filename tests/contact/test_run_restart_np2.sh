@@ -1,5 +1,4 @@
 #!/bin/bash
-# pcsim-test-processors: 2
 # Checkpoint/restart of `pcsim run` on two ranks, on the short EN 50318 case
 # (200 steps; the one-rank cases and the refusals: test_run_restart.sh).
 #  - With deterministic linear solvers (every LU factorisation sequential and

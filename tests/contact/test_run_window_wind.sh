@@ -1,5 +1,4 @@
 #!/bin/bash
-# pcsim-test-processors: 2
 # A moving window under turbulent wind (docs/conditions.md, "Turbulence"):
 # EN 50318 at 300 km/h on a 16-span line under 20 m/s across with the
 # category II turbulence (runs/conditions/en50318-300-wind.yaml), statistics

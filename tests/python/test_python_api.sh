@@ -1,5 +1,4 @@
 #!/bin/bash
-# pcsim-test-processors: 2
 # The Python API (docs/python.md) on 1 and 2 ranks against `pcsim run` on the
 # same scene (tests/python/python_api_check.py says what is checked), the
 # step-wise interface (tests/python/stepping_check.py), and the

@@ -1,5 +1,4 @@
 #!/bin/bash
-# pcsim-test-processors: 2
 # The residual after an exact Newton update (-ts_hht_residual_update,
 # CoupledSystem::residual_update): on the cheap path the update Y solved
 # (J0 + D) Y = R exactly, so the linear parts' products are not evaluated

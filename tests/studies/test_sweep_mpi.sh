@@ -1,5 +1,4 @@
 #!/bin/bash
-# pcsim-test-processors: 2
 # pcsim sweep under mpirun (docs/cluster.md), on the short three-span scene
 # (cases of ~0.5 s); a case table of four cases, one of which (contact
 # stiffness 1e12 N/m with -ts_hht_max_reject 0) fails at its second step:
