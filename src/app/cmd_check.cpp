@@ -73,7 +73,9 @@ std::string check_command(const app::CommandContext& ctx, const std::string& com
                   "%zu pantograph(s), %.0f time steps of %g s (TS %s, %s path); ",
                   in.run.pantographs.size(), in.run.duration() / in.run.dt, in.run.dt,
                   in.numerics.ts_type.c_str(), in.cheap_path ? "cheap" : "full");
-    return text +
+    const std::string method =
+        in.run.modal_method_note.empty() ? "" : "modal method " + in.run.modal_method_note + "; ";
+    return text + method +
            ("design " + in.run.catenary.design_path + ": " + memory_text(in.memory, ctx.size));
   }
   if (command == "pantograph") {

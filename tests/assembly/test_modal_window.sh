@@ -99,6 +99,15 @@ grep -q "modal method: whole (auto: the line (6 spans) is shorter than 2 x a win
 run long "$tmp/long.yaml" --set catenary.model=modal -ts_max_steps 5
 grep -q "modal method: window (auto: a line of 40 identical spans, a window of 7)" "$tmp/long.log" ||
   { cat "$tmp/long.log"; exit 1; }
+# `pcsim check` names the same choice, before any work.
+for case in short long; do
+  "$PCSIM_BIN" check "$tmp/$case.yaml" --set catenary.model=modal > "$tmp/check-$case.log" 2>&1 ||
+    { cat "$tmp/check-$case.log"; exit 1; }
+done
+grep -q "modal method whole (auto: the line (6 spans) is shorter than 2 x a window" \
+  "$tmp/check-short.log" || { cat "$tmp/check-short.log"; exit 1; }
+grep -q "modal method window (auto: a line of 40 identical spans, a window of 7);" \
+  "$tmp/check-long.log" || { cat "$tmp/check-long.log"; exit 1; }
 "$PCSIM_PYTHON" -c "
 import json, sys
 s = json.load(open('$tmp/long/summary.json'))
