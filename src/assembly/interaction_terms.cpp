@@ -102,7 +102,10 @@ void PantographTerm::block_change(const CoupledState& state, Shifts shifts,
   change.size = slot_.dof_count();
   if (state.on_last_rank()) {
     if (reference_.empty()) throw SolverError("pantograph block change before its reference");
-    block_tangent(state, shifts, true, change.delta);
+    const auto& model = *slot_.model;
+    if (!model.sparse_step_tangent(state.t, state.q(index_), state.qd(index_), state.qdd(index_),
+                                   shifts.v, shifts.a, change.value))
+      block_tangent(state, shifts, true, change.delta);
   }
   blocks.push_back(std::move(change));
 }

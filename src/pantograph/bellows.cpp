@@ -101,28 +101,6 @@ void Bellows::add_residual(const Dsa380Parameters& p, int theta, int m, const Ei
   R[m] = t1 * t2 * qdd[m] + (t1 + t2) * qd[m] + q[m] - dM;
 }
 
-void Bellows::add_tangents(const Dsa380Parameters& p, int theta, int m, const Eigen::VectorXd& q,
-                           Eigen::Ref<Eigen::MatrixXd> K, Eigen::Ref<Eigen::MatrixXd> C,
-                           Eigen::Ref<Eigen::MatrixXd> M) const {
-  if (!on_) return;
-  double d = 0;
-  torque_change(p, q[theta], &d);
-  if (m < 0) {
-    K(theta, theta) -= d;
-    return;
-  }
-  const double t1 = b_.time_constant, t2 = b_.valve_time_constant;
-  K(theta, m) -= 1;
-  K(m, m) = 1;
-  K(m, theta) = -d;
-  C(m, m) = t1 + t2;
-  add_mass(m, M);
-}
-
-void Bellows::add_mass(int m, Eigen::Ref<Eigen::MatrixXd> M) const {
-  if (on_ && m >= 0) M(m, m) = b_.time_constant * b_.valve_time_constant;
-}
-
 double Bellows::kinetic_energy(int m, const Eigen::VectorXd& qd) const {
   return m < 0 ? 0.0 : 0.5 * b_.time_constant * b_.valve_time_constant * qd[m] * qd[m];
 }

@@ -1,6 +1,7 @@
 // Flexible DSA-380: residual, exact tangents, energies and power.
 #include "pcsim/pantograph/flexible_dsa380.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace pcsim::pantograph {
@@ -55,6 +56,46 @@ bool FlexibleDsa380Pantograph::damper_active(const Eigen::VectorXd& qd) const {
 }
 
 namespace {
+// The step tangent K + shift_v C + shift_a M as one list of triplets: K, C and
+// M are three views of it with their weights. An entry takes += and -=, and =
+// where nothing else has written it (the bellows' loop row, a restraint's row
+// just zeroed): there it adds too. Duplicates are summed when the sparse
+// matrix is formed.
+class TripletView {
+ public:
+  TripletView(std::vector<Eigen::Triplet<double>>& list, double weight)
+      : list_(list), weight_(weight) {}
+  class Entry {
+   public:
+    Entry(TripletView& view, int i, int j) : view_(view), i_(i), j_(j) {}
+    void operator+=(double v) { view_.list_.emplace_back(i_, j_, view_.weight_ * v); }
+    void operator-=(double v) { *this += -v; }
+    void operator=(double v) { *this += v; }
+
+   private:
+    TripletView& view_;
+    int i_, j_;
+  };
+  Entry operator()(int i, int j) { return Entry(*this, i, j); }
+  // Every entry of row r so far, of the three views.
+  void zero_row(int r) {
+    list_.erase(std::remove_if(list_.begin(), list_.end(),
+                               [r](const Eigen::Triplet<double>& e) { return e.row() == r; }),
+                list_.end());
+  }
+
+ private:
+  std::vector<Eigen::Triplet<double>>& list_;
+  double weight_;
+};
+
+void zero_row(Eigen::Ref<Eigen::MatrixXd>& m, int r) {
+  m.row(r).setZero();
+}
+void zero_row(TripletView& m, int r) {
+  m.zero_row(r);
+}
+
 // Damper length l_a(θ) through the rigid lever 1→1p (bar 9), with d/dθ, d²/dθ² (A.14).
 Jet damper_length(const Dsa380Parameters& p, double theta) {
   const Jet th1p = Jet::variable(theta) + Jet(p.theta_1p);
@@ -64,8 +105,9 @@ Jet damper_length(const Dsa380Parameters& p, double theta) {
 }
 }  // namespace
 
+template <class Matrix>
 void FlexibleDsa380Pantograph::add_beams(const Eigen::VectorXd& q, Eigen::VectorXd* R,
-                                         MatrixRef* K) const {
+                                         Matrix* K) const {
   for (const auto& e : mesh_.elements) {
     const PlanarBeamState s = planar_beam_evaluate(e.beam, gather(e, q), K != nullptr);
     for (int a = 0; a < 6; ++a) {
@@ -79,10 +121,10 @@ void FlexibleDsa380Pantograph::add_beams(const Eigen::VectorXd& q, Eigen::Vector
   }
 }
 
+template <class Matrix>
 void FlexibleDsa380Pantograph::add_head(double ab, const Eigen::VectorXd& q,
                                         const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd,
-                                        Eigen::VectorXd* R, MatrixRef* K, MatrixRef* C,
-                                        MatrixRef* M) const {
+                                        Eigen::VectorXd* R, Matrix* K, Matrix* C, Matrix* M) const {
   const Dsa380Parameters& p = p_.rigid;
   const double g = p.g + ab;  // a moving base: g + a_b (dsa380_base.cpp)
   const double m7 = p.m[6], LG7 = p.LG[6], I7 = p.I[6], th7d = qd[3];
@@ -136,8 +178,9 @@ void FlexibleDsa380Pantograph::add_head(double ab, const Eigen::VectorXd& q,
   }
 }
 
+template <class Matrix>
 void FlexibleDsa380Pantograph::add_drive(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                                         Eigen::VectorXd* R, MatrixRef* K, MatrixRef* C) const {
+                                         Eigen::VectorXd* R, Matrix* K, Matrix* C) const {
   const Dsa380Parameters& p = p_.rigid;
   if (R) (*R)[0] += p.kr * (q[0] - p.theta_r0) - M0_;  // drive spring, bellows torque
   if (K) (*K)(0, 0) += p.kr;
@@ -169,18 +212,19 @@ void FlexibleDsa380Pantograph::add_drive(const Eigen::VectorXd& q, const Eigen::
   }
 }
 
+template <class Matrix>
 void FlexibleDsa380Pantograph::apply_restraints(const Eigen::VectorXd& qdd, Eigen::VectorXd* R,
-                                                MatrixRef* K, MatrixRef* C, MatrixRef* M) const {
+                                                Matrix* K, Matrix* C, Matrix* M) const {
   const double m7 = p_.rigid.m[6], LG7 = p_.rigid.LG[6];
   int row = -1;
   if (e_.head_restraint == Dsa380Effects::HeadRestraint::rotation) row = 3;
   if (e_.head_restraint == Dsa380Effects::HeadRestraint::horizontal) row = 1;
   if (row < 0) return;
   if (K) {
-    K->row(row).setZero();
-    C->row(row).setZero();
+    zero_row(*K, row);
+    zero_row(*C, row);
   }
-  if (M) M->row(row).setZero();
+  if (M) zero_row(*M, row);
   if (row == 3) {  // θ̈7 = 0 (A.37)
     const double J = p_.rigid.I[6] + m7 * LG7 * LG7;
     if (R) (*R)[3] = J * qdd[3];
@@ -231,6 +275,29 @@ void FlexibleDsa380Pantograph::tangents(double t, const Eigen::VectorXd& q,
                                         Eigen::Ref<Eigen::MatrixXd> dR_dqdd) const {
   MatrixRef K(dR_dq), C(dR_dqd), M(dR_dqdd);
   assemble(frame_.acceleration(t), q, qd, qdd, nullptr, &K, &C, &M);
+}
+
+// As tangents() summed with the shifts: the beams' constant mass, then what
+// assemble() adds to K, C and M, each entry as written there (no dense n x n).
+bool FlexibleDsa380Pantograph::sparse_step_tangent(double t, const Eigen::VectorXd& q,
+                                                   const Eigen::VectorXd& qd,
+                                                   const Eigen::VectorXd& qdd, double shift_v,
+                                                   double shift_a,
+                                                   Eigen::SparseMatrix<double>& J) const {
+  triplets_.clear();
+  for (int j = 0; j < bar_mass_sparse_.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(bar_mass_sparse_, j); it; ++it)
+      triplets_.emplace_back(it.row(), it.col(), shift_a * it.value());
+  TripletView K(triplets_, 1.0), C(triplets_, shift_v), M(triplets_, shift_a);
+  add_beams(q, nullptr, &K);
+  add_head(frame_.acceleration(t), q, qd, qdd, nullptr, &K, &C, &M);
+  add_drive(q, qd, nullptr, &K, &C);
+  bellows_.add_tangents(p_.rigid, 0, bellows_dof(), q, K, C, M);
+  apply_restraints(qdd, nullptr, &K, &C, &M);
+  const int n = dof_count();
+  J.resize(n, n);
+  J.setFromTriplets(triplets_.begin(), triplets_.end());
+  return true;
 }
 
 void FlexibleDsa380Pantograph::mass(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,

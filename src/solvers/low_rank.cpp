@@ -368,6 +368,9 @@ PetscErrorCode LowRankStepSolver::op_mult(Mat A, Vec x, Vec y) {
   LowRankStepSolver* self;
   PCSIM_PETSC(MatShellGetContext(A, &self));
   PCSIM_PETSC(MatMult(self->J0_, x, y));
+  // Before the preconditioner's set-up (-snes_test_jacobian forms the operator
+  // first): a block given as its value needs J0's block for its change.
+  if (!self->varying_->empty() && !self->varying_->ready()) self->varying_->setup(self->J0_);
   self->varying_->add_change(x, y);
   std::vector<Vec> us;
   std::vector<PetscScalar> c;

@@ -2,6 +2,7 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <string>
@@ -20,8 +21,11 @@ void VaryingBlocks::set(const std::vector<assembly::BlockChange>& changes) {
       throw SolverError("a varying block of the step matrix appeared after J0's setup");
     b.first = change.first;
     b.size = change.size;
-    b.owned = !change.delta.empty();
-    if (b.owned) b.delta = change.delta;  // keeps its storage from the last iteration
+    b.owned = change.given();
+    if (b.owned) {
+      b.delta = change.delta;  // keeps its storage from the last iteration
+      b.value = change.value;
+    }
     if (ready_ && b.owned) refactor(b);
   }
   for (auto it = blocks_.begin(); it != blocks_.end();)
@@ -94,7 +98,12 @@ void VaryingBlocks::check_decoupled(Mat P) const {
 // step's refactoring: its own triangular solves).
 void VaryingBlocks::refactor(Block& b) {
   bool regular = true;
-  if (refactor_sparse(b)) {
+  bool sparse = true;
+  if (b.value.size() > 0)
+    refactor_given(b);
+  else
+    sparse = refactor_sparse(b);
+  if (sparse) {
     // SparseLU stops at a zero pivot; log |det| sums log |pivot|: not finite
     // for a zero or not finite one.
     regular =
@@ -148,6 +157,38 @@ bool VaryingBlocks::refactor_sparse(Block& b) {
   }
   b.sparse_lu.factorize(b.matrix);
   return true;
+}
+
+// A block given as its sparse value (a model's sparse step tangent: the
+// flexible DSA-380's 150 unknowns, no dense n x n formed): the value's
+// entries are the pattern, its analysis kept while they are those analysed.
+// The factors are a function of the value (entries and pattern) alone.
+void VaryingBlocks::refactor_given(Block& b) {
+  const Eigen::SparseMatrix<double>& v = b.value;
+  const Eigen::Index nnz = v.nonZeros(), outer = v.outerSize();
+  const bool analysed =
+      b.sparse && b.matrix.rows() == v.rows() && b.matrix.nonZeros() == nnz &&
+      std::equal(v.outerIndexPtr(), v.outerIndexPtr() + outer + 1, b.matrix.outerIndexPtr()) &&
+      std::equal(v.innerIndexPtr(), v.innerIndexPtr() + nnz, b.matrix.innerIndexPtr());
+  if (analysed) {
+    std::copy(v.valuePtr(), v.valuePtr() + nnz, b.matrix.valuePtr());
+  } else {
+    b.sparse = true;
+    b.matrix = v;
+    b.sparse_lu.analyzePattern(b.matrix);
+    ++analyses_;
+    Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> on(b.size, b.size);
+    on.setConstant(false);
+    for (Eigen::Index j = 0; j < outer; ++j)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(v, j); it; ++it)
+        on(it.row(), it.col()) = true;
+    b.reference_off_pattern.clear();
+    for (int i = 0; i < b.size; ++i)
+      for (int j = 0; j < b.size; ++j)
+        if (!on(i, j) && b.reference(i, j) != 0.0)
+          b.reference_off_pattern.emplace_back(i, j, b.reference(i, j));
+  }
+  b.sparse_lu.factorize(b.matrix);
 }
 
 std::vector<std::pair<PetscInt, PetscInt>> VaryingBlocks::owned_ranges() const {

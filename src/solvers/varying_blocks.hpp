@@ -6,7 +6,9 @@
 // J0 stays factored once, each block is refactored per iteration: by a dense
 // LU, or, for a large block with few entries (the flexible DSA-380's 150
 // unknowns, 6 % of them), by a sparse LU whose ordering is kept while the
-// entries stay where they were.
+// entries stay where they were. A block whose change comes as its sparse
+// value (BlockChange::value, a model's sparse step tangent) takes the sparse
+// LU on that value's entries: no dense n x n is read or formed.
 // Private to src/solvers (the low-rank step solver).
 #pragma once
 
@@ -34,6 +36,7 @@ class VaryingBlocks {
   void setup(Mat P);
   // J0 changed: its blocks are unknown until setup().
   void invalidate() { ready_ = false; }
+  bool ready() const { return ready_; }
   // x's block rows = (J0_b + delta)^-1 r_b (x holds J0^-1 r elsewhere).
   void solve_rows(Vec r, Vec x) const;
   // y's block rows += delta x_b.
@@ -51,8 +54,9 @@ class VaryingBlocks {
     PetscInt first = 0;
     int size = 0;
     bool owned = false;
-    RowMatrix reference;        // J0's values (owner)
-    std::vector<double> delta;  // the change, row-major (owner)
+    RowMatrix reference;                // J0's values (owner)
+    std::vector<double> delta;          // the change, row-major (owner)
+    Eigen::SparseMatrix<double> value;  // or the value itself, sparse (owner; delta empty)
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;
     bool sparse = false;
     Eigen::SparseMatrix<double> matrix;  // J0_b + delta, on the pattern of the last analysis
@@ -63,6 +67,7 @@ class VaryingBlocks {
   void check_decoupled(Mat P) const;
   void refactor(Block& b);
   bool refactor_sparse(Block& b);
+  void refactor_given(Block& b);
 
   std::map<int, Block> blocks_;
   bool ready_ = false;

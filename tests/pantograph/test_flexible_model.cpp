@@ -3,6 +3,7 @@
 // rate against power, static equilibrium under 120 N, and the model-file reader.
 #include <gtest/gtest.h>
 
+#include <Eigen/SparseCore>
 #include <cmath>
 #include <cstdio>
 
@@ -214,6 +215,53 @@ TEST(FlexibleDsa380, TangentsMatchFiniteDifferences) {
       m.mass(0, s.q, s.qd, Mm);
       EXPECT_EQ((Mm - M).cwiseAbs().maxCoeff(), 0.0) << c.name;
     }
+}
+
+// The sparse step tangent (the cheap path's block, no dense n x n) is the dense tangents'
+// K + a_v C + a_a M, entry for entry, at the shifts of a 1 ms HHT step, in every case of
+// the test above and with the bellows' pressure loop; its pattern holds every nonzero.
+TEST(FlexibleDsa380, SparseStepTangentIsTheDenseOne) {
+  std::vector<std::pair<const char*, Dsa380Effects>> cases = {{"none", Dsa380Effects{}},
+                                                              {"all", all_effects()}};
+  Dsa380Effects rot = all_effects(), hor = all_effects(), loop = all_effects();
+  rot.head_restraint = Dsa380Effects::HeadRestraint::rotation;
+  hor.head_restraint = Dsa380Effects::HeadRestraint::horizontal;
+  loop.uplift_characteristic = true;
+  cases.insert(
+      cases.end(),
+      {{"rotation restraint", rot}, {"horizontal restraint", hor}, {"bellows loop", loop}});
+  const double shift_v = 2.0 / (0.5 * 1e-3), shift_a = 1.0 / (0.25 * 1e-6);  // β 1/4, γ 1/2
+  for (const auto& [name, effects] : cases) {
+    auto params = with_aero(flexible_params(3));
+    params.rigid.bellows.time_constant = 0.5;
+    params.rigid.bellows.valve_time_constant = 0.05;
+    FlexibleDsa380Pantograph m(params, effects, 80.0);
+    m.set_bellows_torque(1150);
+    m.set_base_motion(kBase);
+    State s = moving_state(m, 1e-6, 0.3);
+    const int n = m.dof_count();
+    if (effects.uplift_characteristic) {
+      s.q.head(n - 1) = m.static_equilibrium(120, 1.2).head(n - 1);
+      s.q[n - 1] = 35;  // the loop's torque change (N m)
+    }
+    Eigen::MatrixXd K(n, n), C(n, n), M(n, n);
+    m.tangents(0.2, s.q, s.qd, s.qdd, K, C, M);
+    const Eigen::MatrixXd dense = K + shift_v * C + shift_a * M;
+    Eigen::SparseMatrix<double> J;
+    ASSERT_TRUE(m.sparse_step_tangent(0.2, s.q, s.qd, s.qdd, shift_v, shift_a, J)) << name;
+    const Eigen::MatrixXd sparse = J;
+    int missing = 0;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) missing += dense(i, j) != 0 && J.coeff(i, j) == 0;
+    const double error = (sparse - dense).cwiseAbs().maxCoeff() / dense.cwiseAbs().maxCoeff();
+    std::printf("%-22s n = %d: %ld entries of %d, largest difference %.1e of the largest\n", name,
+                n, static_cast<long>(J.nonZeros()), n * n, error);
+    EXPECT_EQ(missing, 0) << name;
+    // The same terms summed in another order: rounding of the largest entry (a_a times a
+    // bar's mass), measured 1.0e-16 to 2.1e-16; 1e-15 leaves a margin of five.
+    EXPECT_LE(error, 1e-15) << name;
+    EXPECT_LT(J.nonZeros(), n * n / 5) << name;  // sparse: ~6 % of the entries
+  }
 }
 
 TEST(FlexibleDsa380, EnergyRateEqualsPowerOfTheNonConservativeForces) {

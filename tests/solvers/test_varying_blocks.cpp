@@ -123,6 +123,76 @@ TEST(VaryingBlocks, LargeSparseBlockTakesTheSparseLU) {
   PCSIM_PETSC(MatDestroy(&P));
 }
 
+// A block given as its sparse value (a model's sparse step tangent) solves
+// as the dense LU of that value (1e-14 of the solution, as above), keeps its
+// analysis while the value's entries are where they were, analyses anew when
+// one is added, and its change is the value less J0, -J0 where J0 has an
+// entry the value has not (to rounding of the value: 1e-15 of |J0| + |J|
+// times |x|, as in AddsItsChange).
+TEST(VaryingBlocks, GivenSparseValue) {
+  const int n = 64;
+  const Eigen::MatrixXd j0 = chain_block(n);
+  Mat P = step_matrix(j0);
+  Eigen::MatrixXd value = j0;
+  for (int i = 0; i < n; ++i) value(i, i) += 0.5 * std::sin(i);
+  value(0, 5) = 0;  // J0's entry, not in the value
+  const auto given = [&](const Eigen::MatrixXd& v) {
+    pcsim::assembly::BlockChange c;
+    c.key = 7;
+    c.first = 2;
+    c.size = n;
+    c.value = v.sparseView(0.0, 0.0);
+    return c;
+  };
+  VaryingBlocks blocks;
+  blocks.set({given(value)});
+  blocks.setup(P);
+  EXPECT_EQ(blocks.sparse_blocks(), 1);
+  EXPECT_EQ(blocks.pattern_analyses(), 1);
+  const Eigen::VectorXd rb = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+  const auto check = [&](const Eigen::MatrixXd& v) {
+    const Eigen::VectorXd expected = v.partialPivLu().solve(rb);
+    const double error = (block_solution(blocks, P, rb) - expected).norm() / expected.norm();
+    std::printf("  given value: relative difference from the dense LU %.1e\n", error);
+    EXPECT_LE(error, 1e-14);
+  };
+  check(value);
+  value(3, 4) = 0.25;  // on the pattern (J0's chain)
+  blocks.set({given(value)});
+  EXPECT_EQ(blocks.pattern_analyses(), 1);
+  check(value);
+  value(10, 40) = 0.7;  // a new entry
+  blocks.set({given(value)});
+  EXPECT_EQ(blocks.pattern_analyses(), 2);
+  check(value);
+  Vec x, y;
+  PCSIM_PETSC(MatCreateVecs(P, &x, &y));
+  Eigen::VectorXd xb(n);
+  for (int i = 0; i < n; ++i) {
+    xb[i] = std::cos(0.3 * i) - 0.2;
+    PCSIM_PETSC(VecSetValue(x, 2 + i, xb[i], INSERT_VALUES));
+  }
+  for (Vec v : {x, y}) {
+    PCSIM_PETSC(VecAssemblyBegin(v));
+    PCSIM_PETSC(VecAssemblyEnd(v));
+  }
+  PCSIM_PETSC(VecSet(y, 0.0));
+  blocks.add_change(x, y);
+  const Eigen::VectorXd expected = (value - j0) * xb;
+  const double scale = ((j0.cwiseAbs() + value.cwiseAbs()) * xb.cwiseAbs()).maxCoeff();
+  const PetscScalar* ya;
+  PCSIM_PETSC(VecGetArrayRead(y, &ya));
+  double error = 0;
+  for (int i = 0; i < n; ++i) error = std::max(error, std::abs(ya[2 + i] - expected[i]));
+  std::printf("  given value: largest difference from (J - J0) x: %.1e of the scale\n",
+              error / scale);
+  EXPECT_LE(error, 1e-15 * scale);
+  PCSIM_PETSC(VecRestoreArrayRead(y, &ya));
+  PCSIM_PETSC(VecDestroy(&x));
+  PCSIM_PETSC(VecDestroy(&y));
+  PCSIM_PETSC(MatDestroy(&P));
+}
+
 // The sparse factors depend on the block's value alone, not on the patterns
 // seen before (a restarted run equals the uninterrupted one bitwise): blocks
 // that went through other patterns solve with the same bits as a fresh one.

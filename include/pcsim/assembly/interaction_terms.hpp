@@ -11,7 +11,9 @@ namespace pcsim::assembly {
 // R_p = model residual (without contact) + (1 - ramp(t)) F0 e_c, on the last
 // rank; dense tangent K + v C + a M of the model. A nonlinear model is a
 // 'block' term on the cheap path: J0 holds its tangent at J0's state, and
-// block_change() the difference of the current one (its own unknowns only).
+// block_change() the difference of the current one (its own unknowns only),
+// or the current one itself where the model gives it sparse (the flexible
+// DSA-380: PantographModel::sparse_step_tangent).
 class PantographTerm : public Term {
  public:
   explicit PantographTerm(std::size_t index, const PantographSlot& slot)

@@ -29,6 +29,7 @@
 #include <petscmat.h>
 #include <petscvec.h>
 
+#include <Eigen/SparseCore>
 #include <string>
 #include <vector>
 
@@ -64,13 +65,17 @@ struct RankOne {
 };
 
 // The change J - J_ref of a tangent confined to the dense diagonal block of
-// unknowns first .. first + size - 1, on the rank that owns them (delta empty
-// elsewhere; key, first and size identical on every rank).
+// unknowns first .. first + size - 1, on the rank that owns them (key, first
+// and size identical on every rank), as a dense change 'delta' or, from a
+// model with sparse tangents, as the block's value J itself ('value', its
+// nonzeros only); both empty on the other ranks.
 struct BlockChange {
   int key = 0;  // identifies the block within its Term
   PetscInt first = 0;
   int size = 0;
-  std::vector<double> delta;  // size x size, row-major
+  std::vector<double> delta;          // size x size, row-major
+  Eigen::SparseMatrix<double> value;  // size x size (delta empty)
+  bool given() const { return !delta.empty() || value.size() > 0; }
 };
 
 enum class TangentKind {

@@ -67,10 +67,14 @@ class Bellows {
   void add_residual(const Dsa380Parameters& p, int theta, int m, const Eigen::VectorXd& q,
                     const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd,
                     Eigen::Ref<Eigen::VectorXd> R) const;
+  // Matrix: a dense matrix (or an Eigen::Ref of one), or any type whose (i, j)
+  // takes +=, -= and = (the flexible DSA-380's sparse step tangent): the
+  // entries set with = are the loop's row, which nothing else writes.
+  template <class Matrix>
   void add_tangents(const Dsa380Parameters& p, int theta, int m, const Eigen::VectorXd& q,
-                    Eigen::Ref<Eigen::MatrixXd> K, Eigen::Ref<Eigen::MatrixXd> C,
-                    Eigen::Ref<Eigen::MatrixXd> M) const;
-  void add_mass(int m, Eigen::Ref<Eigen::MatrixXd> M) const;  // add_tangents' M part alone
+                    Matrix& K, Matrix& C, Matrix& M) const;
+  template <class Matrix>
+  void add_mass(int m, Matrix& M) const;  // add_tangents' M part alone
   double kinetic_energy(int m, const Eigen::VectorXd& qd) const;
   double potential_energy(int m, const Eigen::VectorXd& q) const;
   // Adds the bellows' power beyond M0 θ̇ (external) and the loop's (dissipative).
@@ -87,5 +91,28 @@ class Bellows {
   bool referenced_ = false;
   double force0_ = 0, scale_ = 1, torque0_ = 0;
 };
+
+template <class Matrix>
+void Bellows::add_tangents(const Dsa380Parameters& p, int theta, int m, const Eigen::VectorXd& q,
+                           Matrix& K, Matrix& C, Matrix& M) const {
+  if (!on_) return;
+  double d = 0;
+  torque_change(p, q[theta], &d);
+  if (m < 0) {
+    K(theta, theta) -= d;
+    return;
+  }
+  const double t1 = b_.time_constant, t2 = b_.valve_time_constant;
+  K(theta, m) -= 1;
+  K(m, m) = 1;
+  K(m, theta) = -d;
+  C(m, m) = t1 + t2;
+  add_mass(m, M);
+}
+
+template <class Matrix>
+void Bellows::add_mass(int m, Matrix& M) const {
+  if (on_ && m >= 0) M(m, m) = b_.time_constant * b_.valve_time_constant;
+}
 
 }  // namespace pcsim::pantograph

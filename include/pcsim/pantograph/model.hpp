@@ -10,6 +10,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
 #include <functional>
 #include <memory>
 #include <string>
@@ -81,6 +82,16 @@ class PantographModel {
                         const Eigen::VectorXd& qdd, Eigen::Ref<Eigen::MatrixXd> dR_dq,
                         Eigen::Ref<Eigen::MatrixXd> dR_dqd,
                         Eigen::Ref<Eigen::MatrixXd> dR_dqdd) const = 0;
+  // The step tangent dR/dq + shift_v dR/dq̇ + shift_a dR/dq̈ as a sparse matrix (its
+  // structural entries, some possibly 0), for a model with many coordinates and few
+  // entries (the flexible DSA-380): no dense n x n matrix is formed. The entries are a
+  // function of the state alone. False (J untouched): the model gives dense tangents only.
+  virtual bool sparse_step_tangent(double /*t*/, const Eigen::VectorXd& /*q*/,
+                                   const Eigen::VectorXd& /*qd*/, const Eigen::VectorXd& /*qdd*/,
+                                   double /*shift_v*/, double /*shift_a*/,
+                                   Eigen::SparseMatrix<double>& /*J*/) const {
+    return false;
+  }
   // dR/dq̈ at (t, q, q̇): every model's R is affine in q̈, R(q̈) = R(0) + M q̈ (the HHT
   // α-term's inertia product, solvers/hht.hpp). Default: the tangents' (at q̈ = 0).
   virtual void mass(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
