@@ -8,13 +8,14 @@ PACKAGES=(build-essential cmake pkg-config
   python3-numpy python3-h5py python3-matplotlib python3-scipy python3-pil time
   python3-paraview xvfb
   python3-dev pybind11-dev python3-mpi4py
-  libblis4-serial)  # python3-paraview: ParaView's XDMF3 reader for
+  libblis4-serial libsuitesparse-dev)  # python3-paraview: ParaView's XDMF3 reader for
 # tests/output; xvfb: a virtual X display for its renders there (ParaView's
 # OpenGL needs one); python3-pil: the GIF writer of postproc/animate.py;
 # libblis4-serial: an optimised BLAS behind Debian's libblas.so.3, for PETSc,
 # SLEPc, MUMPS and the modal window's shift products (a dgemm of their
 # blocks: 3.0 GFlop/s with the reference BLAS, 38 with BLIS; docs/benchmarks.md;
-# serial: one thread per MPI rank)
+# serial: one thread per MPI rank); libsuitesparse-dev (also a dependency of
+# petsc-dev): KLU, the sparse LU of the cheap path's varying blocks
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -47,14 +47,18 @@ void PantographTerm::add_inertia(const CoupledState& state, Vec A, Vec F) const 
   if (slot_.first_dof < begin || slot_.first_dof >= end) return;
   const auto& model = *slot_.model;
   const int n = model.dof_count();
-  if (!model.is_linear() || mass_.rows() != n) {  // a linear model's is constant
-    mass_.resize(n, n);
-    model.mass(state.t, state.q(index_), state.qd(index_), mass_);
-  }
   const auto idx = dof_range(slot_);
-  Eigen::VectorXd qdd(n);
+  Eigen::VectorXd qdd(n), force(n);
   PCSIM_PETSC(VecGetValues(A, n, idx.data(), qdd.data()));
-  const Eigen::VectorXd force = mass_ * qdd;
+  if (model.sparse_mass(state.t, state.q(index_), state.qd(index_), sparse_mass_)) {
+    force = sparse_mass_ * qdd;  // the flexible DSA-380: no dense 150 x 150 at every step
+  } else {
+    if (!model.is_linear() || mass_.rows() != n) {  // a linear model's is constant
+      mass_.resize(n, n);
+      model.mass(state.t, state.q(index_), state.qd(index_), mass_);
+    }
+    force = mass_ * qdd;
+  }
   PCSIM_PETSC(VecSetValues(F, n, idx.data(), force.data(), ADD_VALUES));
 }
 

@@ -300,6 +300,26 @@ bool FlexibleDsa380Pantograph::sparse_step_tangent(double t, const Eigen::Vector
   return true;
 }
 
+// As mass(): the beams' constant mass and the head's, bellows' and
+// restraints' entries.
+bool FlexibleDsa380Pantograph::sparse_mass(double t, const Eigen::VectorXd& q,
+                                           const Eigen::VectorXd& qd,
+                                           Eigen::SparseMatrix<double>& M) const {
+  const int n = dof_count();
+  const Eigen::VectorXd qdd = Eigen::VectorXd::Zero(n);
+  triplets_.clear();
+  for (int j = 0; j < bar_mass_sparse_.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(bar_mass_sparse_, j); it; ++it)
+      triplets_.emplace_back(it.row(), it.col(), it.value());
+  TripletView m(triplets_, 1.0);
+  add_head<TripletView>(frame_.acceleration(t), q, qd, qdd, nullptr, nullptr, nullptr, &m);
+  bellows_.add_mass(bellows_dof(), m);
+  apply_restraints<TripletView>(qdd, nullptr, nullptr, nullptr, &m);
+  M.resize(n, n);
+  M.setFromTriplets(triplets_.begin(), triplets_.end());
+  return true;
+}
+
 void FlexibleDsa380Pantograph::mass(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                                     Eigen::Ref<Eigen::MatrixXd> M) const {
   MatrixRef m(M);

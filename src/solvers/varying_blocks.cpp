@@ -104,10 +104,7 @@ void VaryingBlocks::refactor(Block& b) {
   else
     sparse = refactor_sparse(b);
   if (sparse) {
-    // SparseLU stops at a zero pivot; log |det| sums log |pivot|: not finite
-    // for a zero or not finite one.
-    regular =
-        b.sparse_lu.info() == Eigen::Success && std::isfinite(b.sparse_lu.logAbsDeterminant());
+    regular = b.regular;  // KLU's: a zero or not finite pivot refused (klu_lu.hpp)
   } else {
     b.lu.compute(b.reference + Eigen::Map<const RowMatrix>(b.delta.data(), b.size, b.size));
     const auto pivots = b.lu.matrixLU().diagonal().array();
@@ -121,7 +118,7 @@ void VaryingBlocks::refactor(Block& b) {
 // A block of at least kSparseSize unknowns with at most kSparseFill of its
 // entries nonzero takes the sparse LU (the flexible DSA-380: 150 unknowns,
 // 1310 entries, where the dense LU was a quarter of its modal step:
-// docs/benchmarks.md, "The flexible DSA-380's block"). Its ordering (COLAMD)
+// docs/benchmarks.md, "The flexible DSA-380's block"). Its ordering (KLU's)
 // and symbolic analysis are kept while its nonzeros are those analysed: the
 // factors are a function of the block's value alone, so a restarted run
 // computes the same ones as an uninterrupted run. No dense n x n value is
@@ -147,7 +144,7 @@ bool VaryingBlocks::refactor_sparse(Block& b) {
     if (!b.sparse) return false;
     const RowMatrix value = b.reference + delta;
     b.matrix = value.sparseView(0.0, 0.0);  // exact zeros left out only
-    b.sparse_lu.analyzePattern(b.matrix);
+    b.sparse_lu.analyze(b.matrix);
     ++analyses_;
     b.reference_off_pattern.clear();
     for (int i = 0; i < n; ++i)
@@ -155,7 +152,7 @@ bool VaryingBlocks::refactor_sparse(Block& b) {
         if (value(i, j) == 0.0 && b.reference(i, j) != 0.0)
           b.reference_off_pattern.emplace_back(i, j, b.reference(i, j));
   }
-  b.sparse_lu.factorize(b.matrix);
+  b.regular = b.sparse_lu.factor(b.matrix);
   return true;
 }
 
@@ -175,7 +172,7 @@ void VaryingBlocks::refactor_given(Block& b) {
   } else {
     b.sparse = true;
     b.matrix = v;
-    b.sparse_lu.analyzePattern(b.matrix);
+    b.sparse_lu.analyze(b.matrix);
     ++analyses_;
     Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> on(b.size, b.size);
     on.setConstant(false);
@@ -188,7 +185,7 @@ void VaryingBlocks::refactor_given(Block& b) {
         if (!on(i, j) && b.reference(i, j) != 0.0)
           b.reference_off_pattern.emplace_back(i, j, b.reference(i, j));
   }
-  b.sparse_lu.factorize(b.matrix);
+  b.regular = b.sparse_lu.factor(b.matrix);
 }
 
 std::vector<std::pair<PetscInt, PetscInt>> VaryingBlocks::owned_ranges() const {
@@ -229,7 +226,7 @@ void each_owned_block(const Blocks& blocks, Vec in, Vec out, F&& f) {
 void VaryingBlocks::solve_rows(Vec r, Vec x) const {
   each_owned_block(blocks_, r, x, [](const auto& b, const auto& rb, auto xb) {
     if (b.sparse)
-      xb = b.sparse_lu.solve(rb);
+      b.sparse_lu.solve(rb, xb);
     else
       xb = b.lu.solve(rb);
   });

@@ -16,11 +16,11 @@
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
-#include <Eigen/SparseLU>
 #include <map>
 #include <utility>
 #include <vector>
 
+#include "klu_lu.hpp"
 #include "pcsim/assembly/term.hpp"
 
 namespace pcsim::solvers {
@@ -60,7 +60,8 @@ class VaryingBlocks {
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;
     bool sparse = false;
     Eigen::SparseMatrix<double> matrix;  // J0_b + delta, on the pattern of the last analysis
-    Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> sparse_lu;
+    KluLU sparse_lu;                     // its factors (sparse)
+    bool regular = false;                // the last factorisation's
     // J0's nonzeros off the pattern (sparse blocks): there the value is 0, the change -J0.
     std::vector<Eigen::Triplet<double>> reference_off_pattern;
   };

@@ -220,6 +220,7 @@ TEST(FlexibleDsa380, TangentsMatchFiniteDifferences) {
 // The sparse step tangent (the cheap path's block, no dense n x n) is the dense tangents'
 // K + a_v C + a_a M, entry for entry, at the shifts of a 1 ms HHT step, in every case of
 // the test above and with the bellows' pressure loop; its pattern holds every nonzero.
+// The sparse mass (the HHT α-term's inertia product) is mass().
 TEST(FlexibleDsa380, SparseStepTangentIsTheDenseOne) {
   std::vector<std::pair<const char*, Dsa380Effects>> cases = {{"none", Dsa380Effects{}},
                                                               {"all", all_effects()}};
@@ -261,6 +262,12 @@ TEST(FlexibleDsa380, SparseStepTangentIsTheDenseOne) {
     // bar's mass), measured 1.0e-16 to 2.1e-16; 1e-15 leaves a margin of five.
     EXPECT_LE(error, 1e-15) << name;
     EXPECT_LT(J.nonZeros(), n * n / 5) << name;  // sparse: ~6 % of the entries
+    // sparse_mass() is mass(), the same arithmetic.
+    Eigen::MatrixXd Md(n, n);
+    m.mass(0.2, s.q, s.qd, Md);
+    Eigen::SparseMatrix<double> Ms;
+    ASSERT_TRUE(m.sparse_mass(0.2, s.q, s.qd, Ms)) << name;
+    EXPECT_EQ((Eigen::MatrixXd(Ms) - Md).cwiseAbs().maxCoeff(), 0.0) << name;
   }
 }
 

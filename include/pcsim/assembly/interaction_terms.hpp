@@ -51,6 +51,7 @@ class PantographTerm : public Term {
   std::vector<double> reference_;  // block_tangent() at J0's state (last rank)
   mutable Eigen::MatrixXd tangent_k_, tangent_c_, tangent_m_;  // block_tangent()'s, kept
   mutable Eigen::MatrixXd mass_;  // a linear model's M (last rank, at the first add_inertia)
+  mutable Eigen::SparseMatrix<double> sparse_mass_;  // a model's sparse M (sparse_mass())
 };
 
 // Penalty contact of one pantograph with one contact wire at the moving point

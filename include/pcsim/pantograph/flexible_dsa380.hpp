@@ -111,6 +111,8 @@ class FlexibleDsa380Pantograph : public PantographModel {
   bool sparse_step_tangent(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                            const Eigen::VectorXd& qdd, double shift_v, double shift_a,
                            Eigen::SparseMatrix<double>& J) const override;
+  bool sparse_mass(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                   Eigen::SparseMatrix<double>& M) const override;
   // M alone (no beam stiffness): the constant bars' mass, the head's and the bellows'.
   void mass(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
             Eigen::Ref<Eigen::MatrixXd> M) const override;

@@ -92,6 +92,13 @@ class PantographModel {
                                    Eigen::SparseMatrix<double>& /*J*/) const {
     return false;
   }
+  // mass() as a sparse matrix (its structural entries), for the same models (the HHT
+  // α-term's inertia product at every step). False (M untouched): dense mass only.
+  virtual bool sparse_mass(double /*t*/, const Eigen::VectorXd& /*q*/,
+                           const Eigen::VectorXd& /*qd*/,
+                           Eigen::SparseMatrix<double>& /*M*/) const {
+    return false;
+  }
   // dR/dq̈ at (t, q, q̇): every model's R is affine in q̈, R(q̈) = R(0) + M q̈ (the HHT
   // α-term's inertia product, solvers/hht.hpp). Default: the tangents' (at q̈ = 0).
   virtual void mass(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
