@@ -56,15 +56,21 @@ bool FlexibleDsa380Pantograph::damper_active(const Eigen::VectorXd& qd) const {
 }
 
 namespace {
-// The step tangent K + shift_v C + shift_a M as one list of triplets: K, C and
-// M are three views of it with their weights. An entry takes += and -=, and =
-// where nothing else has written it (the bellows' loop row, a restraint's row
-// just zeroed): there it adds too. Duplicates are summed when the sparse
-// matrix is formed.
+// A sparse matrix being assembled as one list of triplets, such as the step
+// tangent K + shift_v C + shift_a M: K, C and M are three views of it with
+// their weights. An entry takes += and -=, and = where nothing else has
+// written it (the bellows' loop row, a restraint's row just zeroed): there it
+// adds too. Duplicates are summed when the sparse matrix is formed.
 class TripletView {
  public:
   TripletView(std::vector<Eigen::Triplet<double>>& list, double weight)
       : list_(list), weight_(weight) {}
+  // weight x a's entries.
+  void add(const Eigen::SparseMatrix<double>& a) {
+    for (int j = 0; j < a.outerSize(); ++j)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(a, j); it; ++it)
+        list_.emplace_back(it.row(), it.col(), weight_ * it.value());
+  }
   class Entry {
    public:
     Entry(TripletView& view, int i, int j) : view_(view), i_(i), j_(j) {}
@@ -285,10 +291,8 @@ bool FlexibleDsa380Pantograph::sparse_step_tangent(double t, const Eigen::Vector
                                                    double shift_a,
                                                    Eigen::SparseMatrix<double>& J) const {
   triplets_.clear();
-  for (int j = 0; j < bar_mass_sparse_.outerSize(); ++j)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(bar_mass_sparse_, j); it; ++it)
-      triplets_.emplace_back(it.row(), it.col(), shift_a * it.value());
   TripletView K(triplets_, 1.0), C(triplets_, shift_v), M(triplets_, shift_a);
+  M.add(bar_mass_sparse_);
   add_beams(q, nullptr, &K);
   add_head(frame_.acceleration(t), q, qd, qdd, nullptr, &K, &C, &M);
   add_drive(q, qd, nullptr, &K, &C);
@@ -308,10 +312,8 @@ bool FlexibleDsa380Pantograph::sparse_mass(double t, const Eigen::VectorXd& q,
   const int n = dof_count();
   const Eigen::VectorXd qdd = Eigen::VectorXd::Zero(n);
   triplets_.clear();
-  for (int j = 0; j < bar_mass_sparse_.outerSize(); ++j)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(bar_mass_sparse_, j); it; ++it)
-      triplets_.emplace_back(it.row(), it.col(), it.value());
   TripletView m(triplets_, 1.0);
+  m.add(bar_mass_sparse_);
   add_head<TripletView>(frame_.acceleration(t), q, qd, qdd, nullptr, nullptr, nullptr, &m);
   bellows_.add_mass(bellows_dof(), m);
   apply_restraints<TripletView>(qdd, nullptr, nullptr, nullptr, &m);

@@ -58,6 +58,7 @@ void VaryingBlocks::setup(Mat P) {
         throw SolverError("J0 couples row " + std::to_string(r) +
                           " of a varying block with other unknowns");
     }
+    if (b.sparse && b.matrix.rows() == b.size) find_off_pattern(b);  // J0's block anew
   }
   check_decoupled(P);
   ready_ = true;
@@ -146,11 +147,7 @@ bool VaryingBlocks::refactor_sparse(Block& b) {
     b.matrix = value.sparseView(0.0, 0.0);  // exact zeros left out only
     b.sparse_lu.analyze(b.matrix);
     ++analyses_;
-    b.reference_off_pattern.clear();
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j)
-        if (value(i, j) == 0.0 && b.reference(i, j) != 0.0)
-          b.reference_off_pattern.emplace_back(i, j, b.reference(i, j));
+    find_off_pattern(b);
   }
   b.regular = b.sparse_lu.factor(b.matrix);
   return true;
@@ -174,18 +171,24 @@ void VaryingBlocks::refactor_given(Block& b) {
     b.matrix = v;
     b.sparse_lu.analyze(b.matrix);
     ++analyses_;
-    Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> on(b.size, b.size);
-    on.setConstant(false);
-    for (Eigen::Index j = 0; j < outer; ++j)
-      for (Eigen::SparseMatrix<double>::InnerIterator it(v, j); it; ++it)
-        on(it.row(), it.col()) = true;
-    b.reference_off_pattern.clear();
-    for (int i = 0; i < b.size; ++i)
-      for (int j = 0; j < b.size; ++j)
-        if (!on(i, j) && b.reference(i, j) != 0.0)
-          b.reference_off_pattern.emplace_back(i, j, b.reference(i, j));
+    find_off_pattern(b);
   }
   b.regular = b.sparse_lu.factor(b.matrix);
+}
+
+// J0's entries of a sparse block off its pattern (b.matrix's): the value is
+// 0 there and the change -J0. After a new analysis, and when J0 is read anew.
+void VaryingBlocks::find_off_pattern(Block& b) {
+  Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> on(b.size, b.size);
+  on.setConstant(false);
+  for (Eigen::Index j = 0; j < b.matrix.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(b.matrix, j); it; ++it)
+      on(it.row(), it.col()) = true;
+  b.reference_off_pattern.clear();
+  for (int i = 0; i < b.size; ++i)
+    for (int j = 0; j < b.size; ++j)
+      if (!on(i, j) && b.reference(i, j) != 0.0)
+        b.reference_off_pattern.emplace_back(i, j, b.reference(i, j));
 }
 
 std::vector<std::pair<PetscInt, PetscInt>> VaryingBlocks::owned_ranges() const {

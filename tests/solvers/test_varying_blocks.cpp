@@ -128,8 +128,8 @@ TEST(VaryingBlocks, LargeSparseBlockTakesTheSparseLU) {
 // 3.0e-16 to 7.8e-16), keeps its
 // analysis while the value's entries are where they were, analyses anew when
 // one is added, and its change is the value less J0, -J0 where J0 has an
-// entry the value has not (to rounding of the value: 1e-15 of |J0| + |J|
-// times |x|, as in AddsItsChange; measured 0).
+// entry the value has not, also after J0 is read anew (to rounding of the
+// value: 1e-15 of |J0| + |J| times |x|, as in AddsItsChange; measured 0).
 TEST(VaryingBlocks, GivenSparseValue) {
   const int n = 64;
   const Eigen::MatrixXd j0 = chain_block(n);
@@ -177,21 +177,35 @@ TEST(VaryingBlocks, GivenSparseValue) {
     PCSIM_PETSC(VecAssemblyBegin(v));
     PCSIM_PETSC(VecAssemblyEnd(v));
   }
-  PCSIM_PETSC(VecSet(y, 0.0));
-  blocks.add_change(x, y);
-  const Eigen::VectorXd expected = (value - j0) * xb;
-  const double scale = ((j0.cwiseAbs() + value.cwiseAbs()) * xb.cwiseAbs()).maxCoeff();
-  const PetscScalar* ya;
-  PCSIM_PETSC(VecGetArrayRead(y, &ya));
-  double error = 0;
-  for (int i = 0; i < n; ++i) error = std::max(error, std::abs(ya[2 + i] - expected[i]));
-  std::printf("  given value: largest difference from (J - J0) x: %.1e of the scale\n",
-              error / scale);
-  EXPECT_LE(error, 1e-15 * scale);
-  PCSIM_PETSC(VecRestoreArrayRead(y, &ya));
+  // The change against J0, then against a new J0 (J0 rebuilt: its block read
+  // anew) with an entry off the value's pattern.
+  Eigen::MatrixXd j0_rebuilt = j0;
+  j0_rebuilt(1, 30) = 0.4;
+  const Eigen::MatrixXd& j0_new = j0_rebuilt;
+  Mat P_new = step_matrix(j0_new);
+  for (const Eigen::MatrixXd* reference : {&j0, &j0_new}) {
+    if (reference == &j0_new) {
+      blocks.invalidate();
+      blocks.setup(P_new);
+      EXPECT_EQ(blocks.pattern_analyses(), 2);  // the value's pattern is unchanged
+    }
+    PCSIM_PETSC(VecSet(y, 0.0));
+    blocks.add_change(x, y);
+    const Eigen::VectorXd expected = (value - *reference) * xb;
+    const double scale = ((reference->cwiseAbs() + value.cwiseAbs()) * xb.cwiseAbs()).maxCoeff();
+    const PetscScalar* ya;
+    PCSIM_PETSC(VecGetArrayRead(y, &ya));
+    double error = 0;
+    for (int i = 0; i < n; ++i) error = std::max(error, std::abs(ya[2 + i] - expected[i]));
+    std::printf("  given value: largest difference from (J - J0) x: %.1e of the scale\n",
+                error / scale);
+    EXPECT_LE(error, 1e-15 * scale);
+    PCSIM_PETSC(VecRestoreArrayRead(y, &ya));
+  }
   PCSIM_PETSC(VecDestroy(&x));
   PCSIM_PETSC(VecDestroy(&y));
   PCSIM_PETSC(MatDestroy(&P));
+  PCSIM_PETSC(MatDestroy(&P_new));
 }
 
 // The sparse factors depend on the block's value alone, not on the patterns
