@@ -17,7 +17,7 @@ namespace {
 // Refuses, before it is built, a mesh that would not fit in this machine's
 // memory; keeps the estimate for the reports.
 scene::MeshSizeCheck memory_check(const CommandContext& ctx, simulation::MemoryUse use,
-                                     simulation::MemoryEstimate& estimate, int modes = 20) {
+                                  simulation::MemoryEstimate& estimate, int modes = 20) {
   return [&ctx, use, &estimate, modes](const catenary::MeshSize& size) {
     simulation::check_memory(size, use, ctx.size, simulation::machine_memory_bytes(), modes);
     estimate = simulation::estimate_memory(size, use, modes);
@@ -30,6 +30,20 @@ solvers::ModesRequest scene_modes(const scene::InputNode& scene) {
   r.count = section.count;
   r.max_frequency_hz = section.max_frequency_hz;
   return r;
+}
+
+// -ts_max_time cuts a run short. Past the scene's end the pantographs would
+// run on beyond simulation.end_x, off the line at last (a solver failure that
+// blames the time step).
+void check_max_time(const solvers::TimeIntegrationOptions& numerics, const scene::RunScene& run) {
+  const double duration = run.duration();
+  if (numerics.max_time && *numerics.max_time > duration * (1 + 1e-12))
+    throw InputError("command line", "-ts_max_time",
+                     format_number(*numerics.max_time) + " s is past the scene's end: its run " +
+                         "lasts " + format_number(duration) +
+                         " s (pantographs[0].start_x to simulation.end_x at simulation.speed_kmh); "
+                         "-ts_max_time can only cut a run short (raise simulation.end_x to "
+                         "run further)");
 }
 
 }  // namespace
@@ -68,6 +82,7 @@ RunInputs read_run_inputs(const CommandContext& ctx, const scene::InputNode& sce
   if ((in.run.checkpoint_every > 0 || !restart_dir(ctx).empty()) && in.numerics.ts_type != "hht")
     throw InputError("command line", "-ts_type",
                      "checkpoints and restarts need the TS type hht, not " + in.numerics.ts_type);
+  check_max_time(in.numerics, in.run);
   in.cheap_path = solvers::choose_cheap_path(ctx.comm, simulation::cheap_path_possible(in.run));
   const auto& design = in.run.catenary.mesh;
   const double c = catenary::wave_speed(design.wires[design.contact_wire]);

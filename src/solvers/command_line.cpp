@@ -24,8 +24,9 @@ std::string quoted(const std::string& text) {
 }
 
 struct OptionTexts {
-  char dt[256] = "", type[256] = "", alpha[256] = "";
-  PetscBool dt_set = PETSC_FALSE, type_set = PETSC_FALSE, alpha_set = PETSC_FALSE;
+  char dt[256] = "", type[256] = "", alpha[256] = "", max_time[256] = "", max_steps[256] = "";
+  PetscBool dt_set = PETSC_FALSE, type_set = PETSC_FALSE, alpha_set = PETSC_FALSE,
+            max_time_set = PETSC_FALSE, max_steps_set = PETSC_FALSE;
 };
 
 // Read as text so that a malformed value is our input error, not PETSc's.
@@ -40,6 +41,11 @@ PetscErrorCode read_texts(MPI_Comm comm, OptionTexts* o) {
                                "pcsim run", "hht", o->type, sizeof o->type, &o->type_set));
   PetscCall(PetscOptionsString("-ts_hht_alpha", "HHT alpha in [0, 1/3] (default 0.1)", "pcsim run",
                                o->alpha, o->alpha, sizeof o->alpha, &o->alpha_set));
+  PetscCall(PetscOptionsString(
+      "-ts_max_time", "simulated time [s] to stop at, > 0: cuts the scene's run short", "pcsim run",
+      o->max_time, o->max_time, sizeof o->max_time, &o->max_time_set));
+  PetscCall(PetscOptionsString("-ts_max_steps", "time steps to stop after, >= 0", "pcsim run",
+                               o->max_steps, o->max_steps, sizeof o->max_steps, &o->max_steps_set));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
@@ -98,6 +104,20 @@ TimeIntegrationOptions read_time_integration_options(MPI_Comm comm) {
     if (!(alpha >= 0 && alpha <= 1.0 / 3.0 + 1e-14))
       fail("-ts_hht_alpha", "must lie in [0, 1/3] (got " + quoted(texts.alpha) + ")");
     o.hht_alpha = alpha;
+  }
+  if (texts.max_time_set) {
+    const double t = parse_real_option("-ts_max_time", texts.max_time);
+    if (!(t > 0))
+      fail("-ts_max_time",
+           "must be a positive simulated time in seconds (got " + quoted(texts.max_time) + ")");
+    o.max_time = t;
+  }
+  if (texts.max_steps_set) {
+    const long n = parse_int_option("-ts_max_steps", texts.max_steps);
+    if (n < 0)
+      fail("-ts_max_steps",
+           "must be a number of steps, 0 or more (got " + quoted(texts.max_steps) + ")");
+    o.max_steps = n;
   }
   return o;
 }

@@ -410,6 +410,12 @@ expect ts-dt-abc 2 "command line|key '-ts_dt'|must be a number (got 'abc')" yes 
 expect ts-dt-inf 2 "command line|key '-ts_dt'|finite" yes run good-run.yaml -ts_dt inf
 expect ts-dt-nyquist 2 "good-run.yaml|key 'analysis.cutoff_hz'|-ts_dt = 0.05 s" yes run good-run.yaml -ts_dt 0.05
 expect hht-alpha 2 "command line|key '-ts_hht_alpha'|[0, 1/3]" yes run good-run.yaml -ts_hht_alpha 0.9
+expect ts-max-time-abc 2 "command line|key '-ts_max_time'|must be a number (got 'abc')" yes run good-run.yaml -ts_max_time abc
+expect ts-max-time-0 2 "command line|key '-ts_max_time'|positive" yes run good-run.yaml -ts_max_time 0
+# Past the scene's end the pantograph would run off the line (a solver failure).
+expect ts-max-time-past 2 "command line|key '-ts_max_time'|past the scene's end|simulation.end_x" yes run good-run.yaml -ts_max_time 1e6
+expect ts-max-steps-abc 2 "command line|key '-ts_max_steps'|must be an integer (got '2.5')" yes run good-run.yaml -ts_max_steps 2.5
+expect ts-max-steps-neg 2 "command line|key '-ts_max_steps'|0 or more" yes run good-run.yaml -ts_max_steps -1
 expect ts-euler 2 "command line|key '-ts_type'|second order" yes run good-run.yaml -ts_type euler
 expect ts-unknown 2 "command line|key '-ts_type'|unknown" yes run good-run.yaml -ts_type nonsense
 expect path-bad 2 "command line|key '-pcsim_path'|auto, full or cheap" yes run good-run.yaml -pcsim_path fast

@@ -19,11 +19,15 @@ long parse_int_option(const std::string& option, const std::string& text);
 // Time integration of `pcsim run` (options database, no prefix):
 //   -ts_dt         positive, finite;
 //   -ts_type       a type that integrates a second-order (I2) system: hht, alpha2;
-//   -ts_hht_alpha  in [0, 1/3].
+//   -ts_hht_alpha  in [0, 1/3];
+//   -ts_max_time   positive, finite (at most the scene's run: read_run_inputs);
+//   -ts_max_steps  a non-negative integer.
 struct TimeIntegrationOptions {
   std::optional<double> dt;  // given by -ts_dt
   std::string ts_type = "hht";
   std::optional<double> hht_alpha;
+  std::optional<double> max_time;  // -ts_max_time: cuts a run short
+  std::optional<long> max_steps;   // -ts_max_steps: cuts a run short
 };
 TimeIntegrationOptions read_time_integration_options(MPI_Comm comm);
 
