@@ -44,7 +44,7 @@ PetscErrorCode read_texts(MPI_Comm comm, OptionTexts* o) {
   PetscCall(PetscOptionsString(
       "-ts_max_time", "simulated time [s] to stop at, > 0: cuts the scene's run short", "pcsim run",
       o->max_time, o->max_time, sizeof o->max_time, &o->max_time_set));
-  PetscCall(PetscOptionsString("-ts_max_steps", "time steps to stop after, >= 0", "pcsim run",
+  PetscCall(PetscOptionsString("-ts_max_steps", "time steps to stop after, >= 1", "pcsim run",
                                o->max_steps, o->max_steps, sizeof o->max_steps, &o->max_steps_set));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
@@ -114,9 +114,9 @@ TimeIntegrationOptions read_time_integration_options(MPI_Comm comm) {
   }
   if (texts.max_steps_set) {
     const long n = parse_int_option("-ts_max_steps", texts.max_steps);
-    if (n < 0)
+    if (n < 1)  // a run of no step has no state to write (and no acceleration)
       fail("-ts_max_steps",
-           "must be a number of steps, 0 or more (got " + quoted(texts.max_steps) + ")");
+           "must be a number of steps, 1 or more (got " + quoted(texts.max_steps) + ")");
     o.max_steps = n;
   }
   return o;

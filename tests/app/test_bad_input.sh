@@ -415,7 +415,9 @@ expect ts-max-time-0 2 "command line|key '-ts_max_time'|positive" yes run good-r
 # Past the scene's end the pantograph would run off the line (a solver failure).
 expect ts-max-time-past 2 "command line|key '-ts_max_time'|past the scene's end|simulation.end_x" yes run good-run.yaml -ts_max_time 1e6
 expect ts-max-steps-abc 2 "command line|key '-ts_max_steps'|must be an integer (got '2.5')" yes run good-run.yaml -ts_max_steps 2.5
-expect ts-max-steps-neg 2 "command line|key '-ts_max_steps'|0 or more" yes run good-run.yaml -ts_max_steps -1
+expect ts-max-steps-neg 2 "command line|key '-ts_max_steps'|1 or more" yes run good-run.yaml -ts_max_steps -1
+# No step: nothing to write (it failed after the static solve, exit 3).
+expect ts-max-steps-0 2 "command line|key '-ts_max_steps'|1 or more" yes run good-run.yaml -ts_max_steps 0
 expect ts-euler 2 "command line|key '-ts_type'|second order" yes run good-run.yaml -ts_type euler
 expect ts-unknown 2 "command line|key '-ts_type'|unknown" yes run good-run.yaml -ts_type nonsense
 expect path-bad 2 "command line|key '-pcsim_path'|auto, full or cheap" yes run good-run.yaml -pcsim_path fast

@@ -21,7 +21,7 @@ long parse_int_option(const std::string& option, const std::string& text);
 //   -ts_type       a type that integrates a second-order (I2) system: hht, alpha2;
 //   -ts_hht_alpha  in [0, 1/3];
 //   -ts_max_time   positive, finite (at most the scene's run: read_run_inputs);
-//   -ts_max_steps  a non-negative integer.
+//   -ts_max_steps  a positive integer.
 struct TimeIntegrationOptions {
   std::optional<double> dt;  // given by -ts_dt
   std::string ts_type = "hht";
