@@ -9,6 +9,7 @@
 #include "exit_status.hpp"
 #include "inputs.hpp"
 #include "pcsim/core/error.hpp"
+#include "pcsim/core/format.hpp"
 #include "pcsim/core/vec_root.hpp"
 #include "pcsim/output/assessment.hpp"
 #include "pcsim/output/en50318.hpp"
@@ -214,10 +215,29 @@ int report_complete(const app::CommandContext& ctx, output::OutputDir& out,
   return 0;
 }
 
+// -ts_max_steps and -ts_max_time count from the run's start: a restart with
+// a stop at or before its checkpoint would step nothing.
+void check_restart_stop(const solvers::TimeIntegrationOptions& numerics, const std::string& dir,
+                        const simulation::RunCheckpoint& checkpoint) {
+  const auto& state = checkpoint.state;
+  const std::string where = "the checkpoint in '" + dir + "' is at step " +
+                            std::to_string(state.step) + ", t = " + format_number(state.t) + " s";
+  const std::string what =
+      ": nothing is left to step (-ts_max_steps and -ts_max_time count from the run's start; "
+      "give a later stop, or none to run to the scene's end)";
+  if (numerics.max_steps && *numerics.max_steps <= state.step)
+    throw InputError("command line", "-ts_max_steps",
+                     std::to_string(*numerics.max_steps) + " steps: " + where + what);
+  if (numerics.max_time && *numerics.max_time <= state.t)
+    throw InputError("command line", "-ts_max_time",
+                     format_number(*numerics.max_time) + " s: " + where + what);
+}
+
 // The checkpoint of --restart DIR, or null.
 std::unique_ptr<simulation::RunCheckpoint> load_restart(
-    const app::CommandContext& ctx, const scene::RunScene& run,
+    const app::CommandContext& ctx, const app::RunInputs& inputs_read,
     const output::OutputRequest& request, const std::vector<simulation::InputFile>& inputs) {
+  const scene::RunScene& run = inputs_read.run;
   const std::string dir = app::restart_dir(ctx);
   if (dir.empty()) return nullptr;
   if (run.window)
@@ -225,8 +245,10 @@ std::unique_ptr<simulation::RunCheckpoint> load_restart(
                      "a run with a moving window (scene key 'window', or the modal level's "
                      "window on a long line: catenary.modal.method) cannot be restarted");
   simulation::check_restart_target(dir, request.dir);
-  return std::make_unique<simulation::RunCheckpoint>(
+  auto checkpoint = std::make_unique<simulation::RunCheckpoint>(
       simulation::load_run_checkpoint(ctx, dir, inputs));
+  check_restart_stop(inputs_read.numerics, dir, *checkpoint);
+  return checkpoint;
 }
 
 // A result that could not be written (exit 5, on every rank together): the
@@ -269,7 +291,7 @@ int run_dynamic(const app::CommandContext& ctx) {
   request.scene_path = ctx.scene_path;
   request.inputs = simulation::run_input_files(ctx.scene_path, scene);
   const output::OutputRequest output = ctx.output_request(scene);
-  const auto restart = load_restart(ctx, run, output, request.inputs);
+  const auto restart = load_restart(ctx, run_inputs, output, request.inputs);
   request.restart = restart.get();
   request.restart_dir = app::restart_dir(ctx);
   PetscBool help = PETSC_FALSE;

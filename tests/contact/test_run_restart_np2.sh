@@ -64,6 +64,17 @@ else
   echo "ok   default solvers: stopped at step 60, restarted: equal within 1e-9"
 fi
 
+# A stop at or before the checkpoint (-ts_max_steps counts from the run's
+# start): refused before any work on both ranks, nothing written.
+run nothing.log -o nothing --restart stop60 -ts_max_steps 60
+if [ "$status" -ne 2 ] || [ "$(grep -c '^pcsim: error' nothing.log)" -ne 1 ] ||
+  ! grep -qF "key '-ts_max_steps': 60 steps: the checkpoint in 'stop60' is at step 60" nothing.log ||
+  [ -e nothing ] || [ -e nothing.partial ]; then
+  fail "restart with nothing left to step: exit $status: $(tail -2 nothing.log)"
+else
+  echo "ok   restart with -ts_max_steps 60 from step 60: refused (exit 2), nothing written"
+fi
+
 if [ "$failures" -gt 0 ]; then
   echo "$failures failure(s)"
   exit 1
