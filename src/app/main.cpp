@@ -65,6 +65,8 @@ void print_usage() {
       "no PETSc or pcsim object can read is an error, one no solver read a warning.\n"
       "pcsim's own, checked before any work:\n"
       "  -ts_dt, -ts_type hht|alpha2, -ts_hht_alpha [0, 1/3], -pcsim_path auto|full|cheap (run);\n"
+      "  -ts_max_steps N >= 1, -ts_max_time T > 0: cut a run short (run; within the scene's\n"
+      "  run, and past a restart's checkpoint);\n"
       "  -pcsim_accuracy_pilot auto|true|false: the pilot runs of the accuracy estimate\n"
       "  (run; auto: runs of the modal level; docs/fidelity.md);\n"
       "  -pcsim_record_batches auto|true|false: a modal run's records in batches (run);\n"
