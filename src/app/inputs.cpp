@@ -39,8 +39,8 @@ void check_max_time(const solvers::TimeIntegrationOptions& numerics, const scene
   const double duration = run.duration();
   if (numerics.max_time && *numerics.max_time > duration * (1 + 1e-12))
     throw InputError("command line", "-ts_max_time",
-                     format_number(*numerics.max_time) + " s is past the scene's end: its run " +
-                         "lasts " + format_number(duration) +
+                     format_number(*numerics.max_time) +
+                         " s is past the scene's end: its run lasts " + format_number(duration) +
                          " s (pantographs[0].start_x to simulation.end_x at simulation.speed_kmh); "
                          "-ts_max_time can only cut a run short (raise simulation.end_x to "
                          "run further)");

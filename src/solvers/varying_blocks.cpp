@@ -99,12 +99,9 @@ void VaryingBlocks::check_decoupled(Mat P) const {
 // step's refactoring: its own triangular solves).
 void VaryingBlocks::refactor(Block& b) {
   bool regular = true;
-  bool sparse = true;
-  if (b.value.size() > 0)
-    refactor_given(b);
-  else
-    sparse = refactor_sparse(b);
-  if (sparse) {
+  const bool given = b.value.size() > 0;
+  if (given) refactor_given(b);
+  if (given || refactor_sparse(b)) {
     regular = b.regular;  // KLU's: a zero or not finite pivot refused (klu_lu.hpp)
   } else {
     b.lu.compute(b.reference + Eigen::Map<const RowMatrix>(b.delta.data(), b.size, b.size));
