@@ -13,15 +13,10 @@ namespace pcsim::scene {
 namespace {
 
 // The line must repeat every two spans: one straight section of identical
-// spans, nothing that changes from span to span. Empty if it does.
-std::string not_periodic(const catenary::ParametricDesign& d) {
-  const std::string why = catenary::spans_differ(d);
-  if (why.empty() && d.stitch_wire) return "a stitch wire";
-  return why;
-}
-
+// spans (catenary::spans_differ; a stitch wire is at every support but the
+// line's ends, as it is at the window's inner supports).
 void check_periodic_line(const InputNode& w, const catenary::ParametricDesign& d) {
-  const std::string why = not_periodic(d);
+  const std::string why = catenary::spans_differ(d);
   if (!why.empty()) w.fail("needs a line of identical spans; the design has " + why);
 }
 
@@ -123,7 +118,7 @@ scene::DesignBuilder auto_window_builder(RunWindow& window) {
     if (design.get_string("type", "") != "parametric")
       return scene::build_catenary_design(design, size_check);
     const catenary::ParametricDesign d = scene::read_parametric_design(design);
-    const std::string why = not_periodic(d);
+    const std::string why = catenary::spans_differ(d);
     window.declined = "not a line of identical spans (the design has " + why + ")";
     if (!why.empty()) return scene::build_catenary_design(design, size_check);
     window.declined = "the line (" + std::to_string(d.span_count) + " spans) is shorter than " +
