@@ -166,9 +166,9 @@ Plan make_plan(const CommandContext& ctx) {
   return plan;
 }
 
-// Reads and checks every case's inputs as `pcsim run` would (inputs.hpp:
-// input errors before anything runs).
-// Every case read and checked as `pcsim run` would; the modal bases they need.
+// Every case read and checked as `pcsim run` would (inputs.hpp: input errors
+// before anything runs; a command-line option's names the case); the modal
+// bases they need.
 app::SweepBases check_cases(const CommandContext& ctx, const Plan& plan) {
   app::SweepBases bases;
   std::vector<scene::InputOverride> fixed;
@@ -182,8 +182,14 @@ app::SweepBases check_cases(const CommandContext& ctx, const Plan& plan) {
       overrides.push_back(scene::parse_override(plan.assignments[k][i],
                                          {"", origin + " (case " + plan.cases[k].name + ")"}));
     }
-    const auto inputs = app::read_run_inputs(ctx, scene::load_composed(ctx.scene_path, overrides));
-    bases.add(ctx, inputs.run, inputs.memory.dofs);
+    const scene::InputNode composed = scene::load_composed(ctx.scene_path, overrides);
+    try {
+      const auto inputs = app::read_run_inputs(ctx, composed);
+      bases.add(ctx, inputs.run, inputs.memory.dofs);
+    } catch (const InputError& e) {  // a command-line option that one case refuses
+      if (e.file() != "command line") throw;
+      throw InputError(e.file(), e.key(), e.reason() + " (case " + plan.cases[k].name + ")");
+    }
   }
   return bases;
 }

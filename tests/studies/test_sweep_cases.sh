@@ -7,6 +7,8 @@
 #  2. a bad table (missing file, ragged row, unknown key, bad value, a quote
 #     not closed, no case, a swept --set as well) is exit 2 with one message
 #     naming the file and the reason, before any case, nothing left behind.
+#  3. -ts_max_time past one case's run (a faster case runs shorter): exit 2
+#     before any case, one message naming the option and that case.
 set -euo pipefail
 : "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:=/usr/bin/python3}"
 tmp=$(mktemp -d)
@@ -89,3 +91,19 @@ bad twice "$header,simulation.speed_kmh
 110,180,190" "the column is given twice"
 bad swept "$header
 110,180" "cannot sweep too" --set simulation.end_x=60,80
+
+# 3. A command-line limit that one case refuses: -ts_max_time 1 s is within
+#    the 180 km/h case's run (1.338 s) and past the 360 km/h one's (0.669 s):
+#    exit 2 before any case, the message names that case.
+printf '%s\n' "$header" "110,180" "110,360" > limit.csv
+set +e
+"$PCSIM_BIN" sweep "$scene" --cases limit.csv -o out-limit -ts_max_time 1 > out.log 2> err.log
+code=$?
+set -e
+[ "$code" -eq 2 ] || { cat out.log err.log; fail "limit: exit $code, not 2"; }
+[ "$(wc -l < err.log)" -eq 1 ] || fail "limit: not one line: $(cat err.log)"
+grep -qF "command line: key '-ts_max_time': 1 s is past the scene's end: its run lasts 0.669 s" err.log &&
+  grep -qF "(case 02)" err.log || fail "limit: message: $(cat err.log)"
+! ls -d out-limit* > /dev/null 2>&1 || fail "limit: left $(ls -d out-limit*)"
+! grep -q "\[1/" out.log || fail "limit: a case ran"
+echo "ok   limit: exit 2, $(cat err.log)"
