@@ -142,7 +142,8 @@ void plan_table(Plan& plan, const app::CaseTable& table) {
 Plan make_plan(const CommandContext& ctx) {
   Plan plan;
   for (const auto& o : ctx.overrides) {
-    if (o.find('=') == std::string::npos) pcsim::scene::parse_override(o, {"", "command line --set " + o});
+    if (o.find('=') == std::string::npos)
+      pcsim::scene::parse_override(o, {"", "command line --set " + o});
     auto values = expand(o);
     if (values.empty())
       plan.fixed.push_back(o);
@@ -179,8 +180,8 @@ app::SweepBases check_cases(const CommandContext& ctx, const Plan& plan) {
     for (std::size_t i = 0; i < plan.swept.size(); ++i) {
       const std::string origin =
           plan.origins.empty() ? "command line --set " + plan.swept[i].given : plan.origins[k];
-      overrides.push_back(scene::parse_override(plan.assignments[k][i],
-                                         {"", origin + " (case " + plan.cases[k].name + ")"}));
+      overrides.push_back(scene::parse_override(
+          plan.assignments[k][i], {"", origin + " (case " + plan.cases[k].name + ")"}));
     }
     const scene::InputNode composed = scene::load_composed(ctx.scene_path, overrides);
     try {
@@ -217,7 +218,8 @@ int positive_option(const CommandContext& ctx, const std::string& name) {
 // (with the shared --set), the --set as given (swept values), the case table
 // and the PETSc options of the cases (command line and PETSC_OPTIONS). The
 // journal keeps it: a rerun resumes only the same definition.
-std::string sweep_definition(const CommandContext& ctx, const Plan& plan, const scene::InputNode& scene) {
+std::string sweep_definition(const CommandContext& ctx, const Plan& plan,
+                             const scene::InputNode& scene) {
   std::string definition = "sweep";
   for (const auto& o : ctx.overrides) definition += " --set " + o;
   if (plan.table.is_object()) definition += " --cases " + plan.table_text;
@@ -231,8 +233,8 @@ std::string sweep_definition(const CommandContext& ctx, const Plan& plan, const 
 
 // The output folder's request; a leftover partial folder of the same
 // definition is resumed (sweep_runner.hpp).
-output::OutputRequest sweep_request(const CommandContext& ctx, const Plan& plan, const scene::InputNode& scene,
-                            const std::string& definition) {
+output::OutputRequest sweep_request(const CommandContext& ctx, const Plan& plan,
+                                    const scene::InputNode& scene, const std::string& definition) {
   // The scene with the overrides every case shares names the sweep; the
   // provenance lists every --set as given.
   CommandContext shared = ctx;
