@@ -22,6 +22,7 @@
 #include "pcsim/scene/run_scene.hpp"
 #include "pcsim/simulation/interrupt.hpp"
 #include "pcsim/simulation/run_checkpoint.hpp"
+#include "pcsim/solvers/command_line.hpp"
 #include "processes.hpp"
 #include "sweep_bases.hpp"
 #include "sweep_cases.hpp"
@@ -171,6 +172,7 @@ Plan make_plan(const CommandContext& ctx) {
 // before anything runs; a command-line option's names the case); the modal
 // bases they need.
 app::SweepBases check_cases(const CommandContext& ctx, const Plan& plan) {
+  solvers::read_time_integration_options(ctx.comm);  // their own errors: no case to name
   app::SweepBases bases;
   std::vector<scene::InputOverride> fixed;
   for (const auto& o : plan.fixed)
@@ -187,7 +189,7 @@ app::SweepBases check_cases(const CommandContext& ctx, const Plan& plan) {
     try {
       const auto inputs = app::read_run_inputs(ctx, composed);
       bases.add(ctx, inputs.run, inputs.memory.dofs);
-    } catch (const InputError& e) {  // a command-line option that one case refuses
+    } catch (const InputError& e) {  // a command-line option that this case refuses
       if (e.file() != "command line") throw;
       throw InputError(e.file(), e.key(), e.reason() + " (case " + plan.cases[k].name + ")");
     }

@@ -8,7 +8,8 @@
 #     not closed, no case, a swept --set as well) is exit 2 with one message
 #     naming the file and the reason, before any case, nothing left behind.
 #  3. -ts_max_time past one case's run (a faster case runs shorter): exit 2
-#     before any case, one message naming the option and that case.
+#     before any case, one message naming the option and that case (an
+#     option bad in itself names no case).
 set -euo pipefail
 : "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:=/usr/bin/python3}"
 tmp=$(mktemp -d)
@@ -107,3 +108,13 @@ grep -qF "command line: key '-ts_max_time': 1 s is past the scene's end: its run
 ! ls -d out-limit* > /dev/null 2>&1 || fail "limit: left $(ls -d out-limit*)"
 ! grep -q "\[1/" out.log || fail "limit: a case ran"
 echo "ok   limit: exit 2, $(cat err.log)"
+# An option bad in itself is no case's: its message names none.
+set +e
+"$PCSIM_BIN" sweep "$scene" --cases limit.csv -o out-limit -ts_max_time abc > out.log 2> err.log
+code=$?
+set -e
+[ "$code" -eq 2 ] && [ "$(wc -l < err.log)" -eq 1 ] || { cat err.log; fail "limit abc: exit $code"; }
+grep -qF "key '-ts_max_time': must be a number (got 'abc')" err.log && ! grep -qF "(case" err.log ||
+  fail "limit abc: message: $(cat err.log)"
+! ls -d out-limit* > /dev/null 2>&1 || fail "limit abc: left $(ls -d out-limit*)"
+echo "ok   limit abc: exit 2, $(cat err.log)"
