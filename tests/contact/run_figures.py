@@ -1,9 +1,11 @@
 """Reading a `pcsim run` result folder in the window tests
-(test_run_window.sh, test_run_window_wind.sh): its summary.json, one
-pantograph's EN 50318 figures by key, its contact force and position."""
+(test_run_window.sh, test_run_window_stitched.sh, test_run_window_wind.sh):
+its summary.json, one pantograph's EN 50318 figures by key, its contact force
+and position."""
 import json
 
 import h5py
+import numpy as np
 
 
 def summary(folder):
@@ -35,3 +37,16 @@ class Runs:
 
     def force_and_position(self, name, pantograph="pantograph"):
         return force_and_position(f"{self.folder}/{name}", pantograph)
+
+
+def check_window_ranks(runs, full="full", one="window1", two="window2", bound=1e-8):
+    """The window's contact positions are the full line's, and its run on 2
+    ranks equals the one on 1 to within bound of the largest force (round-off:
+    measured 7e-11, test_run_window.sh)."""
+    f1, x1 = runs.force_and_position(one)
+    f2, _ = runs.force_and_position(two)
+    _, xf = runs.force_and_position(full)
+    assert np.array_equal(x1, xf), "the window's positions are not the line's"
+    rel = np.max(np.abs(f2 - f1)) / np.max(np.abs(f1))
+    print(f"window 2 ranks vs 1: {rel:.1e}")
+    assert rel < bound, rel

@@ -15,17 +15,9 @@ set -euo pipefail
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 S=$PCSIM_SOURCE_DIR
-mpirun=$S/scripts/mpirun.sh
-line=(--set catenary.design.spans.count=10 --set simulation.end_x=250
-  --set analysis.from_span=3 --set analysis.to_span=4 --no-report)
-window=(--set window.spans_behind=1 --set window.spans_ahead=2)
-
-run() {  # run NAME RANKS [options]
-  local name=$1 np=$2
-  shift 2
-  "$mpirun" -n "$np" "$PCSIM_BIN" run "$S/runs/en50318-300.yaml" -o "$tmp/$name" "${line[@]}" "$@" \
-    > "$tmp/$name.log" 2>&1 || { cat "$tmp/$name.log"; exit 1; }
-}
+scene=$S/runs/en50318-300.yaml
+# shellcheck source=tests/contact/window_runs.sh
+source "$S/tests/contact/window_runs.sh"
 run full 1
 run window1 1 "${window[@]}"
 run window2 2 "${window[@]}"
@@ -33,22 +25,15 @@ grep -q "moving window: 5 of the line's 10 spans" "$tmp/window1.log"
 
 PYTHONPATH="$S/tests/contact" "$PCSIM_PYTHON" - "$tmp" <<'PY'
 import sys
-import numpy as np
 import run_figures
 d = sys.argv[1]
 runs = run_figures.Runs(d)
-summary, figures, force = runs.summary, runs.figures, runs.force_and_position
+summary, figures = runs.summary, runs.figures
 assert summary("window1")["window_shifts"] == 1, summary("window1").get("window_shifts")
 full, win = figures("full"), figures("window1")
 for key in ("mean_N", "std_N", "stat_max_N", "max_N", "uplift_mm"):
     err = abs(win[key] - full[key]) / abs(full[key])
     print(f"{key}: window {win[key]:.3f}, full line {full[key]:.3f}, error {100 * err:.3f} %")
     assert err < 2e-3, key
-f1, x1 = force("window1")
-f2, x2 = force("window2")
-ff, xf = force("full")
-assert np.array_equal(x1, xf), "the window's positions are not the line's"
-rel = np.max(np.abs(f2 - f1)) / np.max(np.abs(f1))
-print(f"window 2 ranks vs 1: {rel:.1e}")
-assert rel < 1e-8, rel
+run_figures.check_window_ranks(runs)
 PY

@@ -20,18 +20,9 @@ set -euo pipefail
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 S=$PCSIM_SOURCE_DIR
-mpirun=$S/scripts/mpirun.sh
 scene=$S/runs/lines/stitched-300.yaml
-line=(--set catenary.design.spans.count=10 --set simulation.end_x=250
-  --set analysis.from_span=3 --set analysis.to_span=4 --no-report --cache "$tmp/cache")
-window=(--set window.spans_behind=1 --set window.spans_ahead=2)
-
-run() {  # run NAME RANKS [options]
-  local name=$1 np=$2
-  shift 2
-  "$mpirun" -n "$np" "$PCSIM_BIN" run "$scene" -o "$tmp/$name" "${line[@]}" "$@" \
-    > "$tmp/$name.log" 2>&1 || { cat "$tmp/$name.log"; exit 1; }
-}
+# shellcheck source=tests/contact/window_runs.sh
+source "$S/tests/contact/window_runs.sh"
 run full 1
 run window1 1 "${window[@]}"
 run window2 2 "${window[@]}"
@@ -46,7 +37,6 @@ grep -q "modal method window (auto: a line of 1000 identical spans" "$tmp/check.
 
 PYTHONPATH="$S/tests/contact" "$PCSIM_PYTHON" - "$tmp" <<'PY'
 import sys
-import numpy as np
 import run_figures
 runs = run_figures.Runs(sys.argv[1])
 full = runs.figures("full")
@@ -60,11 +50,5 @@ for name, column in (("window1", 0), ("modal", 1)):
         err = abs(got[key] - full[key]) / abs(full[key])
         print(f"{name} {key}: {got[key]:.3f}, full line {full[key]:.3f}, error {100 * err:.3f} %")
         assert err < bounds[column], (name, key)
-f1, x1 = runs.force_and_position("window1")
-f2, _ = runs.force_and_position("window2")
-_, xf = runs.force_and_position("full")
-assert np.array_equal(x1, xf), "the window's positions are not the line's"
-rel = np.max(np.abs(f2 - f1)) / np.max(np.abs(f1))
-print(f"window 2 ranks vs 1: {rel:.1e}")
-assert rel < 1e-8, rel
+run_figures.check_window_ranks(runs)
 PY
