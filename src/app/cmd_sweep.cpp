@@ -169,7 +169,8 @@ Plan make_plan(const CommandContext& ctx) {
 }
 
 // Every case read and checked as `pcsim run` would (inputs.hpp: input errors
-// before anything runs; a command-line option's names the case); the modal
+// before anything runs; a command-line option that one case refuses, e.g.
+// -ts_max_time past a faster case's end, has that case named); the modal
 // bases they need.
 app::SweepBases check_cases(const CommandContext& ctx, const Plan& plan) {
   solvers::read_time_integration_options(ctx.comm);  // their own errors: no case to name
