@@ -16,6 +16,14 @@
 
 namespace pcsim::simulation {
 
+// The stepping thread's context switches, not those of the record thread or
+// the window shift's helper (RUSAGE_THREAD: Linux).
+#ifdef RUSAGE_THREAD
+constexpr int kStepThreadUsage = RUSAGE_THREAD;
+#else
+constexpr int kStepThreadUsage = RUSAGE_SELF;
+#endif
+
 namespace {
 
 // The inputs that usually make a time step fail or the state blow up.
@@ -117,9 +125,10 @@ RunSession::RunSession(const Context& ctx, assembly::CoupledSystem& system,
           system.batches_records() && !options_.window &&
           (options_.record_batches == RecordBatches::on ||
            (options_.record_batches == RecordBatches::automatic && system.records_batch_pays()))) {
-  const bool spare =
-      options_.record_thread == RecordThread::automatic && cores_to_spare(ctx.comm);  // collective
+  const bool spare_core = cores_to_spare(ctx.comm);  // collective
+  const bool spare = options_.record_thread == RecordThread::automatic && spare_core;
   record_thread_ = batch_records_ && (options_.record_thread == RecordThread::on || spare);
+  if (options_.window) options_.window->use_spare_core(spare_core);
   if (restart) {
     first_step_ = restart->state.step;
     skip_first_record_ = true;
@@ -144,7 +153,7 @@ int RunSession::integrate() {
   TS ts = solver_.ts();
   wall_start_ = last_print_ = step_end_ = now_s();
   struct rusage usage;
-  getrusage(RUSAGE_SELF, &usage);
+  getrusage(kStepThreadUsage, &usage);
   involuntary_switches_ = usage.ru_nivcsw;
   reference_builds_ = solver_.reference_builds();
   PCSIM_PETSC(TSSetApplicationContext(ts, this));
@@ -258,7 +267,7 @@ PetscErrorCode RunSession::monitor(TS ts, PetscInt step, PetscReal t, Vec U, voi
 // what happened in it (step_timing.hpp).
 void RunSession::time_step(long step, double start, long newton_iterations) {
   struct rusage usage;
-  getrusage(RUSAGE_SELF, &usage);
+  getrusage(kStepThreadUsage, &usage);
   StepEvents events;
   events.newton_iterations = newton_iterations;
   events.reference_builds = solver_.reference_builds() - reference_builds_;

@@ -11,6 +11,7 @@
 
 #include <petscvec.h>
 
+#include <memory>
 #include <vector>
 
 #include "pcsim/assembly/coupled_system.hpp"
@@ -23,12 +24,15 @@
 
 namespace pcsim::simulation {
 
+class SpinningHelper;  // spinning_helper.hpp
+
 class MovingWindow {
  public:
   // system: built on the window's mesh (ends released). line_support_x: the
   // line's supports. Collective.
   MovingWindow(const scene::RunWindow& window, assembly::CoupledSystem& system,
                std::vector<double> line_support_x);
+  ~MovingWindow();
   // After an accepted step at time t (collective): shifts if due.
   void after_step(double t, solvers::DynamicSolver& solver);
   // A record of the window as the line's: contact stations, every line support.
@@ -36,6 +40,10 @@ class MovingWindow {
   // The layout's supports: the line's, with static heights of the window's.
   void set_line_supports(output::RunLayout& layout) const;
   int shifts() const { return shifts_; }
+  // A core to spare (collective choice, RunSession): a modal shift's pass
+  // over P on two threads, the second started ahead of the shift. Each row is
+  // one thread's: the state is the same bits.
+  void use_spare_core(bool spare);
   double offset() const { return 2.0 * span_length_ * shifts_; }
 
  private:
@@ -53,6 +61,7 @@ class MovingWindow {
   double shift_at_x_ = 0;  // window station where the leading pantograph leaves its spans
   std::size_t lead_ = 0;   // the leading pantograph (largest start_x)
   int max_shifts_ = 0, shifts_ = 0;
+  std::unique_ptr<SpinningHelper> helper_;  // rank 0 of a modal window with a core to spare
   int window_supports_ = 0;
   std::vector<double> line_support_x_, line_static_z_, window_static_z_;
   // Rank 0: catenary DOF g takes the displacement of source_[g] (-1: static);

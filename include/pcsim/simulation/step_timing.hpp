@@ -18,7 +18,7 @@ namespace pcsim::simulation {
 struct StepEvents {
   long newton_iterations = 0;
   long reference_builds = 0;         // J0 assembled and factored (cheap path)
-  long involuntary_switches = 0;     // the OS took the core away (getrusage)
+  long involuntary_switches = 0;     // the OS took the stepping thread's core away (getrusage)
   bool window_shift = false;         // a moving window moved
   bool output_flush_before = false;  // the previous record flushed results.h5
 };
