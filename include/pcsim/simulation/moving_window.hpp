@@ -40,9 +40,9 @@ class MovingWindow {
   // The layout's supports: the line's, with static heights of the window's.
   void set_line_supports(output::RunLayout& layout) const;
   int shifts() const { return shifts_; }
-  // A core to spare (collective choice, RunSession): a modal shift's pass
-  // over P on two threads, the second started ahead of the shift. Each row is
-  // one thread's: the state is the same bits.
+  // A core to spare (collective choice, RunSession): a large modal shift's
+  // pass over P on two threads, the second started a few milliseconds ahead
+  // of the shift. Each row is one thread's: the state is the same bits.
   void use_spare_core(bool spare);
   double offset() const { return 2.0 * span_length_ * shifts_; }
 
@@ -51,6 +51,7 @@ class MovingWindow {
   void fe_source(const assembly::FECatenary& fe);
   void shift_fe(solvers::DynamicState& s) const;
   void shift_modal(solvers::DynamicState& s) const;
+  void wake_helper_ahead(double x);
   void set_pins();
 
   assembly::CoupledSystem& system_;
@@ -62,6 +63,7 @@ class MovingWindow {
   std::size_t lead_ = 0;   // the leading pantograph (largest start_x)
   int max_shifts_ = 0, shifts_ = 0;
   std::unique_ptr<SpinningHelper> helper_;  // rank 0 of a modal window with a core to spare
+  double last_x_ = 0, last_wall_ = 0;       // the leading contact point and the wall time [s]
   int window_supports_ = 0;
   std::vector<double> line_support_x_, line_static_z_, window_static_z_;
   // Rank 0: catenary DOF g takes the displacement of source_[g] (-1: static);
