@@ -14,6 +14,7 @@
 
 #include "pcsim/catenary/reduced_basis.hpp"
 #include "pcsim/core/error.hpp"
+#include "pcsim/core/profiling.hpp"
 #include "pcsim/core/vec_root.hpp"
 #include "pcsim/core/version.hpp"
 #include "pcsim/output/output_dir.hpp"
@@ -293,12 +294,6 @@ void write_cached(const Context& ctx, const std::string& key, const PilotEstimat
   if (ec) std::filesystem::remove(tmp, ec);
 }
 
-double now_s() {
-  PetscLogDouble t;
-  PetscTime(&t);
-  return t;
-}
-
 }  // namespace
 
 std::vector<FigureErrors> PilotEstimate::discretisation() const {
@@ -379,7 +374,7 @@ PilotEstimate run_accuracy_pilot(const Context& ctx, const SceneSource& source,
     if (modal) run.catenary.modal.max_frequency_hz = pilot.cutoff_hz;
     return pilot;
   }
-  const double start = now_s();
+  const double start = wall_clock_s();
   const PilotStretch stretch = pilot_stretch(run);
   check_not_cut_short(run, stretch);
   pilot.done = true;
@@ -395,9 +390,9 @@ PilotEstimate run_accuracy_pilot(const Context& ctx, const SceneSource& source,
                    double cutoff_hz) {
     print0(ctx, "    %s ... ", label.c_str());
     std::fflush(stdout);
-    const double t0 = now_s();
+    const double t0 = wall_clock_s();
     auto figures = run_pilot(ctx, source, variant, stretch, dt, cutoff_hz, dir);
-    print0(ctx, "%.1f s\n", now_s() - t0);
+    print0(ctx, "%.1f s\n", wall_clock_s() - t0);
     ++pilot.runs;
     return figures;
   };
@@ -439,7 +434,7 @@ PilotEstimate run_accuracy_pilot(const Context& ctx, const SceneSource& source,
     pilot.cutoff_hz = cutoff;
     run.catenary.modal.max_frequency_hz = cutoff;
   }
-  pilot.seconds = now_s() - start;
+  pilot.seconds = wall_clock_s() - start;
   print0(ctx, "    %d pilot runs in %.1f s\n", pilot.runs, pilot.seconds);
   write_cached(ctx, key, pilot);
   return pilot;

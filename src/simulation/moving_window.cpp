@@ -1,7 +1,6 @@
 #include "pcsim/simulation/moving_window.hpp"
 
 #include <algorithm>
-#include <chrono>
 
 #include "pcsim/assembly/fe_catenary.hpp"
 #include "pcsim/assembly/modal_catenary.hpp"
@@ -9,6 +8,7 @@
 #include "pcsim/assembly/wind_terms.hpp"
 #include "pcsim/catenary/window.hpp"
 #include "pcsim/core/error.hpp"
+#include "pcsim/core/profiling.hpp"
 #include "pcsim/core/vec_root.hpp"
 #include "spinning_helper.hpp"
 
@@ -94,8 +94,7 @@ void MovingWindow::after_step(double t, solvers::DynamicSolver& solver) {
 // wake-up (up to 2.6 ms measured), and no longer spinning than that.
 void MovingWindow::wake_helper_ahead(double x) {
   constexpr double kHelperLead = 4e-3;  // [s]
-  const double now =
-      std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  const double now = wall_clock_s();
   if (x > last_x_ && last_wall_ > 0 &&
       (shift_at_x_ - x) / (x - last_x_) * (now - last_wall_) <= kHelperLead)
     helper_->start();

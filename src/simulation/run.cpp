@@ -35,12 +35,6 @@ namespace pcsim::simulation {
 
 namespace {
 
-double now_s() {
-  PetscLogDouble t;
-  PetscTime(&t);
-  return t;
-}
-
 void warn_if_start_differs(const Context& ctx, assembly::CoupledSystem& system,
                            const solvers::DynamicState& checkpointed) {
   const auto& slots = system.pantographs();
@@ -246,7 +240,7 @@ bool cheap_path_possible(const scene::RunScene& scene) {
 
 RunOutcome run(const Context& ctx, scene::RunScene& scene, const RunRequest& request,
                output::OutputDir& out, RunObserver* observer) {
-  const double start = now_s();
+  const double start = wall_clock_s();
   RunOutcome outcome;
   const auto& design = scene.catenary.mesh;
   LogStage stage("Form-finding");  // -log_view: the phases of a run
@@ -309,7 +303,7 @@ RunOutcome run(const Context& ctx, scene::RunScene& scene, const RunRequest& req
   print0(ctx, "  %s at %.0f km/h, %.3f s simulated, dt = %.2e s, TS %s\n",
          system->pantographs().size() > 1 ? "pantographs" : "pantograph",
          system->pantographs().front().run.speed * 3.6, scene.duration(), dt, ts_type);
-  outcome.setup_s = now_s() - start;
+  outcome.setup_s = wall_clock_s() - start;
   stage.next("Time loop");
   outcome.signal = session.integrate();
   stage.next("Output");

@@ -16,6 +16,8 @@
 
 namespace pcsim::simulation {
 
+namespace {
+
 // The stepping thread's context switches, not those of the record thread or
 // the window shift's helper (RUSAGE_THREAD: Linux).
 #ifdef RUSAGE_THREAD
@@ -24,19 +26,11 @@ constexpr int kStepThreadUsage = RUSAGE_THREAD;
 constexpr int kStepThreadUsage = RUSAGE_SELF;
 #endif
 
-namespace {
-
 // The inputs that usually make a time step fail or the state blow up.
 const char* const kLikelyInputs =
     "check simulation.dt (smaller), the design's damping.rayleigh_alpha and "
     "damping.rayleigh_beta, contact.stiffness and the pantograph model's masses, "
     "stiffnesses and damping";
-
-double now_s() {
-  PetscLogDouble t;
-  PetscTime(&t);
-  return t;
-}
 
 PetscErrorCode read_debug_options(MPI_Comm comm, PetscInt* step, PetscInt* rank) {
   PetscFunctionBeginUser;
@@ -146,12 +140,12 @@ RunSession::RunSession(const Context& ctx, assembly::CoupledSystem& system,
 }
 
 double RunSession::wall_time() const {
-  return earlier_wall_ + (now_s() - wall_start_);
+  return earlier_wall_ + (wall_clock_s() - wall_start_);
 }
 
 int RunSession::integrate() {
   TS ts = solver_.ts();
-  wall_start_ = last_print_ = step_end_ = now_s();
+  wall_start_ = last_print_ = step_end_ = wall_clock_s();
   struct rusage usage;
   getrusage(kStepThreadUsage, &usage);
   involuntary_switches_ = usage.ru_nivcsw;
@@ -234,7 +228,7 @@ bool RunSession::stopped_early() const {
 PetscErrorCode RunSession::monitor(TS ts, PetscInt step, PetscReal t, Vec U, void* ptr) {
   PCSIM_CALLBACK_BEGIN
   auto& s = *static_cast<RunSession*>(ptr);
-  const double start = now_s();
+  const double start = wall_clock_s();
   s.time_ = t;
   if (s.skip_first_record_) {
     s.skip_first_record_ = false;
@@ -258,8 +252,8 @@ PetscErrorCode RunSession::monitor(TS ts, PetscInt step, PetscReal t, Vec U, voi
     }
   }
   s.print_progress(step, t);
-  s.timing_.add_output(now_s() - start);
-  s.step_end_ = now_s();
+  s.timing_.add_output(wall_clock_s() - start);
+  s.step_end_ = wall_clock_s();
   PCSIM_CALLBACK_END
 }
 
@@ -359,7 +353,7 @@ void RunSession::deliver_batch(std::vector<PendingRecord>& batch,
 }
 
 void RunSession::print_progress(PetscInt step, PetscReal t) const {
-  const double now = now_s();
+  const double now = wall_clock_s();
   if (now - last_print_ <= 5.0 && !(step > first_step_ && t >= options_.duration - 1e-12)) return;
   last_print_ = now;
   const double done = t / options_.duration, done_at_start = start_time_ / options_.duration;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <petscsys.h>
+#include <petsctime.h>
 
 namespace pcsim {
 
@@ -21,6 +22,13 @@ struct LogEvents {
   PetscLogEvent dd_apply;         // one domain-decomposition solve
   PetscLogEvent dd_interface;     // its interface solve x_G = S^-1 g (replicated)
 };
+
+// Wall-clock time [s] by PETSc's timer (the clock of -log_view): for differences.
+inline double wall_clock_s() {
+  PetscLogDouble t;
+  PetscTime(&t);
+  return t;
+}
 
 // Registered on the first call (collective on PETSC_COMM_WORLD the first time).
 const LogEvents& log_events();
