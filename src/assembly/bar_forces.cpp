@@ -110,11 +110,15 @@ std::vector<RankOne> BarForces::switch_terms(std::size_t i) const {
     RankOne term;
     term.key = static_cast<int>(3 * i + j);
     term.coefficient = eig[j];
+    std::vector<PetscInt> index;
+    std::vector<double> weight;
     for (int c = 0; c < 3; ++c) {
       const double v = eig[3 + 3 * j + c];
-      if (idx[c] >= 0) term.index.push_back(idx[c]), term.weight.push_back(v);
-      if (idx[3 + c] >= 0) term.index.push_back(idx[3 + c]), term.weight.push_back(-v);
+      if (idx[c] >= 0) index.push_back(idx[c]), weight.push_back(v);
+      if (idx[3 + c] >= 0) index.push_back(idx[3 + c]), weight.push_back(-v);
     }
+    term.index = std::move(index);
+    term.weight = std::move(weight);
     terms.push_back(std::move(term));
   }
   return terms;
@@ -188,8 +192,12 @@ void BarForces::restore(const std::vector<double>& state) {
       t.coefficient = next();
       t.reuse_columns = next() != 0;
       const auto n = static_cast<std::size_t>(next());
-      for (std::size_t j = 0; j < n; ++j) t.index.push_back(static_cast<PetscInt>(next()));
-      for (std::size_t j = 0; j < n; ++j) t.weight.push_back(next());
+      std::vector<PetscInt> index;
+      std::vector<double> weight;
+      for (std::size_t j = 0; j < n; ++j) index.push_back(static_cast<PetscInt>(next()));
+      for (std::size_t j = 0; j < n; ++j) weight.push_back(next());
+      t.index = std::move(index);
+      t.weight = std::move(weight);
       frozen.terms.push_back(std::move(t));
     }
   }

@@ -123,7 +123,7 @@ Vec FECatenary::static_forces(unsigned mask) {
 const WirePoint& FECatenary::wire_point(double x, int wire) const {
   WirePoint& point = points_[wire];
   point.on_wire = point.owned = false;
-  point.z = point.slope = point.y = 0;
+  point.z = point.y = 0;
   point.index.clear();
   point.weight.clear();
   int element;
@@ -145,15 +145,25 @@ const WirePoint& FECatenary::wire_point(double x, int wire) const {
     system_->cable_values(element, q.data());
     point.owned = true;
     point.z = S.dot(q);
-    const catenary::CablePoint at = catenary::cable_point(el.ref_length, q, chi);
-    point.slope = at.r_chi[2] / at.r_chi[0];
-    point.y = at.r[1];
-    if (!mesh().contact_gap_offsets.empty()) {
-      point.z += mesh().contact_gap_offsets[wire].at(x);
-      point.slope += mesh().contact_gap_offsets[wire].slope_at(x);
-    }
+    point.y = catenary::cable_point(el.ref_length, q, chi).r[1];
+    if (!mesh().contact_gap_offsets.empty()) point.z += mesh().contact_gap_offsets[wire].at(x);
   }
   return point;
+}
+
+double FECatenary::wire_slope(double x, int wire) const {
+  int element;
+  double chi;
+  if (!locators_[wire]->locate(x, element, chi)) return 0;
+  const auto& el = mesh().cables[element];
+  const auto& L = system_->layout();
+  if (L.owner(el.nodes[0]) != L.rank()) return 0;
+  catenary::Vec12 q;
+  system_->cable_values(element, q.data());
+  const catenary::CablePoint at = catenary::cable_point(el.ref_length, q, chi);
+  double slope = at.r_chi[2] / at.r_chi[0];
+  if (!mesh().contact_gap_offsets.empty()) slope += mesh().contact_gap_offsets[wire].slope_at(x);
+  return slope;
 }
 
 std::vector<double> FECatenary::support_heights() const {

@@ -236,6 +236,26 @@ void PenaltyContact::take_low_rank_sums(const double* sums) {
   summed_in_contact_ = sums[0];
 }
 
+namespace {
+
+bool contiguous_run(const std::vector<PetscInt>& index, bool said) {
+  const std::size_t n = index.size();
+  return said && n > 0 && index[n - 1] == index[0] + static_cast<PetscInt>(n) - 1;
+}
+
+// kept equals the wire's indices followed by the head's; two contiguous wire
+// parts are equal by their first entry and size (the modal wire's every mode).
+bool same_indices(const SharedEntries<PetscInt>& kept, bool kept_contiguous,
+                  const std::vector<PetscInt>& wire, bool contiguous, PetscInt head) {
+  const std::size_t n = wire.size();
+  if (kept.size() != n + 1 || kept[n] != head) return false;
+  if (n == 0) return true;
+  if (kept_contiguous && contiguous_run(wire, contiguous)) return kept[0] == wire[0];
+  return std::equal(wire.begin(), wire.end(), kept.begin());
+}
+
+}  // namespace
+
 // u = [dz/dU; -1] (known on every rank), coefficient kH while in contact: the
 // owner of the contact point decides. Evaluated again, not kept from
 // append_low_rank_sums(): the wire point is valid only until the next
@@ -246,13 +266,23 @@ bool PenaltyContact::low_rank_change(const CoupledState& state, std::vector<Rank
   if (!e.wire->on_wire) return true;
   RankOne term;
   term.key = 0;
-  const std::size_t size = e.wire->index.size() + 1;  // room for the head: no reallocation
-  term.index.reserve(size);
-  term.weight.reserve(size);
-  term.index.assign(e.wire->index.begin(), e.wire->index.end());
-  term.weight.assign(e.wire->weight.begin(), e.wire->weight.end());
-  term.index.push_back(slot_.contact_dof());
-  term.weight.push_back(-1.0);
+  const auto& wire_index = e.wire->index;
+  const std::size_t size = wire_index.size() + 1;
+  std::vector<double> weight;
+  weight.reserve(size);  // room for the head: no reallocation
+  weight.assign(e.wire->weight.begin(), e.wire->weight.end());
+  weight.push_back(-1.0);
+  term.weight = std::move(weight);
+  if (!same_indices(term_index_, term_index_contiguous_, wire_index, e.wire->contiguous,
+                    slot_.contact_dof())) {
+    std::vector<PetscInt> index;
+    index.reserve(size);
+    index.assign(wire_index.begin(), wire_index.end());
+    index.push_back(slot_.contact_dof());
+    term_index_ = std::move(index);
+    term_index_contiguous_ = contiguous_run(wire_index, e.wire->contiguous);
+  }
+  term.index = term_index_;
   term.coefficient = in_contact > 0.5 ? e.stiffness : 0.0;
   term.reuse_columns = e.wire->reuse_columns;
   // Contiguous only if the head's unknown follows the wire's (the first
@@ -271,9 +301,9 @@ bool PenaltyContact::low_rank_change(const CoupledState& state, std::vector<Rank
 TermPower PenaltyContact::power(const CoupledState& state) const {
   const Evaluation e = evaluate(state);
   const double k = e.stiffness, dk_dx = -k * k * e.wire->residual_flexibility_slope;
-  double local = e.force > 0
-                     ? (k * e.gap * e.wire->slope + 0.5 * e.gap * e.gap * dk_dx) * slot_.run.speed
-                     : 0.0;
+  const double slope = e.force > 0 ? state.catenary().wire_slope(e.x, wire_) : 0.0;
+  double local =
+      e.force > 0 ? (k * e.gap * slope + 0.5 * e.gap * e.gap * dk_dx) * slot_.run.speed : 0.0;
   if (e.force > 0) local += e.force * slot_.model->frame_velocity(state.t);
   TermPower p;
   p.external = sum_over_ranks(state.catenary().comm(), local);

@@ -194,7 +194,7 @@ void ModalCatenary::load_state(Vec U) {
 }
 
 // The weights of contact wire 'wire' at station x: z = z0 + w . eta with
-// w = S_z(chi) Phi_e (thesis 3.13), and the parts of the slope dz/dx.
+// w = S_z(chi) Phi_e (thesis 3.13), the static slope parts and where x lies (wire_slope).
 ModalCatenary::CachedPoint& ModalCatenary::cached_point(double x, int wire) const {
   auto& entries = cached_[wire];
   CachedPoint* oldest = &entries[0];
@@ -213,7 +213,9 @@ ModalCatenary::CachedPoint& ModalCatenary::cached_point(double x, int wire) cons
   double chi;
   p.on_wire = locators_[wire]->locate(x, element, chi);
   p.owned = false;
-  p.z = p.slope = p.residual_flexibility = p.residual_flexibility_slope = 0;
+  p.z = p.residual_flexibility = p.residual_flexibility_slope = 0;
+  c.element = -1;
+  c.z_chi_made = false;
   p.reuse_columns = false;
   p.contiguous = true;
   c.z0 = c.z_chi0 = c.y0 = 0;
@@ -233,7 +235,8 @@ ModalCatenary::CachedPoint& ModalCatenary::cached_point(double x, int wire) cons
     p.weight.resize(m_);
     Eigen::Map<Eigen::RowVectorXd>(p.weight.data(), m_) =
         s[0] * r0 + s[1] * r1 + s[2] * r2 + s[3] * r3;
-    c.z_chi = ds[0] * r0 + ds[1] * r1 + ds[2] * r2 + ds[3] * r3;
+    c.element = element;
+    c.chi = chi;
     c.y_eta.resize(0);
     const int lateral[4] = {1, 4, 1, 4};  // y, y' (kept under a wind): lateral motion
     bool kept = true;
@@ -265,7 +268,7 @@ ModalCatenary::CachedPoint& ModalCatenary::cached_point(double x, int wire) cons
   return c;
 }
 
-// The height and slope at the loaded eta, computed once per x and eta.
+// The height (and lateral position) at the loaded eta, computed once per x and eta.
 const WirePoint& ModalCatenary::wire_point(double x, int wire) const {
   CachedPoint& c = cached_point(x, wire);
   WirePoint& p = c.point;
@@ -273,12 +276,28 @@ const WirePoint& ModalCatenary::wire_point(double x, int wire) const {
     p.owned = true;
     p.y = c.y_eta.size() > 0 ? c.y0 + c.y_eta.dot(eta_) : c.y0;
     p.z = c.z0 + Eigen::Map<const Eigen::VectorXd>(p.weight.data(), m_).dot(eta_);
-    // dz/dx with x(chi) static (the contact point moves along the track).
-    p.slope = (c.z_chi0 + c.z_chi.dot(eta_)) / c.x_chi;
-    if (!mesh_.contact_gap_offsets.empty()) p.slope += mesh_.contact_gap_offsets[wire].slope_at(x);
     c.eta_version = eta_version_;
   }
   return p;
+}
+
+// dz/dx with x(chi) static (the contact point moves along the track); its
+// row over the modes made on the first call at this x (a run that balances
+// no energy never makes it: a pass over four basis rows per step and
+// pantograph).
+double ModalCatenary::wire_slope(double x, int wire) const {
+  CachedPoint& c = cached_point(x, wire);
+  if (!c.point.on_wire || !on_owner()) return 0;
+  if (!c.z_chi_made) {
+    const auto& el = mesh_.cables[c.element];
+    const auto ds = catenary::hermite(c.chi, el.ref_length).ds;
+    c.z_chi = ds[0] * row(el.nodes[0], 2) + ds[1] * row(el.nodes[0], 5) +
+              ds[2] * row(el.nodes[1], 2) + ds[3] * row(el.nodes[1], 5);
+    c.z_chi_made = true;
+  }
+  double slope = (c.z_chi0 + c.z_chi.dot(eta_)) / c.x_chi;
+  if (!mesh_.contact_gap_offsets.empty()) slope += mesh_.contact_gap_offsets[wire].slope_at(x);
+  return slope;
 }
 
 // eta = Omega^-2 sum_p w(x_p) F_p: the modal statics under the forces (slack

@@ -36,10 +36,23 @@ Eigen::VectorXd modal_part(const ModalCatenary& catenary, Vec v) {
   return x;
 }
 
-std::vector<PetscInt> all_modes(const ModalCatenary& catenary) {
+SharedEntries<PetscInt> all_modes(const ModalCatenary& catenary) {
   std::vector<PetscInt> modes(catenary.catenary_dofs());
   for (std::size_t k = 0; k < modes.size(); ++k) modes[k] = static_cast<PetscInt>(k);
   return modes;
+}
+
+// The row made by make() under key, made on first use and kept (the basis
+// never changes under a term).
+template <class Make>
+const SharedEntries<double>& kept_row(std::map<long, SharedEntries<double>>& rows, long key,
+                                      Make make) {
+  auto [it, added] = rows.try_emplace(key);
+  if (added) {
+    const auto row = make();
+    it->second = std::vector<double>(row.data(), row.data() + row.size());
+  }
+  return it->second;
 }
 
 // Adds a dense modal block (m x m) to J on the owner.
@@ -165,13 +178,12 @@ void ModalDropperSlack::add_tangent(const CoupledState&, Shifts, Mat J) {
 }
 
 bool ModalDropperSlack::low_rank_change(const CoupledState&, std::vector<RankOne>& terms) {
-  const PetscInt m = catenary_.catenary_dofs();
   for (std::size_t d : catenary_.slack_now()) {
     RankOne term;
     term.key = static_cast<int>(d);
     term.index = modes_;
-    const double* b = catenary_.elongation_rows().row(static_cast<long>(d)).data();
-    term.weight.assign(b, b + m);
+    term.weight = kept_row(rows_, static_cast<long>(d),
+                           [&] { return catenary_.elongation_rows().row(static_cast<long>(d)); });
     term.coefficient = -catenary_.bar_stiffness(d);
     term.reuse_columns = false;
     term.contiguous = true;
@@ -191,14 +203,15 @@ double ModalDropperSlack::energy(const CoupledState&) const {
 
 namespace {
 
-// A rank-one term c phi^T phi over every mode (dense u).
-RankOne modal_rank_one(const ModalCatenary& catenary, int key, const std::vector<PetscInt>& modes,
-                       int node, int dof, double coefficient) {
+// A rank-one term c phi^T phi over every mode (dense u), phi the row of
+// (node, dof) kept in rows.
+RankOne modal_rank_one(const ModalCatenary& catenary, int key, const SharedEntries<PetscInt>& modes,
+                       std::map<long, SharedEntries<double>>& rows, int node, int dof,
+                       double coefficient) {
   RankOne term;
   term.key = key;
   term.index = modes;
-  const auto phi = catenary.row(node, dof);
-  term.weight.assign(phi.data(), phi.data() + phi.size());
+  term.weight = kept_row(rows, 8L * node + dof, [&] { return catenary.row(node, dof); });
   term.coefficient = coefficient;
   term.contiguous = true;
   return term;
@@ -268,7 +281,7 @@ void ModalNodeDashpots::add_tangent(const CoupledState&, Shifts shifts, Mat J) {
 bool ModalNodeDashpots::low_rank_change(const CoupledState&, std::vector<RankOne>& terms) {
   const auto& dashpots = catenary_.mesh().dashpots;
   for (std::size_t e = 0; e < dashpots.size(); ++e)
-    terms.push_back(modal_rank_one(catenary_, static_cast<int>(e), modes_, dashpots[e].node,
+    terms.push_back(modal_rank_one(catenary_, static_cast<int>(e), modes_, rows_, dashpots[e].node,
                                    dashpots[e].dof, shift_v_ * dashpots[e].coefficient));
   return true;
 }
@@ -305,7 +318,7 @@ bool ModalNodePins::low_rank_change(const CoupledState&, std::vector<RankOne>& t
   const auto& pins = catenary_.mesh().pins;
   for (std::size_t p = 0; p < pins.size(); ++p)
     if (pins[p].active)
-      terms.push_back(modal_rank_one(catenary_, static_cast<int>(p), modes_, pins[p].node,
+      terms.push_back(modal_rank_one(catenary_, static_cast<int>(p), modes_, rows_, pins[p].node,
                                      pins[p].dof, pins[p].stiffness));
   return true;
 }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "block_diagonal.hpp"
+#include "capacitance_dots.hpp"
 #include "pc_types.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/core/profiling.hpp"
@@ -297,26 +298,19 @@ void LowRankStepSolver::update_capacitance(Vec x, std::vector<PetscScalar>& ux) 
   const std::size_t k = now.size();
   const bool same_terms = now == active_ && products_.rows() == static_cast<long>(k);
   active_ = std::move(now);
-  std::vector<Vec> us(k), zs(k);
-  for (std::size_t j = 0; j < k; ++j) {
-    us[j] = active_[j]->u;
-    zs[j] = active_[j]->z;
+  CapacitanceDots in;
+  for (Entry* e : active_) {
+    in.us.push_back(e->u);
+    in.zs.push_back(e->z);
   }
   if (!same_terms) products_.resize(k, k);
-  std::vector<std::size_t> rows;
+  std::vector<std::size_t>& rows = in.rows;
   for (std::size_t i = 0; i < k; ++i)
     if (!same_terms || active_[i]->changed) rows.push_back(i);
-  std::vector<PetscScalar> uz(rows.size() * k), zu(same_terms ? rows.size() * k : 0);
-  ux.assign(k, 0.0);
-  const auto nk = static_cast<PetscInt>(k);
-  for (int end = 0; end < 2 && k > 0; ++end) {  // VecMDotBegin all, then End in that order
-    const auto dot = end ? VecMDotEnd : VecMDotBegin;
-    for (std::size_t r = 0; r < rows.size(); ++r) {
-      PCSIM_PETSC(dot(active_[rows[r]]->u, nk, zs.data(), &uz[r * k]));
-      if (same_terms) PCSIM_PETSC(dot(active_[rows[r]]->z, nk, us.data(), &zu[r * k]));
-    }
-    PCSIM_PETSC(dot(x, nk, us.data(), ux.data()));
-  }
+  in.transposed = same_terms;
+  in.x = x;
+  std::vector<double> uz, zu;
+  capacitance_dots(in, uz, zu, ux);
   for (std::size_t r = 0; r < rows.size(); ++r) {
     const std::size_t i = rows[r];
     for (std::size_t j = 0; j < k; ++j) products_(i, j) = uz[r * k + j];
@@ -346,9 +340,13 @@ PetscErrorCode LowRankStepSolver::pc_apply(PC pc, Vec r, Vec x) {
     us[j] = self->active_[j]->u;
     zs[j] = self->active_[j]->z;
   }
-  if (w.size() != k) {
-    w.resize(k);
-    PCSIM_PETSC(VecMDot(x, static_cast<PetscInt>(k), us.data(), w.data()));
+  if (w.size() != k) {  // U^T y by the capacitance's kernel: the same bits either way
+    CapacitanceDots in;
+    in.us = us;
+    in.zs = zs;
+    in.x = x;
+    std::vector<double> uz, zu;  // no rows: both empty
+    capacitance_dots(in, uz, zu, w);
   }
   Eigen::VectorXd s =
       self->capacitance_lu_.solve(Eigen::Map<Eigen::VectorXd>(w.data(), static_cast<long>(k)));

@@ -151,15 +151,19 @@ double solve_error(bool coupled, bool* by_blocks) {
   Mat J0 = make_j0(coupled, n);
   // Rank-one terms: a dense u over every unknown, a sparse one over three.
   std::vector<pcsim::assembly::RankOne> terms(2);
+  std::vector<PetscInt> dense_index;
+  std::vector<double> dense_weight;
   for (PetscInt k = 0; k < n; ++k) {
-    terms[0].index.push_back(k);
-    terms[0].weight.push_back(std::sin(1.0 + static_cast<double>(k)));
+    dense_index.push_back(k);
+    dense_weight.push_back(std::sin(1.0 + static_cast<double>(k)));
   }
+  terms[0].index = dense_index;
+  terms[0].weight = dense_weight;
   terms[0].key = 1;
   terms[0].coefficient = 3.0;
   terms[0].contiguous = true;
   terms[1].key = 2;
-  terms[1].index = {0, n / 2, n - 1};
+  terms[1].index = std::vector<PetscInt>{0, n / 2, n - 1};
   terms[1].weight = {1.0, -0.5, 0.25};
   terms[1].coefficient = -0.8;
   terms[1].reuse_columns = true;
@@ -204,10 +208,14 @@ std::vector<double> solve_sequence(Mat J0,
 pcsim::assembly::RankOne dense_term(int key, PetscInt n, double phase, double coefficient) {
   pcsim::assembly::RankOne t;
   t.key = key;
+  std::vector<PetscInt> index;
+  std::vector<double> weight;
   for (PetscInt k = 0; k < n; ++k) {
-    t.index.push_back(k);
-    t.weight.push_back(std::sin(phase + static_cast<double>(k)));
+    index.push_back(k);
+    weight.push_back(std::sin(phase + static_cast<double>(k)));
   }
+  t.index = index;
+  t.weight = weight;
   t.coefficient = coefficient;
   t.contiguous = true;
   return t;

@@ -33,7 +33,6 @@ struct WirePoint {
   bool owned = false;    // this rank holds the state of the point: z is set
   double z = 0;          // height the contact sees at x at the loaded state [m]
                          // (the wire + its contact-gap offset, mesh.hpp)
-  double slope = 0;      // dz/dx of the wire at x at the loaded state
   double y = 0;          // lateral position at x from the track centre line [m] at the loaded state
                          // (modal in still air: the static one, its basis keeps no lateral rows)
   std::vector<PetscInt> index;  // global unknowns z depends on (every rank)
@@ -85,6 +84,10 @@ class CatenaryModel {
   // wire_point() of the same wire or the next load_state().
   virtual int contact_wire_count() const = 0;
   virtual const WirePoint& wire_point(double x, int wire) const = 0;
+  // dz/dx of the wire at x at the loaded state, on the rank whose point is
+  // owned (else 0): the moving contact's power alone needs it (energy
+  // balance), so a point does not carry it.
+  virtual double wire_slope(double x, int wire) const = 0;
   virtual double wire_x_min(int wire) const = 0;
   virtual double wire_x_max(int wire) const = 0;
   // The catenary part of U in static equilibrium under upward forces, each

@@ -68,6 +68,7 @@ class FECatenary : public CatenaryModel {
   void load_state(Vec U) override { system_->load_state(U); }
   int contact_wire_count() const override { return static_cast<int>(locators_.size()); }
   const WirePoint& wire_point(double x, int wire) const override;
+  double wire_slope(double x, int wire) const override;
   double wire_x_min(int wire) const override { return locators_[wire]->x_min(); }
   double wire_x_max(int wire) const override { return locators_[wire]->x_max(); }
   std::vector<double> support_heights() const override;

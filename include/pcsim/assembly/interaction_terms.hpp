@@ -104,6 +104,8 @@ class PenaltyContact : public Term {
   int wire_;
   std::vector<PetscInt> remote_index_;  // add_residual's entries of other ranks
   std::vector<double> remote_value_;
+  SharedEntries<PetscInt> term_index_;  // the last u's indices (the wire's and the head's)
+  bool term_index_contiguous_ = false;  // ... its wire part index[0], index[0] + 1, ...
   double summed_in_contact_ = 0;
 };
 

@@ -66,6 +66,7 @@ class ModalCatenary : public CatenaryModel {
   void load_state(Vec U) override;
   int contact_wire_count() const override { return static_cast<int>(locators_.size()); }
   const WirePoint& wire_point(double x, int wire) const override;
+  double wire_slope(double x, int wire) const override;
   double wire_x_min(int wire) const override { return locators_[wire]->x_min(); }
   double wire_x_max(int wire) const override { return locators_[wire]->x_max(); }
   bool closed_form_point_loads(const std::vector<PointForce>& loads, Vec U) const override;
@@ -185,9 +186,12 @@ class ModalCatenary : public CatenaryModel {
     double z0 = 0, x_chi = 1;  // static height, dx/dchi
     double y0 = 0;             // static lateral position (point.y)
     Eigen::RowVectorXd y_eta;  // dy/d eta (empty: the basis keeps no lateral rows)
-    Eigen::RowVectorXd z_chi;  // d(dz/dchi)/d eta
+    int element = -1;          // the contact wire's cable element at x ...
+    double chi = 0;            // ... and the point's coordinate on it
+    Eigen::RowVectorXd z_chi;  // d(dz/dchi)/d eta, made by wire_slope() alone
+    bool z_chi_made = false;   // z_chi is this x's (its storage kept from x to x)
     double z_chi0 = 0;         // static dz/dchi
-    long eta_version = -1;     // point.z and point.slope belong to this eta_version_
+    long eta_version = -1;     // point.z and point.y belong to this eta_version_
     long last_use = 0;         // for replacing the least recently used
   };
   static constexpr std::size_t kCachedPointsPerWire = 8;

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <map>
 #include <vector>
 
 #include "pcsim/assembly/modal_catenary.hpp"
@@ -61,7 +62,8 @@ class ModalDropperSlack : public Term {
 
  private:
   ModalCatenary& catenary_;
-  std::vector<PetscInt> modes_;  // 0 .. m-1
+  SharedEntries<PetscInt> modes_;               // 0 .. m-1, shared by every term handed out
+  std::map<long, SharedEntries<double>> rows_;  // a slack dropper's row, made once
 };
 
 // A moving window's end dashpots (catenary/window.hpp) over the modes:
@@ -84,7 +86,8 @@ class ModalNodeDashpots : public Term {
 
  private:
   ModalCatenary& catenary_;
-  std::vector<PetscInt> modes_;
+  SharedEntries<PetscInt> modes_;
+  std::map<long, SharedEntries<double>> rows_;  // a dashpot's basis row, made once
   double shift_v_ = 0;
   Eigen::VectorXd rates_;  // the modal part of V (kept storage)
 };
@@ -105,7 +108,8 @@ class ModalNodePins : public Term {
 
  private:
   ModalCatenary& catenary_;
-  std::vector<PetscInt> modes_;
+  SharedEntries<PetscInt> modes_;
+  std::map<long, SharedEntries<double>> rows_;  // a pin's basis row, made once
 };
 
 // Every bar's exact force minus its linearisation at the static state q0:

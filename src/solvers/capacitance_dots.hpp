@@ -1,0 +1,34 @@
+// The dot products a Woodbury capacitance needs, in one pass over memory
+// (low_rank.cpp): for the terms whose u or z changed, u_r . z_j and
+// z_r . u_j over every term j, and x . u_j, where VecMDot made one pass over
+// every column per changed row (five passes a step with two moving contacts).
+#pragma once
+
+#include <petscvec.h>
+
+#include <vector>
+
+namespace pcsim::solvers {
+
+struct CapacitanceDots {
+  std::vector<Vec> us, zs;        // the k active terms' u and J0^-1 u (one layout)
+  std::vector<std::size_t> rows;  // the changed terms, indices into us/zs
+  bool transposed = false;        // z_r . u_j too (zu)
+  Vec x = nullptr;                // x . u_j too (ux), when given
+};
+
+// uz[r k + j] = u_rows[r] . z_j, zu[r k + j] = u_j . z_rows[r] (if
+// transposed), ux[j] = x . u_j (if x), over the local entries in blocks of
+// 256 that every stream of a block reads from L1, then over the ranks (one
+// reduction). Each product sums in 4 lanes (entry e into lane e mod 4; the
+// lanes (l0 + l2) + (l1 + l3)), u first: u_i . z_j has the same bits in uz
+// and zu. The vector kernel (AVX2 and FMA, where the processor has them)
+// shares each load of a u among four products; vector_kernel false takes
+// the portable one (tests).
+void capacitance_dots(const CapacitanceDots& in, std::vector<double>& uz, std::vector<double>& zu,
+                      std::vector<double>& ux, bool vector_kernel = true);
+
+// The processor runs the vector kernel.
+bool capacitance_vector_kernel();
+
+}  // namespace pcsim::solvers
