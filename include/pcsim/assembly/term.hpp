@@ -63,7 +63,7 @@ template <class T>
 class SharedEntries {
  public:
   SharedEntries() = default;
-  SharedEntries(std::vector<T> values)  // NOLINT: made from a vector where one was
+  SharedEntries(std::vector<T> values)  // NOLINT(google-explicit-constructor): as the vector was
       : values_(std::make_shared<const std::vector<T>>(std::move(values))) {}
   SharedEntries(std::initializer_list<T> values) : SharedEntries(std::vector<T>(values)) {}
   std::size_t size() const { return values_ ? values_->size() : 0; }
