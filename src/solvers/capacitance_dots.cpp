@@ -125,16 +125,14 @@ void capacitance_dots(const CapacitanceDots& in, std::vector<double>& uz, std::v
   // of row j formed whole); x . u_j.
   std::vector<double> uz_lanes(kLanes * uz.size(), 0.0), zu_lanes(kLanes * zu.size(), 0.0);
   std::vector<double> ux_lanes(kLanes * ux.size(), 0.0);
-  std::vector<const double*> zr(k, nullptr);
   for (PetscInt b = 0; b < n; b += kBlock) {
     const PetscInt end = std::min(b + kBlock, n);
     for (std::size_t r = 0; r < nr; ++r) {
       const std::size_t i = in.rows[r];
       kernel(u[i], z.data(), k, b, end, &uz_lanes[kLanes * r * k]);
       if (!in.transposed) continue;
-      for (std::size_t j = 0; j < k; ++j) zr[j] = z[i];
       for (std::size_t j = 0; j < k; ++j)
-        kernel(u[j], &zr[j], 1, b, end, &zu_lanes[kLanes * (r * k + j)]);
+        kernel(u[j], &z[i], 1, b, end, &zu_lanes[kLanes * (r * k + j)]);
     }
     if (x) kernel(x, u.data(), k, b, end, ux_lanes.data());
   }
