@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "pcsim/core/vector_units.hpp"
+
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
 #define PCSIM_X86_KERNEL 1
@@ -102,9 +104,7 @@ __attribute__((target("avx2,fma,f16c"))) void vector_rows(const Stored* h, long 
 
 bool RoundedRows::vector_kernel_available() {
 #ifdef PCSIM_X86_KERNEL
-  __builtin_cpu_init();
-  return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
-         __builtin_cpu_supports("f16c");
+  return vector_units().avx2_fma && vector_units().f16c;
 #else
   return false;
 #endif

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "pcsim/core/error.hpp"
+#include "pcsim/core/vector_units.hpp"
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
@@ -72,8 +73,7 @@ using DotKernel = void (*)(const double*, const double* const*, std::size_t, Pet
 
 DotKernel chosen_kernel() {
 #ifdef PCSIM_X86_KERNEL
-  static const DotKernel kernel = capacitance_vector_kernel() ? vector_dots : portable_dots;
-  return kernel;
+  return vector_units().avx2_fma ? vector_dots : portable_dots;
 #else
   return portable_dots;
 #endif
@@ -98,15 +98,6 @@ void sum_lanes(const std::vector<double>& lanes, std::vector<double>& out) {
 }
 
 }  // namespace
-
-bool capacitance_vector_kernel() {
-#ifdef PCSIM_X86_KERNEL
-  __builtin_cpu_init();
-  return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-#else
-  return false;
-#endif
-}
 
 void capacitance_dots(const CapacitanceDots& in, std::vector<double>& uz, std::vector<double>& zu,
                       std::vector<double>& ux, bool vector_kernel) {

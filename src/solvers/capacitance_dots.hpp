@@ -28,7 +28,4 @@ struct CapacitanceDots {
 void capacitance_dots(const CapacitanceDots& in, std::vector<double>& uz, std::vector<double>& zu,
                       std::vector<double>& ux, bool vector_kernel = true);
 
-// The processor runs the vector kernel.
-bool capacitance_vector_kernel();
-
 }  // namespace pcsim::solvers

@@ -335,23 +335,20 @@ PetscErrorCode LowRankStepSolver::pc_apply(PC pc, Vec r, Vec x) {
   if (self->capacitance_dirty_) self->update_capacitance(x, w);  // U^T y in its reduction
   const std::size_t k = self->active_.size();
   if (k == 0) return 0;
-  std::vector<Vec> us(k), zs(k);
-  for (std::size_t j = 0; j < k; ++j) {
-    us[j] = self->active_[j]->u;
-    zs[j] = self->active_[j]->z;
+  CapacitanceDots in;  // no rows: x . u_j alone
+  for (const Entry* e : self->active_) {
+    in.us.push_back(e->u);
+    in.zs.push_back(e->z);
   }
   if (w.size() != k) {  // U^T y by the capacitance's kernel: the same bits either way
-    CapacitanceDots in;
-    in.us = us;
-    in.zs = zs;
     in.x = x;
-    std::vector<double> uz, zu;  // no rows: both empty
+    std::vector<double> uz, zu;  // both empty
     capacitance_dots(in, uz, zu, w);
   }
   Eigen::VectorXd s =
       self->capacitance_lu_.solve(Eigen::Map<Eigen::VectorXd>(w.data(), static_cast<long>(k)));
   s = -s;
-  PCSIM_PETSC(VecMAXPY(x, static_cast<PetscInt>(k), s.data(), zs.data()));
+  PCSIM_PETSC(VecMAXPY(x, static_cast<PetscInt>(k), s.data(), in.zs.data()));
   LastApply& last = self->last_apply_;
   last.x = x;
   PCSIM_PETSC(PetscObjectStateGet(reinterpret_cast<PetscObject>(x), &last.state));
