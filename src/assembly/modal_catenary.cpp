@@ -19,26 +19,28 @@ namespace pcsim::assembly {
 using catenary::basis_row_key;
 
 ModalCatenary::ModalCatenary(MPI_Comm comm, catenary::CatenaryMesh mesh,
-                             std::vector<double> static_node_values, catenary::ReducedBasis basis,
+                             std::vector<double> static_node_values,
+                             std::shared_ptr<const catenary::ReducedBasis> basis,
                              const catenary::ModalSettings& settings, PetscInt extra_dofs)
     : comm_(comm),
       mesh_(std::move(mesh)),
       static_values_(std::move(static_node_values)),
       basis_(std::move(basis)),
       settings_(settings),
-      m_(static_cast<PetscInt>(basis_.size())),
+      m_(basis_ ? static_cast<PetscInt>(basis_->size()) : 0),
       extra_(extra_dofs) {
   MPI_Comm_rank(comm_, &rank_);
   MPI_Comm_size(comm_, &size_);
-  if (basis_.rows.size() != basis_.row_keys.size() * basis_.size())
+  if (!basis_) throw SolverError("modal catenary: no basis");
+  if (basis_->rows.size() != basis_->row_keys.size() * basis_->size())
     throw SolverError("modal catenary: the basis rows do not match its size");
   for (int w : mesh_.contact_wire_list())
     locators_.push_back(std::make_unique<contact::ContactWireLocator>(mesh_, static_values_, w));
   cached_.resize(locators_.size());
-  const long keys_end = basis_.row_keys.empty() ? 0 : basis_.row_keys.back() + 1;  // ascending
+  const long keys_end = basis_->row_keys.empty() ? 0 : basis_->row_keys.back() + 1;  // ascending
   row_index_.assign(std::max<long>(6L * mesh_.nodes.size(), keys_end), -1);
-  for (std::size_t i = 0; i < basis_.row_keys.size(); ++i) row_index_[basis_.row_keys[i]] = i;
-  omega_ = Eigen::Map<const Eigen::VectorXd>(basis_.omega2.data(), m_).cwiseSqrt();
+  for (std::size_t i = 0; i < basis_->row_keys.size(); ++i) row_index_[basis_->row_keys[i]] = i;
+  omega_ = Eigen::Map<const Eigen::VectorXd>(basis_->omega2.data(), m_).cwiseSqrt();
   wire_position_.assign(mesh_.nodes.size(), -1);
   const auto nodes = catenary::contact_wire_nodes(mesh_);
   for (std::size_t i = 0; i < nodes.size(); ++i) wire_position_[nodes[i]] = static_cast<int>(i);
@@ -60,7 +62,7 @@ Eigen::Map<const Eigen::RowVectorXd> ModalCatenary::row(int node, int c) const {
 Eigen::Map<const Eigen::RowVectorXd> ModalCatenary::key_row(long key) const {
   const long r = key < static_cast<long>(row_index_.size()) ? row_index_[key] : -1;
   if (r < 0) throw SolverError("modal catenary: a basis row was not kept");
-  return Eigen::Map<const Eigen::RowVectorXd>(basis_.rows.data() + r * m_, m_);
+  return Eigen::Map<const Eigen::RowVectorXd>(basis_->rows.data() + r * m_, m_);
 }
 
 // Bars tracked over the basis: the slack-capable ones and the droppers
@@ -256,9 +258,9 @@ ModalCatenary::CachedPoint& ModalCatenary::cached_point(double x, int wire) cons
       p.index.resize(m_);
       std::iota(p.index.begin(), p.index.end(), 0);
     }
-    const auto at = [&](int n) { return basis_.contact_flexibility[wire_position_[n]]; };
+    const auto at = [&](int n) { return basis_->contact_flexibility[wire_position_[n]]; };
     const double xi = chi / el.ref_length;
-    if (!basis_.contact_flexibility.empty()) {
+    if (!basis_->contact_flexibility.empty()) {
       p.residual_flexibility = (1 - xi) * at(el.nodes[0]) + xi * at(el.nodes[1]);
       p.residual_flexibility_slope =
           (at(el.nodes[1]) - at(el.nodes[0])) / (el.ref_length * c.x_chi);
@@ -313,7 +315,7 @@ bool ModalCatenary::closed_form_point_loads(const std::vector<PointForce>& loads
   }
   PCSIM_PETSC(VecSet(U, 0.0));
   if (!on_owner()) return true;
-  const Eigen::Map<const Eigen::VectorXd> omega2(basis_.omega2.data(), m_);
+  const Eigen::Map<const Eigen::VectorXd> omega2(basis_->omega2.data(), m_);
   Eigen::VectorXd y = f.cwiseQuotient(omega2);
   std::vector<const catenary::NodePin*> active;
   for (const auto& pin : mesh_.pins)

@@ -57,18 +57,19 @@ std::vector<long> selected_modes(const ModalData& data, const CatenaryMesh& mesh
 
 // The Ritz vectors as combinations of the computed vectors: Psi X - Phi_keep CX.
 struct RitzCoefficients {
+  RowMatrix C;            // kept modes x shapes: phi_k^T M psi_d
   Eigen::MatrixXd X, CX;  // shapes x r, kept modes x r
 };
 
-// Ritz vectors of the shapes' M-complement of the kept modes (header):
-// their omega^2 and rows.
-RitzCoefficients append_ritz_vectors(const ModalData& data, const std::vector<long>& keep,
-                                     const RowMatrix& mode_rows, std::vector<double>& omega2,
-                                     RowMatrix& ritz_rows) {
+// Ritz vectors of the shapes' M-complement of the kept modes (header): their
+// coefficients, their omega^2 appended to 'omega2'.
+RitzCoefficients ritz_vectors(const ModalData& data, const std::vector<long>& keep,
+                              std::vector<double>& omega2) {
   const long nd = static_cast<long>(data.shapes()), m = static_cast<long>(keep.size());
-  const long nr = static_cast<long>(data.row_keys.size());
   const ConstMap all_C(data.mode_shape_mass.data(), static_cast<long>(data.modes()), nd);
-  RowMatrix C(m, nd);
+  RitzCoefficients ritz;
+  RowMatrix& C = ritz.C;
+  C.resize(m, nd);
   Eigen::VectorXd w2(m);
   for (long i = 0; i < m; ++i) {
     C.row(i) = all_C.row(keep[i]);
@@ -88,11 +89,31 @@ RitzCoefficients append_ritz_vectors(const ModalData& data, const std::vector<lo
   for (std::size_t j = 0; j < range.size(); ++j)
     T.col(static_cast<long>(j)) =
         mass.eigenvectors().col(range[j]) / std::sqrt(mass.eigenvalues()[range[j]]);
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> ritz(T.transpose() * Kp * T);
-  const Eigen::MatrixXd X = T * ritz.eigenvectors();
-  ritz_rows = (ConstMap(data.shape_rows.data(), nr, nd) - mode_rows * C) * X;
-  for (long j = 0; j < X.cols(); ++j) omega2.push_back(ritz.eigenvalues()[j]);
-  return {X, C * X};
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(T.transpose() * Kp * T);
+  ritz.X = T * solver.eigenvectors();
+  ritz.CX = C * ritz.X;
+  for (long j = 0; j < ritz.X.cols(); ++j) omega2.push_back(solver.eigenvalues()[j]);
+  return ritz;
+}
+
+// The basis's rows [Phi_keep, (Psi - Phi_keep C) X] written in place (nr x
+// (m + r)), the kept modes' columns read from 'mode_rows' (nr x modes), which
+// is freed after them when 'release' (assemble_basis(ModalData&&): no copy of
+// the kept modes' rows beside the data's and the basis's).
+void fill_rows(const ModalData& data, const std::vector<long>& keep, const RitzCoefficients& ritz,
+               std::vector<double>* release, std::vector<double>& out) {
+  const long nr = static_cast<long>(data.row_keys.size()), m = static_cast<long>(keep.size());
+  const long r = ritz.X.cols(), c = m + r;
+  out.resize(static_cast<std::size_t>(nr * c));
+  Eigen::Map<RowMatrix> rows(out.data(), nr, c);
+  const ConstMap all_rows(data.mode_rows.data(), nr, static_cast<long>(data.modes()));
+  for (long i = 0; i < nr; ++i)  // row by row: both are row-major (a column copy strides)
+    for (long k = 0; k < m; ++k) rows(i, k) = all_rows(i, keep[k]);
+  if (release) std::vector<double>().swap(*release);
+  if (r == 0) return;
+  const long nd = static_cast<long>(data.shapes());
+  const RowMatrix complement = ConstMap(data.shape_rows.data(), nr, nd) - rows.leftCols(m) * ritz.C;
+  rows.rightCols(r).noalias() = complement * ritz.X;
 }
 
 // The window's shift in the basis B = [Phi_keep, Psi X - Phi_keep CX]:
@@ -138,37 +159,35 @@ std::vector<double> shift_in_basis(std::vector<double> g, long total, long modes
   return g;
 }
 
-// assemble_basis with the data's shift products given apart (moved or copied).
+// assemble_basis with the data's shift products given apart (moved or
+// copied); the data's mode rows freed once read when 'release' is theirs.
 ReducedBasis assemble(const ModalData& data, std::vector<double> shift_products,
-                      const CatenaryMesh& mesh, const ModalSettings& s) {
+                      std::vector<double>* release, const CatenaryMesh& mesh,
+                      const ModalSettings& s) {
   if (s.max_frequency_hz > data.cutoff_hz * (1 + 1e-12) && data.cutoff_hz > 0)
     throw std::logic_error("reduced basis: the data stop below the cut-off asked for");
   ReducedBasis b;
   b.cutoff_hz = s.max_frequency_hz;
   b.row_keys = data.row_keys;
   const std::vector<long> keep = selected_modes(data, mesh, s, b.dropped_modes);
-  const long nr = static_cast<long>(data.row_keys.size()), m = static_cast<long>(keep.size());
-  const ConstMap all_rows(data.mode_rows.data(), nr, static_cast<long>(data.modes()));
-  RowMatrix mode_rows(nr, m), ritz_rows(nr, 0);
+  const long m = static_cast<long>(keep.size());
   for (long i = 0; i < m; ++i) b.omega2.push_back(data.omega2[keep[i]]);
-  for (long r = 0; r < nr; ++r)  // row by row: both are row-major (a column copy strides)
-    for (long i = 0; i < m; ++i) mode_rows(r, i) = all_rows(r, keep[i]);
   b.eigenmodes = static_cast<int>(m);
   RitzCoefficients ritz;
-  if (s.dropper_shapes && data.shapes() > 0)
-    ritz = append_ritz_vectors(data, keep, mode_rows, b.omega2, ritz_rows);
+  if (s.dropper_shapes && data.shapes() > 0) ritz = ritz_vectors(data, keep, b.omega2);
   if (data.wind_damping.size() == data.modes()) {
-    b.wind_damping.assign(static_cast<std::size_t>(m + ritz_rows.cols()), 0.0);
+    b.wind_damping.assign(b.omega2.size(), 0.0);
     for (long i = 0; i < m; ++i) b.wind_damping[i] = data.wind_damping[keep[i]];
   }
   const std::size_t vectors = data.modes() + data.shapes();
+  const long modes = static_cast<long>(data.modes());
+  fill_rows(data, keep, ritz, release, b.rows);
   if (!shift_products.empty() && shift_products.size() == vectors * vectors)
-    b.shift = shift_in_basis(std::move(shift_products), static_cast<long>(vectors),
-                             static_cast<long>(data.modes()), keep, ritz);
-  b.rows.resize(static_cast<std::size_t>(nr * (m + ritz_rows.cols())));
-  Eigen::Map<RowMatrix> rows(b.rows.data(), nr, m + ritz_rows.cols());
-  rows << mode_rows, ritz_rows;
+    b.shift =
+        shift_in_basis(std::move(shift_products), static_cast<long>(vectors), modes, keep, ritz);
   if (!mesh.contact_wire_list().empty()) {
+    const Eigen::Map<const RowMatrix> rows(b.rows.data(), static_cast<long>(b.row_keys.size()),
+                                           static_cast<long>(b.omega2.size()));
     const auto cw = contact_rows(data, mesh);
     b.contact_flexibility.assign(cw.size(), 0.0);
     if (s.contact_flexibility && data.contact_compliance.size() == cw.size())
@@ -185,13 +204,13 @@ ReducedBasis assemble(const ModalData& data, std::vector<double> shift_products,
 
 ReducedBasis assemble_basis(const ModalData& data, const CatenaryMesh& mesh,
                             const ModalSettings& settings) {
-  return assemble(data, data.shift_products, mesh, settings);
+  return assemble(data, data.shift_products, nullptr, mesh, settings);
 }
 
 ReducedBasis assemble_basis(ModalData&& data, const CatenaryMesh& mesh,
                             const ModalSettings& settings) {
   std::vector<double> shift_products = std::move(data.shift_products);
-  return assemble(data, std::move(shift_products), mesh, settings);
+  return assemble(data, std::move(shift_products), &data.mode_rows, mesh, settings);
 }
 
 }  // namespace pcsim::catenary

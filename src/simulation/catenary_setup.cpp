@@ -1,5 +1,6 @@
 #include "pcsim/simulation/catenary_setup.hpp"
 
+#include <malloc.h>
 #include <petsctime.h>
 #include <sys/stat.h>
 
@@ -219,20 +220,20 @@ std::string cache_file_served(const Context& ctx, const std::string& key, double
 // time and size), stored in the cache folder by an earlier process
 // (output::read_basis; rank 0 reads, every rank gets it); none if there is
 // none or no data file is served.
-std::optional<catenary::ReducedBasis> stored_basis(const Context& ctx, const std::string& kept_key,
-                                                   const std::string& served, CatenarySetup& out) {
-  if (served.empty()) return std::nullopt;
+SharedBasis stored_basis(const Context& ctx, const std::string& kept_key, const std::string& served,
+                         CatenarySetup& out) {
+  if (served.empty()) return nullptr;
   const std::string key = kept_key + " from " + served;
   const std::string file = output::basis_cache_file(ctx.cache_dir, key);
   catenary::ReducedBasis basis;
   int hit = ctx.rank == 0 && output::read_basis(file, key, basis) ? 1 : 0;
   MPI_Bcast(&hit, 1, MPI_INT, 0, ctx.comm);
-  if (!hit) return std::nullopt;
+  if (!hit) return nullptr;
   broadcast(basis, ctx.comm);
   out.cache_hit = true;
   out.cache_file = served.substr(0, served.rfind('@'));
   out.basis_file = file;
-  return basis;
+  return std::make_shared<const catenary::ReducedBasis>(std::move(basis));
 }
 
 // Stores an assembled basis for later processes (rank 0; a cache that cannot
@@ -255,9 +256,9 @@ void store_basis(const Context& ctx, const std::string& kept_key, const std::str
 // (every rank must have it), else read as assembled by an earlier process
 // from that file, else assembled from the cache's data or from data computed
 // now, kept and stored.
-catenary::ReducedBasis modal_basis(const Context& ctx, const scene::RunScene& run,
-                                   const simulation::StaticConfiguration& statics,
-                                   const catenary::ModalSettings& settings, CatenarySetup& out) {
+SharedBasis modal_basis(const Context& ctx, const scene::RunScene& run,
+                        const simulation::StaticConfiguration& statics,
+                        const catenary::ModalSettings& settings, CatenarySetup& out) {
   const std::string key =
       output::modal_cache_key(file_content(run.catenary.design_path), run.catenary.mesh,
                               run.catenary.form_finding, settings.full_shapes);
@@ -269,11 +270,11 @@ catenary::ReducedBasis modal_basis(const Context& ctx, const scene::RunScene& ru
   if (everywhere) {
     out.cache_hit = out.basis_kept = true;
     out.cache_file = served.substr(0, served.rfind('@'));
-    return std::move(*kept);
+    return kept;
   }
   if (auto stored = stored_basis(ctx, kept_key, served, out)) {
-    keep_basis(kept_key, served, *stored);
-    return std::move(*stored);
+    keep_basis(kept_key, served, stored);
+    return stored;
   }
   // Assembled once, on rank 0, and broadcast: every rank holds the same bits
   // (Eigen's sums depend on the data's alignment in memory), those stored.
@@ -286,15 +287,17 @@ catenary::ReducedBasis modal_basis(const Context& ctx, const scene::RunScene& ru
     } catch (const std::exception& e) {
       failure = e.what();
     }
-  data = catenary::ModalData();  // freed before the basis is copied and kept
+  data = catenary::ModalData();  // freed before the basis is broadcast and kept,
+  malloc_trim(0);                // and given back to the system
   failure = broadcast_text(ctx.comm, failure);
   if (!failure.empty()) throw SolverError("the modal basis: " + failure);
   broadcast(basis, ctx.comm);
   out.basis_assembled = true;
+  auto shared = std::make_shared<const catenary::ReducedBasis>(std::move(basis));
   const std::string now_served = cache_file_served(ctx, key, settings.max_frequency_hz);
-  keep_basis(kept_key, now_served, basis);
-  store_basis(ctx, kept_key, now_served, basis, out);
-  return basis;
+  keep_basis(kept_key, now_served, shared);
+  store_basis(ctx, kept_key, now_served, *shared, out);
+  return shared;
 }
 
 }  // namespace
@@ -358,9 +361,9 @@ CatenarySetup make_catenary_model(const Context& ctx, const scene::RunScene& run
   PetscTime(&t1);
   out.modal = true;
   out.setup_seconds = t1 - t0;
-  out.basis_size = static_cast<int>(basis.size());
-  out.eigenmodes = basis.eigenmodes;
-  out.dropped_modes = basis.dropped_modes;
+  out.basis_size = static_cast<int>(basis->size());
+  out.eigenmodes = basis->eigenmodes;
+  out.dropped_modes = basis->dropped_modes;
   out.cutoff_hz = settings.max_frequency_hz;
   out.model = std::make_unique<assembly::ModalCatenary>(
       ctx.comm, statics.mesh, statics.result.node_values, std::move(basis), settings, extra_dofs);

@@ -6,6 +6,7 @@
 #include <deque>
 #include <fstream>
 #include <mutex>
+#include <optional>
 #include <sstream>
 
 #include "pcsim/output/modal_cache.hpp"
@@ -16,7 +17,7 @@ namespace {
 
 struct KeptBasis {
   std::string key, file;
-  catenary::ReducedBasis basis;
+  SharedBasis basis;
 };
 
 std::mutex& kept_mutex() {
@@ -105,22 +106,20 @@ std::string kept_basis_key(const std::string& cache_key, const catenary::ModalSe
   return kept_basis_prefix(cache_key) + settings;
 }
 
-std::optional<catenary::ReducedBasis> find_kept_basis(const std::string& key,
-                                                      const std::string& file) {
+SharedBasis find_kept_basis(const std::string& key, const std::string& file) {
   const std::lock_guard<std::mutex> lock(kept_mutex());
   for (const auto& k : kept())
     if (k.key == key && k.file == file && !file.empty()) return k.basis;
-  return std::nullopt;
+  return nullptr;
 }
 
-void keep_basis(const std::string& key, const std::string& file,
-                const catenary::ReducedBasis& basis) {
-  if (file.empty()) return;
+void keep_basis(const std::string& key, const std::string& file, SharedBasis basis) {
+  if (file.empty() || !basis) return;
   const std::lock_guard<std::mutex> lock(kept_mutex());
   auto& bases = kept();
   for (auto it = bases.begin(); it != bases.end();) it = it->key == key ? bases.erase(it) : it + 1;
   if (bases.size() >= kKeptBases) bases.pop_front();
-  bases.push_back({key, file, basis});
+  bases.push_back({key, file, std::move(basis)});
 }
 
 void forget_kept_bases(const std::string& cache_key) {

@@ -1,7 +1,8 @@
 // What a process keeps between runs (simulation/setup_memory.hpp): the
 // modal bases are bounded (kKeptBases, the oldest dropped first), found only
-// under their key and from the cache file they came from, and handed out as
-// copies. The runs that take them are in tests/simulation/test_two_runs.sh.
+// under their key and from the cache file they came from, and shared, not
+// copied (immutable: a run's model holds the kept one's memory). The runs
+// that take them are in tests/simulation/test_two_runs.sh.
 #include <gtest/gtest.h>
 
 #include "pcsim/simulation/setup_memory.hpp"
@@ -10,15 +11,15 @@ namespace {
 
 using namespace pcsim;
 
-catenary::ReducedBasis basis_of_size(int n) {
+simulation::SharedBasis basis_of_size(int n) {
   catenary::ReducedBasis b;
   b.omega2.assign(n, 1.0);
   b.row_keys = {2};
   b.rows.assign(n, 0.5);
-  return b;
+  return std::make_shared<const catenary::ReducedBasis>(std::move(b));
 }
 
-TEST(SetupMemory, BasesAreBoundedKeyedAndCopied) {
+TEST(SetupMemory, BasesAreBoundedKeyedAndShared) {
   catenary::ModalSettings s;
   s.max_frequency_hz = 70;
   const std::string a = simulation::kept_basis_key("design-a", s);
@@ -28,12 +29,13 @@ TEST(SetupMemory, BasesAreBoundedKeyedAndCopied) {
   s.dropper_shapes = false;
   EXPECT_NE(a80, simulation::kept_basis_key("design-a", s));  // and the assembly's settings
 
-  simulation::keep_basis(a, "a.h5@1", basis_of_size(3));
+  const auto made = basis_of_size(3);
+  simulation::keep_basis(a, "a.h5@1", made);
   auto found = simulation::find_kept_basis(a, "a.h5@1");
   ASSERT_TRUE(found);
   EXPECT_EQ(found->size(), 3u);
-  found->rows[0] = 9;  // a copy: the kept one is unchanged
-  EXPECT_EQ(simulation::find_kept_basis(a, "a.h5@1")->rows[0], 0.5);
+  EXPECT_EQ(found.get(), made.get());  // the same memory, not a copy
+  EXPECT_EQ(simulation::find_kept_basis(a, "a.h5@1").get(), made.get());
   // Another file (renamed over, or another cut-off's) or no file: not this basis.
   EXPECT_FALSE(simulation::find_kept_basis(a, "a.h5@2"));
   EXPECT_FALSE(simulation::find_kept_basis(a, ""));
@@ -43,6 +45,7 @@ TEST(SetupMemory, BasesAreBoundedKeyedAndCopied) {
   simulation::keep_basis("design-b", "b.h5@1", basis_of_size(5));
   EXPECT_EQ(simulation::kept_bases(), simulation::kKeptBases);
   EXPECT_FALSE(simulation::find_kept_basis(a, "a.h5@1"));  // the oldest, dropped
+  EXPECT_EQ(found->rows[0], 0.5);  // a holder's basis outlives its being dropped
   EXPECT_TRUE(simulation::find_kept_basis(a80, "a80.h5@1"));
   EXPECT_TRUE(simulation::find_kept_basis("design-b", "b.h5@1"));
   // Kept again under the same key: replaced, not a second entry.

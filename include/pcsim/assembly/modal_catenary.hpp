@@ -49,8 +49,8 @@ class ModalCatenary : public CatenaryModel {
   using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
   ModalCatenary(MPI_Comm comm, catenary::CatenaryMesh mesh, std::vector<double> static_node_values,
-                catenary::ReducedBasis basis, const catenary::ModalSettings& settings,
-                PetscInt extra_dofs);
+                std::shared_ptr<const catenary::ReducedBasis> basis,
+                const catenary::ModalSettings& settings, PetscInt extra_dofs);
   ~ModalCatenary() override;
 
   MPI_Comm comm() const override { return comm_; }
@@ -81,7 +81,7 @@ class ModalCatenary : public CatenaryModel {
                                                 Mat pattern) override;
 
   // For the terms.
-  const catenary::ReducedBasis& basis() const { return basis_; }
+  const catenary::ReducedBasis& basis() const { return *basis_; }
   // A moving window's pins are switched between steps (catenary::NodePin::active).
   catenary::CatenaryMesh& mutable_mesh() { return mesh_; }
   const catenary::ModalSettings& settings() const { return settings_; }
@@ -118,7 +118,8 @@ class ModalCatenary : public CatenaryModel {
   int rank_ = 0, size_ = 1;
   catenary::CatenaryMesh mesh_;
   std::vector<double> static_values_;
-  catenary::ReducedBasis basis_;
+  // Shared with the process's kept bases (simulation/setup_memory.hpp): immutable.
+  std::shared_ptr<const catenary::ReducedBasis> basis_;
   catenary::ModalSettings settings_;
   PetscInt m_ = 0, extra_ = 0;
   std::vector<std::unique_ptr<contact::ContactWireLocator>> locators_;  // per contact wire
