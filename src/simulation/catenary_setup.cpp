@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <optional>
 
 #include "pcsim/assembly/fe_catenary.hpp"
 #include "pcsim/assembly/modal_catenary.hpp"
@@ -218,7 +217,7 @@ std::string cache_file_served(const Context& ctx, const std::string& key, double
 
 // The assembled basis of 'kept_key' from the data file 'served' (its name,
 // time and size), stored in the cache folder by an earlier process
-// (output::read_basis; rank 0 reads, every rank gets it); none if there is
+// (output::read_basis; rank 0 reads, every rank gets it); null if there is
 // none or no data file is served.
 SharedBasis stored_basis(const Context& ctx, const std::string& kept_key, const std::string& served,
                          CatenarySetup& out) {
