@@ -15,6 +15,7 @@
 
 #include "command.hpp"
 #include "exit_status.hpp"
+#include "pcsim/core/blas_kernels.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/core/version.hpp"
 #include "pcsim/simulation/accuracy_pilot.hpp"
@@ -213,6 +214,8 @@ int main(int argc, char** argv) {
   }
   if (!std::strcmp(argv[1], "--version") || !std::strcmp(argv[1], "version")) {
     std::printf("pcsim %s (git %s)\n", pcsim::version(), pcsim::git_commit());
+    pcsim::select_blas_kernels();
+    std::printf("BLAS: %s\n", pcsim::blas_kernels().text().c_str());
     return 0;
   }
   const std::string command_name = argv[1];
@@ -239,6 +242,7 @@ int main(int argc, char** argv) {
   // and Xlib ends the process when such a server goes away mid-run (an Xvfb
   // of another job): pcsim needs no GPU topology.
   setenv("HWLOC_COMPONENTS", "-gl", 0);
+  pcsim::select_blas_kernels();  // before any BLAS call (core/blas_kernels.hpp)
   H5dont_atexit();
   H5open();
   if (SlepcInitialize(&petsc_argc, &petsc_args, nullptr, nullptr) != 0) return 4;

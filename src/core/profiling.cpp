@@ -38,6 +38,8 @@ const LogEvents& log_events() {
     e.dd_setup = register_event("pcsimDDSetUp");
     e.dd_apply = register_event("pcsimDDApply");
     e.dd_interface = register_event("pcsimDDInterface");
+    e.shift_products = register_event("pcsimShiftProd");
+    e.shift_gemm = register_event("pcsimShiftGemm");
     return e;
   }();
   return events;

@@ -11,6 +11,7 @@
 #include <fstream>
 
 #include "output_guard.hpp"
+#include "pcsim/core/blas_kernels.hpp"
 #include "pcsim/core/version.hpp"
 
 namespace pcsim::output {
@@ -107,7 +108,8 @@ nlohmann::json make_provenance(const ProvenanceInputs& in) {
       {"petsc_version", dotted(PETSC_VERSION_MAJOR, PETSC_VERSION_MINOR, PETSC_VERSION_SUBMINOR)},
       {"slepc_version", dotted(SLEPC_VERSION_MAJOR, SLEPC_VERSION_MINOR, SLEPC_VERSION_SUBMINOR)},
       {"hdf5_version", hdf5_version()},
-      {"mpi_version", mpi_version()}};
+      {"mpi_version", mpi_version()},
+      {"blas", blas_kernels().text()}};
 }
 
 void stamp_provenance(H5File& h5, const nlohmann::json& provenance) {

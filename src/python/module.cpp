@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "pcsim/core/blas_kernels.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/core/vec_root.hpp"
 #include "pcsim/core/version.hpp"
@@ -296,6 +297,7 @@ void initialize() {
   int argc = 0;
   char** argv = nullptr;
   setenv("HWLOC_COMPONENTS", "-gl", 0);  // no X display probing (src/app/main.cpp)
+  pcsim::select_blas_kernels();          // before pcsim's first BLAS call (core/blas_kernels.hpp)
   if (SlepcInitialize(&argc, &argv, nullptr, nullptr) != 0)
     throw std::runtime_error("pcsim: PETSc/SLEPc could not start");
   pcsim::simulation::count_node_processes(PETSC_COMM_WORLD);  // collective, as the start is

@@ -11,6 +11,7 @@
 
 #include "modal_basis_internal.hpp"
 #include "pcsim/core/error.hpp"
+#include "pcsim/core/profiling.hpp"
 
 namespace pcsim::simulation::modal_detail {
 
@@ -41,6 +42,7 @@ void product_column(Mat A, Vec x, Vec y, bool transpose, Eigen::MatrixXd& W, lon
 // runs/bench_blas.sh).
 void product_tn(long m, long n, long k, const double* A, const double* B, double* C, long ldc) {
   if (m == 0 || n == 0) return;
+  const ScopedEvent timed(log_events().shift_gemm);
   PetscBLASInt bm, bn, bk, lead, bldc;
   PCSIM_PETSC(PetscBLASIntCast(m, &bm));
   PCSIM_PETSC(PetscBLASIntCast(n, &bn));
@@ -135,6 +137,7 @@ const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>&
 ShiftProducts::compute(Vec like, bool keep_vectors) {
   const long c = count_, old = computed_;
   if (c == old) return G_;
+  const ScopedEvent timed(log_events().shift_products);
   {  // G grows; its computed part stays
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> grown(c, c);
     grown.topLeftCorner(old, old) = G_;

@@ -44,7 +44,7 @@ for f in p["inputs"]:
 design = p["inputs"][1]["content"]
 assert "three-span-test" in design and "spans" in design, design[:200]
 for key in ("compiler", "petsc_version", "slepc_version", "hdf5_version", "mpi_version",
-            "cpu_model", "results_schema", "git_commit", "working_directory"):
+            "cpu_model", "blas", "results_schema", "git_commit", "working_directory"):
     assert p.get(key) not in (None, ""), key
 assert p["overrides"] == ["simulation.speed_kmh=180"] and "-ts_dt 0.002" in p["petsc_options"]
 assert a["en50318"] == b["en50318"] and a["steps"] == b["steps"] == 669, (a["steps"], b["steps"])

@@ -21,6 +21,8 @@ struct LogEvents {
   PetscLogEvent dd_setup;         // the domain-decomposition factorisation and Schur complement
   PetscLogEvent dd_apply;         // one domain-decomposition solve
   PetscLogEvent dd_interface;     // its interface solve x_G = S^-1 g (replicated)
+  PetscLogEvent shift_products;   // a modal window's shift products G = V^T M S V (set-up)
+  PetscLogEvent shift_gemm;       // their dense products (BLAS dgemm)
 };
 
 // Wall-clock time [s] by PETSc's timer (the clock of -log_view): for differences.

@@ -1,0 +1,35 @@
+// The kernels of the BLAS behind libblas.so.3, and their choice where BLIS
+// would take its generic ones.
+//
+// BLIS (scripts/setup-deps.sh) picks its kernels by the processor at its
+// first call. BLIS 0.9 (Debian 12) does not know newer processors, AMD's
+// family 26 (Zen 5) among them, and there falls back to its generic kernels:
+// 14.5 GFlop/s on the window shift's dgemm against 85.7 with its AVX-512
+// ones on the same machine (docs/benchmarks.md, "BLIS on a processor it does
+// not know"). select_blas_kernels(), before any BLAS call, asks BLIS which
+// kernels it would take (its library libblis.so.4 beside the loaded
+// libblas.so.3) and, where those are the generic ones, sets BLIS_ARCH_TYPE to
+// BLIS's own skx kernels (AVX-512 F, DQ, BW and VL) or haswell kernels (AVX2
+// and FMA) by what the processor has. A BLIS_ARCH_TYPE of the user's wins;
+// another BLAS is left alone.
+#pragma once
+
+#include <string>
+
+namespace pcsim {
+
+struct BlasKernels {
+  std::string library;       // the loaded libblas.so.3, its real path ("" if none was found)
+  std::string blis;          // BLIS's version where it is BLIS (or "of BLIS_ARCH_TYPE"), else ""
+  std::string detected;      // the kernels BLIS's own detection takes ("" if not asked)
+  std::string kernels;       // the kernels in use: detected, chosen or the user's
+  bool chosen = false;       // pcsim set BLIS_ARCH_TYPE
+  std::string text() const;  // one line for logs and records
+};
+
+// Once per process, before the first BLAS call (main, the Python module).
+void select_blas_kernels();
+// What select_blas_kernels() found (empty fields before it ran).
+const BlasKernels& blas_kernels();
+
+}  // namespace pcsim

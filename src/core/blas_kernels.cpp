@@ -1,0 +1,100 @@
+// The BLAS behind libblas.so.3 and BLIS's kernels (core/blas_kernels.hpp).
+#include "pcsim/core/blas_kernels.hpp"
+
+#include <dlfcn.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+
+namespace pcsim {
+
+namespace {
+
+BlasKernels& found() {
+  static BlasKernels k;
+  return k;
+}
+
+// The real path of the library that defines dgemm_ in this process.
+std::string loaded_blas() {
+  Dl_info info{};
+  void* symbol = dlsym(RTLD_DEFAULT, "dgemm_");
+  if (!symbol || !dladdr(symbol, &info) || !info.dli_fname) return "";
+  std::error_code ec;
+  const auto real = std::filesystem::canonical(info.dli_fname, ec);
+  return ec ? std::string(info.dli_fname) : real.string();
+}
+
+// The kernels BLIS would take for a processor it does not know: its AVX-512
+// or AVX2 ones where the processor has their instructions, else none.
+const char* fitting_kernels() {
+  __builtin_cpu_init();
+  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+      __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl"))
+    return "skx";
+  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return "haswell";
+  return nullptr;
+}
+
+// BLIS's answers, from its library beside libblas.so.3 (a copy of its own:
+// asking it sets nothing in the one that runs pcsim's BLAS calls).
+void ask_blis(const std::filesystem::path& dir, BlasKernels& k) {
+  void* blis = dlopen((dir / "libblis.so.4").c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!blis) return;
+  using QueryId = int (*)();
+  using ArchString = const char* (*)(int);
+  using Version = const char* (*)();
+  const auto query = reinterpret_cast<QueryId>(dlsym(blis, "bli_arch_query_id"));
+  const auto name = reinterpret_cast<ArchString>(dlsym(blis, "bli_arch_string"));
+  const auto version = reinterpret_cast<Version>(dlsym(blis, "bli_info_get_version_str"));
+  if (query && name && version) {
+    k.blis = version();
+    const int id = query();
+    k.detected = k.kernels = name(id);
+    // The generic kernels are the last configuration: the others come before.
+    const char* wanted = k.detected == "generic" ? fitting_kernels() : nullptr;
+    for (int i = 0; wanted && i < id; ++i)
+      if (std::strcmp(name(i), wanted) == 0) {
+        setenv("BLIS_ARCH_TYPE", std::to_string(i).c_str(), 1);
+        k.kernels = wanted;
+        k.chosen = true;
+        break;
+      }
+  }
+  dlclose(blis);
+}
+
+}  // namespace
+
+std::string BlasKernels::text() const {
+  if (library.empty()) return "unknown";
+  if (blis.empty()) return library;
+  if (detected.empty()) return "BLIS (" + library + "), kernels of " + kernels;
+  std::string t = "BLIS " + blis + " (" + library + "), kernels " + kernels;
+  if (chosen) t += " (chosen by pcsim: BLIS's detection takes " + detected + " here)";
+  return t;
+}
+
+void select_blas_kernels() {
+  static bool done = false;
+  if (done) return;
+  done = true;
+  BlasKernels& k = found();
+  k.library = loaded_blas();
+  if (k.library.empty()) return;
+  const std::filesystem::path dir = std::filesystem::path(k.library).parent_path();
+  if (dir.filename().string().find("blis") == std::string::npos) return;
+  if (const char* user = std::getenv("BLIS_ARCH_TYPE")) {
+    k.blis = "of BLIS_ARCH_TYPE";
+    k.kernels = std::string("BLIS_ARCH_TYPE=") + user;
+    return;
+  }
+  ask_blis(dir, k);
+}
+
+const BlasKernels& blas_kernels() {
+  return found();
+}
+
+}  // namespace pcsim
