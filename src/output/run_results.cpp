@@ -72,18 +72,15 @@ std::vector<std::vector<double>> read_rows(hid_t file, const std::string& path) 
   return rows;
 }
 
-// Largest uplift of the contact wire at the supports of the analysis section
-// (of every pantograph's, where they differ).
+// Largest uplift of the contact wire at the supports of the analysis section.
 double max_uplift(hid_t file, const catenary::CatenaryMesh& mesh, const RunSettings& s) {
   std::vector<hsize_t> dims;
   const auto uplift = h5::read(file, "/supports/uplift", &dims);
   const std::size_t ns = mesh.support_x.size();
-  double behind = 0;
-  for (double b : s.analysis_behind_m) behind = std::max(behind, b);
   double largest = 0;
   for (std::size_t i = 0; i < uplift.size(); ++i) {
     const double xs = mesh.support_x[i % ns];
-    if (xs >= s.analysis_from_x - behind - 1e-9 && xs <= s.analysis_to_x + 1e-9)
+    if (xs >= s.analysis_from_x - 1e-9 && xs <= s.analysis_to_x + 1e-9)
       largest = std::max(largest, uplift[i]);
   }
   return largest;
@@ -98,14 +95,12 @@ PantographStatistics pantograph_results(hid_t file, const RunSettings& s,
   const auto filtered = filter_uniformly_sampled(time, force, s.cutoff_hz);
   h5::write(file, g + "/contact_force_filtered", filtered, {filtered.size()}, "N",
             "contact force, zero-phase low-pass filtered (analysis cutoff)");
-  // Pantograph p's section (the pilot's may lie behind the scene's).
-  const double behind = p < s.analysis_behind_m.size() ? s.analysis_behind_m[p] : 0.0;
-  const double from_x = s.analysis_from_x - behind, to_x = s.analysis_to_x - behind;
   PantographStatistics st;
   st.name = s.pantograph_names[p];
   // A run cut short (-ts_max_steps, -ts_max_time) has no complete section.
-  st.complete = !x.empty() && x.front() <= from_x && x.back() >= to_x;
-  if (st.complete) st.force = force_statistics(x, filtered, force, from_x, to_x);
+  st.complete = !x.empty() && x.front() <= s.analysis_from_x && x.back() >= s.analysis_to_x;
+  if (st.complete)
+    st.force = force_statistics(x, filtered, force, s.analysis_from_x, s.analysis_to_x);
   const bool cross_wind = p < s.cross_wind.size() && s.cross_wind[p].on;
   if (cross_wind) {
     h5::write(file, g + "/cross_wind_force", {s.cross_wind[p].force_n}, {1}, "N",
@@ -117,7 +112,7 @@ PantographStatistics pantograph_results(hid_t file, const RunSettings& s,
     const auto y = h5::read(file, g + "/wire_lateral");
     const double head = cross_wind ? s.cross_wind[p].offset_m : 0.0;
     for (std::size_t i = 0; i < y.size() && i < x.size(); ++i) {
-      if (x[i] < from_x || x[i] > to_x) continue;
+      if (x[i] < s.analysis_from_x || x[i] > s.analysis_to_x) continue;
       if (std::abs(y[i]) > st.max_lateral_m)
         st.max_lateral_m = std::abs(y[i]), st.max_lateral_x = x[i];
       if (std::abs(y[i] - head) > st.max_on_head_m)
@@ -126,8 +121,8 @@ PantographStatistics pantograph_results(hid_t file, const RunSettings& s,
   }
   st.judged_lateral_m = cross_wind ? st.max_on_head_m : st.max_lateral_m;
   if (st.complete && s.loss_min_duration_s > 0)
-    st.force.loss_of_contact_percent =
-        loss_of_contact_percent(x, time, force, from_x, to_x, s.loss_min_duration_s);
+    st.force.loss_of_contact_percent = loss_of_contact_percent(
+        x, time, force, s.analysis_from_x, s.analysis_to_x, s.loss_min_duration_s);
   return st;
 }
 

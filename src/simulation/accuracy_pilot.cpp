@@ -62,7 +62,6 @@ void apply_stretch(const PilotStretch& s, scene::RunScene& run) {
   run.analysis_to_span = s.to_span;
   run.analysis_from_x = s.from_x;
   run.analysis_to_x = s.to_x;
-  run.analysis_behind_m = s.behind_m;
   run.energy = false;
   run.checkpoint_every = 0;
 }
@@ -236,7 +235,7 @@ std::string numerics_options() {
 std::string pilot_key(const SceneSource& source, const scene::RunScene& run) {
   char numerics[256];
   std::snprintf(numerics, sizeof numerics,
-                "accuracy-pilot v3 %s %s dt=%.17g alpha=%.17g model=%s "
+                "accuracy-pilot v2 %s %s dt=%.17g alpha=%.17g model=%s "
                 "cutoff=%.17g given=%d",
                 version(), git_commit(), run.dt, run.hht_alpha,
                 catenary::fidelity_name(run.catenary.fidelity), run.catenary.modal.max_frequency_hz,
@@ -317,7 +316,6 @@ nlohmann::json PilotEstimate::json() const {
                       {"from_x", from_x},
                       {"to_x", to_x},
                       {"start_shift_m", start_shift_m},
-                      {"behind_m", behind_m},
                       {"refined_mesh", refined_mesh},
                       {"safety_factor", kPilotSafety},
                       {"floor", kPilotFloor},
@@ -347,7 +345,6 @@ PilotEstimate PilotEstimate::from_json(const nlohmann::json& j) {
   p.from_x = j.at("from_x").get<double>();
   p.to_x = j.at("to_x").get<double>();
   p.start_shift_m = j.at("start_shift_m").get<double>();
-  p.behind_m = j.value("behind_m", std::vector<double>{});
   p.refined_mesh = j.at("refined_mesh").get<bool>();
   p.discretisation_measured = errors_from_json(j.at("discretisation_measured"));
   if (j.contains("cutoff_hz")) {
@@ -389,12 +386,6 @@ PilotEstimate run_accuracy_pilot(const Context& ctx, const SceneSource& source,
   print0(ctx, "  accuracy pilot: spans %d-%d (x %.0f-%.0f m), pantographs %.0f m later%s\n",
          stretch.from_span, stretch.to_span, stretch.from_x, stretch.to_x, stretch.shift,
          pilot_stretch_note(stretch, run).c_str());
-  for (std::size_t p = 0; p < stretch.behind_m.size(); ++p)
-    if (stretch.behind_m[p] > 0)
-      print0(ctx, "    '%s' over x %.0f-%.0f m, %.0f m behind\n", run.pantographs[p].name.c_str(),
-             stretch.from_x - stretch.behind_m[p], stretch.to_x - stretch.behind_m[p],
-             stretch.behind_m[p]);
-  pilot.behind_m = stretch.behind_m;
   // One pilot run, its line printed before it starts and its time after.
   auto timed = [&](const std::string& label, const StudyVariant& variant, double dt,
                    double cutoff_hz) {

@@ -17,8 +17,11 @@ PilotStretch pilot_stretch(const scene::RunScene& run) {
   s.to_span = std::min(run.analysis_to_span, run.analysis_from_span + spans - 1);
   s.from_x = support_x[s.from_span - 1];
   s.to_x = support_x[s.to_span];
-  double front = run.pantographs.front().start_x;
-  for (const auto& p : run.pantographs) front = std::max(front, p.start_x);
+  double rear = run.pantographs.front().start_x, front = rear;
+  for (const auto& p : run.pantographs) {
+    rear = std::min(rear, p.start_x);
+    front = std::max(front, p.start_x);
+  }
   // Lead-in: two spans (the start's transient), at least a ramp and the
   // filter's edge (3 / cutoff_hz of travel, scene/run_scene_edges.cpp) more
   // than one span, before the train's front: every pantograph has it.
@@ -33,23 +36,9 @@ PilotStretch pilot_stretch(const scene::RunScene& run) {
   // the difference it makes (the pilot then repeats the run's own start).
   // A moving window starts where the line starts: its pantographs too.
   if (s.shift < 0.5 * (run.end_x - run.pantographs.front().start_x) || run.window) s.shift = 0;
-  // Where two spans stand for all, a pantograph behind the front takes its
-  // section as far behind as it is, less where that would leave it less
-  // than the lead-in above: the train crosses its sections together, not
-  // one after the other, and the runs stop sooner (by up to the train's length).
-  s.behind_m.assign(run.pantographs.size(), 0.0);
-  if (s.spans_alike)
-    for (std::size_t p = 0; p < run.pantographs.size(); ++p) {
-      const double start = run.pantographs[p].start_x + s.shift;
-      s.behind_m[p] = std::clamp(s.from_x - lead - start, 0.0, front - run.pantographs[p].start_x);
-    }
-  // Every pantograph passes the end of its section by the filter's edge and
-  // a metre (end_x is where the scene's first pantograph stops).
-  double travel = 0;
-  for (std::size_t p = 0; p < run.pantographs.size(); ++p)
-    travel = std::max(travel,
-                      s.to_x - s.behind_m[p] + edge + 1.0 - (run.pantographs[p].start_x + s.shift));
-  s.end_x = std::min(run.end_x, run.pantographs.front().start_x + s.shift + travel);
+  // The rearmost pantograph passes to_x by the filter's edge and a metre
+  // (end_x is where the scene's first pantograph stops).
+  s.end_x = std::min(run.end_x, s.to_x + edge + 1.0 + (run.pantographs.front().start_x - rear));
   return s;
 }
 

@@ -25,8 +25,6 @@ struct RunSettings {
   double speed = 0;  // [m/s]
   double analysis_from_x = 0, analysis_to_x = 0;
   int analysis_from_span = 0, analysis_to_span = 0;  // 1-based
-  // Per pantograph, its section this far [m] before the one above (empty: none).
-  std::vector<double> analysis_behind_m;
   double cutoff_hz = 20;
   double loss_min_duration_s = 0;  // a loss of contact counts from this duration on
   bool dropper_forces = true;

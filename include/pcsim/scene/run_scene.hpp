@@ -75,10 +75,6 @@ struct RunScene {
   double contact_stiffness = 50000;
   double analysis_from_x = 0, analysis_to_x = 0;
   int analysis_from_span = 0, analysis_to_span = 0;  // 1-based
-  // Per pantograph, its section lies this far [m] before [analysis_from_x,
-  // analysis_to_x] (the accuracy pilot's runs: simulation::PilotStretch);
-  // empty: the section is every pantograph's.
-  std::vector<double> analysis_behind_m;
   double cutoff_hz = 20;
   double loss_min_duration_s = 0;  // analysis.loss_min_duration_ms / 1000
   bool dropper_forces = true;

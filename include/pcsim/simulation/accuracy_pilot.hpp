@@ -61,11 +61,9 @@ struct PilotEstimate {
   int runs = 0;
   double from_x = 0, to_x = 0;  // the stretch whose figures were compared [m]
   double start_shift_m = 0;     // the pantographs started this much later than in the run
-  // Per pantograph, its figures over [from_x - b, to_x - b] (PilotStretch).
-  std::vector<double> behind_m;
-  double cutoff_hz = 0;       // modal: the cut-off the run uses
-  int cutoff_raises = 0;      // modal: times the default cut-off was raised
-  bool refined_mesh = false;  // the fine run halved the element length too
+  double cutoff_hz = 0;         // modal: the cut-off the run uses
+  int cutoff_raises = 0;        // modal: times the default cut-off was raised
+  bool refined_mesh = false;    // the fine run halved the element length too
   // Per pantograph, the pilot's differences as measured (discretisation: the
   // extrapolated one); reduction: modal level only.
   std::vector<FigureErrors> discretisation_measured, reduction_measured;
@@ -89,20 +87,15 @@ struct PilotEstimate {
 // Where the pilot runs: every pantograph starts 'shift' later than in the
 // run, the figures are taken over [from_x, to_x] (spans from_span..to_span,
 // 1-based: two on a line of identical spans, CatenaryMesh::identical_spans,
-// else the section up to kPilotMaxSpans), each pantograph's up to its
-// distance behind the train's front before it (behind_m), and the scene's
-// first pantograph stops at end_x, when every one has passed its section by
-// the filter's edge. The shift leaves every pantograph at least two spans (and its ramp,
+// else the section up to kPilotMaxSpans), and the scene's first pantograph
+// stops at end_x, when the rearmost one has passed to_x by the filter's
+// edge. The shift leaves every pantograph at least two spans (and its ramp,
 // the filter's edge and a span) before from_x; it is 0 with a moving window
 // or when it would save less than half of the run's travel.
 struct PilotStretch {
   double shift = 0, from_x = 0, to_x = 0, end_x = 0;
   int from_span = 0, to_span = 0;
   bool spans_alike = true;  // the line's spans are identical: two stand for all
-  // Per pantograph (the scene's order), its figures over [from_x - b, to_x - b]:
-  // on spans alike, up to its distance behind the train's front, as long as
-  // it keeps the front's lead-in; else 0.
-  std::vector<double> behind_m;
 };
 PilotStretch pilot_stretch(const scene::RunScene& run);
 // What the console adds to the stretch's line where the spans differ ("" on

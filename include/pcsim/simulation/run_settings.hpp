@@ -17,7 +17,6 @@ inline output::RunSettings run_settings(const scene::RunScene& run, const std::s
   s.analysis_to_x = run.analysis_to_x;
   s.analysis_from_span = run.analysis_from_span;
   s.analysis_to_span = run.analysis_to_span;
-  s.analysis_behind_m = run.analysis_behind_m;
   s.cutoff_hz = run.cutoff_hz;
   s.loss_min_duration_s = run.loss_min_duration_s;
   s.dropper_forces = run.dropper_forces;
