@@ -39,7 +39,7 @@ const char* fitting_kernels() {
 
 // BLIS's answers, from its library beside libblas.so.3 (a copy of its own:
 // asking it sets nothing in the one that runs pcsim's BLAS calls).
-void ask_blis(const std::filesystem::path& dir, BlasKernels& k) {
+void ask_blis(const std::filesystem::path& dir, bool blis_started, BlasKernels& k) {
   void* blis = dlopen((dir / "libblis.so.4").c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!blis) return;
   using QueryId = int (*)();
@@ -56,9 +56,13 @@ void ask_blis(const std::filesystem::path& dir, BlasKernels& k) {
     const char* wanted = k.detected == "generic" ? fitting_kernels() : nullptr;
     for (int i = 0; wanted && i < id; ++i)
       if (std::strcmp(name(i), wanted) == 0) {
-        setenv("BLIS_ARCH_TYPE", std::to_string(i).c_str(), 1);
-        k.kernels = wanted;
-        k.chosen = true;
+        if (blis_started) {
+          k.too_late = std::to_string(i) + " (its " + wanted + " kernels)";
+        } else {
+          setenv("BLIS_ARCH_TYPE", std::to_string(i).c_str(), 1);
+          k.kernels = wanted;
+          k.chosen = true;
+        }
         break;
       }
   }
@@ -73,10 +77,13 @@ std::string BlasKernels::text() const {
   if (detected.empty()) return "BLIS (" + library + "), kernels of " + kernels;
   std::string t = "BLIS " + blis + " (" + library + "), kernels " + kernels;
   if (chosen) t += " (chosen by pcsim: BLIS's detection takes " + detected + " here)";
+  if (!too_late.empty())
+    t += " (BLIS started before pcsim could choose; BLIS_ARCH_TYPE=" + too_late +
+         " in the environment before the process starts)";
   return t;
 }
 
-void select_blas_kernels() {
+void select_blas_kernels(bool blis_started) {
   static bool done = false;
   if (done) return;
   done = true;
@@ -90,7 +97,7 @@ void select_blas_kernels() {
     k.kernels = std::string("BLIS_ARCH_TYPE=") + user;
     return;
   }
-  ask_blis(dir, k);
+  ask_blis(dir, blis_started, k);
 }
 
 const BlasKernels& blas_kernels() {

@@ -297,7 +297,12 @@ void initialize() {
   int argc = 0;
   char** argv = nullptr;
   setenv("HWLOC_COMPONENTS", "-gl", 0);  // no X display probing (src/app/main.cpp)
-  pcsim::select_blas_kernels();          // before pcsim's first BLAS call (core/blas_kernels.hpp)
+  // Before pcsim's first BLAS call (core/blas_kernels.hpp); numpy imported
+  // first has started BLIS already: then a warning says how to choose.
+  const bool numpy_first = py::module_::import("sys").attr("modules").contains("numpy");
+  pcsim::select_blas_kernels(numpy_first);
+  if (!pcsim::blas_kernels().too_late.empty())
+    PyErr_WarnEx(PyExc_RuntimeWarning, ("pcsim: BLAS: " + pcsim::blas_kernels().text()).c_str(), 1);
   if (SlepcInitialize(&argc, &argv, nullptr, nullptr) != 0)
     throw std::runtime_error("pcsim: PETSc/SLEPc could not start");
   pcsim::simulation::count_node_processes(PETSC_COMM_WORLD);  // collective, as the start is
@@ -328,6 +333,8 @@ PYBIND11_MODULE(pcsim, m) {
     }
   });
   m.attr("__version__") = version();
+  m.attr("blas") =
+      pcsim::blas_kernels().text();  // the BLAS and its kernels (core/blas_kernels.hpp)
   py::class_<Scene>(m, "Scene", "A run scene, composed and checked as `pcsim check` does")
       .def(py::init([](const std::string& path, const py::dict& set) {
              return make_scene(path, "", set);

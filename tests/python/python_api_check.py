@@ -9,8 +9,8 @@ import time
 
 from mpi4py import MPI  # first: MPI started by mpi4py, PETSc joins it
 
+import pcsim  # before numpy, which starts BLIS: pcsim chooses its kernels first (docs/python.md)
 import numpy as np
-import pcsim
 
 source, reference = sys.argv[1], sys.argv[2]
 comm = MPI.COMM_WORLD

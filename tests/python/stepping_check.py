@@ -22,10 +22,10 @@ usage: [mpirun -n N] /usr/bin/python3 stepping_check.py SOURCE_DIR
 """
 import sys
 
-import numpy as np
-
 from mpi4py import MPI  # noqa: F401  (MPI before pcsim under mpirun)
-import pcsim
+import pcsim  # before numpy, which starts BLIS: pcsim chooses its kernels first (docs/python.md)
+
+import numpy as np
 
 source = sys.argv[1]
 scene = pcsim.Scene(source + "/tests/contact/data/three-span-lumped.yaml")

@@ -36,3 +36,25 @@ done
 [ -s "$tmp/speeds.png" ] || { echo "the study wrote no plot"; exit 1; }
 grep -q "km/h" block0.log
 grep -q "gain 0.3: raw sigma" block1.log
+# BLAS kernels (docs/python.md): imported first, pcsim chooses BLIS's vector
+# kernels where BLIS's detection would take its generic ones; after numpy,
+# which starts BLIS, it cannot, says so in pcsim.blas and warns. On a
+# processor BLIS knows, neither import order warns.
+"$PCSIM_PYTHON" - <<'PY'
+import subprocess, sys
+def run(code):
+    r = subprocess.run([sys.executable, "-W", "always", "-c", code], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    return r
+first = run("import pcsim; print(pcsim.blas)")
+late = run("import numpy, pcsim; print(pcsim.blas)")
+print("pcsim first:", first.stdout.strip())
+print("numpy first:", late.stdout.strip())
+assert "RuntimeWarning" not in first.stderr, first.stderr
+if "chosen by pcsim" in first.stdout:
+    assert "BLIS started before pcsim could choose" in late.stdout, late.stdout
+    assert "RuntimeWarning: pcsim: BLAS:" in late.stderr, late.stderr
+else:
+    assert "before pcsim could choose" not in late.stdout, late.stdout
+    assert "RuntimeWarning" not in late.stderr, late.stderr
+PY

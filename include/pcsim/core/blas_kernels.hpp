@@ -11,7 +11,10 @@
 // libblas.so.3) and, where those are the generic ones, sets BLIS_ARCH_TYPE to
 // BLIS's own skx kernels (AVX-512 F, DQ, BW and VL) or haswell kernels (AVX2
 // and FMA) by what the processor has. A BLIS_ARCH_TYPE of the user's wins;
-// another BLAS is left alone.
+// another BLAS is left alone. BLIS reads BLIS_ARCH_TYPE once, at its first
+// call: where that may have come already (Python with numpy imported before
+// pcsim: numpy's import starts BLIS), it is not set, and text() says which
+// BLIS_ARCH_TYPE to set before the process starts.
 #pragma once
 
 #include <string>
@@ -24,11 +27,13 @@ struct BlasKernels {
   std::string detected;      // the kernels BLIS's own detection takes ("" if not asked)
   std::string kernels;       // the kernels in use: detected, chosen or the user's
   bool chosen = false;       // pcsim set BLIS_ARCH_TYPE
+  std::string too_late;      // BLIS had started: the BLIS_ARCH_TYPE pcsim would have set, else ""
   std::string text() const;  // one line for logs and records
 };
 
-// Once per process, before the first BLAS call (main, the Python module).
-void select_blas_kernels();
+// Once per process, before the first BLAS call (main, the Python module);
+// blis_started: BLIS may have made its choice already (ask, do not set).
+void select_blas_kernels(bool blis_started = false);
 // What select_blas_kernels() found (empty fields before it ran).
 const BlasKernels& blas_kernels();
 
