@@ -73,9 +73,9 @@ void ask_blis(const std::filesystem::path& dir, bool blis_started, BlasKernels& 
 
 std::string BlasKernels::text() const {
   if (library.empty()) return "unknown";
-  if (blis.empty()) return library;
-  if (detected.empty()) return "BLIS (" + library + "), kernels of " + kernels;
-  std::string t = "BLIS " + blis + " (" + library + "), kernels " + kernels;
+  if (!is_blis) return library;
+  std::string t = "BLIS" + (blis.empty() ? "" : " " + blis) + " (" + library + ")";
+  if (!kernels.empty()) t += ", kernels " + kernels;
   if (chosen) t += " (chosen by pcsim: BLIS's detection takes " + detected + " here)";
   if (!too_late.empty())
     t += " (BLIS started before pcsim could choose; BLIS_ARCH_TYPE=" + too_late +
@@ -91,9 +91,9 @@ void select_blas_kernels(bool blis_started) {
   k.library = loaded_blas();
   if (k.library.empty()) return;
   const std::filesystem::path dir = std::filesystem::path(k.library).parent_path();
-  if (dir.filename().string().find("blis") == std::string::npos) return;
+  k.is_blis = dir.filename().string().find("blis") != std::string::npos;
+  if (!k.is_blis) return;
   if (const char* user = std::getenv("BLIS_ARCH_TYPE")) {
-    k.blis = "of BLIS_ARCH_TYPE";
     k.kernels = std::string("BLIS_ARCH_TYPE=") + user;
     return;
   }

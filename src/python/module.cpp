@@ -333,8 +333,8 @@ PYBIND11_MODULE(pcsim, m) {
     }
   });
   m.attr("__version__") = version();
-  m.attr("blas") =
-      pcsim::blas_kernels().text();  // the BLAS and its kernels (core/blas_kernels.hpp)
+  // The BLAS and its kernels (core/blas_kernels.hpp).
+  m.attr("blas") = pcsim::blas_kernels().text();
   py::class_<Scene>(m, "Scene", "A run scene, composed and checked as `pcsim check` does")
       .def(py::init([](const std::string& path, const py::dict& set) {
              return make_scene(path, "", set);

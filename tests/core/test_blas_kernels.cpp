@@ -25,9 +25,10 @@ bool vector_kernels_fit() {
 TEST(BlasKernels, BlisRunsVectorKernelsWhereTheyFit) {
   const auto& k = pcsim::blas_kernels();
   ASSERT_FALSE(k.library.empty()) << "no library defines dgemm_";
-  const bool blis = k.library.find("blis") != std::string::npos;
+  EXPECT_EQ(k.is_blis, k.library.find("/blis") != std::string::npos) << k.text();
   const char* arch = std::getenv("BLIS_ARCH_TYPE");
-  if (!blis) {
+  EXPECT_TRUE(k.too_late.empty()) << k.text();  // the main selected before any BLAS call
+  if (!k.is_blis) {
     // Another BLAS is left alone.
     EXPECT_TRUE(k.blis.empty() && k.kernels.empty() && !k.chosen) << k.text();
   } else if (k.detected.empty()) {

@@ -22,12 +22,13 @@
 namespace pcsim {
 
 struct BlasKernels {
-  std::string library;       // the loaded libblas.so.3, its real path ("" if none was found)
-  std::string blis;          // BLIS's version where it is BLIS (or "of BLIS_ARCH_TYPE"), else ""
-  std::string detected;      // the kernels BLIS's own detection takes ("" if not asked)
-  std::string kernels;       // the kernels in use: detected, chosen or the user's
-  bool chosen = false;       // pcsim set BLIS_ARCH_TYPE
-  std::string too_late;      // BLIS had started: the BLIS_ARCH_TYPE pcsim would have set, else ""
+  std::string library;   // the loaded libblas.so.3, its real path ("" if none was found)
+  bool is_blis = false;  // that library is BLIS (it lies in a folder of BLIS's)
+  std::string blis;      // BLIS's version, where BLIS was asked
+  std::string detected;  // the kernels BLIS's own detection takes ("" if not asked)
+  std::string kernels;   // the kernels in use: detected, chosen, or "BLIS_ARCH_TYPE=N" the user's
+  bool chosen = false;   // pcsim set BLIS_ARCH_TYPE
+  std::string too_late;  // BLIS had started: the BLIS_ARCH_TYPE pcsim would have set, else ""
   std::string text() const;  // one line for logs and records
 };
 
