@@ -8,6 +8,7 @@
 #include <exception>
 #include <string>
 
+#include "pcsim/core/blas_kernels.hpp"
 #include "pcsim/scene/composition.hpp"
 #include "pcsim/scene/run_scene.hpp"
 #include "pcsim/simulation/run.hpp"
@@ -35,6 +36,7 @@ void run_case(const std::string& path, const std::string& dir) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  pcsim::select_blas_kernels();  // as pcsim's main: the same BLAS kernels, the same bits
   if (SlepcInitialize(&argc, &argv, nullptr, nullptr)) return 1;
   int status = 0;
   try {
