@@ -4,8 +4,8 @@
 // BLIS (scripts/setup-deps.sh) picks its kernels by the processor at its
 // first call. BLIS 0.9 (Debian 12) does not know newer processors, AMD's
 // family 26 (Zen 5) among them, and there falls back to its generic kernels:
-// 14.5 GFlop/s on the window shift's dgemm against 85.7 with its AVX-512
-// ones on the same machine (docs/benchmarks.md, "BLIS on a processor it does
+// 14.3-14.8 GFlop/s on the window shift's dgemm against 83.5 with its
+// AVX-512 ones on the same machine (runs/bench_blas.sh, BLIS_ARCH_TYPE=0) (docs/benchmarks.md, "BLIS on a processor it does
 // not know"). select_blas_kernels(), before any BLAS call, asks BLIS which
 // kernels it would take (its library libblis.so.4 beside the loaded
 // libblas.so.3) and, where those are the generic ones, sets BLIS_ARCH_TYPE to
