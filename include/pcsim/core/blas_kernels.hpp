@@ -5,16 +5,14 @@
 // first call. BLIS 0.9 (Debian 12) does not know newer processors, AMD's
 // family 26 (Zen 5) among them, and there falls back to its generic kernels:
 // 14.3-14.8 GFlop/s on the window shift's dgemm against 83.5 with its
-// AVX-512 ones on the same machine (runs/bench_blas.sh, BLIS_ARCH_TYPE=0) (docs/benchmarks.md, "BLIS on a processor it does
-// not know"). select_blas_kernels(), before any BLAS call, asks BLIS which
-// kernels it would take (its library libblis.so.4 beside the loaded
-// libblas.so.3) and, where those are the generic ones, sets BLIS_ARCH_TYPE to
-// BLIS's own skx kernels (AVX-512 F, DQ, BW and VL) or haswell kernels (AVX2
-// and FMA) by what the processor has. A BLIS_ARCH_TYPE of the user's wins;
-// another BLAS is left alone. BLIS reads BLIS_ARCH_TYPE once, at its first
-// call: where that may have come already (Python with numpy imported before
-// pcsim: numpy's import starts BLIS), it is not set, and text() says which
-// BLIS_ARCH_TYPE to set before the process starts.
+// AVX-512 ones on the same machine (runs/bench_blas.sh, BLIS_ARCH_TYPE=0) (docs/benchmarks.md,
+// "BLIS on a processor it does not know"). select_blas_kernels(), before any BLAS call, asks BLIS
+// which kernels it would take (its library libblis.so.4 beside the loaded libblas.so.3) and, where
+// those are the generic ones, sets BLIS_ARCH_TYPE to BLIS's own skx kernels (AVX-512 F, DQ, BW and
+// VL) or haswell kernels (AVX2 and FMA) by what the processor has. A BLIS_ARCH_TYPE of the user's
+// wins; another BLAS is left alone. BLIS reads BLIS_ARCH_TYPE once, at its first call: where that
+// may have come already (Python with numpy imported before pcsim: numpy's import starts BLIS), it
+// is not set, and text() says which BLIS_ARCH_TYPE to set before the process starts.
 #pragma once
 
 #include <string>
