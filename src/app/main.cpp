@@ -73,6 +73,8 @@ void print_usage() {
       "  -pcsim_record_batches auto|true|false: a modal run's records in batches (run);\n"
       "  -pcsim_record_thread auto|true|false: a batch's product on its own thread (run;\n"
       "  auto: where every rank has a core to spare);\n"
+      "  -pcsim_pilot_process auto|true|false: the accuracy pilot's linear FE runs in a\n"
+      "  second process beside its other runs (run; auto: one rank, a core to spare);\n"
       "  -pc_type pcsimwoodbury|pcsimschur: pcsim's step solvers as PETSc PC types (run;\n"
       "  pcsimwoodbury is the cheap path's; docs/architecture.md);\n"
       "  -eps_nev N, -modes_fmax F (modes); -pcsim_debug_* (tests).\n"
@@ -266,6 +268,7 @@ int main(int argc, char** argv) {
     pcsim::simulation::accuracy_pilot_choice();  // checked (exit 2) and read by every command
     pcsim::simulation::record_batches_choice();
     pcsim::simulation::record_thread_choice();
+    pcsim::simulation::pilot_process_choice();
     debug_fail_if_asked(ctx);
     status = it->second.run(ctx);
     if (status == 0) warn_unread_options(ctx);

@@ -11,6 +11,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
+#include <optional>
 #include <sstream>
 
 #include "pcsim/catenary/reduced_basis.hpp"
@@ -22,6 +24,7 @@
 #include "pcsim/simulation/catenary_setup.hpp"
 #include "pcsim/simulation/run.hpp"
 #include "pcsim/simulation/run_checkpoint.hpp"
+#include "pilot_process.hpp"
 
 namespace pcsim::simulation {
 
@@ -44,17 +47,6 @@ const std::array<double, kPilotFigures> kPilotTargets = {0.5, 1, 1, 1, 2, 2, 2, 
 
 namespace {
 
-// The figures of one pilot run, per pantograph (rank 0).
-struct PilotFigures {
-  std::vector<std::string> names;
-  std::vector<output::ForceStatistics> force;
-  double uplift_m = 0;
-};
-
-}  // namespace
-
-namespace {
-
 void apply_stretch(const PilotStretch& s, scene::RunScene& run) {
   for (auto& p : run.pantographs) p.start_x += s.shift;
   run.end_x = s.end_x;
@@ -64,35 +56,6 @@ void apply_stretch(const PilotStretch& s, scene::RunScene& run) {
   run.analysis_to_x = s.to_x;
   run.energy = false;
   run.checkpoint_every = 0;
-}
-
-// A -ts_max_steps or -ts_max_time (they bind the pilot's runs too) that
-// would stop a pilot run before it crosses its stretch: a SolverError before
-// any pilot run (the run goes on without the estimate, app/cmd_run.cpp).
-void check_not_cut_short(const scene::RunScene& run, const PilotStretch& stretch) {
-  // RunScene::duration() of the scene apply_stretch makes.
-  const double duration =
-      (stretch.end_x - (run.pantographs.front().start_x + stretch.shift)) / run.speed;
-  const long steps = std::lround(std::ceil(duration / (run.dt / 2) - 1e-9));  // at dt/2
-  PetscInt max_steps = 0;
-  PetscReal max_time = 0;
-  PetscBool steps_given = PETSC_FALSE, time_given = PETSC_FALSE;
-  PCSIM_PETSC(PetscOptionsGetInt(nullptr, nullptr, "-ts_max_steps", &max_steps, &steps_given));
-  PCSIM_PETSC(PetscOptionsGetReal(nullptr, nullptr, "-ts_max_time", &max_time, &time_given));
-  char why[160] = "";
-  if (steps_given && max_steps < steps)
-    std::snprintf(why, sizeof why,
-                  "-ts_max_steps %ld stops its runs before their stretch "
-                  "(its run at dt/2 needs %ld steps)",
-                  static_cast<long>(max_steps), steps);
-  else if (time_given && max_time < duration)
-    std::snprintf(why, sizeof why,
-                  "-ts_max_time %g stops its runs before their stretch "
-                  "(they need %.3f s)",
-                  static_cast<double>(max_time), duration);
-  if (why[0])
-    throw SolverError(std::string("the accuracy pilot: ") + why +
-                      " (-pcsim_accuracy_pilot false skips it)");
 }
 
 // One pilot run, quietly, in a folder of the cache that is removed after.
@@ -207,8 +170,9 @@ bool observing_option(const std::string& name) {
   const auto starts_with = [&](const std::string& head) { return name.rfind(head, 0) == 0; };
   return starts_with("log_") || starts_with("malloc") || starts_with("options_") ||
          starts_with("on_error") || name == "info" || name == "help" || name == "version" ||
-         name == "memory_view" || name == "pcsim_accuracy_pilot" || ends_with("_view") ||
-         name.find("_monitor") != std::string::npos || ends_with("_converged_reason");
+         name == "memory_view" || name == "pcsim_accuracy_pilot" || name == "pcsim_pilot_process" ||
+         ends_with("_view") || name.find("_monitor") != std::string::npos ||
+         ends_with("_converged_reason");
 }
 
 // The options database without the observing options: "-name [value]" pairs,
@@ -317,6 +281,8 @@ nlohmann::json PilotEstimate::json() const {
                       {"to_x", to_x},
                       {"start_shift_m", start_shift_m},
                       {"refined_mesh", refined_mesh},
+                      {"second_process", second_process},
+                      {"second_process_peak_memory_mb", second_process_peak_mb},
                       {"safety_factor", kPilotSafety},
                       {"floor", kPilotFloor},
                       {"discretisation", errors_json(discretisation())},
@@ -346,6 +312,8 @@ PilotEstimate PilotEstimate::from_json(const nlohmann::json& j) {
   p.to_x = j.at("to_x").get<double>();
   p.start_shift_m = j.at("start_shift_m").get<double>();
   p.refined_mesh = j.at("refined_mesh").get<bool>();
+  p.second_process = j.value("second_process", false);
+  p.second_process_peak_mb = j.value("second_process_peak_memory_mb", 0.0);
   p.discretisation_measured = errors_from_json(j.at("discretisation_measured"));
   if (j.contains("cutoff_hz")) {
     p.cutoff_hz = j.at("cutoff_hz").get<double>();
@@ -366,6 +334,89 @@ bool wants_accuracy_pilot(PilotChoice choice, const scene::RunScene& run) {
                                        run.catenary.fidelity == catenary::CatenaryFidelity::modal);
 }
 
+namespace {
+
+// The pilot's runs: here, each timed, or in the second process, collected.
+struct PilotRuns {
+  const Context& ctx;
+  const SceneSource& source;
+  const PilotStretch& stretch;
+  const std::string dir;
+  PilotEstimate& pilot;
+  std::unique_ptr<PilotProcess> second;
+
+  // A run here, its line printed before it starts and its time after.
+  PilotFigures here(const std::string& label, const StudyVariant& variant, double dt,
+                    double cutoff_hz) {
+    print0(ctx, "    %s ... ", label.c_str());
+    std::fflush(stdout);
+    const double t0 = wall_clock_s();
+    auto figures = run_pilot(ctx, source, variant, stretch, dt, cutoff_hz, dir);
+    // What the run freed goes back to the system: the next run's larger
+    // basis would otherwise be laid beside its fragments (a first run's peak).
+    malloc_trim(0);
+    print0(ctx, "%.1f s\n", wall_clock_s() - t0);
+    ++pilot.runs;
+    return figures;
+  }
+  // The second process's next run, when it has ended.
+  PilotFigures collected(const std::string& label) {
+    const auto result = second->next();
+    print0(ctx, "    %s (second process) ... %.1f s\n", label.c_str(), result.seconds);
+    ++pilot.runs;
+    return result.figures;
+  }
+  // The FE runs in a second process: the one at dt/2 (and h/2), and a modal
+  // pilot's run at dt and h too (its modal runs need it only after the
+  // first); their figures are those of the same runs here.
+  void start_second_process(const StudyVariant& linear, const StudyVariant& fine, double dt,
+                            bool modal) {
+    std::vector<PilotProcess::Run> runs;
+    const std::string fe_dir = dir + "-fe";
+    if (modal)
+      runs.push_back([=] { return run_pilot(ctx, source, linear, stretch, dt, 0, fe_dir); });
+    runs.push_back([=] { return run_pilot(ctx, source, fine, stretch, dt / 2, 0, fe_dir); });
+    print0(ctx, "    linear FE %s in a second process, beside the %s\n",
+           modal ? "at dt and h and at dt/2" : "at dt/2", modal ? "modal runs" : "run at dt and h");
+    second = std::make_unique<PilotProcess>(std::move(runs));
+    pilot.second_process = true;
+  }
+};
+
+// The modal runs: the cut-off 'run' has, raised until the reduction is
+// within the targets (kMaxCutoffRaises at most; kept if the scene set it).
+// 'reference' (linear FE at dt and h) is collected after the first.
+double choose_cutoff(PilotRuns& runs, const scene::RunScene& run,
+                     std::optional<PilotFigures>& reference, const std::string& reference_label) {
+  auto& pilot = runs.pilot;
+  StudyVariant reduced;
+  reduced.model = catenary::CatenaryFidelity::modal;
+  ModalExtensionScope raises;  // a raised cut-off computes only the modes above
+  double cutoff = run.catenary.modal.max_frequency_hz;
+  for (;;) {
+    if (run.catenary.modal_cutoff_given || pilot.cutoff_raises == kMaxCutoffRaises)
+      raises.last_computation_next();
+    char label[96];
+    std::snprintf(label, sizeof label, "modal at %.1f Hz (its modes computed unless cached)",
+                  cutoff);
+    const long before = last_modal_computation().serial;
+    const auto figures = runs.here(label, reduced, run.dt, cutoff);
+    const auto modes = last_modal_computation();
+    if (modes.serial != before && modes.kept > 0)
+      print0(runs.ctx, "      %ld modes computed, the %ld below %.1f Hz kept from the last\n",
+             modes.computed, modes.kept, modes.kept_below_hz);
+    if (!reference) reference = runs.collected(reference_label);
+    pilot.reduction_measured = differences(figures, *reference, 1.0);
+    if (run.catenary.modal_cutoff_given || within_targets(pilot.reduction_measured) ||
+        pilot.cutoff_raises == kMaxCutoffRaises || cutoff <= 0)
+      return cutoff;
+    cutoff *= kCutoffRaise;
+    ++pilot.cutoff_raises;
+  }
+}
+
+}  // namespace
+
 PilotEstimate run_accuracy_pilot(const Context& ctx, const SceneSource& source,
                                  scene::RunScene& run) {
   const bool modal = run.catenary.fidelity == catenary::CatenaryFidelity::modal;
@@ -377,69 +428,43 @@ PilotEstimate run_accuracy_pilot(const Context& ctx, const SceneSource& source,
   }
   const double start = wall_clock_s();
   const PilotStretch stretch = pilot_stretch(run);
-  check_not_cut_short(run, stretch);
+  check_pilot_not_cut_short(run, stretch);
   pilot.done = true;
   pilot.from_x = stretch.from_x;
   pilot.to_x = stretch.to_x;
   pilot.start_shift_m = stretch.shift;
-  const std::string dir = ctx.cache_dir + "/accuracy-pilot-" + key.substr(0, 12);
   print0(ctx, "  accuracy pilot: spans %d-%d (x %.0f-%.0f m), pantographs %.0f m later%s\n",
          stretch.from_span, stretch.to_span, stretch.from_x, stretch.to_x, stretch.shift,
          pilot_stretch_note(stretch, run).c_str());
-  // One pilot run, its line printed before it starts and its time after.
-  auto timed = [&](const std::string& label, const StudyVariant& variant, double dt,
-                   double cutoff_hz) {
-    print0(ctx, "    %s ... ", label.c_str());
-    std::fflush(stdout);
-    const double t0 = wall_clock_s();
-    auto figures = run_pilot(ctx, source, variant, stretch, dt, cutoff_hz, dir);
-    // What the run freed goes back to the system: the next run's larger
-    // basis would otherwise be laid beside its fragments (a first run's peak).
-    malloc_trim(0);
-    print0(ctx, "%.1f s\n", wall_clock_s() - t0);
-    ++pilot.runs;
-    return figures;
-  };
+  PilotRuns runs{ctx,   source, stretch, ctx.cache_dir + "/accuracy-pilot-" + key.substr(0, 12),
+                 pilot, nullptr};
   StudyVariant linear;  // the run's dt and element length
-  const auto reference = timed("linear FE at the run's dt and h", linear, run.dt, 0);
   StudyVariant fine;
   pilot.refined_mesh = design_element_length(source.scene) > 0;
   fine.h_factor = pilot.refined_mesh ? 0.5 : 1.0;
-  const auto converged = timed(pilot.refined_mesh ? "linear FE at dt/2 and h/2"
-                                                  : "linear FE at dt/2 (explicit design: h kept)",
-                               fine, run.dt / 2, 0);
+  const std::string reference_label = "linear FE at the run's dt and h";
+  const std::string fine_label = pilot.refined_mesh ? "linear FE at dt/2 and h/2"
+                                                    : "linear FE at dt/2 (explicit design: h kept)";
+  if (use_pilot_process(ctx)) runs.start_second_process(linear, fine, run.dt, modal);
+  std::optional<PilotFigures> reference, converged;
+  if (!runs.second || !modal) reference = runs.here(reference_label, linear, run.dt, 0);
+  if (!runs.second) converged = runs.here(fine_label, fine, run.dt / 2, 0);
+  if (modal) {
+    pilot.cutoff_hz = choose_cutoff(runs, run, reference, reference_label);
+    run.catenary.modal.max_frequency_hz = pilot.cutoff_hz;
+  }
+  if (!converged) {
+    converged = runs.collected(fine_label);
+    pilot.second_process_peak_mb = runs.second->finish();
+  }
   // Second order in dt and h: the error of the coarse run is 4/3 of its
   // difference to the run at half both.
-  pilot.discretisation_measured = differences(reference, converged, 4.0 / 3.0);
-  if (modal) {
-    StudyVariant reduced;
-    reduced.model = catenary::CatenaryFidelity::modal;
-    ModalExtensionScope raises;  // a raised cut-off computes only the modes above
-    double cutoff = run.catenary.modal.max_frequency_hz;
-    for (;;) {
-      if (run.catenary.modal_cutoff_given || pilot.cutoff_raises == kMaxCutoffRaises)
-        raises.last_computation_next();
-      char label[96];
-      std::snprintf(label, sizeof label, "modal at %.1f Hz (its modes computed unless cached)",
-                    cutoff);
-      const long before = last_modal_computation().serial;
-      const auto figures = timed(label, reduced, run.dt, cutoff);
-      const auto modes = last_modal_computation();
-      if (modes.serial != before && modes.kept > 0)
-        print0(ctx, "      %ld modes computed, the %ld below %.1f Hz kept from the last\n",
-               modes.computed, modes.kept, modes.kept_below_hz);
-      pilot.reduction_measured = differences(figures, reference, 1.0);
-      if (run.catenary.modal_cutoff_given || within_targets(pilot.reduction_measured) ||
-          pilot.cutoff_raises == kMaxCutoffRaises || cutoff <= 0)
-        break;
-      cutoff *= kCutoffRaise;
-      ++pilot.cutoff_raises;
-    }
-    pilot.cutoff_hz = cutoff;
-    run.catenary.modal.max_frequency_hz = cutoff;
-  }
+  pilot.discretisation_measured = differences(*reference, *converged, 4.0 / 3.0);
   pilot.seconds = wall_clock_s() - start;
-  print0(ctx, "    %d pilot runs in %.1f s\n", pilot.runs, pilot.seconds);
+  print0(ctx, "    %d pilot runs in %.1f s", pilot.runs, pilot.seconds);
+  if (pilot.second_process)
+    print0(ctx, " (the second process's peak memory %.0f MB)", pilot.second_process_peak_mb);
+  print0(ctx, "\n");
   write_cached(ctx, key, pilot);
   return pilot;
 }

@@ -13,6 +13,7 @@
 #include "pcsim/core/profiling.hpp"
 #include "pcsim/simulation/run.hpp"
 #include "pcsim/solvers/hht.hpp"
+#include "pilot_process.hpp"
 
 namespace pcsim::simulation {
 
@@ -75,11 +76,6 @@ int ranks_on_node(MPI_Comm comm) {
   return ranks;
 }
 
-// The processes on this node: the job's, else the run's ranks here.
-int processes_here(MPI_Comm comm) {
-  return node_processes > 0 ? node_processes : ranks_on_node(comm);
-}
-
 // Whether every rank has a core to spare for a record thread: its affinity
 // allows more than one CPU and its node has more online CPUs than processes, and
 // MPI allows threads that make no MPI calls (MPI_THREAD_FUNNELED: PETSc's
@@ -91,8 +87,10 @@ bool cores_to_spare(MPI_Comm comm) {
   cpu_set_t allowed;
   CPU_ZERO(&allowed);
   const int cpus = sched_getaffinity(0, sizeof allowed, &allowed) == 0 ? CPU_COUNT(&allowed) : 1;
-  const int ranks_here = processes_here(comm);
-  int spare = level >= MPI_THREAD_FUNNELED && cpus > 1 && sysconf(_SC_NPROCESSORS_ONLN) > ranks_here
+  const int ranks_here = processes_on_this_node(comm);
+  // A pilot's second process (pilot_process.hpp) takes the spare core.
+  int spare = level >= MPI_THREAD_FUNNELED && cpus > 1 &&
+                      sysconf(_SC_NPROCESSORS_ONLN) > ranks_here && !pilot_process_running()
                   ? 1
                   : 0;
   MPI_Allreduce(MPI_IN_PLACE, &spare, 1, MPI_INT, MPI_MIN, comm);
@@ -100,6 +98,10 @@ bool cores_to_spare(MPI_Comm comm) {
 }
 
 }  // namespace
+
+int processes_on_this_node(MPI_Comm comm) {
+  return node_processes > 0 ? node_processes : ranks_on_node(comm);
+}
 
 void count_node_processes(MPI_Comm world) {
   node_processes = ranks_on_node(world);

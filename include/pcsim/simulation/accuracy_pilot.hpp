@@ -64,6 +64,10 @@ struct PilotEstimate {
   double cutoff_hz = 0;         // modal: the cut-off the run uses
   int cutoff_raises = 0;        // modal: times the default cut-off was raised
   bool refined_mesh = false;    // the fine run halved the element length too
+  // The linear FE runs ran in a second process beside the others
+  // (-pcsim_pilot_process), and its peak resident memory [MB].
+  bool second_process = false;
+  double second_process_peak_mb = 0;
   // Per pantograph, the pilot's differences as measured (discretisation: the
   // extrapolated one); reduction: modal level only.
   std::vector<FigureErrors> discretisation_measured, reduction_measured;
@@ -98,6 +102,10 @@ struct PilotStretch {
   bool spans_alike = true;  // the line's spans are identical: two stand for all
 };
 PilotStretch pilot_stretch(const scene::RunScene& run);
+// A SolverError, before any pilot run, if -ts_max_steps or -ts_max_time
+// (they bind the pilot's runs too) would stop a pilot run before it crosses
+// 'stretch' (the run goes on without the estimate, app/cmd_run.cpp).
+void check_pilot_not_cut_short(const scene::RunScene& run, const PilotStretch& stretch);
 // What the console adds to the stretch's line where the spans differ ("" on
 // a line of identical spans).
 std::string pilot_stretch_note(const PilotStretch& s, const scene::RunScene& run);
@@ -108,6 +116,10 @@ std::string pilot_stretch_note(const PilotStretch& s, const scene::RunScene& run
 // another value.
 using PilotChoice = AutoChoice;
 PilotChoice accuracy_pilot_choice();
+// -pcsim_pilot_process: auto (the default: the pilot's linear FE runs in a
+// second process beside its other runs on one rank with a core to spare),
+// true (one rank), false; InputError on another value.
+PilotChoice pilot_process_choice();
 // Whether 'run' gets a pilot under 'choice'.
 bool wants_accuracy_pilot(PilotChoice choice, const scene::RunScene& run);
 
