@@ -114,14 +114,19 @@ std::string target_refusal(const std::string& dir, const OutputRequest& request)
 }
 
 // A leftover "<dir>.partial" from an interrupted run: removed (if 'remove')
-// when it holds nothing but its manifest, else kept and the run refused ("" if
-// none left).
+// when it holds nothing but its manifest, or nothing written at all (a run
+// killed before its manifest), else kept and the run refused ("" if none left).
 std::string leftover_partial_refusal(const std::string& partial, bool remove = true) {
   std::error_code ec;
   const auto status = fs::symlink_status(partial, ec);
   if (status.type() == fs::file_type::not_found) return "";
   nlohmann::json m;
-  if (status.type() != fs::file_type::directory || !guard::read_manifest(partial, m))
+  const bool folder = status.type() == fs::file_type::directory;
+  if (folder && guard::holds_nothing_written(partial)) {  // killed before its manifest
+    if (remove) fs::remove_all(partial);
+    return "";
+  }
+  if (!folder || !guard::read_manifest(partial, m))
     return in_quotes(partial) + " exists and was not written by pcsim; move it away";
   if (guard::holds_only_manifest(partial)) {
     if (remove) fs::remove_all(partial);

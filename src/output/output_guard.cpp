@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstring>
 #include <ctime>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -82,6 +83,15 @@ bool holds_only_manifest(const char* dir) {
 
 bool holds_only_manifest(const std::string& dir) {
   return holds_only_manifest(dir.c_str());
+}
+
+bool holds_nothing_written(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const std::string tmp = OutputDir::kManifestName + std::string(".tmp");
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    if (it->path().filename() != tmp) return false;
+  return !ec;
 }
 
 std::string utc_now() {

@@ -15,6 +15,10 @@ bool read_manifest(const std::string& dir, nlohmann::json& manifest);
 void write_manifest(const std::string& dir, const nlohmann::json& manifest);
 // True if 'dir' is a folder whose only entry is its manifest.
 bool holds_only_manifest(const std::string& dir);
+// True if 'dir' is a folder that holds nothing, or only its manifest's
+// temporary file: what a run killed between making its folder and writing
+// its manifest leaves (no result in it).
+bool holds_nothing_written(const std::string& dir);
 // Current time, UTC, ISO 8601.
 std::string utc_now();
 

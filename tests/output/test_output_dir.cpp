@@ -191,6 +191,26 @@ TEST_F(OutputDirTest, LeftoverPartialWithDataIsKeptAndRefused) {
   if (rank() == 0) EXPECT_EQ(listing(""), "result ");
 }
 
+TEST_F(OutputDirTest, UnwrittenPartialFolderIsReplaced) {
+  // A run killed between making its partial folder and renaming its manifest
+  // into it (a sweep's case under SIGKILL) leaves it empty or holding only
+  // the manifest's temporary file: nothing of a result, so not refused.
+  for (const char* left : {"", ".pcsim-result.tmp"}) {
+    if (*left) {
+      write(path(std::string("result.partial/") + left), R"({"pcsim_res)");
+    } else {
+      if (rank() == 0) fs::create_directories(path("result.partial"));
+      MPI_Barrier(MPI_COMM_WORLD);
+    }
+    OutputDir out(MPI_COMM_WORLD, request("result"));
+    out.commit();
+    if (rank() == 0) EXPECT_EQ(listing(""), "result ") << "left: '" << left << "'";
+    if (rank() == 0) EXPECT_EQ(listing("result"), ".pcsim-result ");
+    if (rank() == 0) fs::remove_all(path("result"));
+    MPI_Barrier(MPI_COMM_WORLD);
+  }
+}
+
 TEST_F(OutputDirTest, ForeignPartialFolderIsRefused) {
   write(path("result.partial/mine.txt"), "user data");
   EXPECT_REFUSED(OutputDir(MPI_COMM_WORLD, request("result")), "not written by pcsim");

@@ -17,7 +17,9 @@
 //  - a leftover "<dir>.partial" of an interrupted run is refused, unless the
 //    command can continue it (OutputRequest::leftover, `pcsim sweep`'s
 //    journal): then it is resumed (kept and written into, never removed by
-//    this run) or, if the command says so, replaced.
+//    this run) or, if the command says so, replaced; one that holds nothing
+//    but its manifest, or nothing written (a run killed before it wrote its
+//    manifest), is replaced.
 // Collective over the communicator: only rank 0 touches the file system, and
 // every outcome is broadcast, so that all ranks succeed or throw together.
 #pragma once
