@@ -2,7 +2,6 @@
 #include "pilot_process.hpp"
 
 #include <petscsys.h>
-#include <sched.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -126,13 +125,9 @@ AutoChoice pilot_process_choice() {
 bool use_pilot_process(const Context& ctx) {
   const AutoChoice choice = pilot_process_choice();
   if (ctx.size > 1 || choice == AutoChoice::off) return false;  // size: the same on every rank
-  if (choice == AutoChoice::on) return true;
-  cpu_set_t allowed;
-  CPU_ZERO(&allowed);
-  const int cpus = sched_getaffinity(0, sizeof allowed, &allowed) == 0 ? CPU_COUNT(&allowed) : 1;
   // As a run's record thread: a CPU more than this node's processes of the
   // job (a sweep's other groups run on the others).
-  return cpus > 1 && sysconf(_SC_NPROCESSORS_ONLN) > processes_on_this_node(ctx.comm);
+  return choice == AutoChoice::on || core_to_spare_here(ctx.comm);
 }
 
 bool pilot_process_running() {

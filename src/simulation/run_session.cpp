@@ -76,31 +76,28 @@ int ranks_on_node(MPI_Comm comm) {
   return ranks;
 }
 
-// Whether every rank has a core to spare for a record thread: its affinity
-// allows more than one CPU and its node has more online CPUs than processes, and
-// MPI allows threads that make no MPI calls (MPI_THREAD_FUNNELED: PETSc's
-// default when it starts MPI). Agreed by all ranks (the batches' sums are
-// collective, in one order).
+// Whether every rank has a core to spare for a record thread
+// (core_to_spare_here) and MPI allows threads that make no MPI calls
+// (MPI_THREAD_FUNNELED: PETSc's default when it starts MPI). Agreed by all
+// ranks (the batches' sums are collective, in one order).
 bool cores_to_spare(MPI_Comm comm) {
   int level = MPI_THREAD_SINGLE;
   MPI_Query_thread(&level);
-  cpu_set_t allowed;
-  CPU_ZERO(&allowed);
-  const int cpus = sched_getaffinity(0, sizeof allowed, &allowed) == 0 ? CPU_COUNT(&allowed) : 1;
-  const int ranks_here = processes_on_this_node(comm);
   // A pilot's second process (pilot_process.hpp) takes the spare core.
-  int spare = level >= MPI_THREAD_FUNNELED && cpus > 1 &&
-                      sysconf(_SC_NPROCESSORS_ONLN) > ranks_here && !pilot_process_running()
-                  ? 1
-                  : 0;
+  int spare =
+      level >= MPI_THREAD_FUNNELED && core_to_spare_here(comm) && !pilot_process_running() ? 1 : 0;
   MPI_Allreduce(MPI_IN_PLACE, &spare, 1, MPI_INT, MPI_MIN, comm);
   return spare != 0;
 }
 
 }  // namespace
 
-int processes_on_this_node(MPI_Comm comm) {
-  return node_processes > 0 ? node_processes : ranks_on_node(comm);
+bool core_to_spare_here(MPI_Comm comm) {
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  const int cpus = sched_getaffinity(0, sizeof allowed, &allowed) == 0 ? CPU_COUNT(&allowed) : 1;
+  const int processes = node_processes > 0 ? node_processes : ranks_on_node(comm);
+  return cpus > 1 && sysconf(_SC_NPROCESSORS_ONLN) > processes;
 }
 
 void count_node_processes(MPI_Comm world) {

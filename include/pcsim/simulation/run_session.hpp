@@ -39,9 +39,10 @@ RecordThread record_thread_choice();
 // start-up, before a sweep splits the ranks into groups). Uncounted, a run
 // counts its own ranks on the node.
 void count_node_processes(MPI_Comm world);
-// The job's processes on this node as counted, else comm's ranks on it
-// (collective on comm).
-int processes_on_this_node(MPI_Comm comm);
+// Whether this process has a core to spare: its affinity allows more than
+// one CPU and its node has more online CPUs than the job's processes there
+// (as counted, else comm's ranks on it; collective on comm).
+bool core_to_spare_here(MPI_Comm comm);
 
 class RunSession {
  public:
