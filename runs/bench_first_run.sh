@@ -10,12 +10,16 @@
 # its peak memory (summary.json: the largest resident set of any rank, the
 # pilot included) and that of the pilot's second process (-pcsim_pilot_process).
 #   runs/bench_first_run.sh BEFORE_BIN AFTER_BIN
-# Environment: REPS=1. Takes ~6 min per repetition and binary. Run it on an
-# otherwise idle machine: it measures wall time.
+# Environment: REPS=1; BEFORE_OPTIONS, AFTER_OPTIONS: options added to each
+# binary's runs (one build two ways: BEFORE_OPTIONS="-pcsim_pilot_process
+# false" with the same binary twice). Takes ~6 min per repetition and
+# binary. Run it on an otherwise idle machine: it measures wall time.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [ $# -eq 2 ] || { echo "usage: $0 BEFORE_BIN AFTER_BIN" >&2; exit 2; }
 BINS=("$1" "$2")
+read -r -a EXTRA0 <<< "${BEFORE_OPTIONS:-}"
+read -r -a EXTRA1 <<< "${AFTER_OPTIONS:-}"
 REPS=${REPS:-1}
 SCENE=runs/interaction/two-pantographs-300-window.yaml
 OUT=$(mktemp -d)
@@ -30,6 +34,7 @@ for rep in $(seq "$REPS"); do
       options=(-pcsim_accuracy_pilot true)
       [ "$kind" = no-pilot ] &&
         options=(-pcsim_accuracy_pilot false --set catenary.max_frequency_hz=108.8 -ts_max_steps 100)
+      if [ "$b" = 0 ]; then options+=("${EXTRA0[@]}"); else options+=("${EXTRA1[@]}"); fi
       "${BINS[$b]}" run "$SCENE" --set catenary.model=modal "${options[@]}" --cache "$OUT/cache" \
         --no-report -o "$OUT/run" >"$OUT/log" 2>&1 || { echo "run failed: ${BINS[$b]} $kind"; exit 1; }
       # The FE runs first, the modal ones after: a second process runs the FE

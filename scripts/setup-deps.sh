@@ -15,8 +15,9 @@ PACKAGES=(build-essential cmake pkg-config
 # SLEPc, MUMPS and the modal window's shift products (a dgemm of their
 # blocks: 3.0 GFlop/s with the reference BLAS, 38 with BLIS; docs/benchmarks.md;
 # serial: one thread per MPI rank; on a processor BLIS does not know, pcsim
-# picks BLIS's vector kernels itself: src/core/blas_kernels.cpp); libsuitesparse-dev (also a dependency of
-# petsc-dev): KLU, the sparse LU of the cheap path's varying blocks
+# picks BLIS's vector kernels itself: src/core/blas_kernels.cpp);
+# libsuitesparse-dev (also a dependency of petsc-dev): KLU, the sparse LU of
+# the cheap path's varying blocks
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
