@@ -27,7 +27,7 @@ trap 'rm -rf "$OUT"' EXIT
 echo "load before: $(cut -d' ' -f1-3 /proc/loadavg)"
 printf '%-6s %-9s %-34s %10s %10s %8s %12s\n' binary run "pilot runs [s]" "pilot [s]" "basis [s]" "peak MB" \
   "2nd proc. MB"
-for rep in $(seq "$REPS"); do
+for _ in $(seq "$REPS"); do
   for b in 0 1; do
     for kind in pilot no-pilot; do
       rm -rf "$OUT/cache" "$OUT/run"
