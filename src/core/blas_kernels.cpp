@@ -83,6 +83,13 @@ std::string BlasKernels::text() const {
   return t;
 }
 
+bool BlasKernels::optimised() const {
+  if (is_blis) return kernels != "generic" && !kernels.empty();
+  for (const char* name : {"openblas", "mkl"})
+    if (library.find(name) != std::string::npos) return true;
+  return false;
+}
+
 void select_blas_kernels(bool blis_started) {
   static bool done = false;
   if (done) return;

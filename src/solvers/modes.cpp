@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <numeric>
 
+#include "pcsim/core/blas_kernels.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/solvers/command_line.hpp"
 #include "pcsim/solvers/spectrum.hpp"
@@ -70,11 +71,11 @@ bool use_line_cholesky(PC pc) {
   return false;
 }
 
-// Spectrum slicing (spectrum.hpp). The basis vectors as separate Vecs:
-// PETSc's multi-vector kernels orthogonalise ~3x faster than the reference
-// BLAS's dgemv that the default contiguous storage calls (docs/benchmarks.md,
-// "What the first modal run costs"). Options (-st_pc_factor_mat_solver_type,
-// -bv_type) still win.
+// Spectrum slicing (spectrum.hpp). The basis vectors contiguous (SLEPc's
+// default: the orthogonalisation in the BLAS's dgemv) with an optimised BLAS,
+// as separate Vecs with the reference BLAS, whose dgemv PETSc's multi-vector
+// kernels outrun ~3x (docs/benchmarks.md, "What the first modal run costs").
+// Options (-st_pc_factor_mat_solver_type, -bv_type) still win.
 void configure_slicing(EPS eps, double lambda_lo, double lambda_hi) {
   ST st;
   KSP ksp;
@@ -85,7 +86,7 @@ void configure_slicing(EPS eps, double lambda_lo, double lambda_hi) {
   PCSIM_PETSC(STSetType(st, STSINVERT));
   PCSIM_PETSC(EPSSetType(eps, EPSKRYLOVSCHUR));
   PCSIM_PETSC(EPSGetBV(eps, &bv));
-  PCSIM_PETSC(BVSetType(bv, BVVECS));
+  PCSIM_PETSC(BVSetType(bv, blas_kernels().optimised() ? BVSVEC : BVVECS));
   PCSIM_PETSC(EPSSetInterval(eps, lambda_lo, lambda_hi));
   PCSIM_PETSC(EPSSetWhichEigenpairs(eps, EPS_ALL));
   PCSIM_PETSC(EPSSetTolerances(eps, 1e-12, 200));

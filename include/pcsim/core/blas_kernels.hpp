@@ -28,6 +28,10 @@ struct BlasKernels {
   bool chosen = false;   // pcsim set BLIS_ARCH_TYPE
   std::string too_late;  // BLIS had started: the BLIS_ARCH_TYPE pcsim would have set, else ""
   std::string text() const;  // one line for logs and records
+  // An optimised BLAS: BLIS on kernels other than its generic ones, OpenBLAS
+  // or MKL (not the reference BLAS), whose dgemv SLEPc's contiguous basis
+  // storage runs well (solvers/modes.cpp, configure_slicing).
+  bool optimised() const;
 };
 
 // Once per process, before the first BLAS call (main, the Python module);
