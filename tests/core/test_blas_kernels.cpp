@@ -44,6 +44,29 @@ TEST(BlasKernels, BlisRunsVectorKernelsWhereTheyFit) {
   std::printf("BLAS: %s\n", k.text().c_str());
 }
 
+// Which BLAS counts as optimised (the slicing's basis storage,
+// solvers/modes.cpp): BLIS on kernels other than its generic ones, the user's
+// BLIS_ARCH_TYPE, OpenBLAS or MKL; not the reference BLAS, nor BLIS whose
+// kernels are generic or unknown.
+TEST(BlasKernels, OptimisedBlasIsNamed) {
+  pcsim::BlasKernels k;
+  k.library = "/usr/lib/x86_64-linux-gnu/blas/libblas.so.3";
+  EXPECT_FALSE(k.optimised());
+  k.library = "/usr/lib/x86_64-linux-gnu/openblas-pthread/libblas.so.3";
+  EXPECT_TRUE(k.optimised());
+  k.library = "/opt/intel/oneapi/mkl/lib/libmkl_rt.so.2";
+  EXPECT_TRUE(k.optimised());
+  k.library = "/usr/lib/x86_64-linux-gnu/blis-serial/libblas.so.3";
+  k.is_blis = true;
+  EXPECT_FALSE(k.optimised());  // kernels unknown (its library was not asked)
+  k.kernels = "generic";
+  EXPECT_FALSE(k.optimised());
+  for (const char* kernels : {"skx", "haswell", "zen3", "BLIS_ARCH_TYPE=3"}) {
+    k.kernels = kernels;
+    EXPECT_TRUE(k.optimised()) << kernels;
+  }
+}
+
 // C = A^T B (the window shift's shape, smaller) against a plain sum: the
 // chosen kernels run on this processor and compute the product.
 TEST(BlasKernels, DgemmByTheKernelsInUseIsRight) {
