@@ -20,6 +20,11 @@ using namespace modal_detail;
 
 namespace {
 
+// Vectors per BLAS product over the dropper shapes' mass products: each such
+// product reads the shapes once for the block instead of once per vector
+// (docs/benchmarks.md, "The shapes' mass products in blocks").
+constexpr long kProductBlock = 32;
+
 // Row index of a key in the sorted keys (the key must be there).
 std::size_t row_of(const std::vector<long>& keys, long key) {
   const auto it = std::lower_bound(keys.begin(), keys.end(), key);
@@ -59,22 +64,24 @@ class DropperShapes {
                 const StiffnessSolver& K, const RowGather& rows, const std::vector<long>& keys);
   ~DropperShapes() {
     if (psi_) VecDestroyVecs(static_cast<PetscInt>(count_), &psi_);
-    if (Mpsi_) VecDestroyVecs(static_cast<PetscInt>(count_), &Mpsi_);
   }
   DropperShapes(const DropperShapes&) = delete;
   DropperShapes& operator=(const DropperShapes&) = delete;
   std::size_t count() const { return count_; }
   Vec vector(std::size_t d) const { return psi_[d]; }
-  // phi^T M psi_d for every d.
-  std::vector<double> mass_products(Vec phi) const;
+  // phi_k^T M psi_d for every d (out: count x shapes, column-major) of the
+  // local parts of 'count' vectors side by side (phis: local x count);
+  // collective.
+  void mass_products(const double* phis, long count, double* out) const;
   const Eigen::MatrixXd& rows() const { return rows_; }
   const Eigen::MatrixXd& psi_M_psi() const { return psi_M_psi_; }
   const Eigen::MatrixXd& flexibility() const { return flexibility_; }
 
  private:
   std::size_t count_ = 0;
+  MPI_Comm comm_ = MPI_COMM_NULL;
   Vec* psi_ = nullptr;
-  Vec* Mpsi_ = nullptr;
+  Eigen::MatrixXd Mpsi_;         // local rows of M psi (local x count), one BLAS product
   Eigen::MatrixXd rows_;         // rows of psi (n_rows x count)
   Eigen::MatrixXd psi_M_psi_;    // psi^T M psi
   Eigen::MatrixXd flexibility_;  // b^T psi = b^T K^-1 b
@@ -91,10 +98,14 @@ DropperShapes::DropperShapes(const assembly::CatenarySystem& system, Vec x, cons
     if (mesh.bars[b].slack != catenary::SlackCriterion::none) bars.push_back(static_cast<int>(b));
   count_ = bars.size();
   if (count_ == 0) return;
+  comm_ = PetscObjectComm(reinterpret_cast<PetscObject>(x));
   PCSIM_PETSC(VecDuplicateVecs(x, static_cast<PetscInt>(count_), &psi_));
-  PCSIM_PETSC(VecDuplicateVecs(x, static_cast<PetscInt>(count_), &Mpsi_));
-  Vec b;
+  PetscInt local;
+  PCSIM_PETSC(VecGetLocalSize(x, &local));
+  Mpsi_.resize(local, static_cast<long>(count_));
+  Vec b, Mpsi;
   PCSIM_PETSC(VecDuplicate(x, &b));
+  PCSIM_PETSC(VecDuplicate(x, &Mpsi));
   rows_.resize(static_cast<long>(rows.size()), static_cast<long>(count_));
   std::vector<Eigen::Vector3d> direction(count_);
   for (std::size_t d = 0; d < count_; ++d) {
@@ -112,14 +123,30 @@ DropperShapes::DropperShapes(const assembly::CatenarySystem& system, Vec x, cons
     PCSIM_PETSC(VecAssemblyBegin(b));
     PCSIM_PETSC(VecAssemblyEnd(b));
     K.solve(b, psi_[d]);
-    PCSIM_PETSC(MatMult(op.M, psi_[d], Mpsi_[d]));
+    PCSIM_PETSC(MatMult(op.M, psi_[d], Mpsi));
+    const PetscScalar* a;
+    PCSIM_PETSC(VecGetArrayRead(Mpsi, &a));
+    std::copy(a, a + local, Mpsi_.col(static_cast<long>(d)).data());
+    PCSIM_PETSC(VecRestoreArrayRead(Mpsi, &a));
     rows.gather(psi_[d], rows_.col(static_cast<long>(d)).data());
   }
   PCSIM_PETSC(VecDestroy(&b));
+  PCSIM_PETSC(VecDestroy(&Mpsi));
   const long n = static_cast<long>(count_);
   psi_M_psi_.resize(n, n);
-  for (long d = 0; d < n; ++d)
-    PCSIM_PETSC(VecMDot(Mpsi_[d], n, psi_, psi_M_psi_.col(d).data()));  // symmetric
+  Eigen::MatrixXd block(local, std::min(n, kProductBlock));
+  for (long first = 0; first < n; first += kProductBlock) {  // psi^T M psi, a block of rows
+    const long width = std::min(kProductBlock, n - first);
+    for (long j = 0; j < width; ++j) {
+      const PetscScalar* a;
+      PCSIM_PETSC(VecGetArrayRead(psi_[first + j], &a));
+      std::copy(a, a + local, block.col(j).data());
+      PCSIM_PETSC(VecRestoreArrayRead(psi_[first + j], &a));
+    }
+    product_tn(width, n, local, block.data(), Mpsi_.data(), psi_M_psi_.data() + first, n);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, psi_M_psi_.data(), static_cast<int>(n * n), MPI_DOUBLE, MPI_SUM,
+                comm_);
   // b_e^T psi_d: elongation of bar e under psi_d, from the rows at its ends.
   flexibility_.resize(n, n);
   for (long e = 0; e < n; ++e) {
@@ -134,10 +161,10 @@ DropperShapes::DropperShapes(const assembly::CatenarySystem& system, Vec x, cons
   }
 }
 
-std::vector<double> DropperShapes::mass_products(Vec phi) const {
-  std::vector<double> c(count_);
-  if (count_ > 0) PCSIM_PETSC(VecMDot(phi, static_cast<PetscInt>(count_), Mpsi_, c.data()));
-  return c;
+void DropperShapes::mass_products(const double* phis, long count, double* out) const {
+  const long n = static_cast<long>(count_);
+  product_tn(count, n, Mpsi_.rows(), phis, Mpsi_.data(), out, count);
+  MPI_Allreduce(MPI_IN_PLACE, out, static_cast<int>(count * n), MPI_DOUBLE, MPI_SUM, comm_);
 }
 
 // Under a mean wind, phi^T C phi of each mode (C: the wires' aerodynamic
@@ -215,6 +242,8 @@ struct ModalDataBuilder::Parts {
   std::size_t shapes_appended_at = 0;
   std::vector<double> contact_compliance, omega2, wind;
   std::vector<std::vector<double>> columns, mass_products;  // of each mode
+  Eigen::MatrixXd pending;  // local parts of the modes whose mass products are to come
+  long pending_count = 0;
   double cutoff_hz = 0, max_residual = 0;
   bool computed = false;
 
@@ -229,7 +258,8 @@ struct ModalDataBuilder::Parts {
     if (shift) shift_products = std::make_unique<ShiftProducts>(op.M, shift, spill_dir);
   }
   void add_mode(double lambda, Vec phi);
-  ModalData data();  // frees each mode's rows once copied unless keep_vectors
+  void flush_mass_products();  // of the pending modes (collective)
+  ModalData data();            // frees each mode's rows once copied unless keep_vectors
 };
 
 namespace {
@@ -263,8 +293,29 @@ void ModalDataBuilder::Parts::add_mode(double lambda, Vec phi) {
   omega2.push_back(lambda);
   columns.emplace_back(rows.size());
   rows.gather(phi, columns.back().data());
-  if (shapes) mass_products.push_back(shapes->mass_products(phi));
+  if (shapes && shapes->count() > 0) {
+    PetscInt local;
+    PCSIM_PETSC(VecGetLocalSize(phi, &local));
+    if (pending.cols() == 0) pending.resize(local, kProductBlock);
+    const PetscScalar* a;
+    PCSIM_PETSC(VecGetArrayRead(phi, &a));
+    std::copy(a, a + local, pending.col(pending_count++).data());
+    PCSIM_PETSC(VecRestoreArrayRead(phi, &a));
+    if (pending_count == kProductBlock) flush_mass_products();
+  }
   wind_damping.append(phi, wind);
+}
+
+void ModalDataBuilder::Parts::flush_mass_products() {
+  if (!shapes || shapes->count() == 0) return;
+  const long n = static_cast<long>(shapes->count());
+  Eigen::MatrixXd products(pending_count, n);
+  shapes->mass_products(pending.data(), pending_count, products.data());
+  for (long k = 0; k < pending_count; ++k) {
+    mass_products.emplace_back(static_cast<std::size_t>(n));
+    for (long d = 0; d < n; ++d) mass_products.back()[d] = products(k, d);
+  }
+  pending_count = 0;
 }
 
 ModalData ModalDataBuilder::extend(double max_frequency_hz, const ModalProgress& progress,
@@ -289,6 +340,8 @@ ModalData ModalDataBuilder::extend(double max_frequency_hz, const ModalProgress&
                             complete ? stream_all_modes_dense(p.op, sink)
                                      : stream_modes(p.op, p.computed ? omega_from * omega_from : 0,
                                                     omega_max * omega_max, sink, progress));
+  p.flush_mass_products();
+  Eigen::MatrixXd().swap(p.pending);
   if (p.shift_products && p.shapes && !p.computed) {
     p.shapes_appended_at = p.omega2.size();
     for (std::size_t d = 0; d < p.shapes->count(); ++d)

@@ -95,6 +95,12 @@ class ShiftProducts {
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> G_;
 };
 
+// C = A^T B (column-major; A: k x m, B: k x n, C: m x n with leading
+// dimension ldc) by the system's BLAS (Debian's libblas.so.3: BLIS with
+// scripts/setup-deps.sh, ~3 x Eigen's kernels at pcsim's portable flags;
+// runs/bench_blas.sh): the local part of products over distributed vectors.
+void product_tn(long m, long n, long k, const double* A, const double* B, double* C, long ldc);
+
 // Every eigenpair of a small structure by a dense solve on every rank.
 double stream_all_modes_dense(const Operators& op, const ModeSink& sink);
 

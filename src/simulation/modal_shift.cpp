@@ -36,13 +36,10 @@ void product_column(Mat A, Vec x, Vec y, bool transpose, Eigen::MatrixXd& W, lon
   PCSIM_PETSC(VecRestoreArrayRead(y, &r));
 }
 
-// C = A^T B (column-major; A: k x m, B: k x n, C: m x n with leading
-// dimension ldc) by the system's BLAS (Debian's libblas.so.3: BLIS with
-// scripts/setup-deps.sh, ~3 x Eigen's kernels at pcsim's portable flags;
-// runs/bench_blas.sh).
+}  // namespace
+
 void product_tn(long m, long n, long k, const double* A, const double* B, double* C, long ldc) {
   if (m == 0 || n == 0) return;
-  const ScopedEvent timed(log_events().shift_gemm);
   PetscBLASInt bm, bn, bk, lead, bldc;
   PCSIM_PETSC(PetscBLASIntCast(m, &bm));
   PCSIM_PETSC(PetscBLASIntCast(n, &bn));
@@ -52,8 +49,6 @@ void product_tn(long m, long n, long k, const double* A, const double* B, double
   const double one = 1, zero = 0;
   BLASgemm_("T", "N", &bm, &bn, &bk, &one, A, &lead, B, &lead, &zero, C, &bldc);
 }
-
-}  // namespace
 
 ShiftProducts::ShiftProducts(Mat M, Mat S, std::string spill_dir)
     : M_(M), S_(S), spill_dir_(std::move(spill_dir)) {}
@@ -96,6 +91,7 @@ void ShiftProducts::new_columns(Vec like) {
       product_column(M_, shifted, w, false, W, j);
     }
     // G (row-major) block (I, new columns) as the column-major W^T V_I.
+    const ScopedEvent timed(log_events().shift_gemm);
     for (std::size_t I = 0; I < store_->blocks(); ++I)
       product_tn(width - j0, store_->width(I), local_, W.col(j0).data(),
                  store_->block(I, scratch).data(),
@@ -123,6 +119,7 @@ void ShiftProducts::new_rows_of_old_columns(Vec like) {
       product_column(S_, mass, z, true, Z, i - computed_);
     }
   }
+  const ScopedEvent timed(log_events().shift_gemm);
   for (std::size_t I = 0; static_cast<long>(I) * kBlock < computed_; ++I) {
     const long first = static_cast<long>(I) * kBlock;
     const long cols = std::min(store_->width(I), computed_ - first);  // old columns of block I
