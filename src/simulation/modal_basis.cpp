@@ -25,6 +25,16 @@ namespace {
 // (docs/benchmarks.md, "The shapes' mass products in blocks").
 constexpr long kProductBlock = 32;
 
+// The local part of v into out.
+void copy_local(Vec v, double* out) {
+  PetscInt n;
+  const PetscScalar* a;
+  PCSIM_PETSC(VecGetLocalSize(v, &n));
+  PCSIM_PETSC(VecGetArrayRead(v, &a));
+  std::copy(a, a + n, out);
+  PCSIM_PETSC(VecRestoreArrayRead(v, &a));
+}
+
 // Row index of a key in the sorted keys (the key must be there).
 std::size_t row_of(const std::vector<long>& keys, long key) {
   const auto it = std::lower_bound(keys.begin(), keys.end(), key);
@@ -124,10 +134,7 @@ DropperShapes::DropperShapes(const assembly::CatenarySystem& system, Vec x, cons
     PCSIM_PETSC(VecAssemblyEnd(b));
     K.solve(b, psi_[d]);
     PCSIM_PETSC(MatMult(op.M, psi_[d], Mpsi));
-    const PetscScalar* a;
-    PCSIM_PETSC(VecGetArrayRead(Mpsi, &a));
-    std::copy(a, a + local, Mpsi_.col(static_cast<long>(d)).data());
-    PCSIM_PETSC(VecRestoreArrayRead(Mpsi, &a));
+    copy_local(Mpsi, Mpsi_.col(static_cast<long>(d)).data());
     rows.gather(psi_[d], rows_.col(static_cast<long>(d)).data());
   }
   PCSIM_PETSC(VecDestroy(&b));
@@ -137,12 +144,7 @@ DropperShapes::DropperShapes(const assembly::CatenarySystem& system, Vec x, cons
   Eigen::MatrixXd block(local, std::min(n, kProductBlock));
   for (long first = 0; first < n; first += kProductBlock) {  // psi^T M psi, a block of rows
     const long width = std::min(kProductBlock, n - first);
-    for (long j = 0; j < width; ++j) {
-      const PetscScalar* a;
-      PCSIM_PETSC(VecGetArrayRead(psi_[first + j], &a));
-      std::copy(a, a + local, block.col(j).data());
-      PCSIM_PETSC(VecRestoreArrayRead(psi_[first + j], &a));
-    }
+    for (long j = 0; j < width; ++j) copy_local(psi_[first + j], block.col(j).data());
     product_tn(width, n, local, block.data(), Mpsi_.data(), psi_M_psi_.data() + first, n);
   }
   MPI_Allreduce(MPI_IN_PLACE, psi_M_psi_.data(), static_cast<int>(n * n), MPI_DOUBLE, MPI_SUM,
@@ -297,10 +299,7 @@ void ModalDataBuilder::Parts::add_mode(double lambda, Vec phi) {
     PetscInt local;
     PCSIM_PETSC(VecGetLocalSize(phi, &local));
     if (pending.cols() == 0) pending.resize(local, kProductBlock);
-    const PetscScalar* a;
-    PCSIM_PETSC(VecGetArrayRead(phi, &a));
-    std::copy(a, a + local, pending.col(pending_count++).data());
-    PCSIM_PETSC(VecRestoreArrayRead(phi, &a));
+    copy_local(phi, pending.col(pending_count++).data());
     if (pending_count == kProductBlock) flush_mass_products();
   }
   wind_damping.append(phi, wind);
