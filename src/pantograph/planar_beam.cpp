@@ -58,9 +58,10 @@ Eigen::Matrix3d planar_beam_constitutive(const PlanarBeamElement& e) {
   return D;
 }
 
-Matrix36 planar_beam_strain_gradient(const PlanarBeamElement&, const Vector6& qe) {
-  const Chord c = chord(qe, false);
-  // ∂l/∂qe = {−n, 0, n, 0}; ∂β/∂qe = {−t, 0, t, 0}/l with t = (−ny, nx).
+namespace {
+
+// ∂l/∂qe = {−n, 0, n, 0}; ∂β/∂qe = {−t, 0, t, 0}/l with t = (−ny, nx).
+Matrix36 strain_gradient(const Chord& c) {
   const double nx = c.n.x(), ny = c.n.y(), il = 1.0 / c.l;
   Matrix36 B;
   B.row(0) << -nx, -ny, 0, nx, ny, 0;
@@ -72,16 +73,28 @@ Matrix36 planar_beam_strain_gradient(const PlanarBeamElement&, const Vector6& qe
   return B;
 }
 
+// An angle's difference wrapped to (−π, π]: itself where it lies there (a
+// beam's deformation angles, small: no rounding added), else wrap_angle().
+double wrapped(double a) {
+  return a > -M_PI && a <= M_PI ? a : wrap_angle(a);
+}
+
+}  // namespace
+
+Matrix36 planar_beam_strain_gradient(const PlanarBeamElement&, const Vector6& qe) {
+  return strain_gradient(chord(qe, false));
+}
+
 PlanarBeamState planar_beam_evaluate(const PlanarBeamElement& e, const Vector6& qe,
                                      bool with_stiffness) {
   PlanarBeamState s;
   const Chord c = chord(qe, with_stiffness);
-  s.strain << c.l - e.length0, wrap_angle(qe[2] - c.beta - e.offset1),
-      e.hinge_end2 ? 0.0 : wrap_angle(qe[5] - c.beta - e.offset2);
+  s.strain << c.l - e.length0, wrapped(qe[2] - c.beta - e.offset1),
+      e.hinge_end2 ? 0.0 : wrapped(qe[5] - c.beta - e.offset2);
   const Eigen::Matrix3d D = planar_beam_constitutive(e);
   s.stress = D * s.strain;
   s.energy = 0.5 * s.strain.dot(s.stress);
-  const Matrix36 B = planar_beam_strain_gradient(e, qe);
+  const Matrix36 B = strain_gradient(c);  // from the chord above, as planar_beam_strain_gradient()
   s.force = B.transpose() * s.stress;
   if (with_stiffness) {
     s.stiffness = B.transpose() * D * B;

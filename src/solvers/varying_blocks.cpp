@@ -58,7 +58,7 @@ void VaryingBlocks::setup(Mat P) {
         throw SolverError("J0 couples row " + std::to_string(r) +
                           " of a varying block with other unknowns");
     }
-    if (b.sparse && b.matrix.rows() == b.size) find_off_pattern(b);  // J0's block anew
+    if (b.sparse && b.matrix.rows() == b.size) keep_reference(b);  // J0's block anew
   }
   check_decoupled(P);
   ready_ = true;
@@ -144,7 +144,7 @@ bool VaryingBlocks::refactor_sparse(Block& b) {
     b.matrix = value.sparseView(0.0, 0.0);  // exact zeros left out only
     b.sparse_lu.analyze(b.matrix);
     ++analyses_;
-    find_off_pattern(b);
+    keep_reference(b);
   }
   b.regular = b.sparse_lu.factor(b.matrix);
   return true;
@@ -168,13 +168,27 @@ void VaryingBlocks::refactor_given(Block& b) {
     b.matrix = v;
     b.sparse_lu.analyze(b.matrix);
     ++analyses_;
-    find_off_pattern(b);
+    keep_reference(b);
   }
   b.regular = b.sparse_lu.factor(b.matrix);
 }
 
+// What a sparse block keeps of J0's block, after a new analysis and when J0
+// is read anew: its entries off the pattern, and the pivot order of J0's
+// block on the pattern (klu_lu.hpp), which every later factorisation of the
+// block refactors in while it stays stable: the factors then depend on the
+// value and J0 alone, as a restarted run needs.
+void VaryingBlocks::keep_reference(Block& b) {
+  find_off_pattern(b);
+  Eigen::SparseMatrix<double> reference = b.matrix;
+  for (Eigen::Index j = 0; j < reference.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(reference, j); it; ++it)
+      it.valueRef() = b.reference(it.row(), it.col());
+  b.sparse_lu.keep_pivots_of(reference);
+}
+
 // J0's entries of a sparse block off its pattern (b.matrix's): the value is
-// 0 there and the change -J0. After a new analysis, and when J0 is read anew.
+// 0 there and the change -J0.
 void VaryingBlocks::find_off_pattern(Block& b) {
   Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> on(b.size, b.size);
   on.setConstant(false);

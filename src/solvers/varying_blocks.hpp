@@ -69,6 +69,7 @@ class VaryingBlocks {
   void refactor(Block& b);
   bool refactor_sparse(Block& b);
   void refactor_given(Block& b);
+  static void keep_reference(Block& b);
   static void find_off_pattern(Block& b);
 
   std::map<int, Block> blocks_;
