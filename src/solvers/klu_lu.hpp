@@ -12,11 +12,8 @@
 // growth at most 1 / kRefactorGrowth times the reference's, else factors the
 // value afresh (pivots of its own). The factors are a function of the value
 // and the reference alone, never of the values factored before: a restarted
-// run, whose J0 is rebuilt at the same state, computes the same bits. On
-// the flexible DSA-380 every factorisation of a run took the kept order
-// (reciprocal growth 0.385-0.390, the reference's about that), with the
-// same bits as pivoting each one anew, in 5-7 % less of the modal step
-// (docs/benchmarks.md, "The flexible DSA-380's block: J0's pivot order").
+// run, whose J0 is rebuilt at the same state, computes the same bits
+// (docs/benchmarks.md, "The flexible DSA-380's block in J0's pivot order").
 // Private to src/solvers.
 #pragma once
 
