@@ -131,6 +131,15 @@ nlohmann::json fidelity_facts(const scene::RunScene& run, const RunRequest& requ
   fidelity["step_correction_entries"] = dd.correction_entries;
   fidelity.erase("steps");
   if (window) fidelity["window_shifts"] = window->shifts();
+  if (const auto* low_rank = solver.low_rank()) {  // the blocks' owners' counts, summed
+    long counts[2] = {low_rank->sparse_block_factorisations(),
+                      low_rank->kept_order_factorisations()};
+    MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_LONG, MPI_SUM,
+                  PetscObjectComm(reinterpret_cast<PetscObject>(solver.ts())));
+    if (counts[0] > 0)
+      fidelity["sparse_block_factorisations"] = {{"all", counts[0]},
+                                                 {"in_j0_pivot_order", counts[1]}};
+  }
   return fidelity;
 }
 

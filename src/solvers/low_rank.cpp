@@ -432,6 +432,14 @@ void LowRankStepSolver::add_change_product(Vec x, Vec y) const {
   PCSIM_PETSC(VecRestoreArray(y, &ys));
 }
 
+long LowRankStepSolver::sparse_block_factorisations() const {
+  return varying_->sparse_factorisations();
+}
+
+long LowRankStepSolver::kept_order_factorisations() const {
+  return varying_->kept_order_factorisations();
+}
+
 bool LowRankStepSolver::solves_exactly() const {
   return blocks_ || preonly_with(inner_, {PCLU, PCCHOLESKY, kPCSchur});
 }

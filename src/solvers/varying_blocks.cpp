@@ -103,6 +103,8 @@ void VaryingBlocks::refactor(Block& b) {
   if (given) refactor_given(b);
   if (given || refactor_sparse(b)) {
     regular = b.regular;  // KLU's: a zero or not finite pivot refused (klu_lu.hpp)
+    ++sparse_factorisations_;
+    kept_order_ += b.sparse_lu.refactored() ? 1 : 0;
   } else {
     b.lu.compute(b.reference + Eigen::Map<const RowMatrix>(b.delta.data(), b.size, b.size));
     const auto pivots = b.lu.matrixLU().diagonal().array();

@@ -47,6 +47,10 @@ class VaryingBlocks {
   // The global rows [first, first + size) of the blocks this rank owns.
   std::vector<std::pair<PetscInt, PetscInt>> owned_ranges() const;
   long pattern_analyses() const { return analyses_; }
+  // The sparse blocks' factorisations, and those refactored in the pivot
+  // order of J0's block (klu_lu.hpp).
+  long sparse_factorisations() const { return sparse_factorisations_; }
+  long kept_order_factorisations() const { return kept_order_; }
 
  private:
   using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
@@ -75,6 +79,7 @@ class VaryingBlocks {
   std::map<int, Block> blocks_;
   bool ready_ = false;
   long analyses_ = 0;
+  long sparse_factorisations_ = 0, kept_order_ = 0;
 };
 
 }  // namespace pcsim::solvers

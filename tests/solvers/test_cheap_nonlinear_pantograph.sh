@@ -103,6 +103,13 @@ def force(name):
         return f["/pantographs/dsa380/contact_force"][:]
 def summary(name):
     return json.load(open(f"{d}/{name}/summary.json"))
+# The flexible model's sparse block: every factorisation of the cheap run in
+# the pivot order of J0's block (measured 1208 of 1208, one per Newton
+# iteration), none on the full path (no varying blocks there).
+flexible = summary("flexible-auto")["sparse_block_factorisations"]
+assert flexible["all"] >= summary("flexible-auto")["steps"], flexible
+assert flexible["in_j0_pivot_order"] == flexible["all"], flexible
+assert "sparse_block_factorisations" not in summary("flexible-full")
 for model in ("linear", "modal"):
     cheap, full = summary(f"{model}-auto"), summary(f"{model}-full")
     assert cheap["path"] == "cheap" and full["path"] == "full", (cheap["path"], full["path"])

@@ -66,6 +66,8 @@ class DynamicSolver {
   // that state (assembly::initial_acceleration; zero for equilibrium starts).
   void set_initial_state(Vec U0, Vec V0);
   bool cheap_path() const { return low_rank_ != nullptr; }
+  // The cheap path's step solver (null on the full path).
+  const LowRankStepSolver* low_rank() const { return low_rank_.get(); }
   // Times the cheap path's J0 was assembled and factored (a new time step, or a
   // term that asked for it); 0 on the full path, which factors every iteration.
   long reference_builds() const { return reference_builds_; }

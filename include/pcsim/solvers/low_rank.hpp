@@ -73,6 +73,10 @@ class LowRankStepSolver {
   bool solves_exactly() const;
   // J0 is inverted block by block (known after the first setup), not by the inner KSP.
   bool block_inverse() const { return blocks_ != nullptr; }
+  // This rank's sparse varying blocks' factorisations, and those refactored
+  // in the pivot order of J0's block (src/solvers/klu_lu.hpp).
+  long sparse_block_factorisations() const;
+  long kept_order_factorisations() const;
 
  private:
   struct Entry {
