@@ -76,6 +76,7 @@ bool ModalCatenary::records_batch_pays() const {
 
 // Every rank counts the kept states; the owner keeps them.
 void ModalCatenary::keep_record_state() {
+  records_anchor_ = false;  // a kept state anchors no check (modal_slack_set.cpp)
   if (on_owner()) {
     if (kept_ == kept_states_.cols())
       kept_states_.conservativeResize(m_, kept_ + kKeptStatesGrowth);

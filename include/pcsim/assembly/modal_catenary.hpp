@@ -158,8 +158,10 @@ class ModalCatenary : public CatenaryModel {
   mutable double line_norm2_ = 0, line_bound_end_ = 0, line_bound_start_ = 0;
   mutable long line_count_ = 0;
   mutable bool line_valid_ = false;
-  mutable bool records_anchor_ = false;  // dropper_forces() anchors each recorded state
-  double force_scale_max_ = 0;           // max over the droppers of k_d |b_d| [N/m]
+  // dropper_forces() anchors each recorded state; a record kept for a batch
+  // (keep_record_state) does not, and the line is left unused.
+  mutable bool records_anchor_ = false;
+  double force_scale_max_ = 0;  // max over the droppers of k_d |b_d| [N/m]
   std::vector<double> elongation_;
   std::vector<std::size_t> slack_now_;
   std::vector<long> candidates_;
