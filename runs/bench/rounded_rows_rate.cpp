@@ -5,7 +5,8 @@
 // rows in cache ("hot") and after a 64 MB sweep ("cold"). Median of 400.
 // Build and run from the repository root:
 //   g++ -O2 -DNDEBUG -std=c++17 -Iinclude -I/usr/include/eigen3 \
-//     runs/bench/rounded_rows_rate.cpp src/assembly/rounded_rows.cpp -o /tmp/rounded_rows_rate
+//     runs/bench/rounded_rows_rate.cpp src/assembly/rounded_rows.cpp src/core/vector_units.cpp \
+//     -o /tmp/rounded_rows_rate
 //   /tmp/rounded_rows_rate [R C]
 #include <algorithm>
 #include <chrono>
