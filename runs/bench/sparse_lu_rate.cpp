@@ -2,8 +2,8 @@
 // "The flexible DSA-380's block as a sparse value"): Eigen's SparseLU (COLAMD),
 // KLU's klu_factor (src/solvers/klu_lu.cpp: what the cheap path runs) and
 // klu_refactor (the pivot order of an earlier factorisation kept: the cheap
-// path keeps that of the block's J0 value, src/solvers/klu_lu.hpp), and their solves, on the model's sparse step tangent
-// K + 2000 C + 4e6 M at its static equilibrium (meshes/pantographs/
+// path keeps that of the block's J0 value, src/solvers/klu_lu.hpp), and their solves, on the
+// model's sparse step tangent K + 2000 C + 4e6 M at its static equilibrium (meshes/pantographs/
 // dsa380_flexible.yaml, 120 N at 1.2 m, uplift characteristic on). Mean of
 // 2000 each. Build pcsim first (build/), then from the repository root:
 //   g++ -O2 -DNDEBUG -std=c++17 -Iinclude -I/usr/include/eigen3 -I/usr/include/suitesparse \
