@@ -149,7 +149,8 @@ void ModalCatenary::update_slack_set() {
       // window, records in batches): it would join the error resets' anchors,
       // steps apart, and leave no fewer candidates than the anchor alone
       // (window scene: same counts, same results; the DSA-380 at 136.1 Hz,
-      // batched: > 4 candidates at 98 % of its tries, 7 % of the step's time).
+      // batched: the same products per step without it, and 7 % of the step's
+      // time with it: docs/benchmarks.md, "No line of bounds for batched records").
       work_ = eta_ - anchor_;
       const double step = work_.norm();
       const double step_omega = (work_.array() * omega_.array()).matrix().norm();
