@@ -76,6 +76,7 @@ void ModalCatenary::push_line_anchor(double bound) const {
 // than 'few' candidates remain.
 bool ModalCatenary::line_candidates(std::size_t few) {
   constexpr double u = kUnitDouble;
+  ++line_tries_;
   work_ = eta_ - line_eta_;
   const double tau = work_.dot(line_) / line_norm2_;
   work_ -= tau * line_;  // r

@@ -252,6 +252,8 @@ void add_fidelity_facts(const scene::RunScene& run, const CatenarySetup& setup,
           steps > 0 ? static_cast<double>(modal->half_precision_updates()) / steps : 0.0;
       facts["modal"]["exact_updates_per_step"] =
           steps > 0 ? static_cast<double>(modal->exact_anchors()) / steps : 0.0;
+      facts["modal"]["line_tries_per_step"] =
+          steps > 0 ? static_cast<double>(modal->line_tries()) / steps : 0.0;
       facts["modal"]["tracked_bars"] = modal->slack_bars().size();
     }
   }

@@ -28,7 +28,8 @@
 #    two ranks (the batch summed to rank 0), give the same records: measured
 #    2.8e-14 N and 0 (restart), 5.1e-10 N and 1.7e-10 N (two ranks: sums in
 #    another order) for the dropper and contact forces, asserted 1e-9 N and
-#    5e-9 N; uplifts within 1e-12 m.
+#    5e-9 N; uplifts within 1e-12 m. Records in batches leave the check's
+#    line of bounds untried (0 tries a step, 2.0 one at a time).
 # 3. Truncated at the default cut-off (1.1 x 20 Hz / (1 - v/c) = 40.5 Hz, 232
 #    of 712 vectors) on the three-span test catenary (three-span-modal.yaml)
 #    against the linearised FE run of the same scene (app/data/study-tiny.yaml),
@@ -154,6 +155,14 @@ def records(name):
                                   "/pantographs/pantograph/contact_force")]
 whole = records("modal")
 assert summary("modal")["records_in_batches"] and not summary("again")["records_in_batches"]
+# Records one at a time anchor the check at every step, and its candidates
+# are sought on the line through the last two anchors; records in batches
+# anchor nothing, and the line is not tried (before 80c2e9a a record made
+# one at a time before the steps left it on: 2.0 tries a step here for the
+# same products; the same bits either way, asserted above).
+tries = {n: summary(n)["modal"]["line_tries_per_step"] for n in ("modal", "again")}
+print(f"2. line tries per step: batched {tries['modal']:.2f}, one at a time {tries['again']:.2f}")
+assert tries["modal"] == 0 and tries["again"] > 0, tries
 # The batches' products on their own thread: the same bits as on the stepping
 # thread (the same product of the same states, delivered in order).
 assert summary("modal")["records_thread"] and not summary("unthreaded")["records_thread"]

@@ -106,6 +106,8 @@ class ModalCatenary : public CatenaryModel {
   long dropper_evaluations() const { return evaluations_; }
   long single_precision_updates() const { return single_products_; }
   long half_precision_updates() const { return half_products_; }
+  // States whose candidates were sought on the line of the bounds (modal_slack_set.cpp).
+  long line_tries() const { return line_tries_; }
   long exact_anchors() const { return exact_count_; }
   long loads() const { return loads_; }
 
@@ -166,6 +168,7 @@ class ModalCatenary : public CatenaryModel {
   std::vector<std::size_t> slack_now_;
   std::vector<long> candidates_;
   mutable long evaluations_ = 0, single_products_ = 0, half_products_ = 0;
+  long line_tries_ = 0;
   long loads_ = 0;
   // The records' states kept for one product (modal_records.cpp), a column each.
   Eigen::MatrixXd kept_states_;
