@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The modal level's step on several scenes, two pcsim binaries run in turn
-# (interleaved, REPS times each; docs/benchmarks.md, "A modal step on
-# several pantographs"): prints per scene and binary the median over the
+# (interleaved, REPS times each, the order alternating; docs/benchmarks.md,
+# "A modal step on several pantographs"): prints per scene and binary the median over the
 # repetitions of the real-time factor and of the step-time median and 99.99th
 # percentile. Modes and bases come from the cache (a first run computes
 # them); the accuracy pilot is off (its runs are not the step's cost).
@@ -24,7 +24,12 @@ trap 'rm -rf "$OUT"' EXIT
 echo "load before: $(cut -d' ' -f1-3 /proc/loadavg)"
 for rep in $(seq "$REPS"); do
   for s in $SCENES; do
-    for b in 0 1; do
+    # The order alternates from one repetition to the next: the second run of
+    # a pair can run faster (docs/benchmarks.md, "No line of bounds for
+    # batched records").
+    order="0 1"
+    [ $((rep % 2)) -eq 0 ] && order="1 0"
+    for b in $order; do
       # shellcheck disable=SC2086
       "${BINS[$b]}" run ${MODAL_SCENES[$s]} -pcsim_accuracy_pilot false --no-report -o "$OUT/run" \
         --overwrite >/dev/null 2>&1 || { echo "run failed: $s with ${BINS[$b]}"; exit 1; }
