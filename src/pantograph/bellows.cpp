@@ -34,7 +34,7 @@ void Bellows::set_reference(const Dsa380Parameters& p, double theta0, double con
     double slope;
     scale_ = contact_force / interpolate(b_.heights, b_.forces, working_height, &slope);
   }
-  torque0_ = holding_torque(p, theta0, nullptr);
+  torque0_ = holding_torque(p, theta0, nullptr, nullptr);
   referenced_ = true;
 }
 
@@ -50,8 +50,11 @@ double Bellows::force(double h, double* dforce) const {
 }
 
 double Bellows::height(const Dsa380Parameters& p, double theta) const {
+  return height_below(p, dsa380_kinematics(p, theta).y5[0] + p.L7p);
+}
+
+double Bellows::height_below(const Dsa380Parameters& p, double top) const {
   // h = y5(θ) + L7p − z(m7 g + F(h) − F_aero) by Newton (z' F' is small: ~1e-2).
-  const double top = dsa380_kinematics(p, theta).y5[0] + p.L7p;
   const double weight = p.m[6] * p.g - aero_;
   double h = top - dsa380_head_descent(p, weight + force0_, nullptr);
   for (int it = 0; it < 50; ++it) {
@@ -64,11 +67,14 @@ double Bellows::height(const Dsa380Parameters& p, double theta) const {
   throw SolverError("bellows: height on the uplift characteristic did not converge");
 }
 
-double Bellows::holding_torque(const Dsa380Parameters& p, double theta, double* derivative) const {
-  const Dsa380Kinematics k = dsa380_kinematics(p, theta);
+double Bellows::holding_torque(const Dsa380Parameters& p, double theta, double* derivative,
+                               const Dsa380Kinematics* at) const {
+  Dsa380Kinematics own;
+  if (!at) own = dsa380_kinematics(p, theta);
+  const Dsa380Kinematics& k = at ? *at : own;
   double dF = 0, dz = 0, F = force0_;
   if (!b_.heights.empty()) {
-    F = force(height(p, theta), &dF);
+    F = force(height_below(p, k.y5[0] + p.L7p), &dF);  // k: not computed again
     dsa380_head_descent(p, p.m[6] * p.g + F - aero_, &dz);
   }
   const double load = p.m[6] * p.g + F - aero_;  // carried by the head springs (2.12)
@@ -79,19 +85,20 @@ double Bellows::holding_torque(const Dsa380Parameters& p, double theta, double* 
   return p.kr * (theta - p.theta_r0) + k.gravity_energy[1] + load * k.y5[1];  // (2.14)
 }
 
-double Bellows::torque_change(const Dsa380Parameters& p, double theta, double* derivative) const {
+double Bellows::torque_change(const Dsa380Parameters& p, double theta, double* derivative,
+                              const Dsa380Kinematics* at) const {
   if (!on_ || !referenced_) {
     if (derivative) *derivative = 0;
     return 0;
   }
-  return holding_torque(p, theta, derivative) - torque0_;
+  return holding_torque(p, theta, derivative, at) - torque0_;
 }
 
 void Bellows::add_residual(const Dsa380Parameters& p, int theta, int m, const Eigen::VectorXd& q,
                            const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd,
-                           Eigen::Ref<Eigen::VectorXd> R) const {
+                           Eigen::Ref<Eigen::VectorXd> R, const Dsa380Kinematics* at) const {
   if (!on_) return;
-  const double dM = torque_change(p, q[theta], nullptr);
+  const double dM = torque_change(p, q[theta], nullptr, at);
   if (m < 0) {
     R[theta] -= dM;
     return;

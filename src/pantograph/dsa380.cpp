@@ -129,8 +129,8 @@ void Dsa380Pantograph::residual(double t, const Eigen::VectorXd& q, const Eigen:
     R[0] -= Ff * k.y5[1];
     R[2] += Ff;
   }
-  bellows_.add_residual(p_, 0, bellows_dof(), q, qd, qdd, R);  // torque beyond M0
-  add_base_residual(t, k, q, R);                               // moving frame (dsa380_base.cpp)
+  bellows_.add_residual(p_, 0, bellows_dof(), q, qd, qdd, R, &k);  // torque beyond M0
+  add_base_residual(t, k, q, R);                                   // moving frame (dsa380_base.cpp)
   if (e_.head_restraint == Dsa380Effects::HeadRestraint::rotation) {
     R[3] = (I7 + m7 * LG7 * LG7) * qdd[3];  // θ̈7 = 0 (A.37)
   } else if (e_.head_restraint == Dsa380Effects::HeadRestraint::horizontal) {
@@ -202,7 +202,7 @@ void Dsa380Pantograph::tangents(double t, const Eigen::VectorXd& q, const Eigen:
     Kq.col(0).head<4>() += dFf * (-k.y5[2] * thd) * gv;
     Kq(0, 0) += -Ff * k.y5[2];
   }
-  bellows_.add_tangents(p_, 0, bellows_dof(), q, Kq, Cq, Mq);
+  bellows_.add_tangents(p_, 0, bellows_dof(), q, Kq, Cq, Mq, &k);
   add_base_tangent(t, k, q, Kq);
   if (e_.head_restraint == Dsa380Effects::HeadRestraint::rotation) {
     Kq.row(3).setZero();

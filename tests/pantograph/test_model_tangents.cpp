@@ -221,6 +221,28 @@ TEST(PantographStatics, TwoStepMatchesGeneralNewton) {
   }
 }
 
+// The bellows' torque change with the rigid mechanism's kinematics given by
+// the caller (the DSA-380's residual and tangents pass theirs) is the one it
+// computes itself, bit for bit, over the working range.
+TEST(PantographBellows, GivenKinematicsGiveTheSameTorque) {
+  auto base = load("dsa380_rigid.yaml", "uplift_characteristic: true");
+  auto& m = dynamic_cast<Dsa380Pantograph&>(*base);
+  const Eigen::VectorXd q0 = m.static_equilibrium(120, 1.2);
+  const Dsa380Parameters& p = m.parameters();
+  Bellows bellows(p.bellows, true, 0.0);
+  bellows.set_reference(p, q0[0], 120, 1.2);
+  for (double dtheta : {-0.05, -0.01, 0.0, 0.02, 0.06}) {
+    const double theta = q0[0] + dtheta;
+    const auto k = dsa380_kinematics(p, theta);
+    double d_own = 0, d_given = 0;
+    const double own = bellows.torque_change(p, theta, &d_own);
+    const double given = bellows.torque_change(p, theta, &d_given, &k);
+    EXPECT_EQ(own, given) << "dtheta " << dtheta;
+    EXPECT_EQ(d_own, d_given) << "dtheta " << dtheta;
+    if (dtheta != 0) EXPECT_NE(own, 0.0);  // the characteristic acts
+  }
+}
+
 TEST(PantographStatics, LumpedEquilibriumSetsHeight) {
   auto m = load("en50318_two_mass.yaml", "");
   const Eigen::VectorXd q0 = m->static_equilibrium(120.0, 5.3);

@@ -30,6 +30,7 @@
 namespace pcsim::pantograph {
 
 struct Dsa380Parameters;
+struct Dsa380Kinematics;
 
 // The model file's `bellows:` section.
 struct BellowsParameters {
@@ -60,19 +61,21 @@ class Bellows {
   double force(double h, double* dforce) const;
   // Working height of the rigid mechanism at frame angle θ (curve's force at the head).
   double height(const Dsa380Parameters& p, double theta) const;
-  // ΔM(θ) and dΔM/dθ.
-  double torque_change(const Dsa380Parameters& p, double theta, double* derivative) const;
+  // ΔM(θ) and dΔM/dθ. 'at': the rigid mechanism's kinematics at θ where the
+  // caller has them (else computed here; the same bits either way).
+  double torque_change(const Dsa380Parameters& p, double theta, double* derivative,
+                       const Dsa380Kinematics* at = nullptr) const;
 
   // Contributions to R and its tangents; theta: index of θ, m: index of the loop's state.
   void add_residual(const Dsa380Parameters& p, int theta, int m, const Eigen::VectorXd& q,
                     const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd,
-                    Eigen::Ref<Eigen::VectorXd> R) const;
+                    Eigen::Ref<Eigen::VectorXd> R, const Dsa380Kinematics* at = nullptr) const;
   // Matrix: a dense matrix (or an Eigen::Ref of one), or any type whose (i, j)
   // takes +=, -= and = (the flexible DSA-380's sparse step tangent): the
   // entries set with = are the loop's row, which nothing else writes.
   template <class Matrix>
   void add_tangents(const Dsa380Parameters& p, int theta, int m, const Eigen::VectorXd& q,
-                    Matrix& K, Matrix& C, Matrix& M) const;
+                    Matrix& K, Matrix& C, Matrix& M, const Dsa380Kinematics* at = nullptr) const;
   template <class Matrix>
   void add_mass(int m, Matrix& M) const;  // add_tangents' M part alone
   double kinetic_energy(int m, const Eigen::VectorXd& qd) const;
@@ -83,7 +86,10 @@ class Bellows {
 
  private:
   // T(θ) of the header and dT/dθ.
-  double holding_torque(const Dsa380Parameters& p, double theta, double* derivative) const;
+  double holding_torque(const Dsa380Parameters& p, double theta, double* derivative,
+                        const Dsa380Kinematics* at) const;
+  // height() with the head's top (y5(θ) + L7p) given.
+  double height_below(const Dsa380Parameters& p, double top) const;
 
   BellowsParameters b_;
   bool on_ = false;
@@ -94,10 +100,10 @@ class Bellows {
 
 template <class Matrix>
 void Bellows::add_tangents(const Dsa380Parameters& p, int theta, int m, const Eigen::VectorXd& q,
-                           Matrix& K, Matrix& C, Matrix& M) const {
+                           Matrix& K, Matrix& C, Matrix& M, const Dsa380Kinematics* at) const {
   if (!on_) return;
   double d = 0;
-  torque_change(p, q[theta], &d);
+  torque_change(p, q[theta], &d, at);
   if (m < 0) {
     K(theta, theta) -= d;
     return;
