@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "pcsim/core/error.hpp"
 #include "pcsim/pantograph/dsa380.hpp"
@@ -69,9 +70,8 @@ double Bellows::height_below(const Dsa380Parameters& p, double top) const {
 
 double Bellows::holding_torque(const Dsa380Parameters& p, double theta, double* derivative,
                                const Dsa380Kinematics* at) const {
-  Dsa380Kinematics own;
-  if (!at) own = dsa380_kinematics(p, theta);
-  const Dsa380Kinematics& k = at ? *at : own;
+  std::optional<Dsa380Kinematics> own;  // constructed only when none is given
+  const Dsa380Kinematics& k = at ? *at : own.emplace(dsa380_kinematics(p, theta));
   double dF = 0, dz = 0, F = force0_;
   if (!b_.heights.empty()) {
     F = force(height_below(p, k.y5[0] + p.L7p), &dF);  // k: not computed again
