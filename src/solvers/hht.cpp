@@ -246,14 +246,11 @@ PetscErrorCode attempt_step(TS ts, PetscReal dt, PetscBool* converged) {
   PetscFunctionBeginUser;
   PetscReal dt_step = dt;
   PetscBool hits_final_time = PETSC_FALSE;
-  // The last step ends on the final time. Where what is left is Δt up to
-  // 1e-6 Δt (summing thousands of steps leaves ~1e-12 s), the step takes Δt
-  // itself and ends at the final time: a Δt changed by round-off would
-  // change the Newton matrix and have the cheap path refactor J0 for the
-  // last step alone (4-6 ms on the flexible DSA-380). A step much shorter
-  // than Δt makes M/(beta dt^2) swamp the rest of the Newton matrix (a
-  // remainder of 3.7e-5 Δt diverged), so when less than 1.5 Δt is left,
-  // the last two steps share it equally (each at least Δt/2).
+  // The last step ends on the final time. What is left within 1e-6 Δt of Δt
+  // (sums of thousands of steps leave ~1e-12 s) takes Δt itself: a Δt off by
+  // round-off would have the cheap path refactor J0 for it alone. A step much
+  // shorter than Δt makes M/(beta dt^2) swamp the rest of the Newton matrix
+  // (3.7e-5 Δt diverged): less than 1.5 Δt left is shared by the last two.
   if (ts->exact_final_time == TS_EXACTFINALTIME_MATCHSTEP) {
     const PetscReal left = ts->max_time - t_n;
     if (std::abs(left - dt_step) <= 1e-6 * dt_step) {
