@@ -50,10 +50,6 @@ double Bellows::force(double h, double* dforce) const {
   return scale_ * f;
 }
 
-double Bellows::height(const Dsa380Parameters& p, double theta) const {
-  return height_below(p, dsa380_kinematics(p, theta).y5[0] + p.L7p);
-}
-
 double Bellows::height_below(const Dsa380Parameters& p, double top) const {
   // h = y5(θ) + L7p − z(m7 g + F(h) − F_aero) by Newton (z' F' is small: ~1e-2).
   const double weight = p.m[6] * p.g - aero_;

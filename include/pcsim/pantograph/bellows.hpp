@@ -59,8 +59,6 @@ class Bellows {
 
   // Static force of the curve at working height h, and dF/dh.
   double force(double h, double* dforce) const;
-  // Working height of the rigid mechanism at frame angle θ (curve's force at the head).
-  double height(const Dsa380Parameters& p, double theta) const;
   // ΔM(θ) and dΔM/dθ. 'at': the rigid mechanism's kinematics at θ where the
   // caller has them (else computed here; the same bits either way).
   double torque_change(const Dsa380Parameters& p, double theta, double* derivative,
@@ -88,7 +86,8 @@ class Bellows {
   // T(θ) of the header and dT/dθ.
   double holding_torque(const Dsa380Parameters& p, double theta, double* derivative,
                         const Dsa380Kinematics* at) const;
-  // height() with the head's top (y5(θ) + L7p) given.
+  // Working height of the rigid mechanism (the curve's force at the head)
+  // below the head's top y5(θ) + L7p.
   double height_below(const Dsa380Parameters& p, double top) const;
 
   BellowsParameters b_;
