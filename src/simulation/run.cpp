@@ -5,6 +5,8 @@
 #include <petscts.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -233,6 +235,42 @@ void finish(const Context& ctx, const scene::RunScene& scene, const RunRequest& 
   if (!outcome.complete) out.keep_partial();
 }
 
+// -snes_test_jacobian on the modal level: PETSc 3.18's test builds its
+// finite-difference Jacobian, dense here (the contact couples every mode), in
+// a sparse matrix of the hand-coded one's type without preallocation, whose
+// every few inserts copy it whole. A Newton iteration's test of the EN 50318
+// catenary took 4 s at 623 unknowns, 34 s at 1019 and 95 s at 1248 (15, 25,
+// 30 Hz; build/pcsim run runs/en50318-300-modal.yaml --set
+// catenary.max_frequency_hz=F -pcsim_accuracy_pilot false -ts_max_steps 1
+// -snes_test_jacobian, less the run without the test): about n^4, hours at
+// the default cut-offs (on the three-span catenary at 300 Hz, 1163 unknowns,
+// a scene it was not fitted to: 58 s, estimated 72 s). Said before the steps,
+// with a cut-off that tests the same code in seconds.
+void warn_slow_jacobian_test(const Context& ctx, const assembly::CoupledSystem& system) {
+  PetscBool test = PETSC_FALSE;
+  PCSIM_PETSC(PetscOptionsHasName(nullptr, nullptr, "-snes_test_jacobian", &test));
+  if (!test || system.catenary().fidelity() != catenary::CatenaryFidelity::modal) return;
+  constexpr double kMeasuredUnknowns = 1248, kMeasuredSeconds = 95;
+  const double n = static_cast<double>(system.global_size());
+  const double seconds = kMeasuredSeconds * std::pow(n / kMeasuredUnknowns, 4);
+  if (seconds < 60) return;
+  char duration[32], text[512];
+  if (seconds < 120)
+    std::snprintf(duration, sizeof duration, "%.0f s", seconds);
+  else if (seconds < 7200)
+    std::snprintf(duration, sizeof duration, "%.0f min", seconds / 60);
+  else
+    std::snprintf(duration, sizeof duration, "%.1f h", seconds / 3600);
+  std::snprintf(text, sizeof text,
+                "-snes_test_jacobian on the modal level with %.0f unknowns: about %s a Newton "
+                "iteration (PETSc stores its finite-difference Jacobian, dense here, in a "
+                "sparse matrix it grows entry by entry: %.0f s at %.0f unknowns, as n^4); the "
+                "tangents are the same code at any cut-off: --set catenary.max_frequency_hz=15 "
+                "tests them in seconds",
+                n, duration, kMeasuredSeconds, kMeasuredUnknowns);
+  print_warnings(ctx, std::vector<std::string>{text});
+}
+
 bool has_block_terms(const assembly::CoupledSystem& system) {
   for (const auto& term : system.terms())
     if (term->tangent_kind() == assembly::TangentKind::block) return true;
@@ -278,6 +316,7 @@ RunOutcome run(const Context& ctx, scene::RunScene& scene, const RunRequest& req
          solver.cheap_path() ? "cheap (Jacobian reused)" : "full Newton");
   if (solver.cheap_path() && has_block_terms(*system))
     print0(ctx, "  cheap path: nonlinear pantograph blocks refactored at every Newton iteration\n");
+  warn_slow_jacobian_test(ctx, *system);
   if (request.stop_before_stepping) {
     print0(ctx,
            "  -help: the options above are those this run reads; stopped before the "
