@@ -428,6 +428,7 @@ PilotEstimate run_accuracy_pilot(const Context& ctx, const SceneSource& source,
   }
   const double start = wall_clock_s();
   const PilotStretch stretch = pilot_stretch(run);
+  check_pilot_without_jacobian_test();
   check_pilot_not_cut_short(run, stretch);
   pilot.done = true;
   pilot.from_x = stretch.from_x;

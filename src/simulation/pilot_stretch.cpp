@@ -81,4 +81,13 @@ void check_pilot_not_cut_short(const scene::RunScene& run, const PilotStretch& s
                       " (-pcsim_accuracy_pilot false skips it)");
 }
 
+void check_pilot_without_jacobian_test() {
+  PetscBool test = PETSC_FALSE;
+  PCSIM_PETSC(PetscOptionsHasName(nullptr, nullptr, "-snes_test_jacobian", &test));
+  if (test)
+    throw SolverError(
+        "the accuracy pilot: -snes_test_jacobian would test every Jacobian of its runs "
+        "(the run's own are tested; -pcsim_accuracy_pilot false skips the pilot)");
+}
+
 }  // namespace pcsim::simulation

@@ -60,6 +60,13 @@ if grep -q "warning: -snes_test_jacobian" "$tmp/three-span-modal-cheap.log"; the
   echo "a warning on a small modal catenary"
   exit 1
 fi
+# The options bind the accuracy pilot's runs too: under the test it is left
+# out, said (the tests' default is no pilot: asked for here).
+"$PCSIM_BIN" run "$PCSIM_SOURCE_DIR/tests/assembly/data/three-span-modal.yaml" -o "$tmp/pilot" \
+  --cache "$tmp/cache" -ts_max_steps 1 -snes_test_jacobian -pcsim_accuracy_pilot auto \
+  > "$tmp/pilot.log" 2>&1 || { cat "$tmp/pilot.log"; exit 1; }
+grep -q "no accuracy pilot: the accuracy pilot: -snes_test_jacobian would test every Jacobian" \
+  "$tmp/pilot.log" || { echo "the pilot ran under the test"; exit 1; }
 "$PCSIM_BIN" run "$PCSIM_SOURCE_DIR/tests/assembly/data/three-span-modal.yaml" -o "$tmp/big" \
   --cache "$tmp/cache" --set catenary.max_frequency_hz=300 \
   --set catenary.design.element_length=0.5 -snes_test_jacobian -help > "$tmp/big.log" 2>&1
