@@ -82,12 +82,14 @@ void check_pilot_not_cut_short(const scene::RunScene& run, const PilotStretch& s
 }
 
 void check_pilot_without_jacobian_test() {
-  PetscBool test = PETSC_FALSE;
-  PCSIM_PETSC(PetscOptionsHasName(nullptr, nullptr, "-snes_test_jacobian", &test));
-  if (test)
-    throw SolverError(
-        "the accuracy pilot: -snes_test_jacobian would test every Jacobian of its runs "
-        "(the run's own are tested; -pcsim_accuracy_pilot false skips the pilot)");
+  for (const char* option : {"-snes_test_jacobian", "-snes_fd", "-snes_fd_color"}) {
+    PetscBool given = PETSC_FALSE;
+    PCSIM_PETSC(PetscOptionsHasName(nullptr, nullptr, option, &given));
+    if (given)
+      throw SolverError(std::string("the accuracy pilot: ") + option +
+                        " would difference every Jacobian of its runs (the run's own still are; "
+                        "-pcsim_accuracy_pilot false skips the pilot)");
+  }
 }
 
 }  // namespace pcsim::simulation

@@ -106,9 +106,10 @@ PilotStretch pilot_stretch(const scene::RunScene& run);
 // (they bind the pilot's runs too) would stop a pilot run before it crosses
 // 'stretch' (the run goes on without the estimate, app/cmd_run.cpp).
 void check_pilot_not_cut_short(const scene::RunScene& run, const PilotStretch& stretch);
-// A SolverError, before any pilot run, under -snes_test_jacobian: the
-// options bind the pilot's runs too, and a test in every Newton iteration of
-// the pilot's linear FE runs (tens of thousands of unknowns) would take hours.
+// A SolverError, before any pilot run, under -snes_test_jacobian, -snes_fd
+// or -snes_fd_color: the options bind the pilot's runs too, and finite
+// differences in every Newton iteration of its linear FE runs (tens of
+// thousands of unknowns) would take hours.
 void check_pilot_without_jacobian_test();
 // What the console adds to the stretch's line where the spans differ ("" on
 // a line of identical spans).
