@@ -242,10 +242,11 @@ void finish(const Context& ctx, const scene::RunScene& scene, const RunRequest& 
 // catenary took 4 s at 623 unknowns, 34 s at 1019 and 95 s at 1248 (15, 25,
 // 30 Hz; build/pcsim run runs/en50318-300-modal.yaml --set
 // catenary.max_frequency_hz=F -pcsim_accuracy_pilot false -ts_max_steps 1
-// -snes_test_jacobian, less the run without the test): about n^4, hours at
-// the default cut-offs (on the three-span catenary at 300 Hz, 1163 unknowns,
-// a scene it was not fitted to: 58 s, estimated 72 s). Said before the steps,
-// with a cut-off that tests the same code in seconds.
+// -snes_test_jacobian, less the run without the test): about n^4, so some 37
+// min at EN 50318's default cut-off and hours above (on the three-span
+// catenary at 300 Hz, 1163 unknowns, a scene it was not fitted to: 58 s,
+// estimated 72 s). Said before the steps, with a cut-off that tests the same
+// code in seconds.
 void warn_slow_jacobian_test(const Context& ctx, const assembly::CoupledSystem& system) {
   PetscBool test = PETSC_FALSE;
   PCSIM_PETSC(PetscOptionsHasName(nullptr, nullptr, "-snes_test_jacobian", &test));
