@@ -221,6 +221,17 @@ void DynamicSolver::cheap_jacobian(PetscReal t, Vec U, Vec V, Vec A, assembly::S
   low_rank_->set_terms(terms_, blocks_);
 }
 
+void DynamicSolver::silence_monitors() {
+  SNES snes;
+  KSP ksp;
+  PCSIM_PETSC(TSMonitorCancel(ts_));
+  PCSIM_PETSC(TSGetSNES(ts_, &snes));
+  PCSIM_PETSC(SNESMonitorCancel(snes));
+  PCSIM_PETSC(SNESGetKSP(snes, &ksp));
+  PCSIM_PETSC(KSPMonitorCancel(ksp));
+  if (low_rank_) PCSIM_PETSC(KSPMonitorCancel(low_rank_->inner()));
+}
+
 void DynamicSolver::set_initial_state(Vec U0, Vec V0) {
   PCSIM_PETSC(TS2SetSolution(ts_, U0, V0));
   TSType ts_type;

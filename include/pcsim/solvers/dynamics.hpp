@@ -62,6 +62,12 @@ class DynamicSolver {
   DynamicSolver& operator=(const DynamicSolver&) = delete;
 
   TS ts() const { return ts_; }
+  // No monitor lines from the options database (-ts_monitor, -snes_monitor,
+  // -ksp_monitor and their variants): for runs that print nothing (an
+  // accuracy pilot's, a study's), whose console is the run's. PETSc reads
+  // -snes_converged_reason and -ksp_converged_reason again at every solve:
+  // those still print.
+  void silence_monitors();
   // Starts the TS at (U0, V0) (copied): with HHT also at the acceleration of
   // that state (assembly::initial_acceleration; zero for equilibrium starts).
   void set_initial_state(Vec U0, Vec V0);
