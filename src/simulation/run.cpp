@@ -306,7 +306,7 @@ RunOutcome run(const Context& ctx, scene::RunScene& scene, const RunRequest& req
   initial_state(*system, U0, V0);
   const auto solver_owner = make_run_solver(scene, *system);
   solvers::DynamicSolver& solver = *solver_owner;
-  if (ctx.quiet) solver.silence_monitors();
+  if (ctx.quiet) solver.silence_monitors();  // before RunSession::integrate() adds its own
   if (request.scene_dt) PCSIM_PETSC(TSSetTimeStep(solver.ts(), scene.dt));
   // With the pilot's estimate, the calibrated rules only when one is broken.
   const bool pilot = !request.accuracy_pilot.is_null();
