@@ -101,6 +101,18 @@ class ShiftProducts {
 // runs/bench_blas.sh): the local part of products over distributed vectors.
 void product_tn(long m, long n, long k, const double* A, const double* B, double* C, long ldc);
 
+// Rows [begin, end) of a column-major block.
+struct RowRange {
+  long begin, end;
+};
+// The runs of rows of W where a column from first_column on is not zero.
+std::vector<RowRange> nonzero_row_ranges(const Eigen::MatrixXd& W, long first_column);
+// C = sum over the row ranges of A(rows, :)^T B(rows, :) (column-major, A: m
+// columns with leading dimension lda, B: n columns with ldb, C: m x n with
+// ldc): product_tn where the other rows of A or B are zero.
+void product_tn_rows(long m, long n, const std::vector<RowRange>& rows, const double* A, long lda,
+                     const double* B, long ldb, double* C, long ldc);
+
 // Every eigenpair of a small structure by a dense solve on every rank.
 double stream_all_modes_dense(const Operators& op, const ModeSink& sink);
 

@@ -50,6 +50,42 @@ void product_tn(long m, long n, long k, const double* A, const double* B, double
   BLASgemm_("T", "N", &bm, &bn, &bk, &one, A, &lead, B, &lead, &zero, C, &bldc);
 }
 
+std::vector<RowRange> nonzero_row_ranges(const Eigen::MatrixXd& W, long first_column) {
+  std::vector<RowRange> ranges;
+  for (long i = 0; i < W.rows(); ++i) {
+    bool nonzero = false;
+    for (long j = first_column; j < W.cols() && !nonzero; ++j) nonzero = W(i, j) != 0.0;
+    if (!nonzero) continue;
+    if (!ranges.empty() && ranges.back().end == i)
+      ++ranges.back().end;
+    else
+      ranges.push_back({i, i + 1});
+  }
+  return ranges;
+}
+
+void product_tn_rows(long m, long n, const std::vector<RowRange>& rows, const double* A, long lda,
+                     const double* B, long ldb, double* C, long ldc) {
+  if (m == 0 || n == 0) return;
+  PetscBLASInt bm, bn, blda, bldb, bldc;
+  PCSIM_PETSC(PetscBLASIntCast(m, &bm));
+  PCSIM_PETSC(PetscBLASIntCast(n, &bn));
+  PCSIM_PETSC(PetscBLASIntCast(std::max(lda, 1L), &blda));
+  PCSIM_PETSC(PetscBLASIntCast(std::max(ldb, 1L), &bldb));
+  PCSIM_PETSC(PetscBLASIntCast(ldc, &bldc));
+  const double one = 1, zero = 0;
+  bool written = false;
+  for (const RowRange& r : rows) {
+    PetscBLASInt bk;
+    PCSIM_PETSC(PetscBLASIntCast(r.end - r.begin, &bk));
+    BLASgemm_("T", "N", &bm, &bn, &bk, &one, A + r.begin, &blda, B + r.begin, &bldb,
+              written ? &one : &zero, C, &bldc);
+    written = true;
+  }
+  if (!written)  // no rows: C = 0
+    for (long j = 0; j < n; ++j) std::fill(C + j * ldc, C + j * ldc + m, 0.0);
+}
+
 ShiftProducts::ShiftProducts(Mat M, Mat S, std::string spill_dir)
     : M_(M), S_(S), spill_dir_(std::move(spill_dir)) {}
 
@@ -72,8 +108,9 @@ void ShiftProducts::append(Vec v) {
 }
 
 // G(:, j) = V^T (M S v_j) for the new columns j, by blocks of columns (dense
-// products: the local gemms are the cost, ~2 n c^2 flops at the first call;
-// blocks on file are read back once per block of new columns).
+// products: the local gemms are the cost, ~2 n' c^2 flops at the first call,
+// n' the rows of M S V that are not zero; blocks on file are read back once
+// per block of new columns).
 void ShiftProducts::new_columns(Vec like) {
   constexpr long kBlock = VectorStore::kBlock;
   Vec column, shifted, w;
@@ -90,12 +127,16 @@ void ShiftProducts::new_columns(Vec like) {
       PCSIM_PETSC(MatMult(S_, column, shifted));
       product_column(M_, shifted, w, false, W, j);
     }
-    // G (row-major) block (I, new columns) as the column-major W^T V_I.
+    // G (row-major) block (I, new columns) as the column-major W^T V_I,
+    // over W's rows that are not zero: M S v is zero where the window's
+    // front spans would take their field from beyond it (2 of its spans).
     const ScopedEvent timed(log_events().shift_gemm);
+    const auto rows = nonzero_row_ranges(W, j0);
     for (std::size_t I = 0; I < store_->blocks(); ++I)
-      product_tn(width - j0, store_->width(I), local_, W.col(j0).data(),
-                 store_->block(I, scratch).data(),
-                 G_.data() + static_cast<long>(I) * kBlock * G_.cols() + first + j0, G_.cols());
+      product_tn_rows(width - j0, store_->width(I), rows, W.col(j0).data(), local_,
+                      store_->block(I, scratch).data(), local_,
+                      G_.data() + static_cast<long>(I) * kBlock * G_.cols() + first + j0,
+                      G_.cols());
   }
   for (Vec* v : {&column, &shifted, &w}) PCSIM_PETSC(VecDestroy(v));
 }
@@ -120,12 +161,13 @@ void ShiftProducts::new_rows_of_old_columns(Vec like) {
     }
   }
   const ScopedEvent timed(log_events().shift_gemm);
+  const auto rows = nonzero_row_ranges(Z, 0);  // S^T M v: zero on the window's rear 2 spans
   for (std::size_t I = 0; static_cast<long>(I) * kBlock < computed_; ++I) {
     const long first = static_cast<long>(I) * kBlock;
     const long cols = std::min(store_->width(I), computed_ - first);  // old columns of block I
     // G (row-major) block (new rows, old columns of I) as the column-major V_I^T Z.
-    product_tn(cols, fresh, local_, store_->block(I, scratch).data(), Z.data(),
-               G_.data() + computed_ * G_.cols() + first, G_.cols());
+    product_tn_rows(cols, fresh, rows, store_->block(I, scratch).data(), local_, Z.data(), local_,
+                    G_.data() + computed_ * G_.cols() + first, G_.cols());
   }
   for (Vec* v : {&column, &mass, &z}) PCSIM_PETSC(VecDestroy(v));
 }

@@ -7,7 +7,9 @@
 //  - computed in two steps (300 vectors, then 300 more: the rows and columns
 //    of the new ones only, as a raised cut-off's modes) as at once;
 //  - a folder that takes no file keeps the vectors in memory, and a block that
-//    cannot be written (a file size limit: a full disk) stays in memory.
+//    cannot be written (a file size limit: a full disk) stays in memory;
+//  - the products over the nonzero rows only (nonzero_row_ranges,
+//    product_tn_rows) equal those over every row.
 // pcsim-test-ranks: 1 2
 #include <gtest/gtest.h>
 #include <petscmat.h>
@@ -153,6 +155,38 @@ TEST_F(ShiftProductsTest, AFolderThatTakesNoFileKeepsThemInMemory) {
   EXPECT_EQ(spilled, 1);
   EXPECT_EQ((part - in_memory).cwiseAbs().maxCoeff(), 0.0);
   EXPECT_TRUE(std::filesystem::is_empty(dir_));
+}
+
+// The products over W's nonzero rows only (the window's front spans): zero
+// rows at the start, in the middle and at the end skipped, and a W without
+// nonzero rows gives zeros, against the products over every row.
+TEST(ShiftProductRows, SkipOnlyZeroRows) {
+  using pcsim::simulation::modal_detail::nonzero_row_ranges;
+  using pcsim::simulation::modal_detail::product_tn_rows;
+  constexpr long kRows = 40, kW = 3, kV = 5;
+  Eigen::MatrixXd W(kRows, kW), V(kRows, kV);
+  for (long i = 0; i < kRows; ++i) {
+    for (long j = 0; j < kW; ++j) W(i, j) = pseudo(i, j);
+    for (long j = 0; j < kV; ++j) V(i, j) = pseudo(i, j + 7);
+  }
+  for (long i : {0L, 1L, 17L, 18L, 19L, 39L}) W.row(i).setZero();
+  W(25, 0) = 0.0;  // a row zero in one column only stays
+  const auto rows = nonzero_row_ranges(W, 0);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].begin, 2);
+  EXPECT_EQ(rows[0].end, 17);
+  EXPECT_EQ(rows[1].begin, 20);
+  EXPECT_EQ(rows[1].end, 39);
+  EXPECT_EQ(nonzero_row_ranges(W, 1).size(), 2u);  // from column 1 on: the same rows
+  Eigen::MatrixXd C(kW, kV);
+  product_tn_rows(kW, kV, rows, W.data(), kRows, V.data(), kRows, C.data(), kW);
+  const Eigen::MatrixXd all = W.transpose() * V;
+  // The same sums in another grouping: round-off of 40 terms.
+  EXPECT_LT((C - all).cwiseAbs().maxCoeff(), 1e-14 * all.cwiseAbs().maxCoeff());
+  C.setConstant(7.0);
+  product_tn_rows(kW, kV, nonzero_row_ranges(Eigen::MatrixXd::Zero(kRows, kW), 0), W.data(), kRows,
+                  V.data(), kRows, C.data(), kW);
+  EXPECT_EQ(C.cwiseAbs().maxCoeff(), 0.0);
 }
 
 }  // namespace
