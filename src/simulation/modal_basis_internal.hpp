@@ -105,8 +105,9 @@ void product_tn(long m, long n, long k, const double* A, const double* B, double
 struct RowRange {
   long begin, end;
 };
-// The runs of rows of W where a column from first_column on is not zero.
-std::vector<RowRange> nonzero_row_ranges(const Eigen::MatrixXd& W, long first_column);
+// The runs of rows of W where a column in [first_column, end_column) is not zero.
+std::vector<RowRange> nonzero_row_ranges(const Eigen::MatrixXd& W, long first_column,
+                                         long end_column);
 // C = sum over the row ranges of A(rows, :)^T B(rows, :) (column-major, A: m
 // columns with leading dimension lda, B: n columns with ldb, C: m x n with
 // ldc): product_tn where the other rows of A or B are zero.

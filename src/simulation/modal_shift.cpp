@@ -50,11 +50,12 @@ void product_tn(long m, long n, long k, const double* A, const double* B, double
   BLASgemm_("T", "N", &bm, &bn, &bk, &one, A, &lead, B, &lead, &zero, C, &bldc);
 }
 
-std::vector<RowRange> nonzero_row_ranges(const Eigen::MatrixXd& W, long first_column) {
+std::vector<RowRange> nonzero_row_ranges(const Eigen::MatrixXd& W, long first_column,
+                                         long end_column) {
   std::vector<RowRange> ranges;
   for (long i = 0; i < W.rows(); ++i) {
     bool nonzero = false;
-    for (long j = first_column; j < W.cols() && !nonzero; ++j) nonzero = W(i, j) != 0.0;
+    for (long j = first_column; j < end_column && !nonzero; ++j) nonzero = W(i, j) != 0.0;
     if (!nonzero) continue;
     if (!ranges.empty() && ranges.back().end == i)
       ++ranges.back().end;
@@ -131,7 +132,7 @@ void ShiftProducts::new_columns(Vec like) {
     // over W's rows that are not zero: M S v is zero where the window's
     // front spans would take their field from beyond it (2 of its spans).
     const ScopedEvent timed(log_events().shift_gemm);
-    const auto rows = nonzero_row_ranges(W, j0);
+    const auto rows = nonzero_row_ranges(W, j0, width);  // W's columns beyond width: unset
     for (std::size_t I = 0; I < store_->blocks(); ++I)
       product_tn_rows(width - j0, store_->width(I), rows, W.col(j0).data(), local_,
                       store_->block(I, scratch).data(), local_,
@@ -161,7 +162,7 @@ void ShiftProducts::new_rows_of_old_columns(Vec like) {
     }
   }
   const ScopedEvent timed(log_events().shift_gemm);
-  const auto rows = nonzero_row_ranges(Z, 0);  // S^T M v: zero on the window's rear 2 spans
+  const auto rows = nonzero_row_ranges(Z, 0, fresh);  // S^T M v: zero on the window's rear 2 spans
   for (std::size_t I = 0; static_cast<long>(I) * kBlock < computed_; ++I) {
     const long first = static_cast<long>(I) * kBlock;
     const long cols = std::min(store_->width(I), computed_ - first);  // old columns of block I

@@ -171,21 +171,23 @@ TEST(ShiftProductRows, SkipOnlyZeroRows) {
   }
   for (long i : {0L, 1L, 17L, 18L, 19L, 39L}) W.row(i).setZero();
   W(25, 0) = 0.0;  // a row zero in one column only stays
-  const auto rows = nonzero_row_ranges(W, 0);
+  const auto rows = nonzero_row_ranges(W, 0, kW);
   ASSERT_EQ(rows.size(), 2u);
   EXPECT_EQ(rows[0].begin, 2);
   EXPECT_EQ(rows[0].end, 17);
   EXPECT_EQ(rows[1].begin, 20);
   EXPECT_EQ(rows[1].end, 39);
-  EXPECT_EQ(nonzero_row_ranges(W, 1).size(), 2u);  // from column 1 on: the same rows
+  EXPECT_EQ(nonzero_row_ranges(W, 1, kW).size(), 2u);  // from column 1 on: the same rows
+  // Column 0 alone: row 25 is zero there, a third run of rows.
+  EXPECT_EQ(nonzero_row_ranges(W, 0, 1).size(), 3u);
   Eigen::MatrixXd C(kW, kV);
   product_tn_rows(kW, kV, rows, W.data(), kRows, V.data(), kRows, C.data(), kW);
   const Eigen::MatrixXd all = W.transpose() * V;
   // The same sums in another grouping: round-off of 40 terms.
   EXPECT_LT((C - all).cwiseAbs().maxCoeff(), 1e-14 * all.cwiseAbs().maxCoeff());
   C.setConstant(7.0);
-  product_tn_rows(kW, kV, nonzero_row_ranges(Eigen::MatrixXd::Zero(kRows, kW), 0), W.data(), kRows,
-                  V.data(), kRows, C.data(), kW);
+  product_tn_rows(kW, kV, nonzero_row_ranges(Eigen::MatrixXd::Zero(kRows, kW), 0, kW), W.data(),
+                  kRows, V.data(), kRows, C.data(), kW);
   EXPECT_EQ(C.cwiseAbs().maxCoeff(), 0.0);
 }
 
