@@ -39,15 +39,7 @@ void product_column(Mat A, Vec x, Vec y, bool transpose, Eigen::MatrixXd& W, lon
 }  // namespace
 
 void product_tn(long m, long n, long k, const double* A, const double* B, double* C, long ldc) {
-  if (m == 0 || n == 0) return;
-  PetscBLASInt bm, bn, bk, lead, bldc;
-  PCSIM_PETSC(PetscBLASIntCast(m, &bm));
-  PCSIM_PETSC(PetscBLASIntCast(n, &bn));
-  PCSIM_PETSC(PetscBLASIntCast(k, &bk));
-  PCSIM_PETSC(PetscBLASIntCast(std::max(k, 1L), &lead));  // BLAS wants >= 1 (no local rows)
-  PCSIM_PETSC(PetscBLASIntCast(ldc, &bldc));
-  const double one = 1, zero = 0;
-  BLASgemm_("T", "N", &bm, &bn, &bk, &one, A, &lead, B, &lead, &zero, C, &bldc);
+  product_tn_rows(m, n, {{0, k}}, A, k, B, k, C, ldc);
 }
 
 std::vector<RowRange> nonzero_row_ranges(const Eigen::MatrixXd& W, long first_column,
@@ -77,6 +69,7 @@ void product_tn_rows(long m, long n, const std::vector<RowRange>& rows, const do
   const double one = 1, zero = 0;
   bool written = false;
   for (const RowRange& r : rows) {
+    if (r.end == r.begin) continue;
     PetscBLASInt bk;
     PCSIM_PETSC(PetscBLASIntCast(r.end - r.begin, &bk));
     BLASgemm_("T", "N", &bm, &bn, &bk, &one, A + r.begin, &blda, B + r.begin, &bldb,
