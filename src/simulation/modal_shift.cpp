@@ -44,11 +44,12 @@ void product_tn(long m, long n, long k, const double* A, const double* B, double
 
 std::vector<RowRange> nonzero_row_ranges(const Eigen::MatrixXd& W, long first_column,
                                          long end_column) {
+  std::vector<char> nonzero(static_cast<std::size_t>(W.rows()), 0);
+  for (long j = first_column; j < end_column; ++j)  // column by column: W is column-major
+    for (long i = 0; i < W.rows(); ++i) nonzero[i] |= W(i, j) != 0.0;
   std::vector<RowRange> ranges;
   for (long i = 0; i < W.rows(); ++i) {
-    bool nonzero = false;
-    for (long j = first_column; j < end_column && !nonzero; ++j) nonzero = W(i, j) != 0.0;
-    if (!nonzero) continue;
+    if (!nonzero[i]) continue;
     if (!ranges.empty() && ranges.back().end == i)
       ++ranges.back().end;
     else
