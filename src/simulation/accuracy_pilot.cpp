@@ -14,6 +14,7 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 
 #include "pcsim/catenary/reduced_basis.hpp"
 #include "pcsim/core/error.hpp"
@@ -137,6 +138,24 @@ std::vector<PilotEstimate::OutsideTarget> outside(const std::vector<FigureErrors
 bool within_targets(const std::vector<FigureErrors>& measured) {
   return outside(measured).empty();
 }
+
+}  // namespace
+
+std::size_t lowest_sufficient_cutoff(const std::vector<std::vector<FigureErrors>>& tried) {
+  if (tried.empty()) throw std::invalid_argument("lowest_sufficient_cutoff: no cut-off tried");
+  const auto& last = tried.back();
+  for (std::size_t k = 0; k + 1 < tried.size(); ++k) {
+    bool sufficient = tried[k].size() == last.size();
+    for (std::size_t p = 0; sufficient && p < last.size(); ++p)
+      for (int f = 0; f < kPilotFigures; ++f)
+        sufficient =
+            sufficient && tried[k][p].value[f] <= std::max(kPilotTargets[f], last[p].value[f]);
+    if (sufficient) return k;
+  }
+  return tried.size() - 1;
+}
+
+namespace {
 
 nlohmann::json errors_json(const std::vector<FigureErrors>& errors) {
   nlohmann::json j = nlohmann::json::array();
@@ -290,6 +309,7 @@ nlohmann::json PilotEstimate::json() const {
   if (cutoff_hz > 0) {
     j["cutoff_hz"] = cutoff_hz;
     j["cutoff_raises"] = cutoff_raises;
+    j["cutoff_lowered_from_hz"] = cutoff_lowered_from_hz;
     j["reduction"] = errors_json(reduction());
     j["reduction_measured"] = errors_json(reduction_measured);
     nlohmann::json o = nlohmann::json::array();
@@ -318,6 +338,7 @@ PilotEstimate PilotEstimate::from_json(const nlohmann::json& j) {
   if (j.contains("cutoff_hz")) {
     p.cutoff_hz = j.at("cutoff_hz").get<double>();
     p.cutoff_raises = j.at("cutoff_raises").get<int>();
+    p.cutoff_lowered_from_hz = j.value("cutoff_lowered_from_hz", 0.0);
     p.reduction_measured = errors_from_json(j.at("reduction_measured"));
   }
   return p;
@@ -383,6 +404,22 @@ struct PilotRuns {
   }
 };
 
+// Under a modal pilot run's line: the figures outside the targets there.
+void print_outside(const Context& ctx, double cutoff, const std::vector<FigureErrors>& measured) {
+  std::string list;
+  for (const auto& t : outside(measured)) {
+    char item[128];
+    std::snprintf(item, sizeof item, "%s%s of '%s' %.3f %s", list.empty() ? "" : ", ",
+                  kPilotFigureLabels[t.figure], t.pantograph.c_str(), t.measured,
+                  t.figure == 7                      ? "pt"
+                  : (t.figure == 5 || t.figure == 6) ? "%Fm"
+                                                     : "%");
+    list += item;
+  }
+  if (!list.empty())
+    print0(ctx, "      outside the targets at %.1f Hz: %s\n", cutoff, list.c_str());
+}
+
 // The modal runs: the cut-off 'run' has, raised until the reduction is
 // within the targets (kMaxCutoffRaises at most; kept if the scene set it).
 // 'reference' (linear FE at dt and h) is collected after the first.
@@ -393,6 +430,8 @@ double choose_cutoff(PilotRuns& runs, const scene::RunScene& run,
   reduced.model = catenary::CatenaryFidelity::modal;
   ModalExtensionScope raises;  // a raised cut-off computes only the modes above
   double cutoff = run.catenary.modal.max_frequency_hz;
+  std::vector<double> cutoffs;
+  std::vector<std::vector<FigureErrors>> tried;
   for (;;) {
     if (run.catenary.modal_cutoff_given || pilot.cutoff_raises == kMaxCutoffRaises)
       raises.last_computation_next();
@@ -407,9 +446,19 @@ double choose_cutoff(PilotRuns& runs, const scene::RunScene& run,
              modes.computed, modes.kept, modes.kept_below_hz);
     if (!reference) reference = runs.collected(reference_label);
     pilot.reduction_measured = differences(figures, *reference, 1.0);
-    if (run.catenary.modal_cutoff_given || within_targets(pilot.reduction_measured) ||
-        pilot.cutoff_raises == kMaxCutoffRaises || cutoff <= 0)
+    cutoffs.push_back(cutoff);
+    tried.push_back(pilot.reduction_measured);
+    print_outside(runs.ctx, cutoff, pilot.reduction_measured);
+    if (run.catenary.modal_cutoff_given || within_targets(pilot.reduction_measured) || cutoff <= 0)
       return cutoff;
+    if (pilot.cutoff_raises == kMaxCutoffRaises) {
+      const std::size_t k = lowest_sufficient_cutoff(tried);
+      if (k + 1 < tried.size()) {
+        pilot.cutoff_lowered_from_hz = cutoff;
+        pilot.reduction_measured = tried[k];
+      }
+      return cutoffs[k];
+    }
     cutoff *= kCutoffRaise;
     ++pilot.cutoff_raises;
   }

@@ -63,7 +63,10 @@ struct PilotEstimate {
   double start_shift_m = 0;     // the pantographs started this much later than in the run
   double cutoff_hz = 0;         // modal: the cut-off the run uses
   int cutoff_raises = 0;        // modal: times the default cut-off was raised
-  bool refined_mesh = false;    // the fine run halved the element length too
+  // modal: the highest cut-off tried when the run takes a lower one
+  // (lowest_sufficient_cutoff), else 0.
+  double cutoff_lowered_from_hz = 0;
+  bool refined_mesh = false;  // the fine run halved the element length too
   // The linear FE runs ran in a second process beside the others
   // (-pcsim_pilot_process), and its peak resident memory [MB].
   bool second_process = false;
@@ -87,6 +90,12 @@ struct PilotEstimate {
   nlohmann::json json() const;
   static PilotEstimate from_json(const nlohmann::json& j);
 };
+
+// When the last raise leaves figures outside the targets: the first of the
+// cut-offs tried (ascending) whose every reduction error is within its target
+// or no larger than at the last; the raises above it brought no figure
+// closer to its target, and cost vectors in every step.
+std::size_t lowest_sufficient_cutoff(const std::vector<std::vector<FigureErrors>>& tried);
 
 // Where the pilot runs: every pantograph starts 'shift' later than in the
 // run, the figures are taken over [from_x, to_x] (spans from_span..to_span,
