@@ -260,13 +260,6 @@ void add_fidelity_facts(const scene::RunScene& run, const CatenarySetup& setup,
   facts["accuracy_estimate"] = estimate.json();
 }
 
-namespace {
-// The unit of pilot figure f (kPilotFigureKeys): points, % of Fm or %.
-const char* figure_unit(int f) {
-  return f == 7 ? "pt" : (f == 5 || f == 6) ? "%Fm" : "%";
-}
-}  // namespace
-
 void print_pilot(const Context& ctx, const PilotEstimate& pilot) {
   if (!pilot.done) return;
   const auto discretisation = pilot.discretisation(), reduction = pilot.reduction();
@@ -289,7 +282,7 @@ void print_pilot(const Context& ctx, const PilotEstimate& pilot) {
     print0(ctx, "    modal cut-off raised %d time(s) to %.1f Hz, the most the pilot raises it\n",
            pilot.cutoff_raises, pilot.cutoff_hz);
   for (const auto& t : outside) {
-    const char* unit = figure_unit(t.figure);
+    const char* unit = pilot_figure_unit(t.figure);
     // A third decimal where two would print the target itself (0.104 pt, not 0.10).
     const int decimals = std::round(t.measured * 100) / 100 <= kPilotTargets[t.figure] ? 3 : 2;
     print0(ctx,
@@ -302,7 +295,7 @@ void print_pilot(const Context& ctx, const PilotEstimate& pilot) {
     print0(ctx, "    %-16s %16s%s\n", discretisation[p].pantograph.c_str(), "discretisation",
            modal ? "   reduction" : "");
     for (int f = 0; f < kPilotFigures; ++f) {
-      const char* unit = figure_unit(f);
+      const char* unit = pilot_figure_unit(f);
       print0(ctx, "    %-16s %12.2f %-3s", kPilotFigureLabels[f], discretisation[p].value[f], unit);
       if (modal) print0(ctx, " %9.2f %-3s", reduction[p].value[f], unit);
       print0(ctx, "\n");

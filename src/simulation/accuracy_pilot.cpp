@@ -14,7 +14,6 @@
 #include <memory>
 #include <optional>
 #include <sstream>
-#include <stdexcept>
 
 #include "pcsim/catenary/reduced_basis.hpp"
 #include "pcsim/core/error.hpp"
@@ -28,23 +27,6 @@
 #include "pilot_process.hpp"
 
 namespace pcsim::simulation {
-
-const std::array<const char*, kPilotFigures> kPilotFigureKeys = {
-    "mean_percent",
-    "sigma_percent",
-    "mean_plus_3sigma_percent",
-    "actual_max_percent",
-    "uplift_percent",
-    "mean_minus_3sigma_percent_of_mean",
-    "actual_min_percent_of_mean",
-    "loss_of_contact_points"};
-const std::array<const char*, kPilotFigures> kPilotFigureLabels = {
-    "mean",   "sigma",     "Fm+3sigma",  "actual max",
-    "uplift", "Fm-3sigma", "actual min", "loss of contact"};
-// Mean 0.5 %; σ, Fm+3σ, actual maximum 1 %; uplift 2 %; loss of contact
-// 0.1 percentage point (docs/fidelity.md); the minima, which EN 50318 bounds
-// only from below, 2 % of Fm.
-const std::array<double, kPilotFigures> kPilotTargets = {0.5, 1, 1, 1, 2, 2, 2, 0.1};
 
 namespace {
 
@@ -126,36 +108,6 @@ std::vector<FigureErrors> with_margin(std::vector<FigureErrors> measured) {
     for (double& v : e.value) v = std::max(kPilotSafety * v, kPilotFloor);
   return measured;
 }
-
-std::vector<PilotEstimate::OutsideTarget> outside(const std::vector<FigureErrors>& measured) {
-  std::vector<PilotEstimate::OutsideTarget> out;
-  for (const auto& e : measured)
-    for (int f = 0; f < kPilotFigures; ++f)
-      if (e.value[f] > kPilotTargets[f]) out.push_back({e.pantograph, f, e.value[f]});
-  return out;
-}
-
-bool within_targets(const std::vector<FigureErrors>& measured) {
-  return outside(measured).empty();
-}
-
-}  // namespace
-
-std::size_t lowest_sufficient_cutoff(const std::vector<std::vector<FigureErrors>>& tried) {
-  if (tried.empty()) throw std::invalid_argument("lowest_sufficient_cutoff: no cut-off tried");
-  const auto& last = tried.back();
-  for (std::size_t k = 0; k + 1 < tried.size(); ++k) {
-    bool sufficient = tried[k].size() == last.size();
-    for (std::size_t p = 0; sufficient && p < last.size(); ++p)
-      for (int f = 0; f < kPilotFigures; ++f)
-        sufficient =
-            sufficient && tried[k][p].value[f] <= std::max(kPilotTargets[f], last[p].value[f]);
-    if (sufficient) return k;
-  }
-  return tried.size() - 1;
-}
-
-namespace {
 
 nlohmann::json errors_json(const std::vector<FigureErrors>& errors) {
   nlohmann::json j = nlohmann::json::array();
@@ -289,7 +241,7 @@ std::vector<FigureErrors> PilotEstimate::reduction() const {
 }
 
 std::vector<PilotEstimate::OutsideTarget> PilotEstimate::outside_targets() const {
-  return outside(reduction_measured);
+  return figures_outside_targets(reduction_measured);
 }
 
 nlohmann::json PilotEstimate::json() const {
@@ -406,16 +358,7 @@ struct PilotRuns {
 
 // Under a modal pilot run's line: the figures outside the targets there.
 void print_outside(const Context& ctx, double cutoff, const std::vector<FigureErrors>& measured) {
-  std::string list;
-  for (const auto& t : outside(measured)) {
-    char item[128];
-    std::snprintf(item, sizeof item, "%s%s of '%s' %.3f %s", list.empty() ? "" : ", ",
-                  kPilotFigureLabels[t.figure], t.pantograph.c_str(), t.measured,
-                  t.figure == 7                      ? "pt"
-                  : (t.figure == 5 || t.figure == 6) ? "%Fm"
-                                                     : "%");
-    list += item;
-  }
+  const std::string list = outside_targets_list(measured);
   if (!list.empty())
     print0(ctx, "      outside the targets at %.1f Hz: %s\n", cutoff, list.c_str());
 }
@@ -449,7 +392,8 @@ double choose_cutoff(PilotRuns& runs, const scene::RunScene& run,
     cutoffs.push_back(cutoff);
     tried.push_back(pilot.reduction_measured);
     print_outside(runs.ctx, cutoff, pilot.reduction_measured);
-    if (run.catenary.modal_cutoff_given || within_targets(pilot.reduction_measured) || cutoff <= 0)
+    if (run.catenary.modal_cutoff_given ||
+        figures_outside_targets(pilot.reduction_measured).empty() || cutoff <= 0)
       return cutoff;
     if (pilot.cutoff_raises == kMaxCutoffRaises) {
       const std::size_t k = lowest_sufficient_cutoff(tried);

@@ -91,6 +91,13 @@ struct PilotEstimate {
   static PilotEstimate from_json(const nlohmann::json& j);
 };
 
+// The measured reduction errors above their targets (kPilotTargets), and the
+// same as one line ("sigma of 'p' 1.198 %, loss of contact of 'p' 0.625 pt";
+// "" when every figure is within); a figure's unit ("%", "%Fm", "pt").
+std::vector<PilotEstimate::OutsideTarget> figures_outside_targets(
+    const std::vector<FigureErrors>& measured);
+std::string outside_targets_list(const std::vector<FigureErrors>& measured);
+const char* pilot_figure_unit(int figure);
 // When the last raise leaves figures outside the targets: the first of the
 // cut-offs tried (ascending) whose every reduction error is within its target
 // or no larger than at the last; the raises above it brought no figure
