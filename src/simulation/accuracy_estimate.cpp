@@ -275,9 +275,10 @@ void print_pilot(const Context& ctx, const PilotEstimate& pilot) {
   else if (modal && pilot.cutoff_lowered_from_hz > 0)
     print0(ctx,
            "    modal cut-off raised %d time(s) to %.1f Hz, the most the pilot raises it; the run "
-           "takes %.1f Hz, where no figure is further from its target (the raises above it "
-           "brought none closer)\n",
-           pilot.cutoff_raises, pilot.cutoff_lowered_from_hz, pilot.cutoff_hz);
+           "takes %.1f Hz: no figure there or at a cut-off above it is further from its target "
+           "than at %.1f Hz\n",
+           pilot.cutoff_raises, pilot.cutoff_lowered_from_hz, pilot.cutoff_hz,
+           pilot.cutoff_lowered_from_hz);
   else if (modal && pilot.cutoff_raises > 0)
     print0(ctx, "    modal cut-off raised %d time(s) to %.1f Hz, the most the pilot raises it\n",
            pilot.cutoff_raises, pilot.cutoff_hz);

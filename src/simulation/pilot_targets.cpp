@@ -53,15 +53,19 @@ std::string outside_targets_list(const std::vector<FigureErrors>& measured) {
 std::size_t lowest_sufficient_cutoff(const std::vector<std::vector<FigureErrors>>& tried) {
   if (tried.empty()) throw std::invalid_argument("lowest_sufficient_cutoff: no cut-off tried");
   const auto& last = tried.back();
-  for (std::size_t k = 0; k + 1 < tried.size(); ++k) {
-    bool sufficient = tried[k].size() == last.size();
-    for (std::size_t p = 0; sufficient && p < last.size(); ++p)
+  const auto sufficient = [&](const std::vector<FigureErrors>& errors) {
+    if (errors.size() != last.size()) return false;
+    for (std::size_t p = 0; p < last.size(); ++p)
       for (int f = 0; f < kPilotFigures; ++f)
-        sufficient =
-            sufficient && tried[k][p].value[f] <= std::max(kPilotTargets[f], last[p].value[f]);
-    if (sufficient) return k;
-  }
-  return tried.size() - 1;
+        if (errors[p].value[f] > std::max(kPilotTargets[f], last[p].value[f])) return false;
+    return true;
+  };
+  // Down from the last while each is sufficient: a cut-off where a figure
+  // was closer to its target than at the last ends the walk (that raise's
+  // gain was lost again higher up, so the pilot's figures are not settled).
+  std::size_t k = tried.size() - 1;
+  while (k > 0 && sufficient(tried[k - 1])) --k;
+  return k;
 }
 
 }  // namespace pcsim::simulation

@@ -98,10 +98,11 @@ std::vector<PilotEstimate::OutsideTarget> figures_outside_targets(
     const std::vector<FigureErrors>& measured);
 std::string outside_targets_list(const std::vector<FigureErrors>& measured);
 const char* pilot_figure_unit(int figure);
-// When the last raise leaves figures outside the targets: the first of the
-// cut-offs tried (ascending) whose every reduction error is within its target
-// or no larger than at the last; the raises above it brought no figure
-// closer to its target, and cost vectors in every step.
+// When the last raise leaves figures outside the targets: the lowest of the
+// cut-offs tried (ascending) at which, and at every cut-off above which,
+// each reduction error is within its target or no larger than at the last:
+// the raises above it brought no figure closer to its target, and cost
+// vectors in every step.
 std::size_t lowest_sufficient_cutoff(const std::vector<std::vector<FigureErrors>>& tried);
 
 // Where the pilot runs: every pantograph starts 'shift' later than in the
