@@ -391,7 +391,8 @@ double choose_cutoff(PilotRuns& runs, const scene::RunScene& run,
     pilot.reduction_measured = differences(figures, *reference, 1.0);
     cutoffs.push_back(cutoff);
     tried.push_back(pilot.reduction_measured);
-    print_outside(runs.ctx, cutoff, pilot.reduction_measured);
+    if (!run.catenary.modal_cutoff_given)  // else listed under the estimate alone
+      print_outside(runs.ctx, cutoff, pilot.reduction_measured);
     if (run.catenary.modal_cutoff_given ||
         figures_outside_targets(pilot.reduction_measured).empty() || cutoff <= 0)
       return cutoff;
