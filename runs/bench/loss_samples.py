@@ -2,8 +2,9 @@
 scene (docs/fidelity.md, "More run scenes at their defaults"): per
 pantograph, over the analysis section (summary.json), the samples of the
 unfiltered contact force at zero in each run, those where only one run is at
-zero with both runs' forces there, and the RMS and largest difference of the
-force.
+zero with both runs' forces there, the RMS and largest difference of the
+force, and the mean difference on the last two samples before each loss of
+the reference (the other run minus the reference).
   /usr/bin/python3 runs/bench/loss_samples.py REFERENCE_RUN OTHER_RUN
 (result folders of pcsim run, e.g. OUT/SCENE/linear and OUT/SCENE/modal of
 runs/bench_fast_level.sh)."""
@@ -44,6 +45,13 @@ def main():
         print(f"{name}: x {lo:g}-{hi:g} m, {len(x)} samples; at zero: {zero_ref.sum()} "
               f"(reference), {zero_other.sum()} (other); force difference RMS "
               f"{np.sqrt(np.mean(diff ** 2)):.2f} N, largest {np.abs(diff).max():.2f} N")
+        # The last sample in contact before each loss (the one before it too).
+        before = np.flatnonzero(~zero_ref[:-1] & zero_ref[1:])
+        before = before[before >= 1]
+        if len(before):
+            print(f"  before the reference's {len(before)} losses: other minus reference "
+                  f"{diff[before].mean():+.2f} N on the last sample, "
+                  f"{diff[before - 1].mean():+.2f} N on the one before")
         for i in np.flatnonzero(zero_ref != zero_other):
             print(f"  x = {x[i]:.3f} m: reference {f_ref[i]:.2f} N, other {f_other[i]:.2f} N")
 
