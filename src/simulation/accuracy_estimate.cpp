@@ -282,15 +282,20 @@ void print_pilot(const Context& ctx, const PilotEstimate& pilot) {
   else if (modal && pilot.cutoff_raises > 0)
     print0(ctx, "    modal cut-off raised %d time(s) to %.1f Hz, the most the pilot raises it\n",
            pilot.cutoff_raises, pilot.cutoff_hz);
+  // Where the raises above the run's cut-off brought nothing closer, raising
+  // it again is no advice.
+  char hint[96] = "catenary.max_frequency_hz raises the cut-off";
+  if (pilot.cutoff_lowered_from_hz > 0)
+    std::snprintf(hint, sizeof hint, "no closer up to %.1f Hz", pilot.cutoff_lowered_from_hz);
   for (const auto& t : outside) {
     const char* unit = pilot_figure_unit(t.figure);
     // A third decimal where two would print the target itself (0.104 pt, not 0.10).
     const int decimals = std::round(t.measured * 100) / 100 <= kPilotTargets[t.figure] ? 3 : 2;
     print0(ctx,
            "    outside the targets at %.1f Hz: %s of '%s', reduction %.*f %s in the pilot "
-           "(target %.1f %s; catenary.max_frequency_hz raises the cut-off)\n",
+           "(target %.1f %s; %s)\n",
            pilot.cutoff_hz, kPilotFigureLabels[t.figure], t.pantograph.c_str(), decimals,
-           t.measured, unit, kPilotTargets[t.figure], unit);
+           t.measured, unit, kPilotTargets[t.figure], unit, hint);
   }
   for (std::size_t p = 0; p < discretisation.size(); ++p) {
     print0(ctx, "    %-16s %16s%s\n", discretisation[p].pantograph.c_str(), "discretisation",
