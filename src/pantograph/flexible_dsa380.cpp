@@ -298,9 +298,7 @@ bool FlexibleDsa380Pantograph::sparse_step_tangent(double t, const Eigen::Vector
   add_drive(q, qd, nullptr, &K, &C);
   bellows_.add_tangents(p_.rigid, 0, bellows_dof(), q, K, C, M);
   apply_restraints(qdd, nullptr, &K, &C, &M);
-  const int n = dof_count();
-  J.resize(n, n);
-  J.setFromTriplets(triplets_.begin(), triplets_.end());
+  tangent_pattern_.assemble(triplets_, dof_count(), J);
   return true;
 }
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -245,6 +246,7 @@ TEST(FlexibleDsa380, SparseStepTangentIsTheDenseOne) {
       s.q.head(n - 1) = m.static_equilibrium(120, 1.2).head(n - 1);
       s.q[n - 1] = 35;  // the loop's torque change (N m)
     }
+    const FlexibleDsa380Pantograph fresh = m;  // before m assembles a sparse tangent
     Eigen::MatrixXd K(n, n), C(n, n), M(n, n);
     m.tangents(0.2, s.q, s.qd, s.qdd, K, C, M);
     const Eigen::MatrixXd dense = K + shift_v * C + shift_a * M;
@@ -262,6 +264,15 @@ TEST(FlexibleDsa380, SparseStepTangentIsTheDenseOne) {
     // bar's mass), measured 1.0e-16 to 2.1e-16; 1e-15 leaves a margin of five.
     EXPECT_LE(error, 1e-15) << name;
     EXPECT_LT(J.nonZeros(), n * n / 5) << name;  // sparse: ~6 % of the entries
+    // At another state the model fills the pattern it kept (core::TripletPattern):
+    // the bits of a model that sorts the triplets anew.
+    const Eigen::VectorXd q2 = s.q + 1e-3 * s.qd, qd2 = 0.9 * s.qd;
+    Eigen::SparseMatrix<double> J2, J2_fresh;
+    ASSERT_TRUE(m.sparse_step_tangent(0.3, q2, qd2, s.qdd, shift_v, shift_a, J2)) << name;
+    ASSERT_TRUE(fresh.sparse_step_tangent(0.3, q2, qd2, s.qdd, shift_v, shift_a, J2_fresh)) << name;
+    ASSERT_EQ(J2.nonZeros(), J2_fresh.nonZeros()) << name;
+    EXPECT_TRUE(std::equal(J2.valuePtr(), J2.valuePtr() + J2.nonZeros(), J2_fresh.valuePtr()))
+        << name;
     // sparse_mass() is mass(), the same arithmetic.
     Eigen::MatrixXd Md(n, n);
     m.mass(0.2, s.q, s.qd, Md);

@@ -38,6 +38,7 @@
 #include <string>
 #include <vector>
 
+#include "pcsim/core/triplet_pattern.hpp"
 #include "pcsim/pantograph/dsa380.hpp"
 #include "pcsim/pantograph/planar_beam.hpp"
 
@@ -193,6 +194,7 @@ class FlexibleDsa380Pantograph : public PantographModel {
   Eigen::VectorXd bar_weight_;                   // dVg/dq of the beams
   Eigen::VectorXd bar_masses_;  // the same per unit g: the beams' Σ m_i ∂z_i/∂q
   mutable std::vector<Eigen::Triplet<double>> triplets_;  // sparse_step_tangent()'s
+  mutable core::TripletPattern tangent_pattern_;          // ... and their kept positions
   MovingFrame frame_;
   double aero_force_ = 0;
   double M0_ = 0;
