@@ -105,7 +105,9 @@ std::vector<FigureErrors> differences(const PilotFigures& a, const PilotFigures&
 
 std::vector<FigureErrors> with_margin(std::vector<FigureErrors> measured) {
   for (auto& e : measured)
-    for (double& v : e.value) v = std::max(kPilotSafety * v, kPilotFloor);
+    for (int f = 0; f < kPilotFigures; ++f)
+      e.value[f] = std::max(kPilotSafety * e.value[f],
+                            f == kLossOfContactFigure ? kPilotLossFloor : kPilotForceFloor);
   return measured;
 }
 
@@ -255,7 +257,8 @@ nlohmann::json PilotEstimate::json() const {
                       {"second_process", second_process},
                       {"second_process_peak_memory_mb", second_process_peak_mb},
                       {"safety_factor", kPilotSafety},
-                      {"floor", kPilotFloor},
+                      {"floor", kPilotForceFloor},
+                      {"loss_of_contact_floor", kPilotLossFloor},
                       {"discretisation", errors_json(discretisation())},
                       {"discretisation_measured", errors_json(discretisation_measured)}};
   if (cutoff_hz > 0) {

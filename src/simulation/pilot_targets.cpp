@@ -26,7 +26,7 @@ const std::array<const char*, kPilotFigures> kPilotFigureLabels = {
 const std::array<double, kPilotFigures> kPilotTargets = {0.5, 1, 1, 1, 2, 2, 2, 0.1};
 
 const char* pilot_figure_unit(int figure) {
-  return figure == 7 ? "pt" : (figure == 5 || figure == 6) ? "%Fm" : "%";
+  return figure == kLossOfContactFigure ? "pt" : (figure == 5 || figure == 6) ? "%Fm" : "%";
 }
 
 std::vector<PilotEstimate::OutsideTarget> figures_outside_targets(

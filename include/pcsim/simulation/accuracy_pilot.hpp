@@ -11,8 +11,8 @@
 //  - reduction error (modal level): the modal catenary against linear FE at
 //    the run's time step and element length.
 // Each is reported as kPilotSafety times the pilot's difference, at least
-// kPilotFloor. A modal run whose scene does not set catenary.max_frequency_hz
-// gets its cut-off from the pilot: raised by kCutoffRaise (at most
+// kPilotForceFloor (kPilotLossFloor for the loss of contact). A modal run whose scene does not set
+// catenary.max_frequency_hz gets its cut-off from the pilot: raised by kCutoffRaise (at most
 // kMaxCutoffRaises times) until every reduction error is within the targets
 // of docs/fidelity.md. The estimate is cached per inputs and numerics in the
 // modal cache folder (--cache DIR), so a second run of the scene costs
@@ -35,13 +35,20 @@ namespace pcsim::simulation {
 // uplift relative [%]; Fm−3σ and actual minimum [% of Fm]; loss of contact
 // [percentage points].
 constexpr int kPilotFigures = 8;
+constexpr int kLossOfContactFigure = 7;
 extern const std::array<const char*, kPilotFigures> kPilotFigureKeys;    // summary.json
 extern const std::array<const char*, kPilotFigures> kPilotFigureLabels;  // console
 // The targets a default modal cut-off must meet (issue 21's, per figure).
 extern const std::array<double, kPilotFigures> kPilotTargets;
 
 constexpr double kPilotSafety = 2.0;  // estimate = safety x the pilot's difference ...
-constexpr double kPilotFloor = 0.1;   // ... and at least this (% or percentage points)
+// ... and at least this. A pilot's stretch of a span or two does not resolve a
+// whole section's smaller errors of the force figures: measured up to 0.30 %
+// where twice the pilot's difference said 0.21-0.26 (docs/fidelity.md, "The
+// estimate's floor"); 0.3 is also the slack of the issue's upper bound
+// (3 x actual + 0.3), so the floor never takes an estimate above it.
+constexpr double kPilotForceFloor = 0.3;  // % or % of Fm
+constexpr double kPilotLossFloor = 0.1;   // loss of contact [points]: its target
 constexpr double kCutoffRaise = 1.25;
 constexpr int kMaxCutoffRaises = 3;
 // The most spans a pilot covers on a line whose spans differ (on

@@ -1,0 +1,39 @@
+// The pilot's estimate from its measured differences (accuracy_pilot.hpp):
+// twice the difference, at least 0.3 for the force figures (% or % of Fm) and
+// 0.1 points for the loss of contact. The floor never takes an estimate above
+// issue 21's upper bound, 3 x the actual error + 0.3.
+#include <gtest/gtest.h>
+
+#include <array>
+
+#include "pcsim/simulation/accuracy_pilot.hpp"
+
+namespace {
+
+using pcsim::simulation::FigureErrors;
+using pcsim::simulation::PilotEstimate;
+
+TEST(PilotMargin, TwiceTheDifferenceAboveTheFloors) {
+  PilotEstimate pilot;
+  FigureErrors measured;
+  measured.pantograph = "leading";
+  // mean, σ, Fm+3σ, actual max, uplift, Fm−3σ, actual min, loss of contact:
+  // two-pantographs-span55-320's leading pantograph (README), whose actual
+  // minimum (0.26 % of Fm) was above twice the pilot's 0.105.
+  measured.value = {0.004, 0.25, 0.03, 0.035, 0.01, 0.16, 0.105, 0.0};
+  pilot.reduction_measured = {measured};
+  pilot.discretisation_measured = {measured};
+  const std::array<double, 8> expected = {0.3, 0.5, 0.3, 0.3, 0.3, 0.32, 0.3, 0.1};
+  for (const auto& estimate : {pilot.reduction()[0], pilot.discretisation()[0]}) {
+    EXPECT_EQ(estimate.pantograph, "leading");
+    for (int f = 0; f < 8; ++f) EXPECT_DOUBLE_EQ(estimate.value[f], expected[f]) << "figure " << f;
+  }
+  // The actual minimum of that run (+0.26 % of Fm) within [actual, 3 actual + 0.3].
+  EXPECT_GE(pilot.reduction()[0].value[6], 0.26);
+  EXPECT_LE(pilot.reduction()[0].value[6], 3 * 0.26 + 0.3);
+  // A loss of contact above its floor: twice the difference.
+  pilot.reduction_measured[0].value[7] = 0.21;
+  EXPECT_DOUBLE_EQ(pilot.reduction()[0].value[7], 0.42);
+}
+
+}  // namespace
