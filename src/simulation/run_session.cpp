@@ -6,13 +6,16 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <csignal>
 
+#include "pcsim/assembly/modal_catenary.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/core/profiling.hpp"
 #include "pcsim/simulation/run.hpp"
 #include "pcsim/solvers/hht.hpp"
+#include "pcsim/solvers/low_rank.hpp"
 #include "pilot_process.hpp"
 
 namespace pcsim::simulation {
@@ -118,6 +121,7 @@ RunSession::RunSession(const Context& ctx, assembly::CoupledSystem& system,
           system.batches_records() && !options_.window &&
           (options_.record_batches == RecordBatches::on ||
            (options_.record_batches == RecordBatches::automatic && system.records_batch_pays()))) {
+  modal_ = dynamic_cast<const assembly::ModalCatenary*>(&system.catenary());
   const bool spare_core = cores_to_spare(ctx.comm);  // collective
   const bool spare = options_.record_thread == RecordThread::automatic && spare_core;
   record_thread_ = batch_records_ && (options_.record_thread == RecordThread::on || spare);
@@ -149,6 +153,11 @@ int RunSession::integrate() {
   getrusage(kStepThreadUsage, &usage);
   involuntary_switches_ = usage.ru_nivcsw;
   reference_builds_ = solver_.reference_builds();
+  if (const solvers::LowRankStepSolver* low_rank = solver_.low_rank()) {
+    rank_one_set_changes_ = low_rank->active_set_changes();
+    capacitance_rows_ = low_rank->capacitance_rows_formed();
+  }
+  if (modal_) exact_dropper_anchors_ = modal_->exact_anchors();
   PCSIM_PETSC(TSSetApplicationContext(ts, this));
   PCSIM_PETSC(TSMonitorSet(ts, monitor, this, nullptr));
   PCSIM_PETSC(TSSetPostStep(ts, post_step));
@@ -251,6 +260,10 @@ PetscErrorCode RunSession::monitor(TS ts, PetscInt step, PetscReal t, Vec U, voi
     }
   }
   s.print_progress(step, t);
+  // A record's own exact anchor (ModalCatenary::dropper_forces) is not the next step's.
+  if (s.modal_) s.exact_dropper_anchors_ = s.modal_->exact_anchors();
+  s.batch_beside_ = s.computing_job_.valid() &&
+                    s.computing_job_.wait_for(std::chrono::seconds(0)) != std::future_status::ready;
   s.timing_.add_output(wall_clock_s() - start);
   s.step_end_ = wall_clock_s();
   PCSIM_CALLBACK_END
@@ -267,6 +280,18 @@ void RunSession::time_step(long step, double start, long newton_iterations) {
   events.involuntary_switches = usage.ru_nivcsw - involuntary_switches_;
   events.window_shift = options_.window && options_.window->shifts() != window_shifts_;
   events.output_flush_before = flushed_;
+  events.records_batch_beside = batch_beside_;
+  if (const solvers::LowRankStepSolver* low_rank = solver_.low_rank()) {
+    events.rank_one_set_changes = low_rank->active_set_changes() - rank_one_set_changes_;
+    events.capacitance_rows = low_rank->capacitance_rows_formed() - capacitance_rows_;
+    events.rank_one_terms = static_cast<long>(low_rank->active_terms());
+    rank_one_set_changes_ = low_rank->active_set_changes();
+    capacitance_rows_ = low_rank->capacitance_rows_formed();
+  }
+  if (modal_) {
+    events.exact_dropper_anchors = modal_->exact_anchors() - exact_dropper_anchors_;
+    exact_dropper_anchors_ = modal_->exact_anchors();
+  }
   reference_builds_ = solver_.reference_builds();
   involuntary_switches_ = usage.ru_nivcsw;
   if (options_.window) window_shifts_ = options_.window->shifts();

@@ -12,6 +12,11 @@ void StepTiming::add(long step, double seconds, const StepEvents& events) {
     return;
   }
   seconds_.push_back(seconds);
+  for (const char* key : cause_keys(events)) {
+    auto& [steps, total] = by_cause_[key];
+    ++steps;
+    total += seconds;
+  }
   if (events.involuntary_switches > 0)
     ++switched_steps_;
   else
@@ -30,13 +35,33 @@ void StepTiming::add_output(double seconds) {
   ++output_count_;
 }
 
+// The keys of summary.json's step_time.by_cause, in causes()'s order.
+std::vector<const char*> StepTiming::cause_keys(const StepEvents& e) {
+  std::vector<const char*> keys;
+  if (e.reference_builds > 0) keys.push_back("j0_refactored");
+  if (e.newton_iterations > 1) keys.push_back("newton_iterations_above_1");
+  if (e.rank_one_set_changes > 0) keys.push_back("contacts_or_slack_droppers_changed");
+  if (e.exact_dropper_anchors > 0) keys.push_back("dropper_exact_anchor");
+  if (e.window_shift) keys.push_back("window_shift");
+  if (e.output_flush_before) keys.push_back("after_output_flush");
+  if (e.records_batch_beside) keys.push_back("records_batch_beside");
+  if (e.involuntary_switches > 0) keys.push_back("context_switch");
+  if (keys.empty()) keys.push_back("none");
+  return keys;
+}
+
 std::string StepTiming::causes(const StepEvents& e) {
   std::string out;
   auto add = [&](const std::string& what) { out += (out.empty() ? "" : ", ") + what; };
   if (e.reference_builds > 0) add("J0 refactored");
   if (e.newton_iterations > 1) add(std::to_string(e.newton_iterations) + " Newton iterations");
+  if (e.rank_one_set_changes > 0)
+    add("contacts or slack droppers changed (" + std::to_string(e.rank_one_terms) +
+        " rank-one terms, " + std::to_string(e.capacitance_rows) + " capacitance rows formed)");
+  if (e.exact_dropper_anchors > 0) add("dropper check's exact anchor");
   if (e.window_shift) add("window shift");
   if (e.output_flush_before) add("after an output flush");
+  if (e.records_batch_beside) add("records' batch computing beside it");
   if (e.involuntary_switches > 0)
     add(std::to_string(e.involuntary_switches) + " involuntary context switch(es)");
   return out.empty() ? "none found" : out;
@@ -53,6 +78,9 @@ nlohmann::json StepTiming::json() const {
   nlohmann::json slowest = nlohmann::json::array();
   for (const auto& s : slowest_)
     slowest.push_back({{"step", s.step}, {"ms", 1e3 * s.seconds}, {"causes", causes(s.events)}});
+  nlohmann::json by_cause = nlohmann::json::object();
+  for (const auto& [key, count] : by_cause_)
+    by_cause[key] = {{"steps", count.first}, {"mean_ms", 1e3 * count.second / count.first}};
   return {{"steps", seconds_.size() + (first_ >= 0 ? 1 : 0)},
           {"first_step_ms", 1e3 * std::max(first_, 0.0)},
           {"median_ms", percentile(50)},
@@ -64,7 +92,8 @@ nlohmann::json StepTiming::json() const {
           {"steps_with_context_switch", switched_steps_},
           {"output_max_ms", 1e3 * output_max_},
           {"output_mean_ms", output_count_ > 0 ? 1e3 * output_total_ / output_count_ : 0.0},
-          {"slowest", slowest}};
+          {"slowest", slowest},
+          {"by_cause", by_cause}};
 }
 
 std::string StepTiming::summary_line() const {
@@ -80,6 +109,17 @@ std::string StepTiming::summary_line() const {
                 j["steps_with_context_switch"].get<long>(), j["first_step_ms"].get<double>(),
                 j["output_max_ms"].get<double>());
   std::string line = text;
+  if (by_cause_.size() > 1 || (!by_cause_.empty() && !by_cause_.count("none"))) {
+    line += "    steps by cause (count, mean ms):";
+    const char* separator = " ";
+    for (const auto& [key, count] : by_cause_) {
+      std::snprintf(text, sizeof text, "%s%s %ld, %.3f", separator, key.c_str(), count.first,
+                    1e3 * count.second / count.first);
+      line += text;
+      separator = "; ";
+    }
+    line += "\n";
+  }
   for (std::size_t i = 0; i < slowest_.size() && i < 3; ++i) {
     std::snprintf(text, sizeof text, "    slowest: step %ld, %.3f ms (%s)\n", slowest_[i].step,
                   1e3 * slowest_[i].seconds, causes(slowest_[i].events).c_str());

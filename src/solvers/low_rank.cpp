@@ -311,6 +311,8 @@ void LowRankStepSolver::update_capacitance(Vec x, std::vector<PetscScalar>& ux) 
   in.x = x;
   std::vector<double> uz, zu;
   capacitance_dots(in, uz, zu, ux);
+  if (!same_terms) ++active_set_changes_;
+  capacitance_rows_formed_ += static_cast<long>(rows.size());
   for (std::size_t r = 0; r < rows.size(); ++r) {
     const std::size_t i = rows[r];
     for (std::size_t j = 0; j < k; ++j) products_(i, j) = uz[r * k + j];

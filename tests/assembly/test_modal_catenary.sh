@@ -29,7 +29,9 @@
 #    2.8e-14 N and 0 (restart), 5.1e-10 N and 1.7e-10 N (two ranks: sums in
 #    another order) for the dropper and contact forces, asserted 1e-9 N and
 #    5e-9 N; uplifts within 1e-12 m. Records in batches leave the check's
-#    line of bounds untried (0 tries a step, 2.0 one at a time).
+#    line of bounds untried (0 tries a step, 2.0 one at a time). The
+#    step-time report counts the check's exact anchors in the steps that made
+#    them: all 1439 where every dropper is evaluated, none in the bounded runs.
 # 3. Truncated at the default cut-off (1.1 x 20 Hz / (1 - v/c) = 40.5 Hz, 232
 #    of 712 vectors) on the three-span test catenary (three-span-modal.yaml)
 #    against the linearised FE run of the same scene (app/data/study-tiny.yaml),
@@ -163,6 +165,20 @@ assert summary("modal")["records_in_batches"] and not summary("again")["records_
 tries = {n: summary(n)["modal"]["line_tries_per_step"] for n in ("modal", "again")}
 print(f"2. line tries per step: batched {tries['modal']:.2f}, one at a time {tries['again']:.2f}")
 assert tries["modal"] == 0 and tries["again"] > 0, tries
+# The step-time report counts each step under its causes (step_timing.hpp):
+# every step after the first at least once, an exact anchor of the dropper
+# check in the step that made it: in every step where every dropper is
+# evaluated ("every"), in none where the bounded check kept its first anchor
+# (made before the steps: this short run needs no other).
+for n in ("modal", "again", "every"):
+    j = summary(n)
+    causes, steps = j["step_time"]["by_cause"], j["step_time"]["steps"]
+    assert sum(c["steps"] for c in causes.values()) >= steps - 1, (n, causes)
+    anchors = round(j["modal"]["exact_updates_per_step"] * j["steps"])
+    in_steps = causes.get("dropper_exact_anchor", {"steps": 0})["steps"]
+    print(f"2. {n}: exact anchors {anchors}, steps with one {in_steps} of {steps - 1}")
+    expected = steps - 1 if n == "every" else 0
+    assert in_steps == expected and anchors > in_steps, (n, in_steps, anchors)
 # The batches' products on their own thread: the same bits as on the stepping
 # thread (the same product of the same states, delivered in order).
 assert summary("modal")["records_thread"] and not summary("unthreaded")["records_thread"]

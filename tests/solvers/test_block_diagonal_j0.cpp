@@ -183,8 +183,10 @@ struct Sequence {
   std::vector<double> kept, fresh;
 };
 
+// counts (if given): the solver's set changes and capacitance rows formed.
 std::vector<double> solve_sequence(Mat J0,
-                                   const std::vector<std::vector<pcsim::assembly::RankOne>>& sets) {
+                                   const std::vector<std::vector<pcsim::assembly::RankOne>>& sets,
+                                   std::pair<long, long>* counts = nullptr) {
   pcsim::solvers::LowRankStepSolver solver(J0, "test_seq_");
   KSP ksp = preonly_ksp(solver, J0);
   Vec b, x;
@@ -195,6 +197,7 @@ std::vector<double> solve_sequence(Mat J0,
     solver.set_terms(terms);
     PCSIM_PETSC(KSPSolve(ksp, b, x));
   }
+  if (counts) *counts = {solver.active_set_changes(), solver.capacitance_rows_formed()};
   const PetscScalar* xx;
   PCSIM_PETSC(VecGetArrayRead(x, &xx));
   std::vector<double> out(xx, xx + (hi - lo));
@@ -268,12 +271,10 @@ double varying_block_error(bool* by_blocks) {
   return err;
 }
 
-Sequence changed_terms_sequence() {
-  PetscInt n;
-  Mat J0 = make_j0(false, n);
-  // Two constant terms (dashpots) and a moving one (a contact): the contact
-  // moves, then a dashpot's coefficient changes, then a term leaves and
-  // another comes (every product formed again).
+// Two constant terms (dashpots) and a moving one (a contact): the contact
+// moves, then a dashpot's coefficient changes, then a term leaves and
+// another comes (every product formed again), then the contact moves.
+std::vector<std::vector<pcsim::assembly::RankOne>> changing_sets(PetscInt n) {
   const auto a = dense_term(1, n, 1.0, 3.0), b = dense_term(2, n, 2.0, 0.5);
   auto b2 = b;
   b2.coefficient = 0.7;
@@ -283,6 +284,13 @@ Sequence changed_terms_sequence() {
       {a, b2, dense_term(3, n, 3.2, 5.0)},
       {a, dense_term(4, n, 4.0, 2.0), dense_term(3, n, 3.3, 5.0)},
       {a, dense_term(4, n, 4.0, 2.0), dense_term(3, n, 3.4, 5.0)}};
+  return sets;
+}
+
+Sequence changed_terms_sequence() {
+  PetscInt n;
+  Mat J0 = make_j0(false, n);
+  const auto sets = changing_sets(n);
   Sequence s;
   for (std::size_t last = 1; last <= sets.size(); ++last) {
     const std::vector<std::vector<pcsim::assembly::RankOne>> head(sets.begin(),
@@ -328,6 +336,20 @@ TEST(BlockDiagonalJ0, ChangedTermsOnlyGiveTheSameBits) {
   for (std::size_t i = 0; i < s.kept.size(); ++i) differing += s.kept[i] != s.fresh[i];
   MPI_Allreduce(MPI_IN_PLACE, &differing, 1, MPI_INT, MPI_SUM, PETSC_COMM_WORLD);
   EXPECT_EQ(differing, 0);  // bit for bit: the same products, summed in the same order
+}
+
+// The counts of the step-time report (simulation/step_timing.hpp): the set of
+// active terms changes at the first solve and when a term leaves and another
+// comes; the rows formed are 3 + 1 (the contact moved) + 1 (a coefficient
+// alone changes no row) + 3 + 1.
+TEST(BlockDiagonalJ0, CountsSetChangesAndCapacitanceRows) {
+  PetscInt n;
+  Mat J0 = make_j0(false, n);
+  std::pair<long, long> counts;
+  solve_sequence(J0, changing_sets(n), &counts);
+  MatDestroy(&J0);
+  EXPECT_EQ(counts.first, 2);
+  EXPECT_EQ(counts.second, 9);
 }
 
 }  // namespace

@@ -8,8 +8,10 @@
 // Rank 0's clock (each rank runs the same steps).
 #pragma once
 
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pcsim::simulation {
@@ -17,10 +19,20 @@ namespace pcsim::simulation {
 // What a step did besides its plain Newton iteration.
 struct StepEvents {
   long newton_iterations = 0;
-  long reference_builds = 0;         // J0 assembled and factored (cheap path)
-  long involuntary_switches = 0;     // the OS took the stepping thread's core away (getrusage)
-  bool window_shift = false;         // a moving window moved
-  bool output_flush_before = false;  // the previous record flushed results.h5
+  long reference_builds = 0;          // J0 assembled and factored (cheap path)
+  long involuntary_switches = 0;      // the OS took the stepping thread's core away (getrusage)
+  bool window_shift = false;          // a moving window moved
+  bool output_flush_before = false;   // the previous record flushed results.h5
+  bool records_batch_beside = false;  // a records' batch was computing on its own thread
+  // Cheap path: the set of rank-one terms changed (a contact opened or closed,
+  // a dropper went slack or taut), the Woodbury capacitance's rows formed in
+  // the step, and the terms active at its end.
+  long rank_one_set_changes = 0;
+  long capacitance_rows = 0;
+  long rank_one_terms = 0;
+  // Reduced catenary: its bounded dropper check took every tracked dropper's
+  // elongation in double precision (an exact anchor: each row read whole).
+  long exact_dropper_anchors = 0;
 };
 
 class StepTiming {
@@ -31,8 +43,10 @@ class StepTiming {
   void add_output(double seconds);
   // {steps, first_step_ms, median_ms, p99_ms, p99_9_ms, p99_99_ms, max_ms,
   //  max_without_context_switch_ms, steps_with_context_switch, output_max_ms,
-  //  output_mean_ms, slowest: [{step, ms, causes}]}; percentiles over the steps
-  //  after the first (nearest rank).
+  //  output_mean_ms, slowest: [{step, ms, causes}], by_cause: {cause: {steps,
+  //  mean_ms}}}; percentiles over the steps after the first (nearest rank).
+  //  by_cause counts a step under each of its causes (cause_keys), "none"
+  //  for a step without one: what the run's mean step time is made of.
   nlohmann::json json() const;
   // One console line: the percentiles and the slowest steps' causes.
   std::string summary_line() const;
@@ -44,10 +58,12 @@ class StepTiming {
     StepEvents events;
   };
   static std::string causes(const StepEvents& e);
+  static std::vector<const char*> cause_keys(const StepEvents& e);
   std::vector<double> seconds_;  // after the first step
   double first_ = -1, max_quiet_ = 0, output_max_ = 0, output_total_ = 0;
   long output_count_ = 0, switched_steps_ = 0;
-  std::vector<Slow> slowest_;  // the kSlowest largest, largest first
+  std::vector<Slow> slowest_;                                // the kSlowest largest, largest first
+  std::map<std::string, std::pair<long, double>> by_cause_;  // steps, seconds
   static constexpr std::size_t kSlowest = 5;
 };
 

@@ -77,6 +77,13 @@ class LowRankStepSolver {
   // in the pivot order of J0's block (src/solvers/klu_lu.hpp).
   long sparse_block_factorisations() const;
   long kept_order_factorisations() const;
+  // Counts since construction, for the step-time report: the times the set
+  // of active rank-one terms changed (a contact opened or closed, a dropper
+  // went slack or taut) and the capacitance's rows formed (a moving
+  // contact's each step; every row of a changed set but those kept).
+  long active_set_changes() const { return active_set_changes_; }
+  long capacitance_rows_formed() const { return capacitance_rows_formed_; }
+  std::size_t active_terms() const { return active_.size(); }
 
  private:
   struct Entry {
@@ -113,6 +120,7 @@ class LowRankStepSolver {
   Eigen::MatrixXd products_;                             // U^T Z over the active terms
   Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_lu_;  // of C^-1 + U^T Z
   std::vector<Entry*> active_;
+  long active_set_changes_ = 0, capacitance_rows_formed_ = 0;
   // The last application's result x, its state, U^T y and the correction s
   // (x = y + Z s): U^T x = U^T y + (U^T Z) s without a reduction.
   struct LastApply {
