@@ -12,11 +12,12 @@ void StepTiming::add(long step, double seconds, const StepEvents& events) {
     return;
   }
   seconds_.push_back(seconds);
-  for (const char* key : cause_keys(events)) {
-    auto& [steps, total] = by_cause_[key];
-    ++steps;
-    total += seconds;
-  }
+  const auto flags = cause_flags(events);
+  for (std::size_t c = 0; c < kCauses; ++c)
+    if (flags[c]) {
+      ++by_cause_[c].first;
+      by_cause_[c].second += seconds;
+    }
   if (events.involuntary_switches > 0)
     ++switched_steps_;
   else
@@ -36,18 +37,30 @@ void StepTiming::add_output(double seconds) {
 }
 
 // The keys of summary.json's step_time.by_cause, in causes()'s order.
-std::vector<const char*> StepTiming::cause_keys(const StepEvents& e) {
-  std::vector<const char*> keys;
-  if (e.reference_builds > 0) keys.push_back("j0_refactored");
-  if (e.newton_iterations > 1) keys.push_back("newton_iterations_above_1");
-  if (e.rank_one_set_changes > 0) keys.push_back("contacts_or_slack_droppers_changed");
-  if (e.exact_dropper_anchors > 0) keys.push_back("dropper_exact_anchor");
-  if (e.window_shift) keys.push_back("window_shift");
-  if (e.output_flush_before) keys.push_back("after_output_flush");
-  if (e.records_batch_beside) keys.push_back("records_batch_beside");
-  if (e.involuntary_switches > 0) keys.push_back("context_switch");
-  if (keys.empty()) keys.push_back("none");
-  return keys;
+const std::array<const char*, StepTiming::kCauses> StepTiming::kCauseKeys = {
+    "j0_refactored",
+    "newton_iterations_above_1",
+    "contacts_or_slack_droppers_changed",
+    "dropper_exact_anchor",
+    "window_shift",
+    "after_output_flush",
+    "records_batch_beside",
+    "context_switch",
+    "none"};
+
+// The step's causes as flags over kCauseKeys ("none" alone when it has none).
+std::array<bool, StepTiming::kCauses> StepTiming::cause_flags(const StepEvents& e) {
+  std::array<bool, kCauses> flags = {e.reference_builds > 0,
+                                     e.newton_iterations > 1,
+                                     e.rank_one_set_changes > 0,
+                                     e.exact_dropper_anchors > 0,
+                                     e.window_shift,
+                                     e.output_flush_before,
+                                     e.records_batch_beside,
+                                     e.involuntary_switches > 0,
+                                     false};
+  flags[kCauses - 1] = std::none_of(flags.begin(), flags.end(), [](bool f) { return f; });
+  return flags;
 }
 
 std::string StepTiming::causes(const StepEvents& e) {
@@ -79,8 +92,9 @@ nlohmann::json StepTiming::json() const {
   for (const auto& s : slowest_)
     slowest.push_back({{"step", s.step}, {"ms", 1e3 * s.seconds}, {"causes", causes(s.events)}});
   nlohmann::json by_cause = nlohmann::json::object();
-  for (const auto& [key, count] : by_cause_)
-    by_cause[key] = {{"steps", count.first}, {"mean_ms", 1e3 * count.second / count.first}};
+  for (std::size_t c = 0; c < kCauses; ++c)
+    if (const auto& [steps, total] = by_cause_[c]; steps > 0)
+      by_cause[kCauseKeys[c]] = {{"steps", steps}, {"mean_ms", 1e3 * total / steps}};
   return {{"steps", seconds_.size() + (first_ >= 0 ? 1 : 0)},
           {"first_step_ms", 1e3 * std::max(first_, 0.0)},
           {"median_ms", percentile(50)},
@@ -109,12 +123,13 @@ std::string StepTiming::summary_line() const {
                 j["steps_with_context_switch"].get<long>(), j["first_step_ms"].get<double>(),
                 j["output_max_ms"].get<double>());
   std::string line = text;
-  if (by_cause_.size() > 1 || (!by_cause_.empty() && !by_cause_.count("none"))) {
+  const auto& by_cause = j["by_cause"];
+  if (by_cause.size() > 1 || (!by_cause.empty() && !by_cause.contains("none"))) {
     line += "    steps by cause (count, mean ms):";
     const char* separator = " ";
-    for (const auto& [key, count] : by_cause_) {
-      std::snprintf(text, sizeof text, "%s%s %ld, %.3f", separator, key.c_str(), count.first,
-                    1e3 * count.second / count.first);
+    for (const auto& [key, count] : by_cause.items()) {
+      std::snprintf(text, sizeof text, "%s%s %ld, %.3f", separator, key.c_str(),
+                    count["steps"].get<long>(), count["mean_ms"].get<double>());
       line += text;
       separator = "; ";
     }

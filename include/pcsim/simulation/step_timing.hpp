@@ -8,7 +8,7 @@
 // Rank 0's clock (each rank runs the same steps).
 #pragma once
 
-#include <map>
+#include <array>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
@@ -45,7 +45,7 @@ class StepTiming {
   //  max_without_context_switch_ms, steps_with_context_switch, output_max_ms,
   //  output_mean_ms, slowest: [{step, ms, causes}], by_cause: {cause: {steps,
   //  mean_ms}}}; percentiles over the steps after the first (nearest rank).
-  //  by_cause counts a step under each of its causes (cause_keys), "none"
+  //  by_cause counts a step under each of its causes (kCauseKeys), "none"
   //  for a step without one: what the run's mean step time is made of.
   nlohmann::json json() const;
   // One console line: the percentiles and the slowest steps' causes.
@@ -58,12 +58,14 @@ class StepTiming {
     StepEvents events;
   };
   static std::string causes(const StepEvents& e);
-  static std::vector<const char*> cause_keys(const StepEvents& e);
+  static constexpr std::size_t kCauses = 9;
+  static const std::array<const char*, kCauses> kCauseKeys;
+  static std::array<bool, kCauses> cause_flags(const StepEvents& e);
   std::vector<double> seconds_;  // after the first step
   double first_ = -1, max_quiet_ = 0, output_max_ = 0, output_total_ = 0;
   long output_count_ = 0, switched_steps_ = 0;
   std::vector<Slow> slowest_;                                // the kSlowest largest, largest first
-  std::map<std::string, std::pair<long, double>> by_cause_;  // steps, seconds
+  std::array<std::pair<long, double>, kCauses> by_cause_{};  // steps, seconds
   static constexpr std::size_t kSlowest = 5;
 };
 
