@@ -149,15 +149,7 @@ double RunSession::wall_time() const {
 int RunSession::integrate() {
   TS ts = solver_.ts();
   wall_start_ = last_print_ = step_end_ = wall_clock_s();
-  struct rusage usage;
-  getrusage(kStepThreadUsage, &usage);
-  involuntary_switches_ = usage.ru_nivcsw;
-  reference_builds_ = solver_.reference_builds();
-  if (const solvers::LowRankStepSolver* low_rank = solver_.low_rank()) {
-    rank_one_set_changes_ = low_rank->active_set_changes();
-    capacitance_rows_ = low_rank->capacitance_rows_formed();
-  }
-  if (modal_) exact_dropper_anchors_ = modal_->exact_anchors();
+  counted_ = counters_now();
   PCSIM_PETSC(TSSetApplicationContext(ts, this));
   PCSIM_PETSC(TSMonitorSet(ts, monitor, this, nullptr));
   PCSIM_PETSC(TSSetPostStep(ts, post_step));
@@ -261,7 +253,7 @@ PetscErrorCode RunSession::monitor(TS ts, PetscInt step, PetscReal t, Vec U, voi
   }
   s.print_progress(step, t);
   // A record's own exact anchor (ModalCatenary::dropper_forces) is not the next step's.
-  if (s.modal_) s.exact_dropper_anchors_ = s.modal_->exact_anchors();
+  if (s.modal_) s.counted_.exact_dropper_anchors = s.modal_->exact_anchors();
   s.batch_beside_ = s.computing_job_.valid() &&
                     s.computing_job_.wait_for(std::chrono::seconds(0)) != std::future_status::ready;
   s.timing_.add_output(wall_clock_s() - start);
@@ -269,32 +261,39 @@ PetscErrorCode RunSession::monitor(TS ts, PetscInt step, PetscReal t, Vec U, voi
   PCSIM_CALLBACK_END
 }
 
+// The counts a step's events are the changes of.
+RunSession::StepCounters RunSession::counters_now() const {
+  struct rusage usage;
+  getrusage(kStepThreadUsage, &usage);
+  StepCounters c;
+  c.reference_builds = solver_.reference_builds();
+  c.involuntary_switches = usage.ru_nivcsw;
+  if (options_.window) c.window_shifts = options_.window->shifts();
+  if (const solvers::LowRankStepSolver* low_rank = solver_.low_rank()) {
+    c.rank_one_set_changes = low_rank->active_set_changes();
+    c.capacitance_rows = low_rank->capacitance_rows_formed();
+  }
+  if (modal_) c.exact_dropper_anchors = modal_->exact_anchors();
+  return c;
+}
+
 // The step that ended at 'start': its wall time since the previous record and
 // what happened in it (step_timing.hpp).
 void RunSession::time_step(long step, double start, long newton_iterations) {
-  struct rusage usage;
-  getrusage(kStepThreadUsage, &usage);
+  const StepCounters now = counters_now();
   StepEvents events;
   events.newton_iterations = newton_iterations;
-  events.reference_builds = solver_.reference_builds() - reference_builds_;
-  events.involuntary_switches = usage.ru_nivcsw - involuntary_switches_;
-  events.window_shift = options_.window && options_.window->shifts() != window_shifts_;
+  events.reference_builds = now.reference_builds - counted_.reference_builds;
+  events.involuntary_switches = now.involuntary_switches - counted_.involuntary_switches;
+  events.window_shift = now.window_shifts != counted_.window_shifts;
   events.output_flush_before = flushed_;
   events.records_batch_beside = batch_beside_;
-  if (const solvers::LowRankStepSolver* low_rank = solver_.low_rank()) {
-    events.rank_one_set_changes = low_rank->active_set_changes() - rank_one_set_changes_;
-    events.capacitance_rows = low_rank->capacitance_rows_formed() - capacitance_rows_;
+  events.rank_one_set_changes = now.rank_one_set_changes - counted_.rank_one_set_changes;
+  events.capacitance_rows = now.capacitance_rows - counted_.capacitance_rows;
+  if (const solvers::LowRankStepSolver* low_rank = solver_.low_rank())
     events.rank_one_terms = static_cast<long>(low_rank->active_terms());
-    rank_one_set_changes_ = low_rank->active_set_changes();
-    capacitance_rows_ = low_rank->capacitance_rows_formed();
-  }
-  if (modal_) {
-    events.exact_dropper_anchors = modal_->exact_anchors() - exact_dropper_anchors_;
-    exact_dropper_anchors_ = modal_->exact_anchors();
-  }
-  reference_builds_ = solver_.reference_builds();
-  involuntary_switches_ = usage.ru_nivcsw;
-  if (options_.window) window_shifts_ = options_.window->shifts();
+  events.exact_dropper_anchors = now.exact_dropper_anchors - counted_.exact_dropper_anchors;
+  counted_ = now;
   if (step_end_ > 0) timing_.add(step, start - step_end_, events);
 }
 

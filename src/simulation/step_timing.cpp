@@ -36,7 +36,8 @@ void StepTiming::add_output(double seconds) {
   ++output_count_;
 }
 
-// The keys of summary.json's step_time.by_cause, in causes()'s order.
+// The keys of summary.json's step_time.by_cause, in causes()'s order
+// (cause_text).
 const std::array<const char*, StepTiming::kCauses> StepTiming::kCauseKeys = {
     "j0_refactored",
     "newton_iterations_above_1",
@@ -63,21 +64,37 @@ std::array<bool, StepTiming::kCauses> StepTiming::cause_flags(const StepEvents& 
   return flags;
 }
 
+// Cause c of kCauseKeys in words, with the step's counts.
+std::string StepTiming::cause_text(std::size_t c, const StepEvents& e) {
+  switch (c) {
+    case 0:
+      return "J0 refactored";
+    case 1:
+      return std::to_string(e.newton_iterations) + " Newton iterations";
+    case 2:
+      return "contacts or slack droppers changed (" + std::to_string(e.rank_one_terms) +
+             " rank-one terms, " + std::to_string(e.capacitance_rows) + " capacitance rows formed)";
+    case 3:
+      return "dropper check's exact anchor";
+    case 4:
+      return "window shift";
+    case 5:
+      return "after an output flush";
+    case 6:
+      return "records' batch computing beside it";
+    case 7:
+      return std::to_string(e.involuntary_switches) + " involuntary context switch(es)";
+    default:
+      return "none found";
+  }
+}
+
 std::string StepTiming::causes(const StepEvents& e) {
+  const auto flags = cause_flags(e);
   std::string out;
-  auto add = [&](const std::string& what) { out += (out.empty() ? "" : ", ") + what; };
-  if (e.reference_builds > 0) add("J0 refactored");
-  if (e.newton_iterations > 1) add(std::to_string(e.newton_iterations) + " Newton iterations");
-  if (e.rank_one_set_changes > 0)
-    add("contacts or slack droppers changed (" + std::to_string(e.rank_one_terms) +
-        " rank-one terms, " + std::to_string(e.capacitance_rows) + " capacitance rows formed)");
-  if (e.exact_dropper_anchors > 0) add("dropper check's exact anchor");
-  if (e.window_shift) add("window shift");
-  if (e.output_flush_before) add("after an output flush");
-  if (e.records_batch_beside) add("records' batch computing beside it");
-  if (e.involuntary_switches > 0)
-    add(std::to_string(e.involuntary_switches) + " involuntary context switch(es)");
-  return out.empty() ? "none found" : out;
+  for (std::size_t c = 0; c < kCauses; ++c)
+    if (flags[c]) out += (out.empty() ? "" : ", ") + cause_text(c, e);
+  return out;
 }
 
 nlohmann::json StepTiming::json() const {

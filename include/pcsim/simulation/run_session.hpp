@@ -129,12 +129,16 @@ class RunSession {
   std::string path_;             // "cheap" or "full"
   StepTiming timing_;            // this process's steps (a restart's earlier ones are not in it)
   double step_end_ = -1;         // when the previous step's record ended [s]
-  long reference_builds_ = 0, involuntary_switches_ = 0;
-  long rank_one_set_changes_ = 0, capacitance_rows_ = 0;  // the cheap path's, so far
-  const assembly::ModalCatenary* modal_ = nullptr;        // a reduced catenary
-  long exact_dropper_anchors_ = 0;                        // its, so far
-  int window_shifts_ = 0;
-  bool flushed_ = false;               // the previous record flushed results.h5
+  // Counts whose changes over a step are its events (StepEvents).
+  struct StepCounters {
+    long reference_builds = 0, involuntary_switches = 0, window_shifts = 0;
+    long rank_one_set_changes = 0, capacitance_rows = 0;  // the cheap path's
+    long exact_dropper_anchors = 0;                       // a reduced catenary's
+  };
+  StepCounters counters_now() const;
+  StepCounters counted_;                            // at the previous step's end
+  const assembly::ModalCatenary* modal_ = nullptr;  // a reduced catenary
+  bool flushed_ = false;                            // the previous record flushed results.h5
   bool batch_beside_ = false;          // a records' batch was computing on its thread after it
   std::exception_ptr output_failure_;  // this rank's OutputError (or its FailedOnOtherRank)
   bool not_finite_ = false;            // the state became NaN or inf

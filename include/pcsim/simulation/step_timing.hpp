@@ -61,6 +61,7 @@ class StepTiming {
   static constexpr std::size_t kCauses = 9;
   static const std::array<const char*, kCauses> kCauseKeys;
   static std::array<bool, kCauses> cause_flags(const StepEvents& e);
+  static std::string cause_text(std::size_t c, const StepEvents& e);
   std::vector<double> seconds_;  // after the first step
   double first_ = -1, max_quiet_ = 0, output_max_ = 0, output_total_ = 0;
   long output_count_ = 0, switched_steps_ = 0;
