@@ -112,6 +112,13 @@ std::unique_ptr<KeptBuilder> new_builder(const Context& ctx, const scene::RunSce
   return b;
 }
 
+// The mode count's note on parts computed apart (modal_basis_internal.hpp,
+// component_groups).
+std::string parts_text(int parts) {
+  if (parts <= 1) return "";
+  return "; " + std::to_string(parts) + " parts that share no element, each on its own";
+}
+
 catenary::ModalData compute_data(const Context& ctx, const scene::RunScene& run,
                                  const simulation::StaticConfiguration& statics,
                                  const std::string& key, double cutoff_hz, bool full_shapes) {
@@ -125,16 +132,16 @@ catenary::ModalData compute_data(const Context& ctx, const scene::RunScene& run,
   PetscTime(&start);
   // A line per chunk of modes: how many, the time so far and the ETA (the
   // chunks are about equal in modes and cost).
-  const auto progress = [&](long done, long total) {
+  const auto progress = [&](long done, long total, int parts) {
     PetscLogDouble now;
     PetscTime(&now);
     const double elapsed = now - start;
     if (done == 0 && extends)
-      print0(ctx, "  modes: %ld between %.1f and %.1f Hz to compute (the %ld below, kept)\n", total,
-             from_hz, cutoff_hz, kept_modes);
+      print0(ctx, "  modes: %ld between %.1f and %.1f Hz to compute (the %ld below, kept%s)\n",
+             total, from_hz, cutoff_hz, kept_modes, parts_text(parts).c_str());
     else if (done == 0)
-      print0(ctx, "  modes: %ld below %.1f Hz to compute (dropper shapes and factor: %.1f s)\n",
-             total, cutoff_hz, elapsed);
+      print0(ctx, "  modes: %ld below %.1f Hz to compute (dropper shapes and factor: %.1f s%s)\n",
+             total, cutoff_hz, elapsed, parts_text(parts).c_str());
     else
       print0(ctx, "  modes: %ld of %ld (%.0f%%), %.1f s, ETA %.0f s\n", done, total,
              100.0 * done / std::max(total, 1L), elapsed,

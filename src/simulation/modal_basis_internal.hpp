@@ -21,6 +21,7 @@ namespace pcsim::simulation::modal_detail {
 struct Operators {
   Mat K = nullptr, M = nullptr;
   Operators(assembly::CatenarySystem& system, Vec x);
+  Operators(Mat K_, Mat M_);  // takes a reference to each (tests)
   ~Operators();
   Operators(const Operators&) = delete;
   Operators& operator=(const Operators&) = delete;
@@ -57,13 +58,26 @@ class RowGather {
 // component positive, in ascending order of lambda.
 using ModeSink = std::function<void(double lambda, Vec phi)>;
 
+// The DOFs of K's connected components (two DOFs in one when an element
+// couples them, directly or through others: a line's tension sections,
+// which share no element, are one each), in groups whose spectra can be
+// computed apart: each component of at least kMinGroupDofs DOFs alone, the
+// smaller ones together. Each group's global indices owned by this rank,
+// ascending; the groups in the order of their first DOF. One group when K
+// is connected. Collective.
+constexpr long kMinGroupDofs = 2000;
+std::vector<std::vector<PetscInt>> component_groups(Mat K);
+
 // Every eigenpair of K phi = lambda M phi with lambda in [0, lambda_max],
-// computed in chunks of the interval (options prefix -modal_); returns the
+// computed in chunks of the interval (options prefix -modal_), each group
+// of component_groups on its own DOFs (-pcsim_debug_modes_whole: the whole
+// structure at once, as before 2026-12-03; tests); returns the
 // largest relative residual ||K phi - lambda M phi|| / (lambda ||M phi||).
-// progress(done, total) after each chunk (may be empty).
+// progress(done, total, parts) after each chunk (may be empty); parts: the
+// groups computed apart.
 // lambda_above > 0: only those above it (a raised cut-off's).
 double stream_modes(const Operators& op, double lambda_above, double lambda_max,
-                    const ModeSink& sink, const std::function<void(long, long)>& progress);
+                    const ModeSink& sink, const std::function<void(long, long, int)>& progress);
 
 // G = V^T M S V (row-major, c x c, every rank) over the vectors V appended
 // (c of them, their local parts kept: n x c doubles in all, in a

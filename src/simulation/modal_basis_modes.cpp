@@ -4,6 +4,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numeric>
 
 #include "modal_basis_internal.hpp"
@@ -19,6 +20,11 @@ Operators::Operators(assembly::CatenarySystem& system, Vec x) {
   K = L.create_matrix();
   M = L.create_matrix();
   solvers::assemble_stiffness_and_mass(system, x, K, M);
+}
+
+Operators::Operators(Mat K_, Mat M_) : K(K_), M(M_) {
+  PCSIM_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(K)));
+  PCSIM_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(M)));
 }
 
 Operators::~Operators() {
@@ -108,10 +114,10 @@ double normalise(const Operators& op, double lambda, Vec phi, Vec Mphi, Vec Kphi
 }
 
 // Number of eigenvalues below lambda: the inertia of K - lambda M (MUMPS LDL^T).
-PetscInt count_below(const Operators& op, double lambda) {
+PetscInt count_below(Mat K, Mat M, double lambda) {
   Mat A;
-  PCSIM_PETSC(MatDuplicate(op.K, MAT_COPY_VALUES, &A));
-  PCSIM_PETSC(MatAXPY(A, -lambda, op.M, SUBSET_NONZERO_PATTERN));
+  PCSIM_PETSC(MatDuplicate(K, MAT_COPY_VALUES, &A));
+  PCSIM_PETSC(MatAXPY(A, -lambda, M, SUBSET_NONZERO_PATTERN));
   PCSIM_PETSC(MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE));
   Mat F;
   PCSIM_PETSC(MatGetFactor(A, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &F));
@@ -154,17 +160,150 @@ double stream_interval(const Operators& op, double lo, double hi, const ModeSink
   return max_residual;
 }
 
+// K and M on the DOFs of a group of K's connected components.
+struct GroupOperators {
+  IS dofs = nullptr;
+  Mat K = nullptr, M = nullptr;
+  Vec phi = nullptr;  // an eigenvector on the group's DOFs
+  GroupOperators(const Operators& op, const std::vector<PetscInt>& owned) {
+    PCSIM_PETSC(ISCreateGeneral(PetscObjectComm(reinterpret_cast<PetscObject>(op.K)),
+                                static_cast<PetscInt>(owned.size()), owned.data(),
+                                PETSC_COPY_VALUES, &dofs));
+    PCSIM_PETSC(MatCreateSubMatrix(op.K, dofs, dofs, MAT_INITIAL_MATRIX, &K));
+    PCSIM_PETSC(MatCreateSubMatrix(op.M, dofs, dofs, MAT_INITIAL_MATRIX, &M));
+    for (Mat A : {K, M}) PCSIM_PETSC(MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE));
+    PCSIM_PETSC(MatCreateVecs(K, &phi, nullptr));
+  }
+  ~GroupOperators() {
+    VecDestroy(&phi);
+    MatDestroy(&M);
+    MatDestroy(&K);
+    ISDestroy(&dofs);
+  }
+  GroupOperators(const GroupOperators&) = delete;
+  GroupOperators& operator=(const GroupOperators&) = delete;
+  // Eigenvalues in (lambda_above, lambda]; lambda_above 0: in [0, lambda].
+  PetscInt count(double lambda_above, double lambda) const {
+    return count_below(K, M, lambda) - (lambda_above > 0 ? count_below(K, M, lambda_above) : 0);
+  }
+};
+
+EPS solve_interval(Mat K, Mat M, double lo, double hi) {
+  EPS eps;
+  PCSIM_PETSC(EPSCreate(PetscObjectComm(reinterpret_cast<PetscObject>(K)), &eps));
+  PCSIM_PETSC(EPSSetOptionsPrefix(eps, "modal_"));
+  PCSIM_PETSC(EPSSetOperators(eps, K, M));
+  solvers::configure_slicing(eps, lo, hi);
+  PCSIM_PETSC(EPSSetFromOptions(eps));
+  PCSIM_PETSC(EPSSolve(eps));
+  return eps;
+}
+
+// An eigenpair of one group in an interval's solve.
+struct GroupPair {
+  double lambda;
+  std::size_t group;
+  PetscInt index;  // in the group's EPS
+};
+
+// The groups' eigenpairs in [lo, hi], each group solved on its own DOFs,
+// into the sink in ascending order (each mode zero outside its group).
+double stream_groups_interval(const Operators& op,
+                              const std::vector<std::unique_ptr<GroupOperators>>& groups,
+                              const std::vector<bool>& any, double lo, double hi,
+                              const ModeSink& sink) {
+  std::vector<EPS> eps(groups.size(), nullptr);
+  std::vector<GroupPair> pairs;
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    if (!any[g]) continue;  // (the slicing of an interval without eigenvalues is not asked)
+    eps[g] = solve_interval(groups[g]->K, groups[g]->M, lo, hi);
+    const auto spectrum = solvers::converged_spectrum(eps[g]);
+    for (PetscInt i : spectrum.order)
+      if (spectrum.lambdas[i] >= lo && spectrum.lambdas[i] <= hi)
+        pairs.push_back({spectrum.lambdas[i], g, i});
+  }
+  std::stable_sort(pairs.begin(), pairs.end(),
+                   [](const GroupPair& a, const GroupPair& b) { return a.lambda < b.lambda; });
+  Vec phi, Mphi, Kphi;
+  PCSIM_PETSC(MatCreateVecs(op.K, &phi, &Mphi));
+  PCSIM_PETSC(VecDuplicate(phi, &Kphi));
+  double max_residual = 0;
+  for (const GroupPair& p : pairs) {
+    const GroupOperators& group = *groups[p.group];
+    PCSIM_PETSC(EPSGetEigenvector(eps[p.group], p.index, group.phi, nullptr));
+    PCSIM_PETSC(VecSet(phi, 0.0));
+    PCSIM_PETSC(VecISCopy(phi, group.dofs, SCATTER_FORWARD, group.phi));
+    max_residual = std::max(max_residual, normalise(op, p.lambda, phi, Mphi, Kphi));
+    sink(p.lambda, phi);
+  }
+  for (Vec* v : {&phi, &Mphi, &Kphi}) PCSIM_PETSC(VecDestroy(v));
+  for (EPS& e : eps) EPSDestroy(&e);
+  return max_residual;
+}
+
+// stream_modes on a K whose graph falls into separate groups of components
+// (a line's tension sections share no element): each group's spectrum is
+// sliced on its own DOFs, so each solve and each orthogonalisation runs over
+// its group's DOFs and modes only; the same modes, in the same order, over
+// intervals that hold about kChunkModes of the largest group's.
+double stream_modes_by_group(const Operators& op, const std::vector<std::vector<PetscInt>>& parts,
+                             double lambda_above, double lambda_max, double chunk_modes,
+                             const ModeSink& sink,
+                             const std::function<void(long, long, int)>& progress) {
+  std::vector<std::unique_ptr<GroupOperators>> groups;
+  PetscInt count = 0, largest = 0;
+  for (const auto& part : parts) {
+    groups.push_back(std::make_unique<GroupOperators>(op, part));
+    const PetscInt n = groups.back()->count(lambda_above, lambda_max);
+    count += n;
+    largest = std::max(largest, n);
+  }
+  const int chunks = std::max(1, static_cast<int>(std::ceil(largest / chunk_modes)));
+  const double omega_min = std::sqrt(std::max(lambda_above, 0.0));
+  const double omega_max = std::sqrt(lambda_max);
+  double max_residual = 0;
+  double lo = lambda_above > 0 ? std::nextafter(lambda_above, 2 * lambda_above) : 0;
+  long done = 0;
+  const ModeSink counting = [&](double lambda, Vec phi) {
+    ++done;
+    sink(lambda, phi);
+  };
+  std::vector<PetscInt> below_lo(groups.size(), 0);  // each group's count up to lo
+  const int parts_apart = static_cast<int>(groups.size());
+  if (progress) progress(0, count, parts_apart);
+  for (int c = 1; c <= chunks; ++c) {
+    const double hi =
+        c == chunks ? lambda_max : std::pow(omega_min + (omega_max - omega_min) * c / chunks, 2);
+    std::vector<bool> any(groups.size());
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+      const PetscInt below_hi = groups[g]->count(lambda_above, hi);
+      any[g] = below_hi > below_lo[g];
+      below_lo[g] = below_hi;
+    }
+    max_residual =
+        std::max(max_residual, stream_groups_interval(op, groups, any, lo, hi, counting));
+    lo = std::nextafter(hi, 2 * hi);
+    if (progress) progress(done, count, parts_apart);
+  }
+  return max_residual;
+}
+
 }  // namespace
 
 // Chunks of about kChunkModes modes (equal widths in frequency: the modal
 // density of a tensioned line is about constant in f), so that SLEPc holds
 // one chunk's eigenvectors at a time.
 double stream_modes(const Operators& op, double lambda_above, double lambda_max,
-                    const ModeSink& sink, const std::function<void(long, long)>& progress) {
+                    const ModeSink& sink, const std::function<void(long, long, int)>& progress) {
   constexpr double kChunkModes = 800;
   if (lambda_above >= lambda_max) return 0;  // (the same cut-off again: nothing above)
-  const PetscInt count =
-      count_below(op, lambda_max) - (lambda_above > 0 ? count_below(op, lambda_above) : 0);
+  PetscBool whole = PETSC_FALSE;
+  PCSIM_PETSC(PetscOptionsGetBool(nullptr, nullptr, "-pcsim_debug_modes_whole", &whole, nullptr));
+  const auto groups = whole ? std::vector<std::vector<PetscInt>>{} : component_groups(op.K);
+  if (groups.size() > 1)
+    return stream_modes_by_group(op, groups, lambda_above, lambda_max, kChunkModes, sink, progress);
+  const PetscInt count = count_below(op.K, op.M, lambda_max) -
+                         (lambda_above > 0 ? count_below(op.K, op.M, lambda_above) : 0);
   const int chunks = std::max(1, static_cast<int>(std::ceil(count / kChunkModes)));
   const double omega_min = std::sqrt(std::max(lambda_above, 0.0));
   const double omega_max = std::sqrt(lambda_max);
@@ -176,13 +315,13 @@ double stream_modes(const Operators& op, double lambda_above, double lambda_max,
     ++done;
     sink(lambda, phi);
   };
-  if (progress) progress(0, count);
+  if (progress) progress(0, count, 1);
   for (int c = 1; c <= chunks; ++c) {
     const double hi =
         c == chunks ? lambda_max : std::pow(omega_min + (omega_max - omega_min) * c / chunks, 2);
     max_residual = std::max(max_residual, stream_interval(op, lo, hi, counting));
     lo = std::nextafter(hi, 2 * hi);
-    if (progress) progress(done, count);
+    if (progress) progress(done, count, 1);
   }
   return max_residual;
 }

@@ -30,14 +30,16 @@ namespace pcsim::simulation {
 // accuracy pilot's raised cut-offs, catenary_setup.hpp).
 // 'x': the static configuration of 'system' (no extra unknowns); 'system'
 // and 'x' must outlive it. Collective; the results on every rank.
-// progress(done, total): the modes computed so far, after each chunk of the
+// progress(done, total, parts): the modes computed so far, after each chunk of the
 // interval (not for 'every mode'). shift: a moving window's shift S (global
 // DOFs of 'system', S(g, h) = 1 where DOF g takes DOF h's displacement), or
 // null; with it the data's shift_products, from every vector: n x (modes +
 // shapes) doubles, kept on an unlinked file in spill_dir (the modal cache
 // folder) but for the block being filled (in memory if spill_dir is "" or
 // takes no file).
-using ModalProgress = std::function<void(long done, long total)>;
+// parts: the groups of the structure whose modes are computed apart (its
+// tension sections, which share no element; 1: the whole at once).
+using ModalProgress = std::function<void(long done, long total, int parts)>;
 class ModalDataBuilder {
  public:
   ModalDataBuilder(assembly::CatenarySystem& system, Vec x, bool full_shapes, Mat shift,

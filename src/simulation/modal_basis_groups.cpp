@@ -1,0 +1,77 @@
+// K's connected components, grouped for the reduced basis's eigensolves
+// (see modal_basis_internal.hpp).
+#include <algorithm>
+#include <numeric>
+
+#include "modal_basis_internal.hpp"
+#include "pcsim/core/error.hpp"
+
+namespace pcsim::simulation::modal_detail {
+
+namespace {
+
+// The root of i's set, halving the paths on the way.
+PetscInt find_root(std::vector<PetscInt>& parent, PetscInt i) {
+  while (parent[i] != i) {
+    parent[i] = parent[parent[i]];
+    i = parent[i];
+  }
+  return i;
+}
+
+// Each DOF's component as the smallest DOF in it, from K's pattern (every
+// rank holds the whole pattern: a line's, some ten entries a row).
+std::vector<PetscInt> component_of_each_dof(Mat K) {
+  PetscInt n;
+  PCSIM_PETSC(MatGetSize(K, &n, nullptr));
+  IS all;
+  PCSIM_PETSC(ISCreateStride(PETSC_COMM_SELF, n, 0, 1, &all));
+  Mat* whole;
+  PCSIM_PETSC(MatCreateSubMatrices(K, 1, &all, &all, MAT_INITIAL_MATRIX, &whole));
+  PCSIM_PETSC(ISDestroy(&all));
+  PetscInt rows;
+  const PetscInt *ia, *ja;
+  PetscBool done;
+  PCSIM_PETSC(MatGetRowIJ(whole[0], 0, PETSC_FALSE, PETSC_FALSE, &rows, &ia, &ja, &done));
+  if (!done) throw SolverError("reduced basis: the stiffness matrix's pattern is not available");
+  std::vector<PetscInt> parent(static_cast<std::size_t>(n));
+  std::iota(parent.begin(), parent.end(), PetscInt{0});
+  for (PetscInt i = 0; i < rows; ++i)
+    for (PetscInt k = ia[i]; k < ia[i + 1]; ++k) {
+      const PetscInt a = find_root(parent, i), b = find_root(parent, ja[k]);
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);  // the smaller DOF is the root
+    }
+  PCSIM_PETSC(MatRestoreRowIJ(whole[0], 0, PETSC_FALSE, PETSC_FALSE, &rows, &ia, &ja, &done));
+  PCSIM_PETSC(MatDestroySubMatrices(1, &whole));
+  for (PetscInt i = 0; i < n; ++i) parent[i] = find_root(parent, i);
+  return parent;
+}
+
+}  // namespace
+
+std::vector<std::vector<PetscInt>> component_groups(Mat K) {
+  const std::vector<PetscInt> root = component_of_each_dof(K);
+  const auto n = static_cast<PetscInt>(root.size());
+  std::vector<PetscInt> size(root.size(), 0);
+  for (PetscInt i = 0; i < n; ++i) ++size[root[i]];
+  // Group of each root: its own for a large component, else the pool's
+  // (numbered where its first DOF falls), in the order of the first DOFs.
+  std::vector<long> group(root.size(), -1);
+  long groups = 0, pool = -1;
+  for (PetscInt i = 0; i < n; ++i) {
+    if (root[i] != i) continue;
+    if (size[i] >= kMinGroupDofs) {
+      group[i] = groups++;
+    } else {
+      if (pool < 0) pool = groups++;
+      group[i] = pool;
+    }
+  }
+  std::vector<std::vector<PetscInt>> owned(static_cast<std::size_t>(groups));
+  PetscInt lo, hi;
+  PCSIM_PETSC(MatGetOwnershipRange(K, &lo, &hi));
+  for (PetscInt i = lo; i < hi; ++i) owned[group[root[i]]].push_back(i);
+  return owned;
+}
+
+}  // namespace pcsim::simulation::modal_detail
