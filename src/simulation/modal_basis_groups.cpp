@@ -49,7 +49,7 @@ std::vector<PetscInt> component_of_each_dof(Mat K) {
 
 }  // namespace
 
-std::vector<std::vector<PetscInt>> component_groups(Mat K) {
+std::vector<std::vector<PetscInt>> component_groups(Mat K, long min_group_dofs) {
   const std::vector<PetscInt> root = component_of_each_dof(K);
   const auto n = static_cast<PetscInt>(root.size());
   std::vector<PetscInt> size(root.size(), 0);
@@ -60,7 +60,7 @@ std::vector<std::vector<PetscInt>> component_groups(Mat K) {
   long groups = 0, pool = -1;
   for (PetscInt i = 0; i < n; ++i) {
     if (root[i] != i) continue;
-    if (size[i] >= kMinGroupDofs) {
+    if (size[i] >= min_group_dofs) {
       group[i] = groups++;
     } else {
       if (pool < 0) pool = groups++;

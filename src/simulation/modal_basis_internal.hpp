@@ -61,12 +61,12 @@ using ModeSink = std::function<void(double lambda, Vec phi)>;
 // The DOFs of K's connected components (two DOFs in one when an element
 // couples them, directly or through others: a line's tension sections,
 // which share no element, are one each), in groups whose spectra can be
-// computed apart: each component of at least kMinGroupDofs DOFs alone, the
+// computed apart: each component of at least min_group_dofs DOFs alone, the
 // smaller ones together. Each group's global indices owned by this rank,
 // ascending; the groups in the order of their first DOF. One group when K
 // is connected. Collective.
 constexpr long kMinGroupDofs = 2000;
-std::vector<std::vector<PetscInt>> component_groups(Mat K);
+std::vector<std::vector<PetscInt>> component_groups(Mat K, long min_group_dofs = kMinGroupDofs);
 
 // Every eigenpair of K phi = lambda M phi with lambda in [0, lambda_max],
 // computed in chunks of the interval (options prefix -modal_), each group
@@ -76,8 +76,12 @@ std::vector<std::vector<PetscInt>> component_groups(Mat K);
 // progress(done, total, parts) after each chunk (may be empty); parts: the
 // groups computed apart.
 // lambda_above > 0: only those above it (a raised cut-off's).
+// chunk_modes: about the modes of a chunk (of the largest group's);
+// min_group_dofs: component_groups's (tests).
+constexpr double kChunkModes = 800;
 double stream_modes(const Operators& op, double lambda_above, double lambda_max,
-                    const ModeSink& sink, const std::function<void(long, long, int)>& progress);
+                    const ModeSink& sink, const std::function<void(long, long, int)>& progress,
+                    double chunk_modes = kChunkModes, long min_group_dofs = kMinGroupDofs);
 
 // G = V^T M S V (row-major, c x c, every rank) over the vectors V appended
 // (c of them, their local parts kept: n x c doubles in all, in a

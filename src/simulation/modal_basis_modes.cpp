@@ -245,7 +245,7 @@ double stream_groups_interval(const Operators& op,
 // (a line's tension sections share no element): each group's spectrum is
 // sliced on its own DOFs, so each solve and each orthogonalisation runs over
 // its group's DOFs and modes only; the same modes, in the same order, over
-// intervals that hold about kChunkModes of the largest group's.
+// intervals that hold about chunk_modes of the largest group's.
 double stream_modes_by_group(const Operators& op, const std::vector<std::vector<PetscInt>>& parts,
                              double lambda_above, double lambda_max, double chunk_modes,
                              const ModeSink& sink,
@@ -290,21 +290,22 @@ double stream_modes_by_group(const Operators& op, const std::vector<std::vector<
 
 }  // namespace
 
-// Chunks of about kChunkModes modes (equal widths in frequency: the modal
+// Chunks of about chunk_modes modes (equal widths in frequency: the modal
 // density of a tensioned line is about constant in f), so that SLEPc holds
 // one chunk's eigenvectors at a time.
 double stream_modes(const Operators& op, double lambda_above, double lambda_max,
-                    const ModeSink& sink, const std::function<void(long, long, int)>& progress) {
-  constexpr double kChunkModes = 800;
+                    const ModeSink& sink, const std::function<void(long, long, int)>& progress,
+                    double chunk_modes, long min_group_dofs) {
   if (lambda_above >= lambda_max) return 0;  // (the same cut-off again: nothing above)
   PetscBool whole = PETSC_FALSE;
   PCSIM_PETSC(PetscOptionsGetBool(nullptr, nullptr, "-pcsim_debug_modes_whole", &whole, nullptr));
-  const auto groups = whole ? std::vector<std::vector<PetscInt>>{} : component_groups(op.K);
+  const auto groups =
+      whole ? std::vector<std::vector<PetscInt>>{} : component_groups(op.K, min_group_dofs);
   if (groups.size() > 1)
-    return stream_modes_by_group(op, groups, lambda_above, lambda_max, kChunkModes, sink, progress);
+    return stream_modes_by_group(op, groups, lambda_above, lambda_max, chunk_modes, sink, progress);
   const PetscInt count = count_below(op.K, op.M, lambda_max) -
                          (lambda_above > 0 ? count_below(op.K, op.M, lambda_above) : 0);
-  const int chunks = std::max(1, static_cast<int>(std::ceil(count / kChunkModes)));
+  const int chunks = std::max(1, static_cast<int>(std::ceil(count / chunk_modes)));
   const double omega_min = std::sqrt(std::max(lambda_above, 0.0));
   const double omega_max = std::sqrt(lambda_max);
   double max_residual = 0;
