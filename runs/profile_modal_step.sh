@@ -54,10 +54,13 @@ for s in scenes:
     single, exact = m["single_precision_updates_per_step"], m["exact_updates_per_step"]
     half = m.get("half_precision_updates_per_step", 0.0)
     mb = rows * vectors * (2 * half + 4 * single + 8 * exact) / 1e6
+    # A basis in column blocks (a line's tension sections) reads each block's
+    # rows over its columns, one block at a time: not known from the summary.
+    mb_text = f"{mb:.2f}" if m.get("column_blocks", 1) == 1 else "—"
     print(f"| {s} | {vectors} | {1e6 * loop / n:.0f} | {us('TSStep'):.0f} "
           f"| {us('pcsimResidual'):.0f} ({per('pcsimResidual'):.2f}) "
           f"| {us('pcsimStateLoad'):.0f} ({per('pcsimStateLoad'):.2f}) "
           f"| {us('pcsimContact'):.0f} | {us('pcsimWoodbury'):.0f} | {us('pcsimLowRankChg'):.0f} "
           f"| {us('pcsimRecord'):.0f} | {outside:.0f} | {j.get('window_shifts', 0)} "
-          f"| {half:.3f}, {single:.3f}, {exact:.3f} | {mb:.2f} |")
+          f"| {half:.3f}, {single:.3f}, {exact:.3f} | {mb_text} |")
 PY

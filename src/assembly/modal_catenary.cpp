@@ -44,6 +44,7 @@ ModalCatenary::ModalCatenary(MPI_Comm comm, catenary::CatenaryMesh mesh,
   wire_position_.assign(mesh_.nodes.size(), -1);
   const auto nodes = catenary::contact_wire_nodes(mesh_);
   for (std::size_t i = 0; i < nodes.size(); ++i) wire_position_[nodes[i]] = static_cast<int>(i);
+  find_wire_node_columns(nodes);
   build_dropper_rows();
   support_rows_.resize(static_cast<long>(mesh_.support_nodes.size()), m_);
   for (std::size_t s = 0; s < mesh_.support_nodes.size(); ++s)
@@ -63,6 +64,28 @@ Eigen::Map<const Eigen::RowVectorXd> ModalCatenary::key_row(long key) const {
   const long r = key < static_cast<long>(row_index_.size()) ? row_index_[key] : -1;
   if (r < 0) throw SolverError("modal catenary: a basis row was not kept");
   return Eigen::Map<const Eigen::RowVectorXd>(basis_->rows.data() + r * m_, m_);
+}
+
+// The blocks of each contact-wire node's z and z' rows (their first
+// nonzeros; a zero row spans no block), joined into one range of columns.
+void ModalCatenary::find_wire_node_columns(const std::vector<int>& wire_nodes) {
+  const auto& starts = basis_->column_blocks;
+  if (starts.size() <= 2 || starts.front() != 0 || starts.back() != m_) return;
+  column_starts_ = starts;
+  wire_node_columns_.assign(mesh_.nodes.size(), {0, m_});
+  for (int n : wire_nodes) {
+    long lo = m_, hi = 0;
+    for (int c : {2, 5}) {
+      const auto r = row(n, c);
+      long first = 0;
+      while (first < m_ && r[first] == 0) ++first;
+      if (first == m_) continue;
+      const long g = std::upper_bound(starts.begin(), starts.end(), first) - starts.begin() - 1;
+      lo = std::min(lo, starts[g]);
+      hi = std::max(hi, starts[g + 1]);
+    }
+    wire_node_columns_[n] = lo < hi ? std::make_pair(lo, hi) : std::make_pair(0L, 0L);
+  }
 }
 
 // Bars tracked over the basis: the slack-capable ones and the droppers
@@ -93,11 +116,7 @@ void ModalCatenary::build_dropper_rows() {
     if (bar.kind == catenary::BarKind::dropper) droppers_.push_back(static_cast<int>(d));
   }
   elongation_ = stretch_;
-  for (double b : bnorm_) bnorm_max_ = std::max(bnorm_max_, b);
-  for (int d : droppers_)
-    force_scale_max_ = std::max(force_scale_max_, bars[tracked[d]].stiffness * bnorm_[d]);
-  B_single_ = RoundedRows(B_, RoundedRows::Precision::single);
-  B_half_ = RoundedRows(B_, RoundedRows::Precision::half);
+  build_row_blocks();
 }
 
 // VECSTANDARD: sequential on one rank (no reductions over the
@@ -225,18 +244,31 @@ ModalCatenary::CachedPoint& ModalCatenary::cached_point(double x, int wire) cons
   if (!p.on_wire) {
     p.index.clear();
     p.weight.clear();
-  } else {  // index and weight keep their size m: rewritten, not zeroed first
+  } else {  // index and weight keep their size: rewritten, not zeroed first
     const auto& el = mesh_.cables[element];
     const auto h = catenary::hermite(chi, el.ref_length);
     const auto& s = h.s;
     const auto& ds = h.ds;
     const int node[4] = {el.nodes[0], el.nodes[0], el.nodes[1], el.nodes[1]};
     const int comp[4] = {2, 5, 2, 5};  // z, z' at each end (thesis 3.13)
-    const auto r0 = row(node[0], comp[0]), r1 = row(node[1], comp[1]);
-    const auto r2 = row(node[2], comp[2]), r3 = row(node[3], comp[3]);
-    p.weight.resize(m_);
-    Eigen::Map<Eigen::RowVectorXd>(p.weight.data(), m_) =
+    // The columns of the element's blocks (every column with one block).
+    long lo = 0, hi = m_;
+    if (!wire_node_columns_.empty()) {
+      const auto a = wire_node_columns_[el.nodes[0]], b = wire_node_columns_[el.nodes[1]];
+      lo = a.first < a.second ? a.first : b.first;
+      hi = a.first < a.second ? a.second : b.second;
+      if (b.first < b.second) lo = std::min(lo, b.first), hi = std::max(hi, b.second);
+    }
+    const long n = hi - lo;
+    const auto r0 = row(node[0], comp[0]).segment(lo, n), r1 = row(node[1], comp[1]).segment(lo, n);
+    const auto r2 = row(node[2], comp[2]).segment(lo, n), r3 = row(node[3], comp[3]).segment(lo, n);
+    p.weight.resize(n);
+    Eigen::Map<Eigen::RowVectorXd>(p.weight.data(), n) =
         s[0] * r0 + s[1] * r1 + s[2] * r2 + s[3] * r3;
+    if (p.index.size() != static_cast<std::size_t>(n) || (n > 0 && p.index[0] != lo)) {
+      p.index.resize(n);  // lo .. hi - 1, kept from x to x in the same blocks
+      std::iota(p.index.begin(), p.index.end(), static_cast<PetscInt>(lo));
+    }
     c.element = element;
     c.chi = chi;
     c.y_eta.resize(0);
@@ -254,10 +286,6 @@ ModalCatenary::CachedPoint& ModalCatenary::cached_point(double x, int wire) cons
       c.y0 += s[k] * static_values_[6 * node[k] + comp[k] - 1];      // y, y' (static)
     }
     if (!mesh_.contact_gap_offsets.empty()) c.z0 += mesh_.contact_gap_offsets[wire].at(x);
-    if (p.index.size() != static_cast<std::size_t>(m_)) {  // 0 .. m-1, kept from x to x
-      p.index.resize(m_);
-      std::iota(p.index.begin(), p.index.end(), 0);
-    }
     const auto at = [&](int n) { return basis_->contact_flexibility[wire_position_[n]]; };
     const double xi = chi / el.ref_length;
     if (!basis_->contact_flexibility.empty()) {
@@ -277,7 +305,9 @@ const WirePoint& ModalCatenary::wire_point(double x, int wire) const {
   if (p.on_wire && on_owner() && c.eta_version != eta_version_) {
     p.owned = true;
     p.y = c.y_eta.size() > 0 ? c.y0 + c.y_eta.dot(eta_) : c.y0;
-    p.z = c.z0 + Eigen::Map<const Eigen::VectorXd>(p.weight.data(), m_).dot(eta_);
+    const auto n = static_cast<long>(p.weight.size());
+    p.z = c.z0 + Eigen::Map<const Eigen::VectorXd>(p.weight.data(), n)
+                     .dot(eta_.segment(n > 0 ? p.index[0] : 0, n));
     c.eta_version = eta_version_;
   }
   return p;
@@ -311,7 +341,10 @@ bool ModalCatenary::closed_form_point_loads(const std::vector<PointForce>& loads
   for (const auto& load : loads) {
     const WirePoint& p = wire_point(load.x, load.wire);
     if (!p.on_wire) return false;
-    if (on_owner()) f += Eigen::Map<const Eigen::VectorXd>(p.weight.data(), m_) * load.force;
+    const auto n = static_cast<long>(p.weight.size());
+    if (on_owner() && n > 0)
+      f.segment(p.index[0], n) +=
+          Eigen::Map<const Eigen::VectorXd>(p.weight.data(), n) * load.force;
   }
   PCSIM_PETSC(VecSet(U, 0.0));
   if (!on_owner()) return true;

@@ -26,9 +26,10 @@ namespace {
 constexpr long kKeptStatesGrowth = 32;  // columns added when the kept states are full
 
 // C (rows x states, column-major, leading dimension rows) = A S, A a
-// row-major rows x m matrix, S the first 'states' columns of an m x n
-// column-major matrix, by the system's BLAS (BLIS: runs/bench_blas.sh).
-void product(const ModalCatenary::RowMatrix& a, const Eigen::MatrixXd& s, long states,
+// row-major rows x n matrix, S rows lo .. lo + n - 1 of the first 'states'
+// columns of a column-major matrix, by the system's BLAS (BLIS:
+// runs/bench_blas.sh).
+void product(const ModalCatenary::RowMatrix& a, const Eigen::MatrixXd& s, long lo, long states,
              std::vector<double>& c) {
   c.assign(static_cast<std::size_t>(a.rows() * states), 0.0);
   if (a.rows() == 0 || states == 0 || a.cols() == 0) return;
@@ -40,8 +41,8 @@ void product(const ModalCatenary::RowMatrix& a, const Eigen::MatrixXd& s, long s
   PCSIM_PETSC(PetscBLASIntCast(s.rows(), &lead_s));
   const PetscScalar one = 1, zero = 0;
   // A row-major is A^T column-major (m x rows).
-  BLASgemm_("T", "N", &rows, &n, &m, &one, a.data(), &lead_a, s.data(), &lead_s, &zero, c.data(),
-            &rows);
+  BLASgemm_("T", "N", &rows, &n, &m, &one, a.data(), &lead_a, s.data() + lo, &lead_s, &zero,
+            c.data(), &rows);
 }
 
 }  // namespace
@@ -71,7 +72,7 @@ double ModalCatenary::record_force(std::size_t d, double dl) const {
 bool ModalCatenary::records_batch_pays() const {
   long cache = sysconf(_SC_LEVEL2_CACHE_SIZE);
   if (cache <= 0) cache = 1L << 21;  // not known: 2 MiB
-  return static_cast<long>(B_single_.bytes()) > cache / 2;
+  return static_cast<long>(single_bytes_) > cache / 2;
 }
 
 // Every rank counts the kept states; the owner keeps them.
@@ -106,18 +107,24 @@ std::function<CatenaryModel::RecordQuantities()> ModalCatenary::take_kept_record
     q.support_z.assign(q.states * ns, 0.0);
     q.dropper_force.assign(q.states * nd, 0.0);
     if (!owner) return q;
-    product(support_rows_, *states, count, q.support_z);
+    product(support_rows_, *states, 0, count, q.support_z);
     for (std::size_t k = 0; k < q.states; ++k)
       for (std::size_t s = 0; s < ns; ++s)
         q.support_z[k * ns + s] += static_values_[6 * mesh_.support_nodes[s] + 2];
     if (nd == 0) return q;
-    std::vector<double> change;  // tracked bars x states: B eta
-    product(B_, *states, count, change);
     const auto tracked = static_cast<std::size_t>(B_.rows());
+    std::vector<double> elongation(tracked * q.states), change;
+    for (const RowBlock& b : row_blocks_) {  // B eta by blocks: tracked bars x states
+      product(b.rows, *states, b.lo, count, change);
+      const std::size_t nb = b.bars.size();
+      for (std::size_t k = 0; k < q.states; ++k)
+        for (std::size_t i = 0; i < nb; ++i)
+          elongation[k * tracked + b.bars[i]] = stretch_[b.bars[i]] + change[k * nb + i];
+    }
     for (std::size_t k = 0; k < q.states; ++k)
       for (std::size_t i = 0; i < nd; ++i) {
         const auto d = static_cast<std::size_t>(droppers_[i]);
-        q.dropper_force[k * nd + i] = record_force(d, stretch_[d] + change[k * tracked + d]);
+        q.dropper_force[k * nd + i] = record_force(d, elongation[k * tracked + d]);
       }
     return q;
   };

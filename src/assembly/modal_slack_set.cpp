@@ -31,13 +31,83 @@ constexpr double kErrorReset = 1e-4;
 
 }  // namespace
 
+// B's rows by the basis's column blocks (modal_catenary.hpp); one block when
+// the basis has none, or when a row is not zero outside its block (a basis
+// ordered otherwise).
+void ModalCatenary::build_row_blocks() {
+  std::vector<long> starts = basis_->column_blocks;
+  if (starts.size() < 2 || starts.front() != 0 || starts.back() != m_) starts = {0, m_};
+  const long tracked = B_.rows();
+  std::vector<long> block_of(static_cast<std::size_t>(tracked), 0);
+  bool inside = true;
+  for (long d = 0; d < tracked && starts.size() > 2; ++d) {
+    long first = 0;
+    while (first < m_ && B_(d, first) == 0) ++first;
+    if (first == m_) continue;  // a zero row: block 0
+    const long g = std::upper_bound(starts.begin(), starts.end(), first) - starts.begin() - 1;
+    block_of[d] = g;
+    for (long k = starts[g + 1]; k < m_ && inside; ++k) inside = B_(d, k) == 0;
+  }
+  if (!inside) {
+    starts = {0, m_};
+    std::fill(block_of.begin(), block_of.end(), 0L);
+  }
+  std::vector<bool> dropper(static_cast<std::size_t>(tracked), false);
+  for (int d : droppers_) dropper[d] = true;
+  bar_block_.assign(static_cast<std::size_t>(tracked), -1);
+  row_blocks_.clear();
+  single_bytes_ = 0;
+  for (std::size_t g = 0; g + 1 < starts.size(); ++g) {
+    RowBlock b;
+    b.lo = starts[g];
+    b.n = starts[g + 1] - starts[g];
+    for (long d = 0; d < tracked; ++d)
+      if (block_of[d] == static_cast<long>(g)) b.bars.push_back(d);
+    if (b.bars.empty()) continue;
+    b.rows.resize(static_cast<long>(b.bars.size()), b.n);
+    for (std::size_t i = 0; i < b.bars.size(); ++i) {
+      const long d = b.bars[i];
+      b.rows.row(static_cast<long>(i)) = B_.row(d).segment(b.lo, b.n);
+      b.bnorm_max = std::max(b.bnorm_max, bnorm_[d]);
+      if (dropper[d]) b.force_scale_max = std::max(b.force_scale_max, bar_stiffness(d) * bnorm_[d]);
+      bar_block_[d] = static_cast<int>(row_blocks_.size());
+    }
+    b.single = RoundedRows(b.rows, RoundedRows::Precision::single);
+    b.half = RoundedRows(b.rows, RoundedRows::Precision::half);
+    single_bytes_ += b.single.bytes();
+    row_blocks_.push_back(std::move(b));
+  }
+}
+
+// work_'s norm over each block's columns (and with the Omega weighting).
+void ModalCatenary::block_norms(bool omega) const {
+  block_step_.assign(row_blocks_.size(), 0.0);
+  block_step_omega_.assign(row_blocks_.size(), 0.0);
+  for (std::size_t g = 0; g < row_blocks_.size(); ++g) {
+    const auto x = work_.segment(row_blocks_[g].lo, row_blocks_[g].n);
+    block_step_[g] = x.norm();
+    if (omega)
+      block_step_omega_[g] =
+          (x.array() * omega_.segment(row_blocks_[g].lo, row_blocks_[g].n).array()).matrix().norm();
+  }
+}
+
 // Every tracked bar exactly at the loaded state: the new anchor, the base of
-// the single-precision ones, and the newest point of the line.
+// the single-precision ones, and the newest point of the line. A block whose
+// coordinates are all zero (a tension section the train has not reached)
+// takes no product: its elongations are the static stretches.
 void ModalCatenary::exact_anchor() const {
   slack_set_current_ = false;  // a new anchor: the next load evaluates again
   anchor_ = eta_;
   anchor_version_ = eta_version_;
-  anchor_elongation_.noalias() = B_ * eta_;
+  anchor_elongation_.setZero(B_.rows());
+  for (const RowBlock& b : row_blocks_) {
+    const auto x = eta_.segment(b.lo, b.n);
+    if (x.isZero(0)) continue;
+    block_out_.noalias() = b.rows * x;
+    for (std::size_t i = 0; i < b.bars.size(); ++i)
+      anchor_elongation_[b.bars[i]] = block_out_[static_cast<long>(i)];
+  }
   anchor_elongation_ += Eigen::Map<const Eigen::VectorXd>(stretch_.data(), B_.rows());
   anchor_error_.setZero(B_.rows());
   exact_eta_ = eta_;
@@ -98,36 +168,109 @@ bool ModalCatenary::line_candidates(std::size_t few) {
 }
 
 // dl = dl_e + fl(B (eta - eta_e)) from the last exact anchor by the rows
-// in half or single precision, within g |b| |eta - eta_e|
-// (RoundedRows::error_factor): it follows the distance from eta_e and does
-// not add up over the updates. False, with no product, if max_d scale_d
-// times that bound would exceed 'reset' (scale_max: max_d scale_d |b_d|).
-// *bound: the bound per unit |b| (if given).
-bool ModalCatenary::rounded_anchor(double reset, double scale_max, const RoundedRows& rows,
-                                   double* bound) const {
-  const double g = rows.error_factor();
+// in half or single precision, within g |b| |x| (RoundedRows::error_factor),
+// x the change over the bar's block: it follows the distance from eta_e and
+// does not add up over the updates; a block with no change takes no product.
+// False, with no product, if in a block max_d scale_d times that bound would
+// exceed 'reset' (scale_d: |b_d| for the check, k_d |b_d| for the records'
+// forces). *bound: the bound per unit |b| (if given), the largest block's.
+bool ModalCatenary::rounded_anchor(double reset, Rounding rounding, double* bound) const {
+  const bool half = rounding == Rounding::half;
   work_ = eta_ - exact_eta_;
-  const double distance = work_.norm();
-  if (g * scale_max * distance > reset) return false;
-  rows.multiply(work_, change_);
-  for (long d = 0; d < B_.rows(); ++d) {
-    anchor_elongation_[d] = exact_elongation_[d] + change_[d];
-    anchor_error_[d] = g * bnorm_[d] * distance;
+  block_norms(false);
+  for (std::size_t g = 0; g < row_blocks_.size(); ++g) {
+    const RowBlock& b = row_blocks_[g];
+    const double factor = (half ? b.half : b.single).error_factor();
+    if (factor * (half ? b.bnorm_max : b.force_scale_max) * block_step_[g] > reset) return false;
+  }
+  double largest = 0;
+  for (std::size_t g = 0; g < row_blocks_.size(); ++g) {
+    const RowBlock& b = row_blocks_[g];
+    const RoundedRows& rows = half ? b.half : b.single;
+    const double distance = block_step_[g];
+    if (distance == 0) {
+      for (long d : b.bars) {
+        anchor_elongation_[d] = exact_elongation_[d];
+        anchor_error_[d] = 0;
+      }
+      continue;
+    }
+    block_in_ = work_.segment(b.lo, b.n);
+    rows.multiply(block_in_, block_out_);
+    for (std::size_t i = 0; i < b.bars.size(); ++i) {
+      const long d = b.bars[i];
+      anchor_elongation_[d] = exact_elongation_[d] + block_out_[static_cast<long>(i)];
+      anchor_error_[d] = rows.error_factor() * bnorm_[d] * distance;
+    }
+    largest = std::max(largest, rows.error_factor() * distance);
   }
   anchor_ = eta_;
   anchor_version_ = eta_version_;
-  ++(&rows == &B_half_ ? half_products_ : single_products_);
-  if (bound) *bound = g * distance;
+  ++(half ? half_products_ : single_products_);
+  if (bound) *bound = largest;
   return true;
 }
 
-// The droppers not certainly taut at the loaded state (work_: eta - eta_a).
-void ModalCatenary::find_candidates(double step, double step_omega) {
+// The droppers not certainly taut at the loaded state: a bar's bound takes
+// the change over its block only (work_: eta - eta_a).
+void ModalCatenary::find_candidates(bool at_anchor) {
   candidates_.clear();
-  for (long d = 0; d < B_.rows(); ++d)
+  if (!at_anchor) block_norms(true);
+  for (long d = 0; d < B_.rows(); ++d) {
+    const double step = at_anchor ? 0.0 : block_step_[bar_block_[d]];
+    const double step_omega = at_anchor ? 0.0 : block_step_omega_[bar_block_[d]];
     if (anchor_elongation_[d] - anchor_error_[d] <=
         std::min(bnorm_[d] * step, bnorm_omega_[d] * step_omega))
       candidates_.push_back(d);
+  }
+}
+
+// Blocks apart (a basis of several column blocks, records in batches: no
+// line of bounds): only the blocks with more than 'few' candidates take a
+// new anchor, each from the last exact one in half precision (exact where
+// its rounding bound would exceed kErrorReset), the others keep theirs (a
+// tension section the train has passed changes little, one not reached not
+// at all); the candidates sought again. False, with nothing changed, where
+// every block would take one: the whole anchor, as with one block.
+bool ModalCatenary::refresh_blocks(std::size_t few) {
+  if (records_anchor_ || row_blocks_.size() < 2) return false;
+  std::vector<std::size_t> count(row_blocks_.size(), 0);
+  for (long d : candidates_) ++count[bar_block_[d]];
+  std::size_t refreshed = 0;
+  for (std::size_t c : count) refreshed += c > few ? 1 : 0;
+  if (refreshed == row_blocks_.size()) return false;
+  if (refreshed == 0) return true;  // a few in each: evaluated exactly
+  for (std::size_t g = 0; g < row_blocks_.size(); ++g) {
+    if (count[g] <= few) continue;
+    const RowBlock& b = row_blocks_[g];
+    block_in_ = eta_.segment(b.lo, b.n) - exact_eta_.segment(b.lo, b.n);
+    const double distance = block_in_.norm(), factor = b.half.error_factor();
+    if (factor * b.bnorm_max * distance > kErrorReset) {  // exact, the block's new base
+      exact_eta_.segment(b.lo, b.n) = eta_.segment(b.lo, b.n);
+      block_out_.noalias() = b.rows * eta_.segment(b.lo, b.n);
+      for (std::size_t i = 0; i < b.bars.size(); ++i) {
+        const long d = b.bars[i];
+        exact_elongation_[d] = stretch_[d] + block_out_[static_cast<long>(i)];
+        anchor_elongation_[d] = exact_elongation_[d];
+        anchor_error_[d] = 0;
+      }
+      exact_norm_ = exact_eta_.norm();
+      ++exact_count_;
+      evaluations_ += static_cast<long>(b.bars.size());
+    } else {
+      b.half.multiply(block_in_, block_out_);
+      for (std::size_t i = 0; i < b.bars.size(); ++i) {
+        const long d = b.bars[i];
+        anchor_elongation_[d] = exact_elongation_[d] + block_out_[static_cast<long>(i)];
+        anchor_error_[d] = factor * bnorm_[d] * distance;
+      }
+      ++half_products_;
+    }
+    anchor_.segment(b.lo, b.n) = eta_.segment(b.lo, b.n);
+  }
+  work_ = eta_ - anchor_;
+  find_candidates(false);
+  return true;
 }
 
 // The bounded candidate set (see the header).
@@ -144,7 +287,7 @@ void ModalCatenary::update_slack_set() {
   } else {
     at_anchor = anchor_version_ == eta_version_;  // eta has not changed since the anchor
     if (at_anchor) {
-      find_candidates(0, 0);
+      find_candidates(true);
     } else if (!records_anchor_ || !line_valid_ || !line_candidates(kFewCandidates)) {
       // No line without records of the dropper forces one at a time (a moving
       // window, records in batches): it would join the error resets' anchors,
@@ -153,12 +296,10 @@ void ModalCatenary::update_slack_set() {
       // batched: the same products per step without it, and 7 % of the step's
       // time with it: docs/benchmarks.md, "No line of bounds for batched records").
       work_ = eta_ - anchor_;
-      const double step = work_.norm();
-      const double step_omega = (work_.array() * omega_.array()).matrix().norm();
-      find_candidates(step, step_omega);
-      if (candidates_.size() > kFewCandidates) {
-        if (!rounded_anchor(kErrorReset, bnorm_max_, B_half_)) exact_anchor();
-        find_candidates(0, 0);
+      find_candidates(false);
+      if (candidates_.size() > kFewCandidates && !refresh_blocks(kFewCandidates)) {
+        if (!rounded_anchor(kErrorReset, Rounding::half)) exact_anchor();
+        find_candidates(true);
         at_anchor = true;
       }
     }
@@ -168,7 +309,8 @@ void ModalCatenary::update_slack_set() {
     if (at_anchor && anchor_error_[d] == 0) {
       dl = anchor_elongation_[d];
     } else {
-      dl = stretch_[d] + B_.row(d).dot(eta_);
+      const RowBlock& b = row_blocks_[bar_block_[d]];
+      dl = stretch_[d] + B_.row(d).segment(b.lo, b.n).dot(eta_.segment(b.lo, b.n));
       ++evaluations_;
     }
     if (dl < 0 && mesh_.bars[slack_bars_[d]].slack != catenary::SlackCriterion::none)
@@ -185,7 +327,7 @@ void ModalCatenary::record_anchor() const {
   // Exact here already (a load's reset, or every dropper checked): on the line too.
   if (anchor_version_ == eta_version_ && anchor_error_.isZero(0)) return;
   double single_bound = 0;
-  if (!rounded_anchor(kRecordForceError, force_scale_max_, B_single_, &single_bound)) {
+  if (!rounded_anchor(kRecordForceError, Rounding::single, &single_bound)) {
     exact_anchor();
     return;
   }

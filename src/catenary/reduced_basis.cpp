@@ -1,6 +1,7 @@
 #include "pcsim/catenary/reduced_basis.hpp"
 
 #include <algorithm>
+#include <numeric>
 
 #include "pcsim/catenary/wind.hpp"
 
@@ -59,6 +60,75 @@ std::vector<long> reduced_basis_rows(const CatenaryMesh& mesh, bool full_shapes)
   const auto turbulence = turbulence_row_keys(mesh);  // beyond every node's: still ascending
   keys.insert(keys.end(), turbulence.begin(), turbulence.end());
   return keys;
+}
+
+}  // namespace pcsim::catenary
+
+namespace pcsim::catenary {
+
+namespace {
+
+long block_root(std::vector<long>& parent, long i) {
+  while (parent[i] != i) {
+    parent[i] = parent[parent[i]];
+    i = parent[i];
+  }
+  return i;
+}
+
+}  // namespace
+
+void order_columns_by_block(ReducedBasis& b) {
+  const long m = static_cast<long>(b.size());
+  const long rows = static_cast<long>(b.row_keys.size());
+  b.column_blocks = {0, m};
+  if (m == 0 || !b.shift.empty()) return;
+  // Columns joined by every kept row's nonzeros (union-find, smaller root).
+  std::vector<long> parent(static_cast<std::size_t>(m));
+  std::iota(parent.begin(), parent.end(), 0L);
+  for (long r = 0; r < rows; ++r) {
+    const double* row = b.rows.data() + r * m;
+    long first = -1;
+    for (long k = 0; k < m; ++k) {
+      if (row[k] == 0) continue;
+      if (first < 0) {
+        first = block_root(parent, k);
+        continue;
+      }
+      const long root = block_root(parent, k);
+      if (root == first) continue;
+      parent[std::max(root, first)] = std::min(root, first);
+      first = std::min(root, first);
+    }
+  }
+  // Blocks in the order of their first columns (a root is its block's smallest column).
+  std::vector<long> block(static_cast<std::size_t>(m), -1), count;
+  for (long k = 0; k < m; ++k) {
+    const long root = block_root(parent, k);
+    if (block[root] < 0) {
+      block[root] = static_cast<long>(count.size());
+      count.push_back(0);
+    }
+    block[k] = block[root];
+    ++count[block[k]];
+  }
+  if (count.size() == 1) return;
+  std::vector<long> start(count.size() + 1, 0);
+  for (std::size_t i = 0; i < count.size(); ++i) start[i + 1] = start[i] + count[i];
+  std::vector<long> source(static_cast<std::size_t>(m));  // new column -> old
+  {
+    std::vector<long> next(start.begin(), start.end() - 1);
+    for (long k = 0; k < m; ++k) source[next[block[k]]++] = k;
+  }
+  const auto permute = [&](std::vector<double>& v, long offset, std::vector<double>& tmp) {
+    for (long j = 0; j < m; ++j) tmp[j] = v[offset + source[j]];
+    std::copy(tmp.begin(), tmp.end(), v.begin() + offset);
+  };
+  std::vector<double> tmp(static_cast<std::size_t>(m));
+  permute(b.omega2, 0, tmp);
+  if (static_cast<long>(b.wind_damping.size()) == m) permute(b.wind_damping, 0, tmp);
+  for (long r = 0; r < rows; ++r) permute(b.rows, r * m, tmp);
+  b.column_blocks = start;
 }
 
 }  // namespace pcsim::catenary

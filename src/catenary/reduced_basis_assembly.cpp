@@ -55,14 +55,60 @@ std::vector<long> selected_modes(const ModalData& data, const CatenaryMesh& mesh
   return keep;
 }
 
+// The Ritz vectors of Kp x = omega^2 Mp x on the range of Mp (its
+// eigenvalues above 'floor', or 1e-10 of its largest when floor is 0), as
+// columns of coefficients over the shapes; their omega^2 appended.
+Eigen::MatrixXd group_ritz(const Eigen::MatrixXd& Mp, const Eigen::MatrixXd& Kp, double floor,
+                           std::vector<double>& omega2) {
+  const long nd = Mp.rows();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> mass(Mp);
+  if (floor <= 0) floor = 1e-10 * mass.eigenvalues().cwiseAbs().maxCoeff();
+  std::vector<long> range;
+  for (long j = 0; j < nd; ++j)
+    if (mass.eigenvalues()[j] > floor) range.push_back(j);
+  Eigen::MatrixXd T(nd, static_cast<long>(range.size()));
+  for (std::size_t j = 0; j < range.size(); ++j)
+    T.col(static_cast<long>(j)) =
+        mass.eigenvectors().col(range[j]) / std::sqrt(mass.eigenvalues()[range[j]]);
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(T.transpose() * Kp * T);
+  for (long j = 0; j < solver.eigenvalues().size(); ++j) omega2.push_back(solver.eigenvalues()[j]);
+  return T * solver.eigenvectors();
+}
+
 // The Ritz vectors as combinations of the computed vectors: Psi X - Phi_keep CX.
 struct RitzCoefficients {
   RowMatrix C;            // kept modes x shapes: phi_k^T M psi_d
   Eigen::MatrixXd X, CX;  // shapes x r, kept modes x r
 };
 
-// Ritz vectors of the shapes' M-complement of the kept modes (header): their
-// coefficients, their omega^2 appended to 'omega2'.
+// The shapes' groups that Mp and Kp join (exact nonzeros): a line's tension
+// sections' droppers apart, whose Ritz vectors then stay each on its section
+// (one Rayleigh-Ritz over every shape mixes sections whose values are close,
+// and the basis's columns could not be told apart by blocks:
+// order_columns_by_block). In the order of their first shapes.
+std::vector<std::vector<long>> shape_groups(const Eigen::MatrixXd& Mp, const Eigen::MatrixXd& Kp) {
+  const long nd = Mp.rows();
+  std::vector<long> group(static_cast<std::size_t>(nd), -1);
+  std::vector<std::vector<long>> groups;
+  for (long s = 0; s < nd; ++s) {
+    if (group[s] >= 0) continue;
+    group[s] = static_cast<long>(groups.size());
+    groups.push_back({s});
+    for (std::size_t next = 0; next < groups.back().size(); ++next) {
+      const long i = groups.back()[next];
+      for (long j = 0; j < nd; ++j)
+        if (group[j] < 0 && (Mp(i, j) != 0 || Kp(i, j) != 0)) {
+          group[j] = group[s];
+          groups.back().push_back(j);
+        }
+    }
+    std::sort(groups.back().begin(), groups.back().end());
+  }
+  return groups;
+}
+
+// Ritz vectors of the shapes' M-complement of the kept modes (header), group
+// by group of shapes: their coefficients, their omega^2 appended to 'omega2'.
 RitzCoefficients ritz_vectors(const ModalData& data, const std::vector<long>& keep,
                               std::vector<double>& omega2) {
   const long nd = static_cast<long>(data.shapes()), m = static_cast<long>(keep.size());
@@ -80,19 +126,34 @@ RitzCoefficients ritz_vectors(const ModalData& data, const std::vector<long>& ke
       ConstMap(data.shape_flexibility.data(), nd, nd) - C.transpose() * w2.asDiagonal() * C;
   Mp = 0.5 * (Mp + Mp.transpose()).eval();
   Kp = 0.5 * (Kp + Kp.transpose()).eval();
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> mass(Mp);
-  const double floor = 1e-10 * mass.eigenvalues().cwiseAbs().maxCoeff();
-  std::vector<long> range;
-  for (long j = 0; j < nd; ++j)
-    if (mass.eigenvalues()[j] > floor) range.push_back(j);
-  Eigen::MatrixXd T(nd, static_cast<long>(range.size()));
-  for (std::size_t j = 0; j < range.size(); ++j)
-    T.col(static_cast<long>(j)) =
-        mass.eigenvectors().col(range[j]) / std::sqrt(mass.eigenvalues()[range[j]]);
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(T.transpose() * Kp * T);
-  ritz.X = T * solver.eigenvectors();
+  const auto groups = shape_groups(Mp, Kp);
+  if (groups.size() == 1) {
+    ritz.X = group_ritz(Mp, Kp, 0, omega2);
+  } else {
+    const double floor =
+        1e-10 * Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Mp, Eigen::EigenvaluesOnly)
+                    .eigenvalues()
+                    .cwiseAbs()
+                    .maxCoeff();
+    std::vector<Eigen::MatrixXd> parts;
+    long r = 0;
+    for (const auto& g : groups) {
+      const long n = static_cast<long>(g.size());
+      Eigen::MatrixXd Mg(n, n), Kg(n, n);
+      for (long i = 0; i < n; ++i)
+        for (long j = 0; j < n; ++j) Mg(i, j) = Mp(g[i], g[j]), Kg(i, j) = Kp(g[i], g[j]);
+      parts.push_back(group_ritz(Mg, Kg, floor, omega2));
+      r += parts.back().cols();
+    }
+    ritz.X.setZero(nd, r);
+    long col = 0;
+    for (std::size_t k = 0; k < groups.size(); ++k) {
+      for (std::size_t i = 0; i < groups[k].size(); ++i)
+        ritz.X.block(groups[k][i], col, 1, parts[k].cols()) = parts[k].row(static_cast<long>(i));
+      col += parts[k].cols();
+    }
+  }
   ritz.CX = C * ritz.X;
-  for (long j = 0; j < ritz.X.cols(); ++j) omega2.push_back(solver.eigenvalues()[j]);
   return ritz;
 }
 
@@ -197,6 +258,7 @@ ReducedBasis assemble(const ModalData& data, std::vector<double> shift_products,
         b.contact_flexibility[i] = std::max(r, 0.0);
       }
   }
+  order_columns_by_block(b);
   return b;
 }
 

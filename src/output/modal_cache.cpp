@@ -225,7 +225,8 @@ bool read_basis_file(hid_t file, const std::string& key, catenary::ReducedBasis&
   if (!read_attribute(file, "cutoff_hz", b.cutoff_hz) ||
       !read_attribute(file, "eigenmodes", eigenmodes) ||
       !read_attribute(file, "dropped_modes", dropped) || !read_dataset(file, "/omega2", b.omega2) ||
-      !read_dataset(file, "/row_keys", b.row_keys) || !read_dataset(file, "/rows", b.rows))
+      !read_dataset(file, "/row_keys", b.row_keys) || !read_dataset(file, "/rows", b.rows) ||
+      !read_dataset(file, "/column_blocks", b.column_blocks))  // none: a file of an older pcsim
     return false;
   for (auto [path, v] :
        {std::pair{"/contact_flexibility", &b.contact_flexibility}, std::pair{"/shift", &b.shift},
@@ -234,7 +235,11 @@ bool read_basis_file(hid_t file, const std::string& key, catenary::ReducedBasis&
   b.eigenmodes = static_cast<int>(eigenmodes);
   b.dropped_modes = static_cast<int>(dropped);
   const std::size_t n = b.size();
-  return b.rows.size() == b.row_keys.size() * n && (b.shift.empty() || b.shift.size() == n * n) &&
+  const bool blocks = b.column_blocks.size() >= 2 && b.column_blocks.front() == 0 &&
+                      b.column_blocks.back() == static_cast<long>(n) &&
+                      std::is_sorted(b.column_blocks.begin(), b.column_blocks.end());
+  return blocks && b.rows.size() == b.row_keys.size() * n &&
+         (b.shift.empty() || b.shift.size() == n * n) &&
          (b.wind_damping.empty() || b.wind_damping.size() == n);
 }
 
@@ -375,6 +380,7 @@ void write_basis(const std::string& file, const std::string& key, const catenary
   write_atomically(file, [&](H5File& h5) {
     h5.write("/omega2", b.omega2);
     h5.write_int("/row_keys", b.row_keys);
+    h5.write_int("/column_blocks", b.column_blocks);
     write_matrix(h5, "/rows", b.rows, b.row_keys.size());
     if (!b.contact_flexibility.empty()) h5.write("/contact_flexibility", b.contact_flexibility);
     write_matrix(h5, "/shift", b.shift, b.size());

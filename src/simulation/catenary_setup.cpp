@@ -46,6 +46,7 @@ void broadcast(catenary::ReducedBasis& b, MPI_Comm comm) {
   for (auto* v : {&b.omega2, &b.rows, &b.contact_flexibility, &b.shift, &b.wind_damping})
     broadcast(*v, comm);
   broadcast(b.row_keys, comm);
+  broadcast(b.column_blocks, comm);
   int counts[2] = {b.eigenmodes, b.dropped_modes};
   MPI_Bcast(counts, 2, MPI_INT, 0, comm);
   MPI_Bcast(&b.cutoff_hz, 1, MPI_DOUBLE, 0, comm);
@@ -333,6 +334,7 @@ nlohmann::json CatenarySetup::facts() const {
   j["basis_size"] = basis_size;
   j["eigenmodes"] = eigenmodes;
   j["dropped_modes"] = dropped_modes;
+  j["column_blocks"] = column_blocks;
   j["cache_hit"] = cache_hit;
   j["cache_file"] = cache_file;
   j["basis_file"] = basis_file;
@@ -370,6 +372,7 @@ CatenarySetup make_catenary_model(const Context& ctx, const scene::RunScene& run
   out.basis_size = static_cast<int>(basis->size());
   out.eigenmodes = basis->eigenmodes;
   out.dropped_modes = basis->dropped_modes;
+  out.column_blocks = std::max<int>(1, static_cast<int>(basis->column_blocks.size()) - 1);
   out.cutoff_hz = settings.max_frequency_hz;
   out.model = std::make_unique<assembly::ModalCatenary>(
       ctx.comm, statics.mesh, statics.result.node_values, std::move(basis), settings, extra_dofs);

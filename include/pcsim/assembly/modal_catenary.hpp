@@ -11,8 +11,9 @@
 // slack dropper) or every bar's exact nonlinear force minus its
 // linearisation (settings.bars = exact: the all-modes check against FE), and
 // the contact through wire_point(x, wire): z(x) = z0(x) + S_z(chi) Phi_e eta, a
-// dense row over the modes, with the truncated flexibility of the contact
-// point (every contact wire of a line with overlaps).
+// dense row over the modes of the element's column block (a line's tension
+// sections: ReducedBasis::column_blocks), with the truncated flexibility of
+// the contact point (every contact wire of a line with overlaps).
 //
 // Which droppers are evaluated at each state (dropper_check = bounded): the
 // elongations dl_a of every dropper are known at an anchor state eta_a to
@@ -129,24 +130,46 @@ class ModalCatenary : public CatenaryModel {
   std::vector<int> droppers_;       // the droppers (records), as indices into slack_bars_
   std::vector<int> slack_bars_;     // bars tracked over the basis
   std::vector<int> wire_position_;  // node -> position in contact_wire_nodes(), -1
-  bool slack_active_ = false;       // the slack correction is a term
-  bool dropper_slack_ = true;       // the scene's effect (make_terms)
+  // The basis's column blocks (starts, then m) and, per contact-wire node,
+  // the columns its z and z' rows span (lo, hi): a contact point's weights
+  // cover its element's only. Empty with one block.
+  std::vector<long> column_starts_;
+  std::vector<std::pair<long, long>> wire_node_columns_;
+  void find_wire_node_columns(const std::vector<int>& wire_nodes);
+  bool slack_active_ = false;                          // the slack correction is a term
+  bool dropper_slack_ = true;                          // the scene's effect (make_terms)
   std::vector<double> stretch_, bnorm_, bnorm_omega_;  // s_d, |b_d|, |Omega^-1 b_d|
-  double bnorm_max_ = 0;                               // max_d |b_d|
   RowMatrix B_;
   RowMatrix support_rows_;  // the contact-wire height rows of the supports
   Eigen::VectorXd omega_;
   // Loaded state and the bounded set's bookkeeping (the records make exact
   // anchors too, hence mutable).
-  // B rounded (rounded_rows.hpp): in single precision for the records'
-  // anchors (their 1 N bound), in half precision for the step's check.
-  RoundedRows B_single_, B_half_;
+  // B by the basis's column blocks (ReducedBasis::column_blocks: a line's
+  // tension sections): a bar's row is zero outside its block, so each block's
+  // bars take their rows over the block's columns only, and a block whose
+  // coordinates have not changed takes none. Its rows in double, and rounded
+  // (rounded_rows.hpp) in single precision for the records' anchors (their
+  // 1 N bound), in half precision for the step's check.
+  struct RowBlock {
+    long lo = 0, n = 0;      // columns lo .. lo + n - 1
+    std::vector<long> bars;  // tracked bars (indices d), ascending
+    RowMatrix rows;          // bars x n
+    RoundedRows single, half;
+    double bnorm_max = 0, force_scale_max = 0;  // max |b_d|, max over droppers k_d |b_d|
+  };
+  std::vector<RowBlock> row_blocks_;
+  std::vector<int> bar_block_;  // tracked bar -> its block
+  std::size_t single_bytes_ = 0;
+  mutable std::vector<double> block_step_, block_step_omega_;  // per block: |dx|, |Omega dx|
+  mutable Eigen::VectorXd block_in_, block_out_;
+  void build_row_blocks();
+  // work_'s norms per block (find_candidates) into block_step_, block_step_omega_.
+  void block_norms(bool omega) const;
   Eigen::VectorXd eta_, incoming_;
   mutable Eigen::VectorXd work_;
   long eta_version_ = 0;                    // counts the changes of eta_
   mutable long anchor_version_ = -1;        // the eta_version_ of the anchor
   mutable bool slack_set_current_ = false;  // slack_now_ is that of eta_ and the anchor
-  mutable Eigen::VectorXd change_;          // B (eta - eta_E) of a single- or half-precision anchor
   mutable Eigen::VectorXd anchor_, anchor_elongation_, anchor_error_;
   // The last exact anchor (eta_E, dl_E, |eta_E|): the base of the
   // single-precision ones (modal_slack_set.cpp).
@@ -163,7 +186,6 @@ class ModalCatenary : public CatenaryModel {
   // dropper_forces() anchors each recorded state; a record kept for a batch
   // (keep_record_state) does not, and the line is left unused.
   mutable bool records_anchor_ = false;
-  double force_scale_max_ = 0;  // max over the droppers of k_d |b_d| [N/m]
   std::vector<double> elongation_;
   std::vector<std::size_t> slack_now_;
   std::vector<long> candidates_;
@@ -179,9 +201,12 @@ class ModalCatenary : public CatenaryModel {
   void exact_anchor() const;
   void push_line_anchor(double bound) const;
   void record_anchor() const;
-  bool rounded_anchor(double reset, double scale_max, const RoundedRows& rows,
-                      double* bound = nullptr) const;
-  void find_candidates(double step, double step_omega);
+  enum class Rounding { half, single };  // the check's rows, the records'
+  bool rounded_anchor(double reset, Rounding rounding, double* bound = nullptr) const;
+  // The droppers not certainly taut at the loaded state, work_ = eta - the
+  // anchor (at_anchor: eta is the anchor).
+  void find_candidates(bool at_anchor);
+  bool refresh_blocks(std::size_t few);
   bool line_candidates(std::size_t few);
   // Wire-point weights of the last few x of each contact wire (they depend
   // on x only): the point, its static height and the slope's parts. Several

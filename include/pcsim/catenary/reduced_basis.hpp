@@ -87,7 +87,9 @@ struct ModalData {
 
 // The basis the modal model uses: M-orthonormal, K-diagonal.
 struct ReducedBasis {
-  int eigenmodes = 0;          // basis vectors 0..eigenmodes-1 are modes below the cut-off
+  // Modes below the cut-off: basis vectors 0..eigenmodes-1 in one block;
+  // with several blocks (column_blocks) each block's modes, then its others.
+  int eigenmodes = 0;
   int dropped_modes = 0;       // modes below the cut-off left out (vertical_only)
   std::vector<double> omega2;  // omega_k^2 of every basis vector
   std::vector<long> row_keys;  // the kept rows (basis_row_key), ascending
@@ -105,8 +107,20 @@ struct ReducedBasis {
   // at 25 m/s and 70 Hz). Empty without wind.
   std::vector<double> wind_damping;
   double cutoff_hz = 0;
+  // The columns in blocks that share no nonzero kept row (a line's tension
+  // sections, each with its own modes): block i is columns column_blocks[i]
+  // .. column_blocks[i + 1] - 1, the last entry size(). {0, size()}: one
+  // block; empty: not known (one block).
+  std::vector<long> column_blocks;
   std::size_t size() const { return omega2.size(); }
 };
+
+// Reorders b's columns (omega2, rows, wind_damping) block after block, each
+// block's columns in their order, the blocks in the order of their first
+// columns, and sets b.column_blocks (a basis with a shift is left as it is,
+// one block). Exact zeros tell the blocks apart: the modes of a structure's
+// parts computed each on its own DOFs (simulation/modal_basis.hpp).
+void order_columns_by_block(ReducedBasis& b);
 
 // The basis for 'settings' from data computed at a cut-off at least as high:
 // the modes below settings.max_frequency_hz (with vertical_only those whose

@@ -29,6 +29,7 @@ struct CatenarySetup {
   double basis_seconds = 0;      // computing the basis (0 when read from the cache)
   double setup_seconds = 0;      // reading or computing it
   int basis_size = 0, eigenmodes = 0, dropped_modes = 0;
+  int column_blocks = 1;  // the basis's (catenary/reduced_basis.hpp)
   double cutoff_hz = 0;
   // For summary.json and the console.
   nlohmann::json facts() const;
