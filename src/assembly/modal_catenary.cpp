@@ -88,6 +88,15 @@ void ModalCatenary::find_wire_node_columns(const std::vector<int>& wire_nodes) {
   }
 }
 
+// The columns of a contact-wire element's blocks (every column with one block).
+std::pair<long, long> ModalCatenary::element_columns(int node0, int node1) const {
+  if (wire_node_columns_.empty()) return {0, m_};
+  const auto a = wire_node_columns_[node0], b = wire_node_columns_[node1];
+  if (a.first >= a.second) return b;
+  if (b.first >= b.second) return a;
+  return {std::min(a.first, b.first), std::max(a.second, b.second)};
+}
+
 // Bars tracked over the basis: the slack-capable ones and the droppers
 // (records). b_d = e . (Phi_j - Phi_i), e the bar's static direction;
 // s_d the static stretch over the slack threshold.
@@ -251,14 +260,7 @@ ModalCatenary::CachedPoint& ModalCatenary::cached_point(double x, int wire) cons
     const auto& ds = h.ds;
     const int node[4] = {el.nodes[0], el.nodes[0], el.nodes[1], el.nodes[1]};
     const int comp[4] = {2, 5, 2, 5};  // z, z' at each end (thesis 3.13)
-    // The columns of the element's blocks (every column with one block).
-    long lo = 0, hi = m_;
-    if (!wire_node_columns_.empty()) {
-      const auto a = wire_node_columns_[el.nodes[0]], b = wire_node_columns_[el.nodes[1]];
-      lo = a.first < a.second ? a.first : b.first;
-      hi = a.first < a.second ? a.second : b.second;
-      if (b.first < b.second) lo = std::min(lo, b.first), hi = std::max(hi, b.second);
-    }
+    const auto [lo, hi] = element_columns(el.nodes[0], el.nodes[1]);
     const long n = hi - lo;
     const auto r0 = row(node[0], comp[0]).segment(lo, n), r1 = row(node[1], comp[1]).segment(lo, n);
     const auto r2 = row(node[2], comp[2]).segment(lo, n), r3 = row(node[3], comp[3]).segment(lo, n);

@@ -36,6 +36,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "pcsim/assembly/catenary_model.hpp"
@@ -136,6 +137,7 @@ class ModalCatenary : public CatenaryModel {
   std::vector<long> column_starts_;
   std::vector<std::pair<long, long>> wire_node_columns_;
   void find_wire_node_columns(const std::vector<int>& wire_nodes);
+  std::pair<long, long> element_columns(int node0, int node1) const;
   bool slack_active_ = false;                          // the slack correction is a term
   bool dropper_slack_ = true;                          // the scene's effect (make_terms)
   std::vector<double> stretch_, bnorm_, bnorm_omega_;  // s_d, |b_d|, |Omega^-1 b_d|
