@@ -4,6 +4,7 @@
 #include <numeric>
 
 #include "pcsim/catenary/wind.hpp"
+#include "pcsim/core/union_find.hpp"
 
 namespace pcsim::catenary {
 
@@ -62,22 +63,6 @@ std::vector<long> reduced_basis_rows(const CatenaryMesh& mesh, bool full_shapes)
   return keys;
 }
 
-}  // namespace pcsim::catenary
-
-namespace pcsim::catenary {
-
-namespace {
-
-long block_root(std::vector<long>& parent, long i) {
-  while (parent[i] != i) {
-    parent[i] = parent[parent[i]];
-    i = parent[i];
-  }
-  return i;
-}
-
-}  // namespace
-
 void order_columns_by_block(ReducedBasis& b) {
   const long m = static_cast<long>(b.size());
   const long rows = static_cast<long>(b.row_keys.size());
@@ -92,10 +77,10 @@ void order_columns_by_block(ReducedBasis& b) {
     for (long k = 0; k < m; ++k) {
       if (row[k] == 0) continue;
       if (first < 0) {
-        first = block_root(parent, k);
+        first = core::find_root(parent, k);
         continue;
       }
-      const long root = block_root(parent, k);
+      const long root = core::find_root(parent, k);
       if (root == first) continue;
       parent[std::max(root, first)] = std::min(root, first);
       first = std::min(root, first);
@@ -104,7 +89,7 @@ void order_columns_by_block(ReducedBasis& b) {
   // Blocks in the order of their first columns (a root is its block's smallest column).
   std::vector<long> block(static_cast<std::size_t>(m), -1), count;
   for (long k = 0; k < m; ++k) {
-    const long root = block_root(parent, k);
+    const long root = core::find_root(parent, k);
     if (block[root] < 0) {
       block[root] = static_cast<long>(count.size());
       count.push_back(0);

@@ -5,30 +5,18 @@
 
 #include "modal_basis_internal.hpp"
 #include "pcsim/core/error.hpp"
+#include "pcsim/core/union_find.hpp"
 
 namespace pcsim::simulation::modal_detail {
 
 namespace {
-
-// The root of i's set, halving the paths on the way.
-PetscInt find_root(std::vector<PetscInt>& parent, PetscInt i) {
-  while (parent[i] != i) {
-    parent[i] = parent[parent[i]];
-    i = parent[i];
-  }
-  return i;
-}
 
 // Each DOF's component as the smallest DOF in it, from K's pattern (every
 // rank holds the whole pattern: a line's, some ten entries a row).
 std::vector<PetscInt> component_of_each_dof(Mat K) {
   PetscInt n;
   PCSIM_PETSC(MatGetSize(K, &n, nullptr));
-  IS all;
-  PCSIM_PETSC(ISCreateStride(PETSC_COMM_SELF, n, 0, 1, &all));
-  Mat* whole;
-  PCSIM_PETSC(MatCreateSubMatrices(K, 1, &all, &all, MAT_INITIAL_MATRIX, &whole));
-  PCSIM_PETSC(ISDestroy(&all));
+  Mat* whole = whole_on_every_rank(K);
   PetscInt rows;
   const PetscInt *ia, *ja;
   PetscBool done;
@@ -38,16 +26,27 @@ std::vector<PetscInt> component_of_each_dof(Mat K) {
   std::iota(parent.begin(), parent.end(), PetscInt{0});
   for (PetscInt i = 0; i < rows; ++i)
     for (PetscInt k = ia[i]; k < ia[i + 1]; ++k) {
-      const PetscInt a = find_root(parent, i), b = find_root(parent, ja[k]);
+      const PetscInt a = core::find_root(parent, i), b = core::find_root(parent, ja[k]);
       if (a != b) parent[std::max(a, b)] = std::min(a, b);  // the smaller DOF is the root
     }
   PCSIM_PETSC(MatRestoreRowIJ(whole[0], 0, PETSC_FALSE, PETSC_FALSE, &rows, &ia, &ja, &done));
   PCSIM_PETSC(MatDestroySubMatrices(1, &whole));
-  for (PetscInt i = 0; i < n; ++i) parent[i] = find_root(parent, i);
+  for (PetscInt i = 0; i < n; ++i) parent[i] = core::find_root(parent, i);
   return parent;
 }
 
 }  // namespace
+
+Mat* whole_on_every_rank(Mat A) {
+  PetscInt n;
+  PCSIM_PETSC(MatGetSize(A, &n, nullptr));
+  IS all;
+  PCSIM_PETSC(ISCreateStride(PETSC_COMM_SELF, n, 0, 1, &all));
+  Mat* copy;
+  PCSIM_PETSC(MatCreateSubMatrices(A, 1, &all, &all, MAT_INITIAL_MATRIX, &copy));
+  PCSIM_PETSC(ISDestroy(&all));
+  return copy;
+}
 
 std::vector<std::vector<PetscInt>> component_groups(Mat K, long min_group_dofs) {
   const std::vector<PetscInt> root = component_of_each_dof(K);

@@ -67,6 +67,9 @@ using ModeSink = std::function<void(double lambda, Vec phi)>;
 // is connected. Collective.
 constexpr long kMinGroupDofs = 2000;
 std::vector<std::vector<PetscInt>> component_groups(Mat K, long min_group_dofs = kMinGroupDofs);
+// The whole of a distributed matrix on every rank (a sequential AIJ matrix,
+// destroyed with MatDestroySubMatrices(1, &copy)).
+Mat* whole_on_every_rank(Mat A);
 
 // Every eigenpair of K phi = lambda M phi with lambda in [0, lambda_max],
 // computed in chunks of the interval (options prefix -modal_), each group

@@ -241,6 +241,43 @@ double stream_groups_interval(const Operators& op,
   return max_residual;
 }
 
+// Streams one interval's modes [lo, hi] into a sink; returns their largest residual.
+using Interval = std::function<double(double lo, double hi, const ModeSink& sink)>;
+
+struct Chunks {
+  double lambda_above, lambda_max;
+  int count;        // intervals, of equal widths in frequency
+  long modes;       // in all of them (progress)
+  int parts_apart;  // (progress)
+};
+
+// The intervals from lambda_above to lambda_max, each by 'interval' in turn,
+// with the progress after each. [lo, hi] intervals do not overlap (nor the
+// modes above lambda_above with those below).
+double stream_chunks(const Chunks& chunks, const Interval& interval, const ModeSink& sink,
+                     const std::function<void(long, long, int)>& progress) {
+  const double omega_min = std::sqrt(std::max(chunks.lambda_above, 0.0));
+  const double omega_max = std::sqrt(chunks.lambda_max);
+  double max_residual = 0;
+  double lo =
+      chunks.lambda_above > 0 ? std::nextafter(chunks.lambda_above, 2 * chunks.lambda_above) : 0;
+  long done = 0;
+  const ModeSink counting = [&](double lambda, Vec phi) {
+    ++done;
+    sink(lambda, phi);
+  };
+  if (progress) progress(0, chunks.modes, chunks.parts_apart);
+  for (int c = 1; c <= chunks.count; ++c) {
+    const double hi = c == chunks.count
+                          ? chunks.lambda_max
+                          : std::pow(omega_min + (omega_max - omega_min) * c / chunks.count, 2);
+    max_residual = std::max(max_residual, interval(lo, hi, counting));
+    lo = std::nextafter(hi, 2 * hi);
+    if (progress) progress(done, chunks.modes, chunks.parts_apart);
+  }
+  return max_residual;
+}
+
 // stream_modes on a K whose graph falls into separate groups of components
 // (a line's tension sections share no element): each group's spectrum is
 // sliced on its own DOFs, so each solve and each orthogonalisation runs over
@@ -259,33 +296,18 @@ double stream_modes_by_group(const Operators& op, const std::vector<std::vector<
     largest = std::max(largest, n);
   }
   const int chunks = std::max(1, static_cast<int>(std::ceil(largest / chunk_modes)));
-  const double omega_min = std::sqrt(std::max(lambda_above, 0.0));
-  const double omega_max = std::sqrt(lambda_max);
-  double max_residual = 0;
-  double lo = lambda_above > 0 ? std::nextafter(lambda_above, 2 * lambda_above) : 0;
-  long done = 0;
-  const ModeSink counting = [&](double lambda, Vec phi) {
-    ++done;
-    sink(lambda, phi);
-  };
   std::vector<PetscInt> below_lo(groups.size(), 0);  // each group's count up to lo
-  const int parts_apart = static_cast<int>(groups.size());
-  if (progress) progress(0, count, parts_apart);
-  for (int c = 1; c <= chunks; ++c) {
-    const double hi =
-        c == chunks ? lambda_max : std::pow(omega_min + (omega_max - omega_min) * c / chunks, 2);
+  const Interval interval = [&](double lo, double hi, const ModeSink& counting) {
     std::vector<bool> any(groups.size());
     for (std::size_t g = 0; g < groups.size(); ++g) {
       const PetscInt below_hi = groups[g]->count(lambda_above, hi);
       any[g] = below_hi > below_lo[g];
       below_lo[g] = below_hi;
     }
-    max_residual =
-        std::max(max_residual, stream_groups_interval(op, groups, any, lo, hi, counting));
-    lo = std::nextafter(hi, 2 * hi);
-    if (progress) progress(done, count, parts_apart);
-  }
-  return max_residual;
+    return stream_groups_interval(op, groups, any, lo, hi, counting);
+  };
+  return stream_chunks({lambda_above, lambda_max, chunks, count, static_cast<int>(groups.size())},
+                       interval, sink, progress);
 }
 
 }  // namespace
@@ -306,25 +328,10 @@ double stream_modes(const Operators& op, double lambda_above, double lambda_max,
   const PetscInt count = count_below(op.K, op.M, lambda_max) -
                          (lambda_above > 0 ? count_below(op.K, op.M, lambda_above) : 0);
   const int chunks = std::max(1, static_cast<int>(std::ceil(count / chunk_modes)));
-  const double omega_min = std::sqrt(std::max(lambda_above, 0.0));
-  const double omega_max = std::sqrt(lambda_max);
-  double max_residual = 0;
-  // [lo, hi] intervals do not overlap (nor the modes above lambda_above with those below)
-  double lo = lambda_above > 0 ? std::nextafter(lambda_above, 2 * lambda_above) : 0;
-  long done = 0;
-  const ModeSink counting = [&](double lambda, Vec phi) {
-    ++done;
-    sink(lambda, phi);
+  const Interval interval = [&](double lo, double hi, const ModeSink& counting) {
+    return stream_interval(op, lo, hi, counting);
   };
-  if (progress) progress(0, count, 1);
-  for (int c = 1; c <= chunks; ++c) {
-    const double hi =
-        c == chunks ? lambda_max : std::pow(omega_min + (omega_max - omega_min) * c / chunks, 2);
-    max_residual = std::max(max_residual, stream_interval(op, lo, hi, counting));
-    lo = std::nextafter(hi, 2 * hi);
-    if (progress) progress(done, count, 1);
-  }
-  return max_residual;
+  return stream_chunks({lambda_above, lambda_max, chunks, count, 1}, interval, sink, progress);
 }
 
 namespace {
@@ -333,10 +340,7 @@ namespace {
 Eigen::MatrixXd dense_copy(Mat A) {
   PetscInt n;
   PCSIM_PETSC(MatGetSize(A, &n, nullptr));
-  IS all;
-  PCSIM_PETSC(ISCreateStride(PETSC_COMM_SELF, n, 0, 1, &all));
-  Mat* sub;
-  PCSIM_PETSC(MatCreateSubMatrices(A, 1, &all, &all, MAT_INITIAL_MATRIX, &sub));
+  Mat* sub = whole_on_every_rank(A);
   Eigen::MatrixXd D = Eigen::MatrixXd::Zero(n, n);
   for (PetscInt i = 0; i < n; ++i) {
     PetscInt ncols;
@@ -347,7 +351,6 @@ Eigen::MatrixXd dense_copy(Mat A) {
     PCSIM_PETSC(MatRestoreRow(sub[0], i, &ncols, &cols, &vals));
   }
   PCSIM_PETSC(MatDestroySubMatrices(1, &sub));
-  PCSIM_PETSC(ISDestroy(&all));
   return 0.5 * (D + D.transpose());
 }
 
