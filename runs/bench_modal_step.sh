@@ -8,8 +8,10 @@
 #   runs/bench_modal_step.sh BEFORE_BIN AFTER_BIN
 # Environment: REPS=3, SCENES="en300 win70 win109 two20 three" (also two109:
 # two20 at 108.8 Hz, the cut-off its pilot chooses; dsa136: dsa380-300-base
-# at 136.1 Hz, its pilot's; flex136: dsa380-300-flexible at 136.1 Hz; the
-# names: runs/bench/modal_scenes.sh). Run it on an otherwise idle machine: it
+# at 136.1 Hz, its pilot's; flex136: dsa380-300-flexible at 136.1 Hz; ts300:
+# three-sections-300 at its default 69.7 Hz, whose first run computes 18000
+# modes: 615 s with its run, peak 9887 MB (2026-12-04); the names:
+# runs/bench/modal_scenes.sh). Run it on an otherwise idle machine: it
 # measures wall time.
 set -euo pipefail
 cd "$(dirname "$0")/.."
