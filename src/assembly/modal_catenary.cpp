@@ -66,21 +66,25 @@ Eigen::Map<const Eigen::RowVectorXd> ModalCatenary::key_row(long key) const {
   return Eigen::Map<const Eigen::RowVectorXd>(basis_->rows.data() + r * m_, m_);
 }
 
+long ModalCatenary::first_nonzero_block(const double* row, long m,
+                                        const std::vector<long>& starts) {
+  long first = 0;
+  while (first < m && row[first] == 0) ++first;
+  if (first == m) return -1;
+  return std::upper_bound(starts.begin(), starts.end(), first) - starts.begin() - 1;
+}
+
 // The blocks of each contact-wire node's z and z' rows (their first
 // nonzeros; a zero row spans no block), joined into one range of columns.
 void ModalCatenary::find_wire_node_columns(const std::vector<int>& wire_nodes) {
   const auto& starts = basis_->column_blocks;
   if (starts.size() <= 2 || starts.front() != 0 || starts.back() != m_) return;
-  column_starts_ = starts;
   wire_node_columns_.assign(mesh_.nodes.size(), {0, m_});
   for (int n : wire_nodes) {
     long lo = m_, hi = 0;
     for (int c : {2, 5}) {
-      const auto r = row(n, c);
-      long first = 0;
-      while (first < m_ && r[first] == 0) ++first;
-      if (first == m_) continue;
-      const long g = std::upper_bound(starts.begin(), starts.end(), first) - starts.begin() - 1;
+      const long g = first_nonzero_block(row(n, c).data(), m_, starts);
+      if (g < 0) continue;
       lo = std::min(lo, starts[g]);
       hi = std::max(hi, starts[g + 1]);
     }

@@ -41,10 +41,8 @@ void ModalCatenary::build_row_blocks() {
   std::vector<long> block_of(static_cast<std::size_t>(tracked), 0);
   bool inside = true;
   for (long d = 0; d < tracked && starts.size() > 2; ++d) {
-    long first = 0;
-    while (first < m_ && B_(d, first) == 0) ++first;
-    if (first == m_) continue;  // a zero row: block 0
-    const long g = std::upper_bound(starts.begin(), starts.end(), first) - starts.begin() - 1;
+    const long g = first_nonzero_block(B_.row(d).data(), m_, starts);
+    if (g < 0) continue;  // a zero row: block 0
     block_of[d] = g;
     for (long k = starts[g + 1]; k < m_ && inside; ++k) inside = B_(d, k) == 0;
   }
@@ -100,22 +98,51 @@ void ModalCatenary::exact_anchor() const {
   slack_set_current_ = false;  // a new anchor: the next load evaluates again
   anchor_ = eta_;
   anchor_version_ = eta_version_;
-  anchor_elongation_.setZero(B_.rows());
-  for (const RowBlock& b : row_blocks_) {
-    const auto x = eta_.segment(b.lo, b.n);
-    if (x.isZero(0)) continue;
-    block_out_.noalias() = b.rows * x;
-    for (std::size_t i = 0; i < b.bars.size(); ++i)
-      anchor_elongation_[b.bars[i]] = block_out_[static_cast<long>(i)];
-  }
-  anchor_elongation_ += Eigen::Map<const Eigen::VectorXd>(stretch_.data(), B_.rows());
-  anchor_error_.setZero(B_.rows());
   exact_eta_ = eta_;
+  const long n = B_.rows();
+  anchor_elongation_.resize(n);
+  anchor_error_.resize(n);
+  exact_elongation_.resize(n);
+  for (const RowBlock& b : row_blocks_) exact_block(b);
   exact_norm_ = eta_.norm();
-  exact_elongation_ = anchor_elongation_;
   ++exact_count_;
-  evaluations_ += B_.rows();
+  evaluations_ += n;
   push_line_anchor(rounding_gamma(static_cast<double>(m_), kUnitDouble) * exact_norm_);
+}
+
+// Block b's elongations exactly at the loaded state, its bars' new exact
+// base and anchor (none computed where its coordinates are all zero: the
+// static stretches).
+void ModalCatenary::exact_block(const RowBlock& b) const {
+  const auto x = eta_.segment(b.lo, b.n);
+  const bool rest = x.isZero(0);
+  if (!rest) block_out_.noalias() = b.rows * x;
+  for (std::size_t i = 0; i < b.bars.size(); ++i) {
+    const long d = b.bars[i];
+    exact_elongation_[d] = rest ? stretch_[d] : stretch_[d] + block_out_[static_cast<long>(i)];
+    anchor_elongation_[d] = exact_elongation_[d];
+    anchor_error_[d] = 0;
+  }
+  exact_eta_.segment(b.lo, b.n) = x;
+  anchor_.segment(b.lo, b.n) = x;
+}
+
+// Block b's elongations at the loaded state from its exact base by 'rows'
+// (rounded), within error_factor |b_d| distance, distance = |x| for x the
+// change from the base over the block (no product where it is 0).
+void ModalCatenary::rounded_block(const RowBlock& b, const RoundedRows& rows,
+                                  double distance) const {
+  if (distance > 0) {
+    block_in_ = eta_.segment(b.lo, b.n) - exact_eta_.segment(b.lo, b.n);
+    rows.multiply(block_in_, block_out_);
+  }
+  for (std::size_t i = 0; i < b.bars.size(); ++i) {
+    const long d = b.bars[i];
+    anchor_elongation_[d] = distance > 0 ? exact_elongation_[d] + block_out_[static_cast<long>(i)]
+                                         : exact_elongation_[d];
+    anchor_error_[d] = rows.error_factor() * bnorm_[d] * distance;
+  }
+  anchor_.segment(b.lo, b.n) = eta_.segment(b.lo, b.n);
 }
 
 // The anchor just made (anchor_, anchor_elongation_), within 'bound' |b| of
@@ -185,24 +212,9 @@ bool ModalCatenary::rounded_anchor(double reset, Rounding rounding, double* boun
   }
   double largest = 0;
   for (std::size_t g = 0; g < row_blocks_.size(); ++g) {
-    const RowBlock& b = row_blocks_[g];
-    const RoundedRows& rows = half ? b.half : b.single;
-    const double distance = block_step_[g];
-    if (distance == 0) {
-      for (long d : b.bars) {
-        anchor_elongation_[d] = exact_elongation_[d];
-        anchor_error_[d] = 0;
-      }
-      continue;
-    }
-    block_in_ = work_.segment(b.lo, b.n);
-    rows.multiply(block_in_, block_out_);
-    for (std::size_t i = 0; i < b.bars.size(); ++i) {
-      const long d = b.bars[i];
-      anchor_elongation_[d] = exact_elongation_[d] + block_out_[static_cast<long>(i)];
-      anchor_error_[d] = rows.error_factor() * bnorm_[d] * distance;
-    }
-    largest = std::max(largest, rows.error_factor() * distance);
+    const RoundedRows& rows = half ? row_blocks_[g].half : row_blocks_[g].single;
+    rounded_block(row_blocks_[g], rows, block_step_[g]);
+    largest = std::max(largest, rows.error_factor() * block_step_[g]);
   }
   anchor_ = eta_;
   anchor_version_ = eta_version_;
@@ -234,7 +246,8 @@ void ModalCatenary::find_candidates(bool at_anchor) {
 // every block would take one: the whole anchor, as with one block.
 bool ModalCatenary::refresh_blocks(std::size_t few) {
   if (records_anchor_ || row_blocks_.size() < 2) return false;
-  std::vector<std::size_t> count(row_blocks_.size(), 0);
+  auto& count = block_candidates_;
+  count.assign(row_blocks_.size(), 0);
   for (long d : candidates_) ++count[bar_block_[d]];
   std::size_t refreshed = 0;
   for (std::size_t c : count) refreshed += c > few ? 1 : 0;
@@ -243,30 +256,16 @@ bool ModalCatenary::refresh_blocks(std::size_t few) {
   for (std::size_t g = 0; g < row_blocks_.size(); ++g) {
     if (count[g] <= few) continue;
     const RowBlock& b = row_blocks_[g];
-    block_in_ = eta_.segment(b.lo, b.n) - exact_eta_.segment(b.lo, b.n);
-    const double distance = block_in_.norm(), factor = b.half.error_factor();
-    if (factor * b.bnorm_max * distance > kErrorReset) {  // exact, the block's new base
-      exact_eta_.segment(b.lo, b.n) = eta_.segment(b.lo, b.n);
-      block_out_.noalias() = b.rows * eta_.segment(b.lo, b.n);
-      for (std::size_t i = 0; i < b.bars.size(); ++i) {
-        const long d = b.bars[i];
-        exact_elongation_[d] = stretch_[d] + block_out_[static_cast<long>(i)];
-        anchor_elongation_[d] = exact_elongation_[d];
-        anchor_error_[d] = 0;
-      }
+    const double distance = (eta_.segment(b.lo, b.n) - exact_eta_.segment(b.lo, b.n)).norm();
+    if (b.half.error_factor() * b.bnorm_max * distance > kErrorReset) {  // the block's new base
+      exact_block(b);
       exact_norm_ = exact_eta_.norm();
       ++exact_count_;
       evaluations_ += static_cast<long>(b.bars.size());
     } else {
-      b.half.multiply(block_in_, block_out_);
-      for (std::size_t i = 0; i < b.bars.size(); ++i) {
-        const long d = b.bars[i];
-        anchor_elongation_[d] = exact_elongation_[d] + block_out_[static_cast<long>(i)];
-        anchor_error_[d] = factor * bnorm_[d] * distance;
-      }
+      rounded_block(b, b.half, distance);
       ++half_products_;
     }
-    anchor_.segment(b.lo, b.n) = eta_.segment(b.lo, b.n);
   }
   work_ = eta_ - anchor_;
   find_candidates(false);

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <numeric>
 #include <stdexcept>
 
 #include "pcsim/catenary/reduced_basis.hpp"
+#include "pcsim/core/union_find.hpp"
 
 namespace pcsim::catenary {
 
@@ -88,21 +90,23 @@ struct RitzCoefficients {
 // order_columns_by_block). In the order of their first shapes.
 std::vector<std::vector<long>> shape_groups(const Eigen::MatrixXd& Mp, const Eigen::MatrixXd& Kp) {
   const long nd = Mp.rows();
-  std::vector<long> group(static_cast<std::size_t>(nd), -1);
+  std::vector<long> parent(static_cast<std::size_t>(nd));
+  std::iota(parent.begin(), parent.end(), 0L);
+  for (long i = 0; i < nd; ++i)
+    for (long j = i + 1; j < nd; ++j)
+      if (Mp(i, j) != 0 || Kp(i, j) != 0) {
+        const long a = core::find_root(parent, i), b = core::find_root(parent, j);
+        parent[std::max(a, b)] = std::min(a, b);  // the smaller shape is the root
+      }
+  std::vector<long> group(static_cast<std::size_t>(nd), -1);  // by root
   std::vector<std::vector<long>> groups;
-  for (long s = 0; s < nd; ++s) {
-    if (group[s] >= 0) continue;
-    group[s] = static_cast<long>(groups.size());
-    groups.push_back({s});
-    for (std::size_t next = 0; next < groups.back().size(); ++next) {
-      const long i = groups.back()[next];
-      for (long j = 0; j < nd; ++j)
-        if (group[j] < 0 && (Mp(i, j) != 0 || Kp(i, j) != 0)) {
-          group[j] = group[s];
-          groups.back().push_back(j);
-        }
+  for (long s = 0; s < nd; ++s) {  // a root is its group's first shape
+    const long root = core::find_root(parent, s);
+    if (group[root] < 0) {
+      group[root] = static_cast<long>(groups.size());
+      groups.emplace_back();
     }
-    std::sort(groups.back().begin(), groups.back().end());
+    groups[group[root]].push_back(s);
   }
   return groups;
 }

@@ -131,11 +131,12 @@ class ModalCatenary : public CatenaryModel {
   std::vector<int> droppers_;       // the droppers (records), as indices into slack_bars_
   std::vector<int> slack_bars_;     // bars tracked over the basis
   std::vector<int> wire_position_;  // node -> position in contact_wire_nodes(), -1
-  // The basis's column blocks (starts, then m) and, per contact-wire node,
-  // the columns its z and z' rows span (lo, hi): a contact point's weights
-  // cover its element's only. Empty with one block.
-  std::vector<long> column_starts_;
+  // Per contact-wire node, the columns its z and z' rows span (lo, hi) in
+  // the basis's column blocks: a contact point's weights cover its
+  // element's only. Empty with one block.
   std::vector<std::pair<long, long>> wire_node_columns_;
+  // The block (index into starts) of a basis-long row's first nonzero; -1 for a zero row.
+  static long first_nonzero_block(const double* row, long m, const std::vector<long>& starts);
   void find_wire_node_columns(const std::vector<int>& wire_nodes);
   std::pair<long, long> element_columns(int node0, int node1) const;
   bool slack_active_ = false;                          // the slack correction is a term
@@ -209,6 +210,9 @@ class ModalCatenary : public CatenaryModel {
   // anchor (at_anchor: eta is the anchor).
   void find_candidates(bool at_anchor);
   bool refresh_blocks(std::size_t few);
+  void exact_block(const RowBlock& b) const;
+  void rounded_block(const RowBlock& b, const RoundedRows& rows, double distance) const;
+  std::vector<std::size_t> block_candidates_;  // refresh_blocks: candidates per block
   bool line_candidates(std::size_t few);
   // Wire-point weights of the last few x of each contact wire (they depend
   // on x only): the point, its static height and the slope's parts. Several
