@@ -76,9 +76,13 @@ assert blocks("parts") == 3 and blocks("parts-np2") == 3, (blocks("parts"), bloc
 assert blocks("whole") == 1, blocks("whole")
 # The droppers' forces by blocks against one block: the same slack samples,
 # and forces within the records' rounding. One at a time (single precision,
-# bound 1 N): 9.8e-5 N measured of 225 N, 1e-3 allowed; in batches (double
-# precision): 8.9e-8 N measured, 1e-6 allowed (the figures' 1.4e-11 of a
-# force of ~200 N, and the modes' tolerance).
+# bound 1 N): 9.8e-5 N measured of 225 N, 1e-3 allowed. In batches (double
+# precision) what is left is the two bases' own rounding, which the run
+# carries along: 8.9e-8 N measured on one machine, 7.4e-6 N on another
+# (2026-12-04, AMD EPYC family 26, BLIS serial), growing from 1.8e-8 N in
+# the run's first 1000 samples to 7.4e-6 N in its sixth, smoothly; the
+# figures agree to 3.3e-11 there. 1e-4 N allowed: 14 times the larger, and
+# a block's product over wrong columns would be off by newtons.
 def dropper_gap(parts, whole):
     with h5py.File(f"{tmp}/{parts}/results.h5") as fa, h5py.File(f"{tmp}/{whole}/results.h5") as fb:
         fp, fw = fa["droppers/force"][()], fb["droppers/force"][()]
@@ -87,7 +91,7 @@ def dropper_gap(parts, whole):
     return np.max(np.abs(fp - fw))
 df, db = dropper_gap("parts", "whole"), dropper_gap("parts-batches", "whole-batches")
 assert df < 1e-3, f"dropper forces differ by {df:.2e} N"
-assert db < 1e-6, f"dropper forces in batches differ by {db:.2e} N"
+assert db < 1e-4, f"dropper forces in batches differ by {db:.2e} N"
 d, e = figures("parts-batches"), figures("whole-batches")
 wb = worst_of(d, e)
 assert wb < 1e-9, f"parts against the whole line, records in batches: {wb:.2e}"
