@@ -152,17 +152,61 @@ TermPower ModalOscillators::power(const CoupledState& state) const {
 
 // ------------------------------------------------------ dropper slack ----
 
-ModalDropperSlack::ModalDropperSlack(ModalCatenary& catenary)
-    : catenary_(catenary), modes_(all_modes(catenary)) {}
+ModalDropperSlack::ModalDropperSlack(ModalCatenary& catenary, bool force_free)
+    : catenary_(catenary), modes_(all_modes(catenary)) {
+  const auto& bars = catenary.mesh().bars;
+  for (int b : catenary.slack_bars()) {
+    const auto& bar = bars[b];
+    catenary::Vec6 q0;
+    for (int end = 0; end < 2; ++end)
+      for (int c = 0; c < 3; ++c) q0[3 * end + c] = catenary.static_value(bar.nodes[end], c);
+    const Eigen::Vector3d d = q0.tail<3>() - q0.head<3>();
+    const double l0 = d.norm();
+    double g = 0;
+    if (force_free && bar.slack == catenary::SlackCriterion::force && l0 > 0)
+      g = std::max(catenary::bar_axial_force(catenary::bar_parameters(bar, false), q0), 0.0) / l0;
+    Eigen::Matrix<double, 3, 2> n = Eigen::Matrix<double, 3, 2>::Zero();
+    if (g > 0) {
+      const Eigen::Vector3d e = d / l0;
+      n.col(0) = e.unitOrthogonal();
+      n.col(1) = e.cross(n.col(0));
+    }
+    geometric_.push_back(g);
+    normals_.push_back(n);
+  }
+}
+
+const SharedEntries<double>& ModalDropperSlack::transverse_row(std::size_t d, int j) {
+  return kept_row(rows_, 3L * static_cast<long>(d) + j, [&] {
+    const auto& bar = catenary_.mesh().bars[catenary_.slack_bars()[d]];
+    Eigen::RowVectorXd t = Eigen::RowVectorXd::Zero(catenary_.catenary_dofs());
+    for (int c = 0; c < 3; ++c)
+      t +=
+          normals_[d](c, j - 1) * (catenary_.row(bar.nodes[1], c) - catenary_.row(bar.nodes[0], c));
+    return t;
+  });
+}
+
+namespace {
+Eigen::Map<const Eigen::RowVectorXd> as_row(const SharedEntries<double>& row) {
+  return {row.data(), static_cast<long>(row.size())};
+}
+}  // namespace
 
 void ModalDropperSlack::add_residual(const CoupledState&, Vec F) {
   if (!catenary_.on_owner() || catenary_.slack_now().empty()) return;
   PetscScalar* a;
   PCSIM_PETSC(VecGetArray(F, &a));
   Eigen::Map<Eigen::VectorXd> f(a, catenary_.catenary_dofs());
-  for (std::size_t d : catenary_.slack_now())
+  for (std::size_t d : catenary_.slack_now()) {
     f -= catenary_.bar_stiffness(d) * catenary_.elongation(d) *
          catenary_.elongation_rows().row(static_cast<long>(d)).transpose();
+    if (geometric_[d] == 0) continue;
+    for (int j = 1; j <= 2; ++j) {
+      const auto t = as_row(transverse_row(d, j));
+      f -= geometric_[d] * t.dot(catenary_.eta()) * t.transpose();
+    }
+  }
   PCSIM_PETSC(VecRestoreArray(F, &a));
 }
 
@@ -173,29 +217,49 @@ void ModalDropperSlack::add_tangent(const CoupledState&, Shifts, Mat J) {
   for (std::size_t d : catenary_.slack_now()) {
     const auto b = catenary_.elongation_rows().row(static_cast<long>(d));
     block -= catenary_.bar_stiffness(d) * b.transpose() * b;
+    if (geometric_[d] == 0) continue;
+    for (int j = 1; j <= 2; ++j) {
+      const auto t = as_row(transverse_row(d, j));
+      block -= geometric_[d] * t.transpose() * t;
+    }
   }
   add_modal_block(catenary_, block, J);
 }
 
 bool ModalDropperSlack::low_rank_change(const CoupledState&, std::vector<RankOne>& terms) {
-  for (std::size_t d : catenary_.slack_now()) {
+  const auto add = [&](long key, const SharedEntries<double>& weight, double coefficient) {
     RankOne term;
-    term.key = static_cast<int>(d);
+    term.key = static_cast<int>(key);
     term.index = modes_;
-    term.weight = kept_row(rows_, static_cast<long>(d),
-                           [&] { return catenary_.elongation_rows().row(static_cast<long>(d)); });
-    term.coefficient = -catenary_.bar_stiffness(d);
+    term.weight = weight;
+    term.coefficient = coefficient;
     term.reuse_columns = false;
     term.contiguous = true;
     terms.push_back(std::move(term));
+  };
+  for (std::size_t d : catenary_.slack_now()) {
+    const long key = 3L * static_cast<long>(d);
+    add(key,
+        kept_row(rows_, key, [&] { return catenary_.elongation_rows().row(static_cast<long>(d)); }),
+        -catenary_.bar_stiffness(d));
+    if (geometric_[d] == 0) continue;
+    for (int j = 1; j <= 2; ++j) add(key + j, transverse_row(d, j), -geometric_[d]);
   }
   return true;
 }
 
 double ModalDropperSlack::energy(const CoupledState&) const {
   double e = 0;
-  for (std::size_t d : catenary_.slack_now())
+  for (std::size_t d : catenary_.slack_now()) {
     e -= 0.5 * catenary_.bar_stiffness(d) * catenary_.elongation(d) * catenary_.elongation(d);
+    if (geometric_[d] == 0) continue;
+    const auto& bar = catenary_.mesh().bars[catenary_.slack_bars()[d]];
+    Eigen::Vector3d du;  // the ends' relative displacement (every rank: no kept row needed)
+    for (int c = 0; c < 3; ++c)
+      du[c] =
+          (catenary_.row(bar.nodes[1], c) - catenary_.row(bar.nodes[0], c)).dot(catenary_.eta());
+    e -= 0.5 * geometric_[d] * (normals_[d].transpose() * du).squaredNorm();
+  }
   return e;
 }
 
@@ -409,7 +473,8 @@ std::vector<std::unique_ptr<Term>> ModalCatenary::make_terms(const contact::Inte
   if (exact)
     terms.push_back(std::make_unique<ModalExactBars>(*this, e.dropper_slack));
   else if (slack_active_)
-    terms.push_back(std::make_unique<ModalDropperSlack>(*this));
+    terms.push_back(std::make_unique<ModalDropperSlack>(
+        *this, settings_.bars == catenary::ModalSettings::Bars::slack_exact));
   // A moving window's ends (released: dashpots, pins switched by the run).
   if (!mesh_.dashpots.empty()) terms.push_back(std::make_unique<ModalNodeDashpots>(*this));
   if (!mesh_.pins.empty()) terms.push_back(std::make_unique<ModalNodePins>(*this));

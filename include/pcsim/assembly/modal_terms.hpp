@@ -48,10 +48,18 @@ class ModalOscillators : public Term {
 // A slack bar d (dl = s_d + b_d . eta < 0) loses the stiffness the linear
 // model gives it: residual -k min(dl, 0) b_d, tangent -k b_d b_d^T while
 // slack (rank one, dense u, reuse_columns false); energy -1/2 k min(dl, 0)^2.
-// J0 holds no slack bar: the change is never too large for the cheap path.
+// With force_free (catenary.modal.bars: slack_exact) a slack bar of the
+// 'force' criterion carries no force at all: it also loses its static
+// tension's geometric stiffness (N0/l0)(I - e e^T) that the modes hold: two more rank-one terms -g
+// (t_j . eta) t_j^T, t_j = n_j . (Phi of its ends' difference), n_1, n_2 perpendicular to its
+// static direction e, g = N0/l0; energy -1/2 g (t_j . eta)^2. Then its force is exactly zero, as in
+// the FE levels (left in, it keeps ~40 % of the trailing pantograph's sigma gap to linear FE on
+// three-pantographs-300: docs/fidelity.md). J0 holds no slack bar: the change is never too large
+// for the cheap path.
 class ModalDropperSlack : public Term {
  public:
-  explicit ModalDropperSlack(ModalCatenary& catenary);
+  // force_free: a slack 'force' bar loses its geometric stiffness too (bars: slack_exact).
+  ModalDropperSlack(ModalCatenary& catenary, bool force_free);
   std::string name() const override { return "modal dropper slack"; }
   TangentKind tangent_kind() const override { return TangentKind::low_rank; }
   void add_residual(const CoupledState& state, Vec F) override;
@@ -61,9 +69,15 @@ class ModalDropperSlack : public Term {
   double energy(const CoupledState& state) const override;
 
  private:
+  // Tracked bar d's transverse row t_j (j = 1, 2), made on first use and kept.
+  const SharedEntries<double>& transverse_row(std::size_t d, int j);
+
   ModalCatenary& catenary_;
-  SharedEntries<PetscInt> modes_;               // 0 .. m-1, shared by every term handed out
-  std::map<long, SharedEntries<double>> rows_;  // a slack dropper's row, made once
+  SharedEntries<PetscInt> modes_;  // 0 .. m-1, shared by every term handed out
+  // A slack dropper's rows under key 3 d (b_d), 3 d + 1 and 3 d + 2 (t_1, t_2), made once.
+  std::map<long, SharedEntries<double>> rows_;
+  std::vector<double> geometric_;                     // g = N0/l0 per tracked bar, 0: none
+  std::vector<Eigen::Matrix<double, 3, 2>> normals_;  // n_1, n_2 per tracked bar
 };
 
 // A moving window's end dashpots (catenary/window.hpp) over the modes:

@@ -32,8 +32,10 @@ struct ModalSettings {
   double participation = 0.03;  // vertical_only: threshold (kVerticalParticipation)
   enum class DropperCheck { bounded, all } dropper_check = DropperCheck::bounded;
   // slack: linear bars + the slack correction -k min(dl, 0) (rank one);
-  // exact: every bar's nonlinear force minus its linearisation (full path).
-  enum class Bars { slack, exact } bars = Bars::slack;
+  // slack_exact: + a slack 'force' bar's geometric stiffness removed (its
+  // force exactly zero; three rank-one terms); exact: every bar's nonlinear
+  // force minus its linearisation (full path).
+  enum class Bars { slack, slack_exact, exact } bars = Bars::slack;
   bool full_shapes = false;  // keep every node's position rows (field snapshots)
   // How the line is reduced (catenary.modal.method): automatic (the run
   // scene chooses: run_scene.hpp), the whole line's basis, or a moving
