@@ -24,7 +24,7 @@
 # terms (axial and the two of the geometric stiffness) are checked against
 # 1e-7, since a slack dropper's geometric stiffness left out of the tangent
 # (its residual kept) gives only 8.2e-7 on both paths; measured 3.6e-9 to
-# 6.6e-9 (full) and 4.3e-9 (cheap): a margin of 15.
+# 6.6e-9 on both paths: a margin of 15.
 set -euo pipefail
 : "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:=/usr/bin/python3}"
 tmp=$(mktemp -d)
