@@ -101,6 +101,20 @@ std::pair<long, long> ModalCatenary::element_columns(int node0, int node1) const
   return {std::min(a.first, b.first), std::max(a.second, b.second)};
 }
 
+catenary::Vec6 ModalCatenary::static_bar_dofs(int b) const {
+  catenary::Vec6 q0;
+  for (int end = 0; end < 2; ++end)
+    for (int c = 0; c < 3; ++c) q0[3 * end + c] = static_value(mesh_.bars[b].nodes[end], c);
+  return q0;
+}
+
+Eigen::RowVectorXd ModalCatenary::relative_row(int b, const Eigen::Vector3d& direction) const {
+  const auto& nodes = mesh_.bars[b].nodes;
+  Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(m_);
+  for (int c = 0; c < 3; ++c) r += direction[c] * (row(nodes[1], c) - row(nodes[0], c));
+  return r;
+}
+
 // Bars tracked over the basis: the slack-capable ones and the droppers
 // (records). b_d = e . (Phi_j - Phi_i), e the bar's static direction;
 // s_d the static stretch over the slack threshold.
@@ -115,11 +129,9 @@ void ModalCatenary::build_dropper_rows() {
   B_.setZero(static_cast<long>(tracked.size()), m_);
   for (std::size_t d = 0; d < tracked.size(); ++d) {
     const auto& bar = bars[tracked[d]];
-    Eigen::Vector3d e;
-    for (int c = 0; c < 3; ++c)
-      e[c] = static_values_[6 * bar.nodes[1] + c] - static_values_[6 * bar.nodes[0] + c];
-    e.normalize();
-    for (int c = 0; c < 3; ++c) B_.row(d) += e[c] * (row(bar.nodes[1], c) - row(bar.nodes[0], c));
+    const catenary::Vec6 q0 = static_bar_dofs(tracked[d]);
+    const Eigen::Vector3d e = (q0.tail<3>() - q0.head<3>()).normalized();
+    B_.row(d) = relative_row(tracked[d], e);
     double s = 0;
     if (bar.slack == catenary::SlackCriterion::force)
       s = bar.equilibrium_length - bar.unstressed_length;

@@ -157,9 +157,7 @@ ModalDropperSlack::ModalDropperSlack(ModalCatenary& catenary, bool force_free)
   const auto& bars = catenary.mesh().bars;
   for (int b : catenary.slack_bars()) {
     const auto& bar = bars[b];
-    catenary::Vec6 q0;
-    for (int end = 0; end < 2; ++end)
-      for (int c = 0; c < 3; ++c) q0[3 * end + c] = catenary.static_value(bar.nodes[end], c);
+    const catenary::Vec6 q0 = catenary.static_bar_dofs(b);
     const Eigen::Vector3d d = q0.tail<3>() - q0.head<3>();
     const double l0 = d.norm();
     double g = 0;
@@ -178,12 +176,7 @@ ModalDropperSlack::ModalDropperSlack(ModalCatenary& catenary, bool force_free)
 
 const SharedEntries<double>& ModalDropperSlack::transverse_row(std::size_t d, int j) {
   return kept_row(rows_, 3L * static_cast<long>(d) + j, [&] {
-    const auto& bar = catenary_.mesh().bars[catenary_.slack_bars()[d]];
-    Eigen::RowVectorXd t = Eigen::RowVectorXd::Zero(catenary_.catenary_dofs());
-    for (int c = 0; c < 3; ++c)
-      t +=
-          normals_[d](c, j - 1) * (catenary_.row(bar.nodes[1], c) - catenary_.row(bar.nodes[0], c));
-    return t;
+    return catenary_.relative_row(catenary_.slack_bars()[d], normals_[d].col(j - 1));
   });
 }
 
@@ -252,13 +245,11 @@ double ModalDropperSlack::energy(const CoupledState&) const {
   double e = 0;
   for (std::size_t d : catenary_.slack_now()) {
     e -= 0.5 * catenary_.bar_stiffness(d) * catenary_.elongation(d) * catenary_.elongation(d);
-    if (geometric_[d] == 0) continue;
-    const auto& bar = catenary_.mesh().bars[catenary_.slack_bars()[d]];
-    Eigen::Vector3d du;  // the ends' relative displacement (every rank: no kept row needed)
-    for (int c = 0; c < 3; ++c)
-      du[c] =
-          (catenary_.row(bar.nodes[1], c) - catenary_.row(bar.nodes[0], c)).dot(catenary_.eta());
-    e -= 0.5 * geometric_[d] * (normals_[d].transpose() * du).squaredNorm();
+    for (int j = 0; j < 2 && geometric_[d] > 0; ++j) {  // rows made here: every rank, none kept
+      const double u = catenary_.relative_row(catenary_.slack_bars()[d], normals_[d].col(j))
+                           .dot(catenary_.eta());
+      e -= 0.5 * geometric_[d] * u * u;
+    }
   }
   return e;
 }
@@ -407,11 +398,9 @@ ModalExactBars::ModalExactBars(ModalCatenary& catenary, bool slack) : catenary_(
     bar.P.resize(6, m);
     for (int end = 0; end < 2; ++end)
       for (int c = 0; c < 3; ++c) bar.P.row(3 * end + c) = catenary.row(mesh.bars[b].nodes[end], c);
-    catenary::Vec6 q0, f0;
+    const catenary::Vec6 q0 = catenary.static_bar_dofs(static_cast<int>(b));
+    catenary::Vec6 f0;
     catenary::Mat6 K0;
-    for (int end = 0; end < 2; ++end)
-      for (int c = 0; c < 3; ++c)
-        q0[3 * end + c] = catenary.static_value(mesh.bars[b].nodes[end], c);
     bar.params = catenary::bar_parameters(mesh.bars[b], slack);
     catenary::bar_internal_force(bar.params, q0, f0, &K0);
     bar.q0 = q0;

@@ -265,13 +265,19 @@ def fidelity_cheap_path(run):
     return out
 
 
+def bench_table():
+    """runs/bench/fast_level_table.py (errors() of one run against another)."""
+    sys.path.insert(0, os.path.join(ROOT, "runs", "bench"))
+    import fast_level_table
+    return fast_level_table
+
+
 def readme_fast_level(run):
     """README, "The fast level on other scenes": en50318-300's row of the
     table of every figure's error against linear FE and the run's own
     (pilot's) estimate of it, and the cut-off and basis the pilot keeps
     (runs/bench_fast_level.sh's two runs; about 2 minutes)."""
-    sys.path.insert(0, os.path.join(ROOT, "runs", "bench"))
-    import fast_level_table as table
+    table = bench_table()
     scene = "runs/interaction/en50318-300.yaml"
     _, fe, _ = run("run", scene, "--set", "catenary.model=linear", "-pcsim_accuracy_pilot", "false",
                    "--no-report")
@@ -292,8 +298,7 @@ def fidelity_slack_exact(run):
     en50318-300 and en50318-250 (linear FE and the modal level at 69.7 and
     64.0 Hz with bars slack, then slack_exact; pilot off; about 45 s, the
     modes of 69.7 Hz computed once for both)."""
-    sys.path.insert(0, os.path.join(ROOT, "runs", "bench"))
-    import fast_level_table as table
+    table = bench_table()
     out = []
     for speed, cutoff in ((300, "69.7"), (250, "64.0")):
         scene = f"runs/interaction/en50318-{speed}.yaml"

@@ -41,6 +41,7 @@
 
 #include "pcsim/assembly/catenary_model.hpp"
 #include "pcsim/assembly/rounded_rows.hpp"
+#include "pcsim/catenary/elements.hpp"
 #include "pcsim/catenary/reduced_basis.hpp"
 #include "pcsim/contact/wire_locator.hpp"
 
@@ -93,6 +94,10 @@ class ModalCatenary : public CatenaryModel {
   // Rows of the basis for (node, component) (a kept row).
   Eigen::Map<const Eigen::RowVectorXd> row(int node, int c) const;
   Eigen::Map<const Eigen::RowVectorXd> key_row(long key) const;  // any kept row
+  // Mesh bar b's ends' static positions (q0 of catenary::bar_internal_force).
+  catenary::Vec6 static_bar_dofs(int b) const;
+  // The row giving direction . (u_j - u_i) of mesh bar b (ends i, j) over the basis.
+  Eigen::RowVectorXd relative_row(int b, const Eigen::Vector3d& direction) const;
   // Slack-capable bars: elongation gradients b_d over the basis (rows),
   // static stretch s_d (dl = s_d + b_d . eta) and stiffness.
   const RowMatrix& elongation_rows() const { return B_; }

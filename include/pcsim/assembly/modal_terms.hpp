@@ -49,13 +49,13 @@ class ModalOscillators : public Term {
 // model gives it: residual -k min(dl, 0) b_d, tangent -k b_d b_d^T while
 // slack (rank one, dense u, reuse_columns false); energy -1/2 k min(dl, 0)^2.
 // With force_free (catenary.modal.bars: slack_exact) a slack bar of the
-// 'force' criterion carries no force at all: it also loses its static
-// tension's geometric stiffness (N0/l0)(I - e e^T) that the modes hold: two more rank-one terms -g
-// (t_j . eta) t_j^T, t_j = n_j . (Phi of its ends' difference), n_1, n_2 perpendicular to its
-// static direction e, g = N0/l0; energy -1/2 g (t_j . eta)^2. Then its force is exactly zero, as in
-// the FE levels (left in, it keeps ~40 % of the trailing pantograph's sigma gap to linear FE on
-// three-pantographs-300: docs/fidelity.md). J0 holds no slack bar: the change is never too large
-// for the cheap path.
+// 'force' criterion carries no force at all: it also loses the geometric
+// stiffness (N0/l0)(I - e e^T) of its static tension, which the modes hold.
+// Two more rank-one terms -g (t_j . eta) t_j^T, t_j the basis row of
+// n_j . (u_j - u_i), n_1 and n_2 across its static direction e, g = N0/l0;
+// energy -1/2 g (t_j . eta)^2 (docs/fidelity.md, "A slack dropper's
+// geometric stiffness"). J0 holds no slack bar: the change is never too
+// large for the cheap path.
 class ModalDropperSlack : public Term {
  public:
   // force_free: a slack 'force' bar loses its geometric stiffness too (bars: slack_exact).
