@@ -182,7 +182,8 @@ void read_modal_settings(const InputNode& modal, ModalSettings& s) {
   s.dropper_check = modal.get_choice("droppers", {"bounded", "all"}, "bounded") == "all"
                         ? ModalSettings::DropperCheck::all
                         : ModalSettings::DropperCheck::bounded;
-  const std::string bars = modal.get_choice("bars", {"slack", "slack_exact", "exact"}, "slack");
+  const std::string bars =
+      modal.get_choice("bars", {"slack", "slack_exact", "exact"}, "slack_exact");
   s.bars = bars == "exact"         ? ModalSettings::Bars::exact
            : bars == "slack_exact" ? ModalSettings::Bars::slack_exact
                                    : ModalSettings::Bars::slack;

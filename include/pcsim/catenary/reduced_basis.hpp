@@ -35,7 +35,7 @@ struct ModalSettings {
   // slack_exact: + a slack 'force' bar's geometric stiffness removed (its
   // force exactly zero; three rank-one terms); exact: every bar's nonlinear
   // force minus its linearisation (full path).
-  enum class Bars { slack, slack_exact, exact } bars = Bars::slack;
+  enum class Bars { slack, slack_exact, exact } bars = Bars::slack_exact;
   bool full_shapes = false;  // keep every node's position rows (field snapshots)
   // How the line is reduced (catenary.modal.method): automatic (the run
   // scene chooses: run_scene.hpp), the whole line's basis, or a moving
