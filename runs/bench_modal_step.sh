@@ -7,7 +7,8 @@
 # them); the accuracy pilot is off (its runs are not the step's cost).
 #   runs/bench_modal_step.sh BEFORE_BIN AFTER_BIN
 # Environment: REPS=3, SCENES="en300 win70 win109 two20 three" (also two109:
-# two20 at 108.8 Hz, the cut-off its pilot chooses; dsa136: dsa380-300-base
+# two20 at 108.8 Hz, the cut-off its pilot chooses; three109: three-pantographs-300
+# at 108.8 Hz, its pilot's since 2026-12-04; dsa136: dsa380-300-base
 # at 136.1 Hz, its pilot's; flex136: dsa380-300-flexible at 136.1 Hz; ts300:
 # three-sections-300 at its default 69.7 Hz, whose first run computes 18000
 # modes: 615 s with its run, peak 9887 MB (2026-12-04); the names:

@@ -8,6 +8,7 @@ declare -A MODAL_SCENES=(
   [win109]="runs/interaction/two-pantographs-300-window.yaml --set catenary.model=modal --set catenary.max_frequency_hz=108.8"
   [two20]="runs/interaction/two-pantographs-300.yaml --set catenary.model=modal"
   [three]="runs/interaction/three-pantographs-300.yaml --set catenary.model=modal"
+  [three109]="runs/interaction/three-pantographs-300.yaml --set catenary.model=modal --set catenary.max_frequency_hz=108.8"
   [two109]="runs/interaction/two-pantographs-300.yaml --set catenary.model=modal --set catenary.max_frequency_hz=108.8"
   [dsa136]="runs/interaction/dsa380-300-base.yaml --set catenary.model=modal --set catenary.max_frequency_hz=136.1"
   [ts300]="runs/lines/three-sections-300.yaml --set catenary.model=modal"
