@@ -174,7 +174,7 @@ ModalDropperSlack::ModalDropperSlack(ModalCatenary& catenary, bool force_free)
   }
 }
 
-const SharedEntries<double>& ModalDropperSlack::transverse_row(std::size_t d, int j) {
+const SharedEntries<double>& ModalDropperSlack::transverse_row(std::size_t d, int j) const {
   return kept_row(rows_, 3L * static_cast<long>(d) + j, [&] {
     return catenary_.relative_row(catenary_.slack_bars()[d], normals_[d].col(j - 1));
   });
@@ -245,9 +245,8 @@ double ModalDropperSlack::energy(const CoupledState&) const {
   double e = 0;
   for (std::size_t d : catenary_.slack_now()) {
     e -= 0.5 * catenary_.bar_stiffness(d) * catenary_.elongation(d) * catenary_.elongation(d);
-    for (int j = 0; j < 2 && geometric_[d] > 0; ++j) {  // rows made here: every rank, none kept
-      const double u = catenary_.relative_row(catenary_.slack_bars()[d], normals_[d].col(j))
-                           .dot(catenary_.eta());
+    for (int j = 1; j <= 2 && geometric_[d] > 0; ++j) {
+      const double u = as_row(transverse_row(d, j)).dot(catenary_.eta());
       e -= 0.5 * geometric_[d] * u * u;
     }
   }
