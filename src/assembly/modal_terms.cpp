@@ -172,12 +172,33 @@ ModalDropperSlack::ModalDropperSlack(ModalCatenary& catenary, bool force_free)
     geometric_.push_back(g);
     normals_.push_back(n);
   }
+  make_rows();
 }
 
-const SharedEntries<double>& ModalDropperSlack::transverse_row(std::size_t d, int j) const {
-  return kept_row(rows_, 3L * static_cast<long>(d) + j, [&] {
-    return catenary_.relative_row(catenary_.slack_bars()[d], normals_[d].col(j - 1));
-  });
+// Every tracked bar's rows, made here and not when it first goes slack: a
+// row made in a step writes fresh pages, whose faults cost more than the
+// step's products (docs/benchmarks.md, "What a modal run's slow steps are").
+// b_d is a view of the catenary's own row (no copy); the t_j of the bars with
+// g > 0 are kept in one matrix (2 x 8 B x m a bar).
+void ModalDropperSlack::make_rows() {
+  const auto& B = catenary_.elongation_rows();
+  const auto m = static_cast<std::size_t>(catenary_.catenary_dofs());
+  const std::size_t tracked = geometric_.size();
+  std::vector<long> transverse(tracked, -1);
+  long count = 0;
+  for (std::size_t d = 0; d < tracked; ++d)
+    if (geometric_[d] > 0) transverse[d] = count++;
+  auto kept = std::make_shared<RowMatrix>(2 * count, static_cast<long>(m));
+  rows_.resize(tracked);
+  for (std::size_t d = 0; d < tracked; ++d) {
+    rows_[d][0] = SharedEntries<double>(nullptr, B.row(static_cast<long>(d)).data(), m);
+    if (transverse[d] < 0) continue;
+    for (int j = 1; j <= 2; ++j) {
+      auto row = kept->row(2 * transverse[d] + j - 1);
+      row = catenary_.relative_row(catenary_.slack_bars()[d], normals_[d].col(j - 1));
+      rows_[d][j] = SharedEntries<double>(kept, row.data(), m);
+    }
+  }
 }
 
 namespace {
@@ -196,7 +217,7 @@ void ModalDropperSlack::add_residual(const CoupledState&, Vec F) {
          catenary_.elongation_rows().row(static_cast<long>(d)).transpose();
     if (geometric_[d] == 0) continue;
     for (int j = 1; j <= 2; ++j) {
-      const auto t = as_row(transverse_row(d, j));
+      const auto t = as_row(rows_[d][j]);
       f -= geometric_[d] * t.dot(catenary_.eta()) * t.transpose();
     }
   }
@@ -212,7 +233,7 @@ void ModalDropperSlack::add_tangent(const CoupledState&, Shifts, Mat J) {
     block -= catenary_.bar_stiffness(d) * b.transpose() * b;
     if (geometric_[d] == 0) continue;
     for (int j = 1; j <= 2; ++j) {
-      const auto t = as_row(transverse_row(d, j));
+      const auto t = as_row(rows_[d][j]);
       block -= geometric_[d] * t.transpose() * t;
     }
   }
@@ -232,11 +253,9 @@ bool ModalDropperSlack::low_rank_change(const CoupledState&, std::vector<RankOne
   };
   for (std::size_t d : catenary_.slack_now()) {
     const long key = 3L * static_cast<long>(d);
-    add(key,
-        kept_row(rows_, key, [&] { return catenary_.elongation_rows().row(static_cast<long>(d)); }),
-        -catenary_.bar_stiffness(d));
+    add(key, rows_[d][0], -catenary_.bar_stiffness(d));
     if (geometric_[d] == 0) continue;
-    for (int j = 1; j <= 2; ++j) add(key + j, transverse_row(d, j), -geometric_[d]);
+    for (int j = 1; j <= 2; ++j) add(key + j, rows_[d][j], -geometric_[d]);
   }
   return true;
 }
@@ -246,7 +265,7 @@ double ModalDropperSlack::energy(const CoupledState&) const {
   for (std::size_t d : catenary_.slack_now()) {
     e -= 0.5 * catenary_.bar_stiffness(d) * catenary_.elongation(d) * catenary_.elongation(d);
     for (int j = 1; j <= 2 && geometric_[d] > 0; ++j) {
-      const double u = as_row(transverse_row(d, j)).dot(catenary_.eta());
+      const double u = as_row(rows_[d][j]).dot(catenary_.eta());
       e -= 0.5 * geometric_[d] * u * u;
     }
   }

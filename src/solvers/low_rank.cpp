@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <set>
 #include <string>
+#include <tuple>
 
 #include "block_diagonal.hpp"
 #include "capacitance_dots.hpp"
@@ -33,6 +34,10 @@ LowRankStepSolver::~LowRankStepSolver() {
     VecDestroy(&e.z);
   }
   for (auto& [g, v] : columns_) VecDestroy(&v);
+  for (auto& [u, z] : spare_) {
+    VecDestroy(&u);
+    VecDestroy(&z);
+  }
   VecDestroy(&unit_);
   VecDestroy(&unit_solution_);
   KSPDestroy(&inner_);
@@ -97,10 +102,35 @@ void LowRankStepSolver::invalidate() {
   capacitance_dirty_ = true;
 }
 
+// A term's vectors u and z: a pair a term left if there is one. A new pair's
+// first writes fault in fresh pages, as costly as a modal step's products
+// (docs/benchmarks.md, "What a modal run's slow steps are"); a kept pair's
+// pages are in place.
+void LowRankStepSolver::take_vectors(Entry& e) {
+  if (spare_.empty()) {
+    PCSIM_PETSC(MatCreateVecs(J0_, &e.u, &e.z));
+    return;
+  }
+  std::tie(e.u, e.z) = spare_.back();
+  spare_.pop_back();
+}
+
+// Spare pairs up to 'count' terms in all, written once so that their pages
+// are in place before the first step that needs them.
+void LowRankStepSolver::reserve_vectors(std::size_t count) {
+  while (entries_.size() + spare_.size() < count) {
+    Vec u, z;
+    PCSIM_PETSC(MatCreateVecs(J0_, &u, &z));
+    PCSIM_PETSC(VecSet(u, 0.0));
+    PCSIM_PETSC(VecSet(z, 0.0));
+    spare_.emplace_back(u, z);
+  }
+}
+
 // Every rank knows every index: each writes the entries it owns (no
 // communication).
-void LowRankStepSolver::build_u(Entry& e) const {
-  if (!e.u) PCSIM_PETSC(MatCreateVecs(J0_, &e.u, &e.z));
+void LowRankStepSolver::build_u(Entry& e) {
+  if (!e.u) take_vectors(e);
   PetscInt lo, hi;
   PCSIM_PETSC(VecGetOwnershipRange(e.u, &lo, &hi));
   PetscScalar* u;
@@ -217,8 +247,7 @@ void LowRankStepSolver::set_terms(const std::vector<assembly::RankOne>& terms,
       ++it;
       continue;
     }
-    VecDestroy(&it->second.u);
-    VecDestroy(&it->second.z);
+    if (it->second.u) spare_.emplace_back(it->second.u, it->second.z);  // u, z: all rewritten
     it = entries_.erase(it);
     capacitance_dirty_ = true;
   }
@@ -264,7 +293,12 @@ PetscErrorCode LowRankStepSolver::pc_setup(PC pc) {
   LowRankStepSolver* self = attached(pc);
   Mat A, P;
   PCSIM_PETSC(PCGetOperators(pc, &A, &P));
-  if (!self->inner_chosen_) self->choose_inner(P);
+  if (!self->inner_chosen_) {
+    self->choose_inner(P);
+    // The reduced catenary's dense terms (slack droppers) come and go in
+    // groups: their vectors are ready (kReservedTerms pairs of m entries).
+    if (self->blocks_) self->reserve_vectors(kReservedTerms);
+  }
   if (self->blocks_) {
     self->blocks_->factor(P);
   } else {

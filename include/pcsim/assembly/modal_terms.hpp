@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <map>
 #include <vector>
 
@@ -69,14 +70,12 @@ class ModalDropperSlack : public Term {
   double energy(const CoupledState& state) const override;
 
  private:
-  // Tracked bar d's transverse row t_j (j = 1, 2), made on first use and kept
-  // (the energy's too).
-  const SharedEntries<double>& transverse_row(std::size_t d, int j) const;
+  void make_rows();
 
   ModalCatenary& catenary_;
   SharedEntries<PetscInt> modes_;  // 0 .. m-1, shared by every term handed out
-  // A slack dropper's rows under key 3 d (b_d), 3 d + 1 and 3 d + 2 (t_1, t_2), made once.
-  mutable std::map<long, SharedEntries<double>> rows_;
+  // Tracked bar d's rows b_d, t_1 and t_2 (these two where g > 0), made at construction.
+  std::vector<std::array<SharedEntries<double>, 3>> rows_;
   std::vector<double> geometric_;                     // g = N0/l0 per tracked bar, 0: none
   std::vector<Eigen::Matrix<double, 3, 2>> normals_;  // n_1, n_2 per tracked bar
 };

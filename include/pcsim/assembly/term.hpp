@@ -56,30 +56,39 @@ struct LinearPart {
 
 // Entries that never change once made, shared by whoever copies them: a term
 // that hands out the same u step after step (a window end's dashpot, a slack
-// dropper's row over every mode) hands out the same vector, and a solver that
-// keeps it neither copies nor compares its entries (== compares the pointers
-// first). A modal u has every mode: 35 kB a term at 4406 vectors.
+// dropper's row over every mode) hands out the same entries, and a solver that
+// keeps them neither copies nor compares them (== compares the pointers
+// first). A modal u has every mode: 35 kB a term at 4406 vectors. Made from a
+// vector (kept by the copies), or as a view of n entries that 'owner' keeps
+// alive (a row of a kept matrix; no owner: entries that outlive every copy,
+// a reduced catenary's own rows).
 template <class T>
 class SharedEntries {
  public:
   SharedEntries() = default;
-  SharedEntries(std::vector<T> values)  // NOLINT(google-explicit-constructor): as the vector was
-      : values_(std::make_shared<const std::vector<T>>(std::move(values))) {}
+  SharedEntries(std::vector<T> values) {  // NOLINT(google-explicit-constructor): as the vector was
+    auto kept = std::make_shared<const std::vector<T>>(std::move(values));
+    size_ = kept->size();
+    data_ = std::shared_ptr<const T>(kept, kept->data());
+  }
   SharedEntries(std::initializer_list<T> values) : SharedEntries(std::vector<T>(values)) {}
-  std::size_t size() const { return values_ ? values_->size() : 0; }
-  bool empty() const { return size() == 0; }
-  const T& operator[](std::size_t i) const { return (*values_)[i]; }
-  const T* data() const { return values_ ? values_->data() : nullptr; }
+  SharedEntries(std::shared_ptr<const void> owner, const T* data, std::size_t n)
+      : data_(std::move(owner), data), size_(n) {}
+  std::size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  const T& operator[](std::size_t i) const { return data_.get()[i]; }
+  const T* data() const { return data_.get(); }
   const T* begin() const { return data(); }
   const T* end() const { return data() + size(); }
   friend bool operator==(const SharedEntries& a, const SharedEntries& b) {
-    return a.values_ == b.values_ ||
-           (a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin()));
+    return a.size() == b.size() &&
+           (a.data() == b.data() || std::equal(a.begin(), a.end(), b.begin()));
   }
   friend bool operator!=(const SharedEntries& a, const SharedEntries& b) { return !(a == b); }
 
  private:
-  std::shared_ptr<const std::vector<T>> values_;
+  std::shared_ptr<const T> data_;
+  std::size_t size_ = 0;
 };
 
 // A rank-one change c u u^T of a tangent, u sparse (global indices, weights),

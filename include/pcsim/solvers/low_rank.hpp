@@ -97,7 +97,9 @@ class LowRankStepSolver {
   static PetscErrorCode pc_setup(PC pc);
   static PetscErrorCode pc_apply(PC pc, Vec r, Vec x);
   static PetscErrorCode op_mult(Mat A, Vec x, Vec y);
-  void build_u(Entry& e) const;
+  void take_vectors(Entry& e);
+  void reserve_vectors(std::size_t count);
+  void build_u(Entry& e);
   void update_z(Entry& e);
   Vec unit_solution(PetscInt g);
   void evict_unused_columns();
@@ -114,6 +116,8 @@ class LowRankStepSolver {
   std::vector<std::pair<PetscInt, PetscInt>> skipped_;  // varying rows blocks_ leaves out
   bool factored_ = false, capacitance_dirty_ = true, inner_chosen_ = false;
   std::map<int, Entry> entries_;
+  std::vector<std::pair<Vec, Vec>> spare_;  // (u, z) of terms that left, for the next ones
+  static constexpr std::size_t kReservedTerms = 16;
   std::map<PetscInt, Vec> columns_;                      // J0^-1 e_g
   Vec unit_ = nullptr;                                   // e_g during its solve
   Vec unit_solution_ = nullptr;                          // a template of J0^-1 e_g
