@@ -273,7 +273,9 @@ double varying_block_error(bool* by_blocks) {
 
 // Two constant terms (dashpots) and a moving one (a contact): the contact
 // moves, then a dashpot's coefficient changes, then a term leaves and
-// another comes (every product formed again), then the contact moves.
+// another comes (every product formed again; the new term is given the
+// vectors u and z of the one that left, every entry written anew), then the
+// contact moves.
 std::vector<std::vector<pcsim::assembly::RankOne>> changing_sets(PetscInt n) {
   const auto a = dense_term(1, n, 1.0, 3.0), b = dense_term(2, n, 2.0, 0.5);
   auto b2 = b;
