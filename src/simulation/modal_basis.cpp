@@ -379,14 +379,18 @@ ModalData ModalDataBuilder::Parts::data() {
     data.shape_flexibility = row_major(shapes->flexibility());
   }
   if (shift_products) {
-    const auto& G = shift_products->compute(x, keep_vectors);  // in the order appended
-    const std::size_t c = m + nd, s0 = shapes_appended_at;
-    std::vector<std::size_t> at(c);  // each appended vector's place in [modes, shapes]
-    for (std::size_t i = 0; i < c; ++i) at[i] = i < s0 ? i : i < s0 + nd ? m + (i - s0) : i - nd;
-    data.shift_products.resize(c * c);
-    for (std::size_t i = 0; i < c; ++i)
-      for (std::size_t j = 0; j < c; ++j)
-        data.shift_products[at[i] * c + at[j]] = G(static_cast<long>(i), static_cast<long>(j));
+    const auto G = shift_products->compute(x, keep_vectors);  // in the order appended
+    // A last computation's G is moved, not copied; one kept for a raised
+    // cut-off is copied.
+    data.shift_products =
+        keep_vectors ? std::vector<double>(G.data(), G.data() + G.size()) : shift_products->take();
+    // The order appended, [first modes, shapes, later modes], to [modes,
+    // shapes]: the shapes' rows and columns rotated to the end, in place.
+    const long c = static_cast<long>(m + nd), s0 = static_cast<long>(shapes_appended_at);
+    auto& g = data.shift_products;
+    for (long i = 0; i < c; ++i)
+      std::rotate(g.begin() + i * c + s0, g.begin() + i * c + s0 + nd, g.begin() + (i + 1) * c);
+    std::rotate(g.begin() + s0 * c, g.begin() + (s0 + nd) * c, g.end());
   }
   return data;
 }

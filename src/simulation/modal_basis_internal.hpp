@@ -98,10 +98,14 @@ class ShiftProducts {
   ShiftProducts(Mat M, Mat S, std::string spill_dir);
   ~ShiftProducts();
   void append(Vec v);
+  using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   // Collective; 'like' a vector of the layout. keep_vectors false: frees
-  // the columns (no later compute()).
-  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>& compute(
-      Vec like, bool keep_vectors);
+  // the columns (no later compute()). A view of G, valid until the next
+  // compute() or take().
+  Eigen::Map<const RowMatrix> compute(Vec like, bool keep_vectors);
+  // G's storage (row-major, c x c) moved out: no copy of G beside it (the
+  // 1000-span window's G at 136 Hz is 224 MB); no later compute().
+  std::vector<double> take();
   long count() const { return count_; }
   long spilled_blocks() const;  // blocks of the vectors on file (tests)
 
@@ -113,7 +117,8 @@ class ShiftProducts {
   PetscInt local_ = 0;
   long count_ = 0, computed_ = 0;  // vectors appended, and in G
   std::unique_ptr<VectorStore> store_;
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> G_;
+  std::vector<double> g_;  // G, row-major, computed_ x computed_ (c x c while computed)
+  bool taken_ = false;
 };
 
 // C = A^T B (column-major; A: k x m, B: k x n, C: m x n with leading

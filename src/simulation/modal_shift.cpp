@@ -130,8 +130,7 @@ void ShiftProducts::new_columns(Vec like) {
     for (std::size_t I = 0; I < store_->blocks(); ++I)
       product_tn_rows(width - j0, store_->width(I), rows, W.col(j0).data(), local_,
                       store_->block(I, scratch).data(), local_,
-                      G_.data() + static_cast<long>(I) * kBlock * G_.cols() + first + j0,
-                      G_.cols());
+                      g_.data() + static_cast<long>(I) * kBlock * count_ + first + j0, count_);
   }
   for (Vec* v : {&column, &shifted, &w}) PCSIM_PETSC(VecDestroy(v));
 }
@@ -162,44 +161,52 @@ void ShiftProducts::new_rows_of_old_columns(Vec like) {
     const long cols = std::min(store_->width(I), computed_ - first);  // old columns of block I
     // G (row-major) block (new rows, old columns of I) as the column-major V_I^T Z.
     product_tn_rows(cols, fresh, rows, store_->block(I, scratch).data(), local_, Z.data(), local_,
-                    G_.data() + computed_ * G_.cols() + first, G_.cols());
+                    g_.data() + computed_ * count_ + first, count_);
   }
   for (Vec* v : {&column, &mass, &z}) PCSIM_PETSC(VecDestroy(v));
 }
 
-const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>&
-ShiftProducts::compute(Vec like, bool keep_vectors) {
+Eigen::Map<const ShiftProducts::RowMatrix> ShiftProducts::compute(Vec like, bool keep_vectors) {
+  if (taken_) throw SolverError("shift products: computed after they were taken");
   const long c = count_, old = computed_;
-  if (c == old) return G_;
+  if (c == old) return {g_.data(), c, c};
   const ScopedEvent timed(log_events().shift_products);
   {  // G grows; its computed part stays
-    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> grown(c, c);
-    grown.topLeftCorner(old, old) = G_;
-    G_.swap(grown);
+    std::vector<double> grown(static_cast<std::size_t>(c * c));
+    for (long i = 0; i < old; ++i)
+      std::copy(g_.begin() + i * old, g_.begin() + (i + 1) * old, grown.begin() + i * c);
+    g_.swap(grown);
   }
+  auto G = Eigen::Map<RowMatrix>(g_.data(), c, c);
   new_columns(like);
   new_rows_of_old_columns(like);
   if (!keep_vectors) store_->clear();
   const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(like));
   if (old == 0) {
-    MPI_Allreduce(MPI_IN_PLACE, G_.data(), static_cast<int>(G_.size()), MPI_DOUBLE, MPI_SUM, comm);
+    MPI_Allreduce(MPI_IN_PLACE, g_.data(), static_cast<int>(g_.size()), MPI_DOUBLE, MPI_SUM, comm);
   } else {  // the new parts: the new columns of every row, the old columns of the new rows
     std::vector<double> sums;
     sums.reserve(static_cast<std::size_t>(c * (c - old) + (c - old) * old));
     for (long i = 0; i < c; ++i)
-      for (long j = old; j < c; ++j) sums.push_back(G_(i, j));
+      for (long j = old; j < c; ++j) sums.push_back(G(i, j));
     for (long i = old; i < c; ++i)
-      for (long j = 0; j < old; ++j) sums.push_back(G_(i, j));
+      for (long j = 0; j < old; ++j) sums.push_back(G(i, j));
     MPI_Allreduce(MPI_IN_PLACE, sums.data(), static_cast<int>(sums.size()), MPI_DOUBLE, MPI_SUM,
                   comm);
     auto s = sums.begin();
     for (long i = 0; i < c; ++i)
-      for (long j = old; j < c; ++j) G_(i, j) = *s++;
+      for (long j = old; j < c; ++j) G(i, j) = *s++;
     for (long i = old; i < c; ++i)
-      for (long j = 0; j < old; ++j) G_(i, j) = *s++;
+      for (long j = 0; j < old; ++j) G(i, j) = *s++;
   }
   computed_ = c;
-  return G_;
+  return {g_.data(), c, c};
+}
+
+std::vector<double> ShiftProducts::take() {
+  if (computed_ != count_) throw SolverError("shift products: taken before they were computed");
+  taken_ = true;
+  return std::move(g_);
 }
 
 }  // namespace pcsim::simulation::modal_detail

@@ -8,6 +8,8 @@
 //    of the new ones only, as a raised cut-off's modes) as at once;
 //  - a folder that takes no file keeps the vectors in memory, and a block that
 //    cannot be written (a file size limit: a full disk) stays in memory;
+//  - take() moves out the products compute() gave, bit for bit, and no
+//    compute() follows it;
 //  - the products over the nonzero rows only (nonzero_row_ranges,
 //    product_tn_rows) equal those over every row.
 // pcsim-test-ranks: 1 2
@@ -155,6 +157,21 @@ TEST_F(ShiftProductsTest, AFolderThatTakesNoFileKeepsThemInMemory) {
   EXPECT_EQ(spilled, 1);
   EXPECT_EQ((part - in_memory).cwiseAbs().maxCoeff(), 0.0);
   EXPECT_TRUE(std::filesystem::is_empty(dir_));
+}
+
+TEST_F(ShiftProductsTest, TakeMovesOutTheProductsComputed) {
+  const RowMajor computed = products(dir_.string(), 300);
+  ShiftProducts products(M_, S_, dir_.string());
+  for (PetscInt k = 0; k < 300; ++k) products.append(vectors_[k]);
+  products.compute(vectors_[0], true);
+  for (PetscInt k = 300; k < kVectors; ++k) products.append(vectors_[k]);
+  EXPECT_THROW(products.take(), std::exception);  // the new vectors' products not computed
+  products.compute(vectors_[0], false);
+  const std::vector<double> taken = products.take();
+  ASSERT_EQ(taken.size(), static_cast<std::size_t>(kVectors * kVectors));
+  const RowMajor G = Eigen::Map<const RowMajor>(taken.data(), kVectors, kVectors);
+  EXPECT_EQ((G - computed).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_THROW(products.compute(vectors_[0], false), std::exception);
 }
 
 // The products over W's nonzero rows only (the window's front spans): zero
