@@ -9,7 +9,8 @@
 # Environment: REPS=3, SCENES="en300 win70 win109 two20 three" (also two109:
 # two20 at 108.8 Hz, the cut-off its pilot chooses; three109: three-pantographs-300
 # at 108.8 Hz, its pilot's since 2026-12-04; dsa136: dsa380-300-base
-# at 136.1 Hz, its pilot's; flex136: dsa380-300-flexible at 136.1 Hz; ts300:
+# at 136.1 Hz, its pilot's; flex136: dsa380-300-flexible at 136.1 Hz; win136:
+# the 1000-span window at 136.1 Hz, its pilot's since 2026-12-04; ts300:
 # three-sections-300 at its default 69.7 Hz, whose first run computes 18000
 # modes: 615 s with its run, peak 9887 MB (2026-12-04); the names:
 # runs/bench/modal_scenes.sh). Run it on an otherwise idle machine: it

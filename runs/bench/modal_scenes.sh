@@ -6,6 +6,7 @@ declare -A MODAL_SCENES=(
   [en300]="runs/en50318-300-modal.yaml"
   [win70]="runs/interaction/two-pantographs-300-window.yaml --set catenary.model=modal"
   [win109]="runs/interaction/two-pantographs-300-window.yaml --set catenary.model=modal --set catenary.max_frequency_hz=108.8"
+  [win136]="runs/interaction/two-pantographs-300-window.yaml --set catenary.model=modal --set catenary.max_frequency_hz=136.1"
   [two20]="runs/interaction/two-pantographs-300.yaml --set catenary.model=modal"
   [three]="runs/interaction/three-pantographs-300.yaml --set catenary.model=modal"
   [three109]="runs/interaction/three-pantographs-300.yaml --set catenary.model=modal --set catenary.max_frequency_hz=108.8"
