@@ -1,4 +1,6 @@
 // assemble_basis (reduced_basis.hpp): a reduced basis from cached modal data.
+#include <malloc.h>
+
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
@@ -247,6 +249,9 @@ ReducedBasis assemble(const ModalData& data, std::vector<double> shift_products,
   const std::size_t vectors = data.modes() + data.shapes();
   const long modes = static_cast<long>(data.modes());
   fill_rows(data, keep, ritz, release, b.rows);
+  // The data's rows freed: given back before the shift is formed (in pcsim's
+  // processes the C library keeps freed blocks; simulation/modal_basis_internal.hpp).
+  if (release) malloc_trim(0);
   if (!shift_products.empty() && shift_products.size() == vectors * vectors)
     b.shift =
         shift_in_basis(std::move(shift_products), static_cast<long>(vectors), modes, keep, ritz);

@@ -149,7 +149,10 @@ catenary::ModalData compute_data(const Context& ctx, const scene::RunScene& run,
              done < total ? elapsed * (total - done) / done : 0.0);
   };
   const bool keep = extension_scopes > 0 && !no_later_extension && cutoff_hz > 0;
-  if (extends) forget_kept_bases(key);  // the lower cut-off's bases: superseded
+  if (extends) {
+    forget_kept_bases(key);  // the lower cut-off's bases: superseded,
+    malloc_trim(0);          // and their memory given back (modal_basis_internal.hpp)
+  }
   auto builder =
       extends ? std::move(kept_builder) : new_builder(ctx, run, statics, kept_key, full_shapes);
   kept_builder.reset();  // (another key's: freed before this computation)

@@ -1,5 +1,6 @@
 #include "pcsim/simulation/modal_basis.hpp"
 
+#include <malloc.h>
 #include <petsctime.h>
 
 #include <Eigen/Eigenvalues>
@@ -368,6 +369,7 @@ ModalData ModalDataBuilder::Parts::data() {
     for (std::size_t i = 0; i < n_rows; ++i) data.mode_rows[i * m + k] = columns[k][i];
     if (!keep_vectors) std::vector<double>().swap(columns[k]);
   }
+  if (!keep_vectors) malloc_trim(0);  // the columns freed: given back (modal_basis_internal.hpp)
   const std::size_t nd = shapes ? shapes->count() : 0;
   if (nd > 0) {
     data.shape_rows = row_major(shapes->rows());

@@ -1,6 +1,15 @@
 // Pieces of the reduced-basis computation (modal_basis.cpp drives them):
 // the catenary's operators at the static configuration, the kept rows of a
 // global vector, the eigenpairs of an interval streamed one by one.
+//
+// Memory given back: a library PETSc loads (SuperLU_DIST's constructor)
+// turns off the C library's mmap for large blocks (mallopt(M_MMAP_MAX, 0)),
+// so every block freed stays in the heap, resident, until malloc_trim. The
+// computation gives back what it frees in large parts (a raise's superseded
+// basis, the columns copied, the smaller shift products G, the summing
+// buffer; the assembly the data's rows): the 1000-span window's first run
+// peaks at 765 MB instead of 966 (docs/benchmarks.md, "The 1000-span
+// window's first-run peak").
 #pragma once
 
 #include <petscksp.h>

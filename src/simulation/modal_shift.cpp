@@ -6,6 +6,8 @@
 #include <petscblaslapack.h>
 // clang-format on
 
+#include <malloc.h>
+
 #include <Eigen/Core>
 #include <algorithm>
 
@@ -177,6 +179,7 @@ Eigen::Map<const ShiftProducts::RowMatrix> ShiftProducts::compute(Vec like, bool
       std::copy(g_.begin() + i * old, g_.begin() + (i + 1) * old, grown.begin() + i * c);
     g_.swap(grown);
   }
+  malloc_trim(0);  // the smaller G freed: given back (modal_basis_internal.hpp)
   auto G = Eigen::Map<RowMatrix>(g_.data(), c, c);
   new_columns(like);
   new_rows_of_old_columns(like);
@@ -199,6 +202,7 @@ Eigen::Map<const ShiftProducts::RowMatrix> ShiftProducts::compute(Vec like, bool
     for (long i = old; i < c; ++i)
       for (long j = 0; j < old; ++j) G(i, j) = *s++;
   }
+  malloc_trim(0);  // the sums' buffer and the products' blocks freed: given back
   computed_ = c;
   return {g_.data(), c, c};
 }
