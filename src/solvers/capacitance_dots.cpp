@@ -112,6 +112,24 @@ void capacitance_dots(const CapacitanceDots& in, std::vector<double>& uz, std::v
   const PetscScalar* x = nullptr;
   if (in.x) PCSIM_PETSC(VecGetArrayRead(in.x, &x));
   const DotKernel kernel = vector_kernel ? chosen_kernel() : portable_dots;
+  // A symmetric row's products below its term with the terms that are no
+  // rows, as z_i . u_j (the same bits as u_j . z_i: each lane's products
+  // and sums are those of row j's).
+  std::vector<std::vector<const double*>> lower(in.symmetric ? nr : 0);
+  std::vector<std::vector<std::size_t>> lower_terms(lower.size());
+  std::vector<std::vector<double>> lower_lanes(lower.size());
+  if (in.symmetric) {
+    std::vector<bool> is_row(k, false);
+    for (std::size_t i : in.rows) is_row[i] = true;
+    for (std::size_t r = 0; r < nr; ++r) {
+      for (std::size_t j = 0; j < in.rows[r]; ++j)
+        if (!is_row[j]) {
+          lower[r].push_back(u[j]);
+          lower_terms[r].push_back(j);
+        }
+      lower_lanes[r].assign(kLanes * lower[r].size(), 0.0);
+    }
+  }
   // u_r . z_j as row r of uz; u_j . z_r as row r of zu (u_j first: the bits
   // of row j formed whole); x . u_j.
   std::vector<double> uz_lanes(kLanes * uz.size(), 0.0), zu_lanes(kLanes * zu.size(), 0.0);
@@ -120,6 +138,12 @@ void capacitance_dots(const CapacitanceDots& in, std::vector<double>& uz, std::v
     const PetscInt end = std::min(b + kBlock, n);
     for (std::size_t r = 0; r < nr; ++r) {
       const std::size_t i = in.rows[r];
+      if (in.symmetric) {
+        kernel(u[i], z.data() + i, k - i, b, end, &uz_lanes[kLanes * (r * k + i)]);
+        if (!lower[r].empty())
+          kernel(z[i], lower[r].data(), lower[r].size(), b, end, lower_lanes[r].data());
+        continue;
+      }
       kernel(u[i], z.data(), k, b, end, &uz_lanes[kLanes * r * k]);
       if (!in.transposed) continue;
       for (std::size_t j = 0; j < k; ++j)
@@ -133,6 +157,11 @@ void capacitance_dots(const CapacitanceDots& in, std::vector<double>& uz, std::v
   sum_lanes(uz_lanes, uz);
   sum_lanes(zu_lanes, zu);
   sum_lanes(ux_lanes, ux);
+  for (std::size_t r = 0; r < lower.size(); ++r) {
+    std::vector<double> sums(lower_terms[r].size());
+    sum_lanes(lower_lanes[r], sums);
+    for (std::size_t p = 0; p < sums.size(); ++p) uz[r * k + lower_terms[r][p]] = sums[p];
+  }
   int size = 1;
   MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(in.us[0]));
   MPI_Comm_size(comm, &size);
@@ -144,6 +173,14 @@ void capacitance_dots(const CapacitanceDots& in, std::vector<double>& uz, std::v
   std::copy(all.begin(), all.begin() + uz.size(), uz.begin());
   std::copy(all.begin() + uz.size(), all.begin() + uz.size() + zu.size(), zu.begin());
   std::copy(all.end() - ux.size(), all.end(), ux.begin());
+}
+
+bool exactly_symmetric(Mat P) {
+  PetscBool aij = PETSC_FALSE, symmetric = PETSC_FALSE;
+  PCSIM_PETSC(
+      PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(P), &aij, MATSEQAIJ, MATMPIAIJ, ""));
+  if (aij) PCSIM_PETSC(MatIsSymmetric(P, 0.0, &symmetric));
+  return symmetric == PETSC_TRUE;
 }
 
 }  // namespace pcsim::solvers

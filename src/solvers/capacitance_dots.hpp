@@ -4,6 +4,7 @@
 // every column per changed row (five passes a step with two moving contacts).
 #pragma once
 
+#include <petscmat.h>
 #include <petscvec.h>
 
 #include <vector>
@@ -14,7 +15,12 @@ struct CapacitanceDots {
   std::vector<Vec> us, zs;        // the k active terms' u and J0^-1 u (one layout)
   std::vector<std::size_t> rows;  // the changed terms, indices into us/zs
   bool transposed = false;        // z_r . u_j too (zu)
-  Vec x = nullptr;                // x . u_j too (ux), when given
+  // z_j = A^-1 u_j with A symmetric, so that u_i . z_j = u_j . z_i: each
+  // pair's product formed once, as u_a . z_b (a <= b), in uz only (not with
+  // transposed): row r (term i) holds j >= i, and j < i for j not in rows
+  // (those rows' own); the other entries are 0.
+  bool symmetric = false;
+  Vec x = nullptr;  // x . u_j too (ux), when given
 };
 
 // uz[r k + j] = u_rows[r] . z_j, zu[r k + j] = u_j . z_rows[r] (if
@@ -22,10 +28,15 @@ struct CapacitanceDots {
 // 256 that every stream of a block reads from L1, then over the ranks (one
 // reduction). Each product sums in 4 lanes (entry e into lane e mod 4; the
 // lanes (l0 + l2) + (l1 + l3)), u first: u_i . z_j has the same bits in uz
-// and zu. The vector kernel (AVX2 and FMA, where the processor has them)
-// shares each load of a u among four products; vector_kernel false takes
-// the portable one (tests).
+// and zu, and u_j . z_i of a symmetric row (formed with z_i's loads shared)
+// has the bits of row j's. The vector kernel (AVX2 and FMA, where the
+// processor has them) shares each load of a u among four products;
+// vector_kernel false takes the portable one (tests).
 void capacitance_dots(const CapacitanceDots& in, std::vector<double>& uz, std::vector<double>& zu,
                       std::vector<double>& ux, bool vector_kernel = true);
+
+// P equals its transpose bit for bit (an AIJ matrix; any other type counts
+// as unsymmetric): z = P^-1 u then allows 'symmetric'. Collective.
+bool exactly_symmetric(Mat P);
 
 }  // namespace pcsim::solvers

@@ -308,11 +308,16 @@ PetscErrorCode LowRankStepSolver::pc_setup(PC pc) {
   self->invalidate();
   self->varying_->setup(P);
   self->factored_ = true;
+  self->j0_symmetric_ = exactly_symmetric(P);  // collective
   // Every z the way set_terms() computes it (reuse_columns terms from unit
   // solves): z depends only on J0 and u, never on when the PC was set up, so
   // a run restarted from a checkpoint takes the same arithmetic path.
   for (auto& [key, e] : self->entries_) self->update_z(e);
   PCSIM_CALLBACK_END
+}
+
+bool LowRankStepSolver::symmetric_capacitance() const {
+  return j0_symmetric_ && varying_->empty();
 }
 
 std::vector<LowRankStepSolver::Entry*> LowRankStepSolver::active() {
@@ -326,7 +331,11 @@ std::vector<LowRankStepSolver::Entry*> LowRankStepSolver::active() {
 // terms as before, only the rows and columns of the terms whose u or z
 // changed are formed again (a moving contact's, not a window end's
 // dashpots): u_i . z_j and z_j . u_i are the same products summed in the same
-// order, so either way gives the same bits.
+// order, so either way gives the same bits. With J0 symmetric bit for bit
+// (the modal catenary's), each pair's product is formed once, u_a . z_b
+// (a before b), for both entries: k products per changed row instead of 2 k,
+// k (k + 1) / 2 for a new set instead of k^2 (docs/benchmarks.md, "Each
+// pair's capacitance product once").
 void LowRankStepSolver::update_capacitance(Vec x, std::vector<PetscScalar>& ux) {
   auto now = active();
   const std::size_t k = now.size();
@@ -341,14 +350,22 @@ void LowRankStepSolver::update_capacitance(Vec x, std::vector<PetscScalar>& ux) 
   std::vector<std::size_t>& rows = in.rows;
   for (std::size_t i = 0; i < k; ++i)
     if (!same_terms || active_[i]->changed) rows.push_back(i);
-  in.transposed = same_terms;
+  in.symmetric = symmetric_capacitance();  // the same on every rank
+  in.transposed = same_terms && !in.symmetric;
   in.x = x;
   std::vector<double> uz, zu;
   capacitance_dots(in, uz, zu, ux);
   if (!same_terms) ++active_set_changes_;
   capacitance_rows_formed_ += static_cast<long>(rows.size());
+  std::vector<bool> is_row(k, false);
+  for (std::size_t i : rows) is_row[i] = true;
   for (std::size_t r = 0; r < rows.size(); ++r) {
     const std::size_t i = rows[r];
+    if (in.symmetric) {  // u_a . z_b (a <= b) for both entries of each pair
+      for (std::size_t j = 0; j < k; ++j)
+        if (j >= i || !is_row[j]) products_(i, j) = products_(j, i) = uz[r * k + j];
+      continue;
+    }
     for (std::size_t j = 0; j < k; ++j) products_(i, j) = uz[r * k + j];
     if (!same_terms) continue;
     for (std::size_t j = 0; j < k; ++j)

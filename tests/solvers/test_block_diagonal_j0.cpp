@@ -12,6 +12,10 @@
 // nonlinear pantograph's, here of 35 rows on the last rank) is left out of
 // the block inverse whatever its size, and its own LU solves its rows: the
 // solution equals the dense LU's of J0 + delta + sum c u u^T to the same 1e-12.
+// A J0 equal to its transpose bit for bit makes the capacitance form each
+// pair of terms' product once, u_a . J0^-1 u_b (a before b), for both its
+// entries: the same exactness, the same bits kept and fresh, and the set
+// changes and rows counted alike.
 // On 1 and 2 ranks (each rank's rows hold whole blocks).
 // pcsim-test-ranks: 1 2
 #include <gtest/gtest.h>
@@ -43,14 +47,15 @@ void block_of(PetscInt r, PetscInt& first, PetscInt& size) {
 }
 
 // J0(i, j) for global i, j (deterministic, diagonally dominant); 'coupled'
-// adds the neighbours of every row within its rank (one block per rank).
-double entry(PetscInt i, PetscInt j, bool coupled) {
+// adds the neighbours of every row within its rank (one block per rank);
+// 'symmetric' makes the blocks' entries J0(j, i) = J0(i, j).
+double entry(PetscInt i, PetscInt j, bool coupled, bool symmetric = false) {
   const PetscInt ri = i % kLocal, rj = j % kLocal;
   PetscInt first, size;
   block_of(ri, first, size);
   const bool same_block = i / kLocal == j / kLocal && rj >= first && rj < first + size;
   if (i == j) return 10.0 + 0.7 * static_cast<double>(i);
-  if (same_block) return 1.0 + 0.1 * static_cast<double>(i + 2 * j);
+  if (same_block) return 1.0 + 0.1 * static_cast<double>(symmetric ? i + j : i + 2 * j);
   if (coupled && i / kLocal == j / kLocal && (j == i + 1 || i == j + 1)) return 0.5;
   return 0.0;
 }
@@ -72,11 +77,12 @@ Mat make_matrix(PetscInt n, Value value) {
 }
 
 // J0 over kLocal rows per rank (entry()); n its global size.
-Mat make_j0(bool coupled, PetscInt& n) {
+Mat make_j0(bool coupled, PetscInt& n, bool symmetric = false) {
   int size;
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
   n = kLocal * size;
-  return make_matrix(n, [coupled](PetscInt i, PetscInt j) { return entry(i, j, coupled); });
+  return make_matrix(
+      n, [coupled, symmetric](PetscInt i, PetscInt j) { return entry(i, j, coupled, symmetric); });
 }
 
 // The step solver as a PC of a KSP that applies it once.
@@ -128,9 +134,11 @@ double error_against_dense(Eigen::MatrixXd A, const std::vector<pcsim::assembly:
 }
 
 // The step solver's solution (J0 + the blocks' changes + sum c u u^T) x = b
-// for right_hand_side()'s b; by_blocks: whether it inverted J0 by blocks.
+// for right_hand_side()'s b; by_blocks: whether it inverted J0 by blocks;
+// symmetric (if given): whether it formed each pair's product once.
 Vec solve_step(Mat J0, const char* prefix, const std::vector<pcsim::assembly::RankOne>& terms,
-               const std::vector<pcsim::assembly::BlockChange>& blocks, bool* by_blocks) {
+               const std::vector<pcsim::assembly::BlockChange>& blocks, bool* by_blocks,
+               bool* symmetric = nullptr) {
   pcsim::solvers::LowRankStepSolver solver(J0, prefix);
   pcsim::solvers::use_step_lu(solver.inner());
   PCSIM_PETSC(KSPSetFromOptions(solver.inner()));
@@ -141,14 +149,16 @@ Vec solve_step(Mat J0, const char* prefix, const std::vector<pcsim::assembly::Ra
   right_hand_side(J0, &x, &b);
   PCSIM_PETSC(KSPSolve(ksp, b, x));
   *by_blocks = solver.block_inverse();
+  if (symmetric) *symmetric = solver.symmetric_capacitance();
   KSPDestroy(&ksp);
   VecDestroy(&b);
   return x;
 }
 
-double solve_error(bool coupled, bool* by_blocks) {
+double solve_error(bool coupled, bool* by_blocks, bool symmetric = false,
+                   bool* symmetric_used = nullptr) {
   PetscInt n;
-  Mat J0 = make_j0(coupled, n);
+  Mat J0 = make_j0(coupled, n, symmetric);
   // Rank-one terms: a dense u over every unknown, a sparse one over three.
   std::vector<pcsim::assembly::RankOne> terms(2);
   std::vector<PetscInt> dense_index;
@@ -167,10 +177,10 @@ double solve_error(bool coupled, bool* by_blocks) {
   terms[1].weight = {1.0, -0.5, 0.25};
   terms[1].coefficient = -0.8;
   terms[1].reuse_columns = true;
-  Vec x = solve_step(J0, "test_j0_", terms, {}, by_blocks);
+  Vec x = solve_step(J0, "test_j0_", terms, {}, by_blocks, symmetric_used);
   Eigen::MatrixXd A(n, n);  // the same system densely on every rank
   for (PetscInt i = 0; i < n; ++i)
-    for (PetscInt j = 0; j < n; ++j) A(i, j) = entry(i, j, coupled);
+    for (PetscInt j = 0; j < n; ++j) A(i, j) = entry(i, j, coupled, symmetric);
   const double err = error_against_dense(A, terms, x);
   VecDestroy(&x);
   MatDestroy(&J0);
@@ -289,9 +299,9 @@ std::vector<std::vector<pcsim::assembly::RankOne>> changing_sets(PetscInt n) {
   return sets;
 }
 
-Sequence changed_terms_sequence() {
+Sequence changed_terms_sequence(bool symmetric) {
   PetscInt n;
-  Mat J0 = make_j0(false, n);
+  Mat J0 = make_j0(false, n, symmetric);
   const auto sets = changing_sets(n);
   Sequence s;
   for (std::size_t last = 1; last <= sets.size(); ++last) {
@@ -332,12 +342,32 @@ TEST(BlockDiagonalJ0, VaryingBlockOfAnySizeIsLeftToItsOwnLU) {
 }
 
 TEST(BlockDiagonalJ0, ChangedTermsOnlyGiveTheSameBits) {
-  const Sequence s = changed_terms_sequence();
-  ASSERT_EQ(s.kept.size(), s.fresh.size());
-  int differing = 0;
-  for (std::size_t i = 0; i < s.kept.size(); ++i) differing += s.kept[i] != s.fresh[i];
-  MPI_Allreduce(MPI_IN_PLACE, &differing, 1, MPI_INT, MPI_SUM, PETSC_COMM_WORLD);
-  EXPECT_EQ(differing, 0);  // bit for bit: the same products, summed in the same order
+  for (bool symmetric : {false, true}) {
+    const Sequence s = changed_terms_sequence(symmetric);
+    ASSERT_EQ(s.kept.size(), s.fresh.size());
+    int differing = 0;
+    for (std::size_t i = 0; i < s.kept.size(); ++i) differing += s.kept[i] != s.fresh[i];
+    MPI_Allreduce(MPI_IN_PLACE, &differing, 1, MPI_INT, MPI_SUM, PETSC_COMM_WORLD);
+    EXPECT_EQ(differing, 0) << "symmetric J0: " << symmetric;  // the same products, same order
+  }
+}
+
+// A J0 equal to its transpose: the capacitance forms each pair's product
+// once, exact to round-off by blocks and by the inner factorisation alike; an
+// unsymmetric J0 (the other tests') forms both.
+TEST(BlockDiagonalJ0, SymmetricJ0FormsEachPairOnce) {
+  for (bool coupled : {false, true}) {
+    bool by_blocks = !coupled, symmetric_used = false;
+    const double err = solve_error(coupled, &by_blocks, true, &symmetric_used);
+    PetscPrintf(PETSC_COMM_WORLD, "  symmetric %s J0: relative error %.2e\n",
+                coupled ? "coupled" : "block-diagonal", err);
+    EXPECT_EQ(by_blocks, !coupled);
+    EXPECT_TRUE(symmetric_used);
+    EXPECT_LT(err, 1e-12);
+  }
+  bool by_blocks = false, symmetric_used = true;
+  EXPECT_LT(solve_error(false, &by_blocks, false, &symmetric_used), 1e-12);
+  EXPECT_FALSE(symmetric_used);
 }
 
 // The counts of the step-time report (simulation/step_timing.hpp): the set of

@@ -5,11 +5,16 @@
 // 2 ranks and 3e-14 on 1), with the vector kernel and the portable one; a
 // changed row's transposed products u_j . z_r have the bits of row j formed
 // whole (the capacitance is the same whichever rows changed), and the blocks
-// of 256 entries do not move a lane (1003 is no multiple of 4 or 256).
+// of 256 entries do not move a lane (1003 is no multiple of 4 or 256). A
+// symmetric row (z_j = A^-1 u_j, A symmetric) forms each pair's product
+// once, u_a . z_b with a <= b: its entries have the bits of the upper
+// triangle of the rows formed whole, those below of the other rows, and
+// the entries that another row forms are left 0.
 // pcsim-test-ranks: 1 2
 #include <gtest/gtest.h>
 #include <petscvec.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -113,6 +118,37 @@ TEST(CapacitanceDots, ChangedRowsHaveTheBitsOfRowsFormedWhole) {
       EXPECT_EQ(uz[r * kTerms + j], whole[i * kTerms + j]);
       EXPECT_EQ(zu[r * kTerms + j], whole[j * kTerms + i]);
     }
+  v.in.x = x;
+}
+
+TEST(CapacitanceDots, SymmetricRowsFormEachPairOnce) {
+  Vectors v;
+  Vec x = v.in.x;  // no x . u_j here; given back for ~Vectors
+  v.in.x = nullptr;
+  for (bool vector_kernel : {true, false}) {
+    std::vector<double> whole, unused, ux;
+    v.in.symmetric = false;
+    v.in.rows.clear();
+    for (std::size_t i = 0; i < kTerms; ++i) v.in.rows.push_back(i);
+    pcsim::solvers::capacitance_dots(v.in, whole, unused, ux, vector_kernel);
+    v.in.symmetric = true;
+    for (const std::vector<std::size_t>& rows :
+         {v.in.rows, std::vector<std::size_t>{2, 5}, std::vector<std::size_t>{0}}) {
+      v.in.rows = rows;
+      std::vector<double> uz, zu;
+      pcsim::solvers::capacitance_dots(v.in, uz, zu, ux, vector_kernel);
+      EXPECT_TRUE(zu.empty());
+      ASSERT_EQ(uz.size(), rows.size() * kTerms);
+      for (std::size_t r = 0; r < rows.size(); ++r)
+        for (std::size_t j = 0; j < kTerms; ++j) {
+          const std::size_t i = rows[r];
+          const bool other_row = j < i && std::find(rows.begin(), rows.end(), j) != rows.end();
+          const double expected =
+              other_row ? 0.0 : (j >= i ? whole[i * kTerms + j] : whole[j * kTerms + i]);
+          EXPECT_EQ(uz[r * kTerms + j], expected) << "row " << i << ", term " << j;
+        }
+    }
+  }
   v.in.x = x;
 }
 
