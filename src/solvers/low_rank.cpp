@@ -308,7 +308,7 @@ PetscErrorCode LowRankStepSolver::pc_setup(PC pc) {
   self->invalidate();
   self->varying_->setup(P);
   self->factored_ = true;
-  self->j0_symmetric_ = exactly_symmetric(P);  // collective
+  self->j0_symmetric_ = self->blocks_ && exactly_symmetric(P);  // collective (low_rank.hpp)
   // Every z the way set_terms() computes it (reuse_columns terms from unit
   // solves): z depends only on J0 and u, never on when the PC was set up, so
   // a run restarted from a checkpoint takes the same arithmetic path.

@@ -84,8 +84,8 @@ class LowRankStepSolver {
   long active_set_changes() const { return active_set_changes_; }
   long capacitance_rows_formed() const { return capacitance_rows_formed_; }
   std::size_t active_terms() const { return active_.size(); }
-  // The capacitance forms each pair of terms' product once (J0 symmetric bit
-  // for bit at its last setup, no varying block).
+  // The capacitance forms each pair of terms' product once (J0 inverted by
+  // blocks and symmetric bit for bit at its last setup, no varying block).
   bool symmetric_capacitance() const;
 
  private:
@@ -118,7 +118,9 @@ class LowRankStepSolver {
   std::unique_ptr<VaryingBlocks> varying_;              // 'block' terms' changes
   std::vector<std::pair<PetscInt, PetscInt>> skipped_;  // varying rows blocks_ leaves out
   bool factored_ = false, capacitance_dirty_ = true, inner_chosen_ = false;
-  // J0 equals its transpose bit for bit (checked at each setup): then
+  // J0, inverted by blocks, equals its transpose bit for bit (checked at
+  // each setup; not a J0 factored whole, the FE catenary's, whose step is its
+  // solves: the check would transpose it): then
   // u_i . J0^-1 u_j = u_j . J0^-1 u_i, and the capacitance forms each pair's
   // product once (update_capacitance), unless a varying block changes J0.
   bool j0_symmetric_ = false;
