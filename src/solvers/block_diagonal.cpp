@@ -103,4 +103,12 @@ void BlockDiagonalInverse::solve(Vec r, Vec x) const {
   PCSIM_PETSC(VecRestoreArrayRead(r, &rr));
 }
 
+bool exactly_symmetric(Mat P) {
+  PetscBool aij = PETSC_FALSE, symmetric = PETSC_FALSE;
+  PCSIM_PETSC(
+      PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(P), &aij, MATSEQAIJ, MATMPIAIJ, ""));
+  if (aij) PCSIM_PETSC(MatIsSymmetric(P, 0.0, &symmetric));
+  return symmetric == PETSC_TRUE;
+}
+
 }  // namespace pcsim::solvers

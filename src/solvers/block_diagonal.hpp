@@ -40,4 +40,9 @@ class BlockDiagonalInverse {
   std::vector<Block> blocks_;        // the larger blocks
 };
 
+// P equals its transpose bit for bit (an AIJ matrix; any other type counts
+// as unsymmetric): then u_i . P^-1 u_j = u_j . P^-1 u_i, and the capacitance
+// may form each pair once (capacitance_dots.hpp, 'symmetric'). Collective.
+bool exactly_symmetric(Mat P);
+
 }  // namespace pcsim::solvers

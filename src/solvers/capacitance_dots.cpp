@@ -175,12 +175,4 @@ void capacitance_dots(const CapacitanceDots& in, std::vector<double>& uz, std::v
   std::copy(all.end() - ux.size(), all.end(), ux.begin());
 }
 
-bool exactly_symmetric(Mat P) {
-  PetscBool aij = PETSC_FALSE, symmetric = PETSC_FALSE;
-  PCSIM_PETSC(
-      PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(P), &aij, MATSEQAIJ, MATMPIAIJ, ""));
-  if (aij) PCSIM_PETSC(MatIsSymmetric(P, 0.0, &symmetric));
-  return symmetric == PETSC_TRUE;
-}
-
 }  // namespace pcsim::solvers

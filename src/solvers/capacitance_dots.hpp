@@ -4,7 +4,6 @@
 // every column per changed row (five passes a step with two moving contacts).
 #pragma once
 
-#include <petscmat.h>
 #include <petscvec.h>
 
 #include <vector>
@@ -34,9 +33,5 @@ struct CapacitanceDots {
 // vector_kernel false takes the portable one (tests).
 void capacitance_dots(const CapacitanceDots& in, std::vector<double>& uz, std::vector<double>& zu,
                       std::vector<double>& ux, bool vector_kernel = true);
-
-// P equals its transpose bit for bit (an AIJ matrix; any other type counts
-// as unsymmetric): z = P^-1 u then allows 'symmetric'. Collective.
-bool exactly_symmetric(Mat P);
 
 }  // namespace pcsim::solvers

@@ -357,13 +357,12 @@ void LowRankStepSolver::update_capacitance(Vec x, std::vector<PetscScalar>& ux) 
   capacitance_dots(in, uz, zu, ux);
   if (!same_terms) ++active_set_changes_;
   capacitance_rows_formed_ += static_cast<long>(rows.size());
-  std::vector<bool> is_row(k, false);
-  for (std::size_t i : rows) is_row[i] = true;
+  const auto is_row = [&](std::size_t j) { return !same_terms || active_[j]->changed; };
   for (std::size_t r = 0; r < rows.size(); ++r) {
     const std::size_t i = rows[r];
     if (in.symmetric) {  // u_a . z_b (a <= b) for both entries of each pair
       for (std::size_t j = 0; j < k; ++j)
-        if (j >= i || !is_row[j]) products_(i, j) = products_(j, i) = uz[r * k + j];
+        if (j >= i || !is_row(j)) products_(i, j) = products_(j, i) = uz[r * k + j];
       continue;
     }
     for (std::size_t j = 0; j < k; ++j) products_(i, j) = uz[r * k + j];
