@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "modal_rows.hpp"
 #include "pcsim/assembly/coupled_state.hpp"
 #include "pcsim/assembly/modal_wind.hpp"
 #include "pcsim/catenary/elements.hpp"
@@ -13,7 +14,9 @@ namespace pcsim::assembly {
 
 namespace {
 
-using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+using modal_rows::add_modal_block;
+using modal_rows::all_modes;
+using modal_rows::RowMatrix;
 
 // The modal part of a vector into x (every rank: it lives on the last one).
 void modal_part(const ModalCatenary& catenary, Vec v, Eigen::VectorXd& x) {
@@ -36,12 +39,6 @@ Eigen::VectorXd modal_part(const ModalCatenary& catenary, Vec v) {
   return x;
 }
 
-SharedEntries<PetscInt> all_modes(const ModalCatenary& catenary) {
-  std::vector<PetscInt> modes(catenary.catenary_dofs());
-  for (std::size_t k = 0; k < modes.size(); ++k) modes[k] = static_cast<PetscInt>(k);
-  return modes;
-}
-
 // The row made by make() under key, made on first use and kept (the basis
 // never changes under a term).
 template <class Make>
@@ -53,15 +50,6 @@ const SharedEntries<double>& kept_row(std::map<long, SharedEntries<double>>& row
     it->second = std::vector<double>(row.data(), row.data() + row.size());
   }
   return it->second;
-}
-
-// Adds a dense modal block (m x m) to J on the owner.
-void add_modal_block(const ModalCatenary& catenary, const RowMatrix& block, Mat J) {
-  if (!catenary.on_owner()) return;
-  const PetscInt m = catenary.catenary_dofs();
-  std::vector<PetscInt> modes(m);
-  for (PetscInt k = 0; k < m; ++k) modes[k] = k;
-  PCSIM_PETSC(MatSetValues(J, m, modes.data(), m, modes.data(), block.data(), ADD_VALUES));
 }
 
 }  // namespace
@@ -152,8 +140,9 @@ TermPower ModalOscillators::power(const CoupledState& state) const {
 
 // ------------------------------------------------------ dropper slack ----
 
-ModalDropperSlack::ModalDropperSlack(ModalCatenary& catenary, bool force_free)
-    : catenary_(catenary), modes_(all_modes(catenary)) {
+ModalDropperSlack::ModalDropperSlack(ModalCatenary& catenary, bool force_free,
+                                     const ModalTautDroppers* exact)
+    : catenary_(catenary), exact_(exact), modes_(all_modes(catenary)) {
   const auto& bars = catenary.mesh().bars;
   for (int b : catenary.slack_bars()) {
     const auto& bar = bars[b];
@@ -207,12 +196,19 @@ Eigen::Map<const Eigen::RowVectorXd> as_row(const SharedEntries<double>& row) {
 }
 }  // namespace
 
-void ModalDropperSlack::add_residual(const CoupledState&, Vec F) {
-  if (!catenary_.on_owner() || catenary_.slack_now().empty()) return;
+const std::vector<std::size_t>& ModalDropperSlack::slack_here(const CoupledState& state) const {
+  slack_here_.clear();
+  for (std::size_t d : catenary_.slack_now())
+    if (!exact_ || !exact_->covers(state, d)) slack_here_.push_back(d);
+  return slack_here_;
+}
+
+void ModalDropperSlack::add_residual(const CoupledState& state, Vec F) {
+  if (!catenary_.on_owner() || slack_here(state).empty()) return;
   PetscScalar* a;
   PCSIM_PETSC(VecGetArray(F, &a));
   Eigen::Map<Eigen::VectorXd> f(a, catenary_.catenary_dofs());
-  for (std::size_t d : catenary_.slack_now()) {
+  for (std::size_t d : slack_here_) {
     f -= catenary_.bar_stiffness(d) * catenary_.elongation(d) *
          catenary_.elongation_rows().row(static_cast<long>(d)).transpose();
     if (geometric_[d] == 0) continue;
@@ -224,11 +220,11 @@ void ModalDropperSlack::add_residual(const CoupledState&, Vec F) {
   PCSIM_PETSC(VecRestoreArray(F, &a));
 }
 
-void ModalDropperSlack::add_tangent(const CoupledState&, Shifts, Mat J) {
-  if (catenary_.slack_now().empty()) return;
+void ModalDropperSlack::add_tangent(const CoupledState& state, Shifts, Mat J) {
+  if (slack_here(state).empty()) return;
   const PetscInt m = catenary_.catenary_dofs();
   RowMatrix block = RowMatrix::Zero(m, m);
-  for (std::size_t d : catenary_.slack_now()) {
+  for (std::size_t d : slack_here_) {
     const auto b = catenary_.elongation_rows().row(static_cast<long>(d));
     block -= catenary_.bar_stiffness(d) * b.transpose() * b;
     if (geometric_[d] == 0) continue;
@@ -240,7 +236,8 @@ void ModalDropperSlack::add_tangent(const CoupledState&, Shifts, Mat J) {
   add_modal_block(catenary_, block, J);
 }
 
-bool ModalDropperSlack::low_rank_change(const CoupledState&, std::vector<RankOne>& terms) {
+bool ModalDropperSlack::low_rank_change(const CoupledState& state, std::vector<RankOne>& terms) {
+  slack_here(state);
   const auto add = [&](long key, const SharedEntries<double>& weight, double coefficient) {
     RankOne term;
     term.key = static_cast<int>(key);
@@ -251,7 +248,7 @@ bool ModalDropperSlack::low_rank_change(const CoupledState&, std::vector<RankOne
     term.contiguous = true;
     terms.push_back(std::move(term));
   };
-  for (std::size_t d : catenary_.slack_now()) {
+  for (std::size_t d : slack_here_) {
     const long key = 3L * static_cast<long>(d);
     add(key, rows_[d][0], -catenary_.bar_stiffness(d));
     if (geometric_[d] == 0) continue;
@@ -260,9 +257,10 @@ bool ModalDropperSlack::low_rank_change(const CoupledState&, std::vector<RankOne
   return true;
 }
 
-double ModalDropperSlack::energy(const CoupledState&) const {
+double ModalDropperSlack::energy(const CoupledState& state) const {
+  slack_here(state);
   double e = 0;
-  for (std::size_t d : catenary_.slack_now()) {
+  for (std::size_t d : slack_here_) {
     e -= 0.5 * catenary_.bar_stiffness(d) * catenary_.elongation(d) * catenary_.elongation(d);
     for (int j = 1; j <= 2 && geometric_[d] > 0; ++j) {
       const double u = as_row(rows_[d][j]).dot(catenary_.eta());
@@ -477,11 +475,18 @@ std::vector<std::unique_ptr<Term>> ModalCatenary::make_terms(const contact::Inte
   std::vector<std::unique_ptr<Term>> terms;
   terms.push_back(std::make_unique<ModalOscillators>(*this, e.rayleigh_damping,
                                                      mesh_.rayleigh_alpha, mesh_.rayleigh_beta));
-  if (exact)
-    terms.push_back(std::make_unique<ModalExactBars>(*this, e.dropper_slack));
-  else if (slack_active_)
+  if (exact) terms.push_back(std::make_unique<ModalExactBars>(*this, e.dropper_slack));
+  // Droppers near the pantographs exact: not the slack term's.
+  const ModalTautDroppers* near = nullptr;
+  if (!exact && settings_.exact_droppers_within > 0) {
+    auto term = std::make_unique<ModalTautDroppers>(*this, settings_.exact_droppers_within,
+                                                    e.dropper_slack);
+    near = term.get();
+    terms.push_back(std::move(term));
+  }
+  if (!exact && slack_active_)
     terms.push_back(std::make_unique<ModalDropperSlack>(
-        *this, settings_.bars == catenary::ModalSettings::Bars::slack_exact));
+        *this, settings_.bars == catenary::ModalSettings::Bars::slack_exact, near));
   // A moving window's ends (released: dashpots, pins switched by the run).
   if (!mesh_.dashpots.empty()) terms.push_back(std::make_unique<ModalNodeDashpots>(*this));
   if (!mesh_.pins.empty()) terms.push_back(std::make_unique<ModalNodePins>(*this));

@@ -169,7 +169,7 @@ LineConditions read_conditions(const InputNode& c, const CatenaryMesh& mesh) {
 
 void read_modal_settings(const InputNode& modal, ModalSettings& s) {
   modal.allow_only({"dropper_shapes", "contact_flexibility", "modes", "participation", "droppers",
-                    "bars", "method"});
+                    "bars", "method", "exact_droppers_within"});
   const std::string method = modal.get_choice("method", {"auto", "whole", "window"}, "auto");
   s.method = method == "whole"    ? ModalSettings::Method::whole
              : method == "window" ? ModalSettings::Method::window
@@ -187,6 +187,9 @@ void read_modal_settings(const InputNode& modal, ModalSettings& s) {
   s.bars = bars == "exact"         ? ModalSettings::Bars::exact
            : bars == "slack_exact" ? ModalSettings::Bars::slack_exact
                                    : ModalSettings::Bars::slack;
+  s.exact_droppers_within = modal.get_nonnegative("exact_droppers_within", limits::distance, 0.0);
+  if (s.exact_droppers_within > 0 && s.bars == ModalSettings::Bars::exact)
+    modal.fail_key("exact_droppers_within", "bars: exact already takes every bar's exact force");
 }
 
 }  // namespace

@@ -346,6 +346,12 @@ expect empty-dt 2 "empty-dt.yaml|key 'simulation.dt'|has no value" yes run empty
 expect empty-model 2 "empty-model.yaml|key 'stages[0].damping'|has no value" yes run empty-panto.yaml
 expect set-empty 2 "command line --set simulation.dt=~|key 'simulation.dt'|has no value" yes \
   run good-run.yaml --set simulation.dt=~
+# issue 21: droppers near the pantographs exact (a distance; not with bars: exact)
+expect near-negative 2 "command line --set catenary.modal.exact_droppers_within=-5|key 'catenary.modal.exact_droppers_within'|must not be negative" yes \
+  run good-run.yaml --set catenary.model=modal --set catenary.modal.exact_droppers_within=-5
+expect near-exact 2 "key 'catenary.modal.exact_droppers_within'|bars: exact already takes every bar's exact force" yes \
+  run good-run.yaml --set catenary.model=modal --set catenary.modal.bars=exact \
+  --set catenary.modal.exact_droppers_within=5
 # ---- issue 25: conditions ----
 expect ice-negative 2 "command line --set conditions.ice.contact=-0.5|key 'conditions.ice.contact'|must not be negative" yes \
   run good-run.yaml --set conditions.ice.contact=-0.5

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <map>
+#include <memory>
 #include <vector>
 
 #include "pcsim/assembly/modal_catenary.hpp"
@@ -16,6 +17,8 @@
 #include "pcsim/catenary/elements.hpp"
 
 namespace pcsim::assembly {
+
+class ModalTautDroppers;
 
 // The modal coordinates' own equations, diagonal (thesis eq. 3.1 projected):
 // inertia eta'', Rayleigh damping (alpha + beta omega_k^2) eta_k' (when the
@@ -60,7 +63,9 @@ class ModalOscillators : public Term {
 class ModalDropperSlack : public Term {
  public:
   // force_free: a slack 'force' bar loses its geometric stiffness too (bars: slack_exact).
-  ModalDropperSlack(ModalCatenary& catenary, bool force_free);
+  // exact: the droppers near the pantographs taken exactly, left out here (may be null).
+  ModalDropperSlack(ModalCatenary& catenary, bool force_free,
+                    const ModalTautDroppers* exact = nullptr);
   std::string name() const override { return "modal dropper slack"; }
   TangentKind tangent_kind() const override { return TangentKind::low_rank; }
   void add_residual(const CoupledState& state, Vec F) override;
@@ -71,13 +76,74 @@ class ModalDropperSlack : public Term {
 
  private:
   void make_rows();
+  // slack_now() less the droppers exact_ covers at the state's time.
+  const std::vector<std::size_t>& slack_here(const CoupledState& state) const;
 
   ModalCatenary& catenary_;
-  SharedEntries<PetscInt> modes_;  // 0 .. m-1, shared by every term handed out
+  const ModalTautDroppers* exact_;
+  mutable std::vector<std::size_t> slack_here_;  // kept storage
+  SharedEntries<PetscInt> modes_;                // 0 .. m-1, shared by every term handed out
   // Tracked bar d's rows b_d, t_1 and t_2 (these two where g > 0), made at construction.
   std::vector<std::array<SharedEntries<double>, 3>> rows_;
   std::vector<double> geometric_;                     // g = N0/l0 per tracked bar, 0: none
   std::vector<Eigen::Matrix<double, 3, 2>> normals_;  // n_1, n_2 per tracked bar
+};
+
+// Droppers near the pantographs with their exact force (the modal level
+// otherwise linearises them about the static state; docs/fidelity.md,
+// "Droppers near the pantographs exact"): for each dropper d within 'reach'
+// of a pantograph's contact point, residual R_d^T (f(r) - f0 - K0 r),
+// tangent R_d^T (K(r) - K0) R_d, where R_d = (b_d, t_1, t_2) are the rows of
+// its ends' relative displacement along its static direction e and across
+// it (n_1, n_2), r = R_d eta, f and K the bar's force and tangent at its end
+// j in that frame (catenary::bar_internal_force: zero while the dropper is
+// shorter than unstressed, as on the FE levels), f0 and K0 the linear
+// model's. Such a dropper is not ModalDropperSlack's. The 3 x 3 change D =
+// K(r) - K0 goes to the solver as six rank-one terms over fixed rows, b,
+// t_1, t_2, b + t_1, b + t_2, t_1 + t_2, whose coefficients alone vary (a
+// symmetric 3 x 3 has six entries): J0^-1 u and the capacitance's products
+// are kept while a dropper stays in the set. The set depends on the time
+// alone (fixed within a step). Energy E(r) - E0 - f0 . r - 1/2 r . K0 r.
+class ModalTautDroppers : public Term {
+ public:
+  // slack: the droppers' slackening is on (dropper_slack).
+  ModalTautDroppers(ModalCatenary& catenary, double reach, bool slack);
+  std::string name() const override { return "modal droppers near the pantographs (exact)"; }
+  TangentKind tangent_kind() const override { return TangentKind::low_rank; }
+  void add_residual(const CoupledState& state, Vec F) override;
+  void add_tangent(const CoupledState& state, Shifts shifts, Mat J) override;
+  void add_reference_tangent(const CoupledState&, Shifts, Mat) override {}
+  bool low_rank_change(const CoupledState& state, std::vector<RankOne>& terms) override;
+  double energy(const CoupledState& state) const override;
+  // Tracked bar d (index into ModalCatenary::slack_bars()) is this term's at the state's time.
+  bool covers(const CoupledState& state, std::size_t tracked) const;
+
+ private:
+  struct Dropper {
+    std::size_t tracked;  // index into ModalCatenary::slack_bars()
+    double x;             // mid-point along the track [m]
+    catenary::BarParameters params;
+    catenary::Vec6 q0;
+    Eigen::Matrix3d frame;  // columns e, n_1, n_2
+    Eigen::Vector3d f0;     // end j's force in the frame at the static state (linear model)
+    Eigen::Matrix3d K0;     // end j's tangent in the frame at the static state (linear model)
+  };
+  // t_1, t_2 and the three sums, made when a dropper enters the set.
+  using Rows = std::shared_ptr<const Eigen::Matrix<double, 5, Eigen::Dynamic, Eigen::RowMajor>>;
+  bool within_reach(const CoupledState& state, const Dropper& dropper) const;
+  // The droppers within reach at the state's time (active_).
+  void find_active(const CoupledState& state);
+  const Rows& rows(std::size_t i);
+  // r = R_d eta (rows(i) made), and end j's force and tangent in the frame at r.
+  Eigen::Vector3d relative(std::size_t i) const;
+  void force(std::size_t i, const Eigen::Vector3d& r, Eigen::Vector3d& f, Eigen::Matrix3d* K) const;
+
+  ModalCatenary& catenary_;
+  double reach_;
+  SharedEntries<PetscInt> modes_;
+  std::vector<Dropper> droppers_;     // by tracked bar, ascending
+  std::map<std::size_t, Rows> rows_;  // by index into droppers_, while in the set
+  std::vector<std::size_t> active_;   // indices into droppers_
 };
 
 // A moving window's end dashpots (catenary/window.hpp) over the modes:
