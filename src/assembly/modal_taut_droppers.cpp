@@ -124,15 +124,14 @@ void ModalTautDroppers::add_residual(const CoupledState& state, Vec F) {
   PCSIM_PETSC(VecGetArray(F, &a));
   Eigen::Map<Eigen::VectorXd> out(a, catenary_.catenary_dofs());
   for (std::size_t i : active_) {
-    rows(i);
+    const auto& t = *rows(i);
     const Eigen::Vector3d r = relative(i);
     Eigen::Vector3d f;
     force(i, r, f, nullptr);
     const Eigen::Vector3d change = f - droppers_[i].f0 - droppers_[i].K0 * r;
-    const auto& t = *rows_.at(i);
-    out += change[0] *
-           catenary_.elongation_rows().row(static_cast<long>(droppers_[i].tracked)).transpose();
-    out += change[1] * t.row(0).transpose() + change[2] * t.row(1).transpose();
+    const auto b = catenary_.elongation_rows().row(static_cast<long>(droppers_[i].tracked));
+    // One pass over the modes for the three rows.
+    out += (change[0] * b + change[1] * t.row(0) + change[2] * t.row(1)).transpose();
   }
   PCSIM_PETSC(VecRestoreArray(F, &a));
 }
