@@ -1,4 +1,4 @@
-// Helpers of the modal catenary's terms (modal_terms.cpp, modal_taut_droppers.cpp).
+// Helpers of the modal catenary's terms (modal_terms.cpp, modal_exact_droppers.cpp).
 #pragma once
 
 #include <petscmat.h>

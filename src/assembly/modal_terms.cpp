@@ -141,7 +141,7 @@ TermPower ModalOscillators::power(const CoupledState& state) const {
 // ------------------------------------------------------ dropper slack ----
 
 ModalDropperSlack::ModalDropperSlack(ModalCatenary& catenary, bool force_free,
-                                     const ModalTautDroppers* exact)
+                                     const ModalExactDroppers* exact)
     : catenary_(catenary), exact_(exact), modes_(all_modes(catenary)) {
   const auto& bars = catenary.mesh().bars;
   for (int b : catenary.slack_bars()) {
@@ -477,10 +477,10 @@ std::vector<std::unique_ptr<Term>> ModalCatenary::make_terms(const contact::Inte
                                                      mesh_.rayleigh_alpha, mesh_.rayleigh_beta));
   if (exact) terms.push_back(std::make_unique<ModalExactBars>(*this, e.dropper_slack));
   // Droppers near the pantographs exact: not the slack term's.
-  const ModalTautDroppers* near = nullptr;
+  const ModalExactDroppers* near = nullptr;
   if (!exact && settings_.exact_droppers_within > 0) {
-    auto term = std::make_unique<ModalTautDroppers>(*this, settings_.exact_droppers_within,
-                                                    e.dropper_slack);
+    auto term = std::make_unique<ModalExactDroppers>(*this, settings_.exact_droppers_within,
+                                                     e.dropper_slack);
     near = term.get();
     terms.push_back(std::move(term));
   }

@@ -18,7 +18,7 @@
 
 namespace pcsim::assembly {
 
-class ModalTautDroppers;
+class ModalExactDroppers;
 
 // The modal coordinates' own equations, diagonal (thesis eq. 3.1 projected):
 // inertia eta'', Rayleigh damping (alpha + beta omega_k^2) eta_k' (when the
@@ -65,7 +65,7 @@ class ModalDropperSlack : public Term {
   // force_free: a slack 'force' bar loses its geometric stiffness too (bars: slack_exact).
   // exact: the droppers near the pantographs taken exactly, left out here (may be null).
   ModalDropperSlack(ModalCatenary& catenary, bool force_free,
-                    const ModalTautDroppers* exact = nullptr);
+                    const ModalExactDroppers* exact = nullptr);
   std::string name() const override { return "modal dropper slack"; }
   TangentKind tangent_kind() const override { return TangentKind::low_rank; }
   void add_residual(const CoupledState& state, Vec F) override;
@@ -80,7 +80,7 @@ class ModalDropperSlack : public Term {
   const std::vector<std::size_t>& slack_here(const CoupledState& state) const;
 
   ModalCatenary& catenary_;
-  const ModalTautDroppers* exact_;
+  const ModalExactDroppers* exact_;
   mutable std::vector<std::size_t> slack_here_;  // kept storage
   SharedEntries<PetscInt> modes_;                // 0 .. m-1, shared by every term handed out
   // Tracked bar d's rows b_d, t_1 and t_2 (these two where g > 0), made at construction.
@@ -104,10 +104,10 @@ class ModalDropperSlack : public Term {
 // symmetric 3 x 3 has six entries): J0^-1 u and the capacitance's products
 // are kept while a dropper stays in the set. The set depends on the time
 // alone (fixed within a step). Energy E(r) - E0 - f0 . r - 1/2 r . K0 r.
-class ModalTautDroppers : public Term {
+class ModalExactDroppers : public Term {
  public:
   // slack: the droppers' slackening is on (dropper_slack).
-  ModalTautDroppers(ModalCatenary& catenary, double reach, bool slack);
+  ModalExactDroppers(ModalCatenary& catenary, double reach, bool slack);
   std::string name() const override { return "modal droppers near the pantographs (exact)"; }
   TangentKind tangent_kind() const override { return TangentKind::low_rank; }
   void add_residual(const CoupledState& state, Vec F) override;

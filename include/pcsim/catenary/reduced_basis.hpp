@@ -36,9 +36,9 @@ struct ModalSettings {
   // force exactly zero; three rank-one terms); exact: every bar's nonlinear
   // force minus its linearisation (full path).
   enum class Bars { slack, slack_exact, exact } bars = Bars::slack_exact;
-  // > 0: taut droppers within this distance of a pantograph's contact point
-  // [m] take their exact force, not its linearisation (assembly/modal_terms.hpp,
-  // ModalTautDroppers); 0: none.
+  // > 0: droppers within this distance of a pantograph's contact point [m]
+  // take their exact force, taut or slack, not its linearisation
+  // (assembly/modal_terms.hpp, ModalExactDroppers); 0: none.
   double exact_droppers_within = 0;
   bool full_shapes = false;  // keep every node's position rows (field snapshots)
   // How the line is reduced (catenary.modal.method): automatic (the run

@@ -1,5 +1,5 @@
-// Taut droppers near the pantographs with their exact force on the modal
-// level (ModalTautDroppers, modal_terms.hpp).
+// Droppers near the pantographs with their exact force on the modal level,
+// taut or slack (ModalExactDroppers, modal_terms.hpp).
 #include <algorithm>
 #include <cmath>
 
@@ -30,7 +30,7 @@ std::array<double, 6> split(const Eigen::Matrix3d& D) {
 
 }  // namespace
 
-ModalTautDroppers::ModalTautDroppers(ModalCatenary& catenary, double reach, bool slack)
+ModalExactDroppers::ModalExactDroppers(ModalCatenary& catenary, double reach, bool slack)
     : catenary_(catenary), reach_(reach), modes_(modal_rows::all_modes(catenary)) {
   const auto& bars = catenary.mesh().bars;
   const auto& tracked = catenary.slack_bars();
@@ -58,21 +58,21 @@ ModalTautDroppers::ModalTautDroppers(ModalCatenary& catenary, double reach, bool
 // From the first step on: the static start (t = 0) stays the linear model's
 // closed-form equilibrium, whose coupled Newton on the modal level would be a
 // dense LU (minutes at 8000 vectors).
-bool ModalTautDroppers::within_reach(const CoupledState& state, const Dropper& dropper) const {
+bool ModalExactDroppers::within_reach(const CoupledState& state, const Dropper& dropper) const {
   if (state.t <= 0) return false;
   for (std::size_t p = 0; p < state.pantograph_count(); ++p)
     if (std::abs(dropper.x - state.pantograph(p).run.contact_x(state.t)) <= reach_) return true;
   return false;
 }
 
-bool ModalTautDroppers::covers(const CoupledState& state, std::size_t tracked) const {
+bool ModalExactDroppers::covers(const CoupledState& state, std::size_t tracked) const {
   const auto it =
       std::lower_bound(droppers_.begin(), droppers_.end(), tracked,
                        [](const Dropper& dropper, std::size_t d) { return dropper.tracked < d; });
   return it != droppers_.end() && it->tracked == tracked && within_reach(state, *it);
 }
 
-void ModalTautDroppers::find_active(const CoupledState& state) {
+void ModalExactDroppers::find_active(const CoupledState& state) {
   active_.clear();
   for (std::size_t i = 0; i < droppers_.size(); ++i)
     if (within_reach(state, droppers_[i])) active_.push_back(i);
@@ -82,7 +82,7 @@ void ModalTautDroppers::find_active(const CoupledState& state) {
                                                                        : rows_.erase(it);
 }
 
-const ModalTautDroppers::Rows& ModalTautDroppers::rows(std::size_t i) {
+const ModalExactDroppers::Rows& ModalExactDroppers::rows(std::size_t i) {
   auto [it, added] = rows_.try_emplace(i);
   if (added) {
     const Dropper& dropper = droppers_[i];
@@ -99,15 +99,15 @@ const ModalTautDroppers::Rows& ModalTautDroppers::rows(std::size_t i) {
   return it->second;
 }
 
-Eigen::Vector3d ModalTautDroppers::relative(std::size_t i) const {
+Eigen::Vector3d ModalExactDroppers::relative(std::size_t i) const {
   const auto& eta = catenary_.eta();
   const auto& t = *rows_.at(i);
   return {catenary_.elongation_rows().row(static_cast<long>(droppers_[i].tracked)).dot(eta),
           t.row(0).dot(eta), t.row(1).dot(eta)};
 }
 
-void ModalTautDroppers::force(std::size_t i, const Eigen::Vector3d& r, Eigen::Vector3d& f,
-                              Eigen::Matrix3d* K) const {
+void ModalExactDroppers::force(std::size_t i, const Eigen::Vector3d& r, Eigen::Vector3d& f,
+                               Eigen::Matrix3d* K) const {
   const Dropper& dropper = droppers_[i];
   catenary::Vec6 q = dropper.q0, fq;
   q.tail<3>() += dropper.frame * r;
@@ -117,7 +117,7 @@ void ModalTautDroppers::force(std::size_t i, const Eigen::Vector3d& r, Eigen::Ve
   if (K) *K = dropper.frame.transpose() * Kq.bottomRightCorner<3, 3>() * dropper.frame;
 }
 
-void ModalTautDroppers::add_residual(const CoupledState& state, Vec F) {
+void ModalExactDroppers::add_residual(const CoupledState& state, Vec F) {
   find_active(state);
   if (!catenary_.on_owner() || active_.empty()) return;
   PetscScalar* a;
@@ -136,7 +136,7 @@ void ModalTautDroppers::add_residual(const CoupledState& state, Vec F) {
   PCSIM_PETSC(VecRestoreArray(F, &a));
 }
 
-void ModalTautDroppers::add_tangent(const CoupledState& state, Shifts, Mat J) {
+void ModalExactDroppers::add_tangent(const CoupledState& state, Shifts, Mat J) {
   find_active(state);
   if (active_.empty()) return;
   const PetscInt m = catenary_.catenary_dofs();
@@ -154,15 +154,15 @@ void ModalTautDroppers::add_tangent(const CoupledState& state, Shifts, Mat J) {
   modal_rows::add_modal_block(catenary_, block, J);
 }
 
-bool ModalTautDroppers::low_rank_change(const CoupledState& state, std::vector<RankOne>& terms) {
+bool ModalExactDroppers::low_rank_change(const CoupledState& state, std::vector<RankOne>& terms) {
   find_active(state);
+  const long m = catenary_.catenary_dofs();
   for (std::size_t i : active_) {
     const Rows& t = rows(i);
     Eigen::Vector3d f;
     Eigen::Matrix3d K;
     force(i, relative(i), f, &K);
     const std::array<double, 6> weights = split(K - droppers_[i].K0);
-    const long m = catenary_.catenary_dofs();
     for (int j = 0; j < 6; ++j) {
       // A weight of exactly zero (at the static state) is no term: 1/c in the capacitance.
       if (weights[j] == 0) continue;
@@ -184,7 +184,7 @@ bool ModalTautDroppers::low_rank_change(const CoupledState& state, std::vector<R
   return true;
 }
 
-double ModalTautDroppers::energy(const CoupledState& state) const {
+double ModalExactDroppers::energy(const CoupledState& state) const {
   const int* tracked = catenary_.slack_bars().data();
   double e = 0;
   for (const Dropper& dropper : droppers_) {
