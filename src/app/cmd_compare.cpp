@@ -164,7 +164,9 @@ PCSIM_COMMAND_HELP(
     "results: compare.csv and compare.md (the EN 50318 figures of every pantograph side by side,\n"
     "differences absolute and in %), compare.json, force_uplift.png (force by position, one\n"
     "panel per pantograph, and the uplift at the supports), spectra.png, inputs.diff (the\n"
-    "composed scene, design and pantograph models that differ), report.html.\n"
+    "composed scene, design and pantograph models that differ), span_extremes.csv (runs on the\n"
+    "same supports: each run's largest and smallest force per span, and where its actual\n"
+    "maximum and minimum fall, in compare.md too), report.html.\n"
     "Bad input (a folder that is no run result, a missing file, a CSV without units): one\n"
     "message, exit 2, no folder. Docs: docs/assessment.md \"Comparing results: pcsim compare\".\n",
     {"--measurement", "FILE.csv", "a measured contact force to compare with RUN_A (format: docs)"},

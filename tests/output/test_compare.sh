@@ -62,6 +62,25 @@ assert differs["pantographs[0].model"] and not differs["catenary.design"], diffe
 assert re.search(r"^\+.*damping: 30", open(os.path.join(ab, "inputs.diff")).read(), re.M)
 assert "| pantographs[0].model | yes |" in open(os.path.join(ab, "compare.md")).read()
 
+# Where the extremes fall: the spans of the section (spans 2-2 of the 3-span scene, or more),
+# each run's local extremes; their extremes are summary.json's to the last bit.
+spans = list(csv.reader(open(os.path.join(ab, "span_extremes.csv"))))
+assert spans[0][:6] == ["pantograph", "span", "from_x [m]", "to_x [m]", "a max [N]", "a min [N]"], spans[0]
+assert spans[0][-2:] == ["b - a max [%]", "b - a min [%Fm]"], spans[0]
+body = [[float(c) for c in r[1:]] for r in spans[1:]]
+assert len(body) >= 1 and all(r[2] > r[1] for r in body), body
+for k, s in ((0, sa), (1, sb)):  # printed to 3 decimals
+    assert abs(max(r[3 + 2 * k] for r in body) - s["max_N"]) <= 5e-4, (k, s["max_N"])
+    assert abs(min(r[4 + 2 * k] for r in body) - s["min_N"]) <= 5e-4, (k, s["min_N"])
+for r in body:  # b's local maximum minus a's, in % of a's (printed to 3 decimals)
+    assert abs(r[7] - 100 * (r[5] - r[3]) / r[3]) <= 2e-3, r
+where = {r["source"]: r for r in record["span_extremes"]}
+assert abs(where["a"]["max_N"] - sa["max_N"]) < 1e-9 and abs(where["b"]["min_N"] - sb["min_N"]) < 1e-9
+assert where["a"]["max_there_percent"] is None and where["b"]["max_there_percent"] is not None
+assert "## Where the extremes fall" in open(os.path.join(ab, "compare.md")).read()
+assert '<h2 id="extremes">Where the extremes fall</h2>' in page
+assert not os.path.exists("am/span_extremes.csv")  # a run and a measurement: no supports to share
+
 # The measurement: made with a lag of 3.7 m and an offset of 8 N; found: 3.691 m and +7.86 N.
 # Lag within 0.05 m: five times the error found, a fifth of the 0.25 m sample spacing. Offset
 # within 1 N: 3 sigma of the noise's mean over the 60 m section (240 samples of 5 N: 0.32 N).
