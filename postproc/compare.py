@@ -185,7 +185,7 @@ def measurement_lines(sources):
     return lines
 
 
-def markdown_page(sources, header, body, inputs, extremes_lines=()):
+def markdown_page(sources, header, body, inputs, extremes_table=None):
     s0 = sources[0].summary
     text = ["# pcsim compare: %s" % ", ".join(s.label for s in sources), "",
             "Sources: %s." % "; ".join("%s = %s" % (s.label, s.folder) for s in sources),
@@ -194,7 +194,9 @@ def markdown_page(sources, header, body, inputs, extremes_lines=()):
                sources[0].label), ""]
     text += ["- " + l for l in measurement_lines(sources)]
     text += ["", "## EN 50318 figures", "", markdown(header, body)]
-    text += list(extremes_lines)
+    if extremes_table:
+        text += ["## Where the extremes fall", "", extremes_table[0], "",
+                 markdown(extremes_table[1], extremes_table[2])]
     text += ["## Inputs", "", markdown(["input", "differs"] + [s.label for s in runs_of(sources)],
                                        [[r["role"], "yes" if r["differs"] else "no"] + r["cells"]
                                         for r in inputs])]
@@ -233,13 +235,13 @@ def spectra_figure(sources, names):
     return fig
 
 
-def report_page(sources, header, body, inputs, diff, images, extremes_md=()):
+def report_page(sources, header, body, inputs, diff, images, extremes_table=None):
     parts = ["<p>%s</p>" % report.esc("; ".join("%s = %s" % (s.label, s.folder) for s in sources))]
     parts += ["<p>%s</p>" % report.esc(l) for l in measurement_lines(sources)]
     parts += ["<p>Contents: <a href=\"#figures\">EN 50318 figures</a>, <a href=\"#plots\">plots</a>, "
               "<a href=\"#inputs\">inputs</a>.</p>", "<h2 id=\"figures\">EN 50318 figures</h2>",
               report.table(header, body, [[None] * 3 + ["num"] * (len(h) - 3) for h in body]),
-              ] + span_extremes_html(extremes_md) + ["<h2 id=\"plots\">Plots</h2>"] + images
+              ] + span_extremes_html(extremes_table) + ["<h2 id=\"plots\">Plots</h2>"] + images
     parts += ["<h2 id=\"inputs\">Inputs</h2>",
               report.table(["input", "differs"] + [s.label for s in runs_of(sources)],
                            [[r["role"], "yes" if r["differs"] else "no"] + r["cells"] for r in inputs],
@@ -255,13 +257,13 @@ def report_page(sources, header, body, inputs, diff, images, extremes_md=()):
     return report.page("pcsim compare: %s" % " vs ".join(s.label for s in sources), "\n".join(parts))
 
 
-def span_extremes_html(lines):
-    """compare.md's "Where the extremes fall" (markdown_lines) as a heading, text and table."""
-    if not lines:
+def span_extremes_html(table):
+    """The table of where the extremes fall (span_extremes.table_cells), as a heading, text and
+    table; none without it."""
+    if not table:
         return []
-    cells = lambda l: [c.strip() for c in l.strip().strip("|").split("|")]
-    header, body = cells(lines[4]), [cells(l) for l in lines[6:] if l.startswith("|")]
-    return ["<h2 id=\"extremes\">Where the extremes fall</h2>", "<p>%s</p>" % report.esc(lines[2]),
+    text, header, body = table
+    return ["<h2 id=\"extremes\">Where the extremes fall</h2>", "<p>%s</p>" % report.esc(text),
             report.table(header, body, [[None] * 2 + ["num"] * (len(h) - 2) for h in body])]
 
 
@@ -275,17 +277,17 @@ def output_folder(a):
 
 
 def span_extremes_of(sources, names):
-    """(csv lines, summary rows, markdown lines) of where the runs' extremes fall; empty where
+    """(csv lines, summary rows, table cells) of where the runs' extremes fall; empty where
     there are fewer than two runs or their supports differ."""
     runs = runs_of(sources)
     if len(runs) < 2 or not span_extremes.comparable(runs):
-        return [], [], []
+        return [], [], None
     single = single_pantographs(sources)
     table = span_extremes.span_table(
         runs, names, lambda r, n: next(iter(r.pantographs.values())) if single else r.pantographs.get(n))
     labels = [r.label for r in runs]
     rows = span_extremes.summary_rows(table, labels)
-    return span_extremes.csv_lines(table, labels), rows, span_extremes.markdown_lines(rows, labels[0])
+    return span_extremes.csv_lines(table, labels), rows, span_extremes.table_cells(rows, labels[0])
 
 
 def write_all(folder, files, figures):
@@ -322,20 +324,20 @@ def main():
     names = pantograph_names(sources)
     figures = {"force_uplift.png": force_uplift_figure(sources, names),
                "spectra.png": spectra_figure(sources, names)}
-    extremes_csv, extremes_rows, extremes_md = span_extremes_of(sources, names)
+    extremes_csv, extremes_rows, extremes_table = span_extremes_of(sources, names)
     csv_lines = [",".join(header)] + [",".join(c.replace(",", ";") for c in r) for r in body]
     record = {"sources": [{"label": s.label, "path": s.folder,
                            "kind": "measurement" if hasattr(s, "alignment") else "run"} for s in sources],
               "figures": rows, "inputs": [{k: r[k] for k in ("role", "differs", "cells")} for r in inputs],
               "measurement": getattr(sources[-1], "alignment", None), "span_extremes": extremes_rows}
-    files = {"compare.csv": "\n".join(csv_lines) + "\n", "compare.md": markdown_page(sources, header, body, inputs, extremes_md),
+    files = {"compare.csv": "\n".join(csv_lines) + "\n", "compare.md": markdown_page(sources, header, body, inputs, extremes_table),
              "compare.json": json.dumps(record, indent=1) + "\n", "inputs.diff": diff}
     if extremes_csv:
         files["span_extremes.csv"] = "\n".join(extremes_csv) + "\n"
     write_all(folder, files, figures)
     images = [report.image(fig, name[:-4].replace("_", " and ")) for name, fig in figures.items()]
     write_all(folder, {"report.html": report_page(sources, header, body, inputs, diff, images,
-                                                  extremes_md)}, {})
+                                                  extremes_table)}, {})
     print(files["compare.md"])
     print("compare: wrote %s" % folder)
 

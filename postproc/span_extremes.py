@@ -98,18 +98,16 @@ def summary_rows(table, labels):
     return rows
 
 
-def markdown_lines(rows, first):
-    """The table of summary_rows for compare.md."""
+def table_cells(rows, first):
+    """The text, header and cells of the table of summary_rows (compare.md, report.html)."""
     signed = lambda v: "" if v is None else "%+.2f" % v
-    lines = ["## Where the extremes fall", "",
-             "Each run's actual maximum and minimum, the span it falls in, and the run's local "
-             "extreme minus %s's in that span and in the span of %s's (maximum in %%, minimum in %% "
-             "of %s's Fm; every span: span_extremes.csv)." % (first, first, first), "",
-             "| pantograph | source | max span | max N | there [%] | in the first's span [%] "
-             "| min span | min N | there [%Fm] | in the first's span [%Fm] |", "|" + "---|" * 10]
-    for r in rows:
-        lines.append("| %s | %s | %d | %.2f | %s | %s | %d | %.2f | %s | %s |" % (
-            r["pantograph"], r["source"], r["max_span"], r["max_N"], signed(r["max_there_percent"]),
-            signed(r["max_in_first_span_percent"]), r["min_span"], r["min_N"],
-            signed(r["min_there_percent_of_fm"]), signed(r["min_in_first_span_percent_of_fm"])))
-    return lines + [""]
+    text = ("Each run's actual maximum and minimum, the span it falls in, and the run's local "
+            "extreme minus %s's in that span and in the span of %s's (maximum in %%, minimum in %% "
+            "of %s's Fm; every span: span_extremes.csv)." % (first, first, first))
+    header = ["pantograph", "source", "max span", "max N", "there [%]", "in the first's span [%]",
+              "min span", "min N", "there [%Fm]", "in the first's span [%Fm]"]
+    body = [[r["pantograph"], r["source"], "%d" % r["max_span"], "%.2f" % r["max_N"],
+             signed(r["max_there_percent"]), signed(r["max_in_first_span_percent"]),
+             "%d" % r["min_span"], "%.2f" % r["min_N"], signed(r["min_there_percent_of_fm"]),
+             signed(r["min_in_first_span_percent_of_fm"])] for r in rows]
+    return text, header, body
