@@ -292,10 +292,10 @@ void print_pilot(const Context& ctx, const PilotEstimate& pilot) {
     // A third decimal where two would print the target itself (0.104 pt, not 0.10).
     const int decimals = std::round(t.measured * 100) / 100 <= kPilotTargets[t.figure] ? 3 : 2;
     print0(ctx,
-           "    outside the targets at %.1f Hz: %s of '%s', reduction %.*f %s in the pilot "
+           "    outside the targets at %.1f Hz: %s of '%s', reduction %.*f %s%s in the pilot "
            "(target %.1f %s; %s)\n",
            pilot.cutoff_hz, kPilotFigureLabels[t.figure], t.pantograph.c_str(), decimals,
-           t.measured, unit, kPilotTargets[t.figure], unit, hint);
+           t.measured, unit, loss_samples_note(t).c_str(), kPilotTargets[t.figure], unit, hint);
   }
   for (std::size_t p = 0; p < discretisation.size(); ++p) {
     print0(ctx, "    %-16s %16s%s\n", discretisation[p].pantograph.c_str(), "discretisation",

@@ -88,6 +88,7 @@ std::vector<FigureErrors> differences(const PilotFigures& a, const PilotFigures&
     const auto &x = a.force[p], &r = b.force[p];
     FigureErrors e;
     e.pantograph = b.names[p];
+    e.samples = r.samples;
     const double fm = std::abs(r.mean) > 0 ? std::abs(r.mean) : 1.0;
     e.value = {relative_percent(x.mean, r.mean),
                relative_percent(x.std_dev, r.std_dev),
@@ -114,7 +115,7 @@ std::vector<FigureErrors> with_margin(std::vector<FigureErrors> measured) {
 nlohmann::json errors_json(const std::vector<FigureErrors>& errors) {
   nlohmann::json j = nlohmann::json::array();
   for (const auto& e : errors) {
-    nlohmann::json p = {{"pantograph", e.pantograph}};
+    nlohmann::json p = {{"pantograph", e.pantograph}, {"samples", e.samples}};
     for (int f = 0; f < kPilotFigures; ++f) p[kPilotFigureKeys[f]] = e.value[f];
     j.push_back(p);
   }
@@ -126,6 +127,7 @@ std::vector<FigureErrors> errors_from_json(const nlohmann::json& j) {
   for (const auto& p : j) {
     FigureErrors e;
     e.pantograph = p.at("pantograph").get<std::string>();
+    e.samples = p.value("samples", std::size_t{0});
     for (int f = 0; f < kPilotFigures; ++f) e.value[f] = p.at(kPilotFigureKeys[f]).get<double>();
     out.push_back(e);
   }
@@ -272,6 +274,7 @@ nlohmann::json PilotEstimate::json() const {
       o.push_back({{"pantograph", t.pantograph},
                    {"figure", kPilotFigureKeys[t.figure]},
                    {"measured", t.measured},
+                   {"samples", t.samples},
                    {"target", kPilotTargets[t.figure]}});
     j["reduction_outside_targets"] = o;
   }

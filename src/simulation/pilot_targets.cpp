@@ -1,6 +1,7 @@
 // The figures the accuracy pilot compares, their targets, and which figures a
 // pilot's reduction errors leave outside them (accuracy_pilot.hpp).
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
@@ -34,8 +35,18 @@ std::vector<PilotEstimate::OutsideTarget> figures_outside_targets(
   std::vector<PilotEstimate::OutsideTarget> out;
   for (const auto& e : measured)
     for (int f = 0; f < kPilotFigures; ++f)
-      if (e.value[f] > kPilotTargets[f]) out.push_back({e.pantograph, f, e.value[f]});
+      if (e.value[f] > kPilotTargets[f]) out.push_back({e.pantograph, f, e.value[f], e.samples});
   return out;
+}
+
+long loss_samples(double points, std::size_t samples) {
+  return std::lround(points / 100 * static_cast<double>(samples));
+}
+
+std::string loss_samples_note(const PilotEstimate::OutsideTarget& t) {
+  if (t.figure != kLossOfContactFigure || t.samples == 0) return "";
+  return " (" + std::to_string(loss_samples(t.measured, t.samples)) + " of " +
+         std::to_string(t.samples) + " samples)";
 }
 
 std::string outside_targets_list(const std::vector<FigureErrors>& measured) {
@@ -45,7 +56,7 @@ std::string outside_targets_list(const std::vector<FigureErrors>& measured) {
     std::snprintf(item, sizeof item, "%s%s of '%s' %.3f %s", list.empty() ? "" : ", ",
                   kPilotFigureLabels[t.figure], t.pantograph.c_str(), t.measured,
                   pilot_figure_unit(t.figure));
-    list += item;
+    list += item + loss_samples_note(t);
   }
   return list;
 }

@@ -59,7 +59,12 @@ constexpr int kPilotMaxSpans = 8;
 struct FigureErrors {
   std::string pantograph;
   std::array<double, kPilotFigures> value{};  // units as kPilotFigureKeys
+  // The reference run's samples over the pilot's stretch (0: not known, an
+  // estimate cached before they were kept): the loss of contact's resolution.
+  std::size_t samples = 0;
 };
+// The loss of contact's difference 'points' as samples of 'samples' (rounded).
+long loss_samples(double points, std::size_t samples);
 
 struct PilotEstimate {
   bool done = false;    // a pilot ran or was read from the cache
@@ -91,6 +96,7 @@ struct PilotEstimate {
     std::string pantograph;
     int figure = 0;  // index into kPilotFigureKeys
     double measured = 0;
+    std::size_t samples = 0;  // FigureErrors::samples
   };
   std::vector<OutsideTarget> outside_targets() const;
 
@@ -105,6 +111,10 @@ std::vector<PilotEstimate::OutsideTarget> figures_outside_targets(
     const std::vector<FigureErrors>& measured);
 std::string outside_targets_list(const std::vector<FigureErrors>& measured);
 const char* pilot_figure_unit(int figure);
+// " (5 of 1440 samples)" after a loss of contact's difference outside its
+// target, where the samples are known (a sample is 0.069 points of 1440);
+// "" for the other figures.
+std::string loss_samples_note(const PilotEstimate::OutsideTarget& t);
 // When the last raise leaves figures outside the targets: the lowest of the
 // cut-offs tried (ascending) at which, and at every cut-off above which,
 // each reduction error is within its target or no larger than at the last:
