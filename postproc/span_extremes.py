@@ -39,17 +39,20 @@ def comparable(runs):
 def span_table(runs, names, pantograph_of):
     """Per pantograph name: {"spans": [...], "extremes": [per run [(max, min) per span]],
     "mean": the first run's mean force over those spans}. pantograph_of(run, name) gives
-    the run's record of that pantograph (None: it has none)."""
+    the run's record of that pantograph (None: it has none). A pantograph that a run has not
+    at all, or that reached no span of the section in one run, is left out."""
     spans = analysis_spans(runs[0])
     table = {}
     for name in names:
         records = [pantograph_of(r, name) for r in runs]
         if any(p is None for p in records):
             continue
+        extremes = [local_extremes(p, spans) for p in records]
+        if any(all(np.isnan(e[0]) for e in run) for run in extremes):
+            continue  # a run whose pantograph reached no span of the section (cut short)
         x, f = records[0]["position"], records[0]["contact_force_filtered"]
         inside = (x >= spans[0][1]) & (x <= spans[-1][2])
-        table[name] = {"spans": spans, "extremes": [local_extremes(p, spans) for p in records],
-                       "mean": float(f[inside].mean())}
+        table[name] = {"spans": spans, "extremes": extremes, "mean": float(f[inside].mean())}
     return table
 
 
