@@ -25,8 +25,7 @@ inline SharedEntries<PetscInt> all_modes(const ModalCatenary& catenary) {
 inline void add_modal_block(const ModalCatenary& catenary, const RowMatrix& block, Mat J) {
   if (!catenary.on_owner()) return;
   const PetscInt m = catenary.catenary_dofs();
-  std::vector<PetscInt> modes(m);
-  for (PetscInt k = 0; k < m; ++k) modes[k] = k;
+  const auto modes = all_modes(catenary);
   PCSIM_PETSC(MatSetValues(J, m, modes.data(), m, modes.data(), block.data(), ADD_VALUES));
 }
 
