@@ -223,6 +223,40 @@ bool ModalCatenary::rounded_anchor(double reset, Rounding rounding, double* boun
   return true;
 }
 
+// The check's new anchor at the loaded state: each block from its last exact
+// base in half precision, exact where its rounding bound would exceed
+// kErrorReset. Only the blocks over it take the double rows (a tension
+// section the train has passed, vibrating freely, moves away from its base
+// at its own pace: before, one such block made every block's product
+// exact). All exact: exact_anchor(), the line's newest point too.
+void ModalCatenary::check_anchor() {
+  work_ = eta_ - exact_eta_;
+  block_norms(false);
+  std::size_t over = 0;
+  for (std::size_t g = 0; g < row_blocks_.size(); ++g) {
+    const RowBlock& b = row_blocks_[g];
+    if (b.half.error_factor() * b.bnorm_max * block_step_[g] > kErrorReset) ++over;
+  }
+  if (over == row_blocks_.size()) {
+    exact_anchor();
+    return;
+  }
+  for (std::size_t g = 0; g < row_blocks_.size(); ++g) {
+    const RowBlock& b = row_blocks_[g];
+    if (b.half.error_factor() * b.bnorm_max * block_step_[g] <= kErrorReset) {
+      rounded_block(b, b.half, block_step_[g]);
+      continue;
+    }
+    exact_block(b);
+    ++exact_count_;
+    evaluations_ += static_cast<long>(b.bars.size());
+  }
+  if (over > 0) exact_norm_ = exact_eta_.norm();
+  anchor_ = eta_;
+  anchor_version_ = eta_version_;
+  ++half_products_;
+}
+
 // The droppers not certainly taut at the loaded state: a bar's bound takes
 // the change over its block only (work_: eta - eta_a).
 void ModalCatenary::find_candidates(bool at_anchor) {
@@ -297,7 +331,7 @@ void ModalCatenary::update_slack_set() {
       work_ = eta_ - anchor_;
       find_candidates(false);
       if (candidates_.size() > kFewCandidates && !refresh_blocks(kFewCandidates)) {
-        if (!rounded_anchor(kErrorReset, Rounding::half)) exact_anchor();
+        check_anchor();
         find_candidates(true);
         at_anchor = true;
       }

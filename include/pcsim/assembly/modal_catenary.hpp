@@ -211,6 +211,9 @@ class ModalCatenary : public CatenaryModel {
   void record_anchor() const;
   enum class Rounding { half, single };  // the check's rows, the records'
   bool rounded_anchor(double reset, Rounding rounding, double* bound = nullptr) const;
+  // The step's check's new anchor: each block's in half precision, exact
+  // where its rounding bound would exceed the reset (modal_slack_set.cpp).
+  void check_anchor();
   // The droppers not certainly taut at the loaded state, work_ = eta - the
   // anchor (at_anchor: eta is the anchor).
   void find_candidates(bool at_anchor);
