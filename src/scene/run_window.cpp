@@ -12,12 +12,28 @@ namespace pcsim::scene {
 
 namespace {
 
+// An error of the window's fit: on the key of the 'window' section (or on
+// the section); where catenary.modal.method: window asks for a window (w is
+// the catenary), on that key, with the margins it takes.
+[[noreturn]] void fail_window(const InputNode& w, const std::string& key, const std::string& reason,
+                              bool margins = true) {
+  const std::string said =
+      margins ? " (its default margins: 2 spans behind the train, 3 ahead; a 'window' section "
+                "sets them)"
+              : "";
+  if (w.path() != "window" && w.has("modal") && w["modal"].is_map() && w["modal"].has("method"))
+    w["modal"].fail_key("method", "window: " + reason + said);
+  if (key.empty()) w.fail(reason);
+  w.fail_key(key, reason);
+}
+
 // The line must repeat every two spans: one straight section of identical
 // spans (catenary::spans_differ; a stitch wire is at every support but the
 // line's ends, as it is at the window's inner supports).
 void check_periodic_line(const InputNode& w, const catenary::ParametricDesign& d) {
   const std::string why = catenary::spans_differ(d);
-  if (!why.empty()) w.fail("needs a line of identical spans; the design has " + why);
+  if (!why.empty())
+    fail_window(w, "", "needs a line of identical spans; the design has " + why, false);
 }
 
 bool starts_before(const contact::PantographRun& a, const contact::PantographRun& b) {
@@ -31,9 +47,10 @@ void check_shorter_than_line(const InputNode& w, const RunWindow& window) {
                                 ? ""
                                 : " + " + std::to_string(window.train_spans) +
                                       " spans of the train (trailing to leading pantograph)";
-  w.fail("a window of " + std::to_string(window.spans()) + " spans (spans_behind" + train +
-         " + 2 + spans_ahead) is not shorter than the line (" + std::to_string(window.line_spans) +
-         " spans)");
+  fail_window(w, "",
+              "a window of " + std::to_string(window.spans()) + " spans (spans_behind" + train +
+                  " + 2 + spans_ahead) is not shorter than the line (" +
+                  std::to_string(window.line_spans) + " spans)");
 }
 
 // Several pantographs: the window spans the train (train_spans), its mesh
@@ -99,7 +116,8 @@ catenary::CatenaryMesh build_window(RunWindow& window, catenary::ParametricDesig
 // The line's design read as it is; the window's mesh built from it.
 scene::DesignBuilder window_design_builder(const InputNode& w, RunWindow& window) {
   return [w, &window](const InputNode& design, const scene::MeshSizeCheck& size_check) {
-    if (design.get_string("type", "") != "parametric") w.fail("needs a parametric design");
+    if (design.get_string("type", "") != "parametric")
+      fail_window(w, "", "needs a parametric design", false);
     catenary::ParametricDesign d = scene::read_parametric_design(design);
     check_periodic_line(w, d);
     RunWindow line = window;
@@ -161,15 +179,16 @@ void check_window(const InputNode& scene, const InputNode& w, RunScene& run,
   const WindowReach reach = window_reach(run, window);
   const std::string who = run.pantographs.size() > 1 ? "the leading pantograph" : "the pantograph";
   if (reach.lead_start >= reach.start_limit)
-    w.fail_key("spans_behind", who + " starts at " + format_number(reach.lead_start) +
-                                   " m, beyond the window's first " +
-                                   std::to_string(window.shift_spans()) + " spans");
+    fail_window(w, "spans_behind",
+                who + " starts at " + format_number(reach.lead_start) +
+                    " m, beyond the window's first " + std::to_string(window.shift_spans()) +
+                    " spans");
   if (reach.lead_end > reach.end_limit)
-    w.fail_key("spans_ahead", "the window's front reaches the line's end before " + who +
-                                  " reaches " + format_number(reach.lead_end) +
-                                  " m, where it is when the run ends (simulation.end_x " +
-                                  format_number(run.end_x) + " m; at most " +
-                                  format_number(reach.end_limit) + " m)");
+    fail_window(
+        w, "spans_ahead",
+        "the window's front reaches the line's end before " + who + " reaches " +
+            format_number(reach.lead_end) + " m, where it is when the run ends (simulation.end_x " +
+            format_number(run.end_x) + " m; at most " + format_number(reach.end_limit) + " m)");
   // The line as far as the run goes: the supports the window covers before
   // the leading pantograph's end (the records and statistics need no others).
   const double L = window.span_length, x0 = run.catenary.mesh.support_x.front();

@@ -317,6 +317,12 @@ expect window-typo 2 "window-typo.yaml|key 'window.spans_ahed'|unknown key" yes 
 expect window-train 2 "window-train.yaml|key 'window'|a window of 11 spans (spans_behind + 4 spans of the train|not shorter than the line (10 spans)" yes run window-train.yaml
 expect window-droppers 2 "window-droppers.yaml|key 'window'|needs a line of identical spans|droppers.spans" yes run window-droppers.yaml
 expect window-energy 2 "window-energy.yaml|key 'output.energy'|moving window" yes run window-energy.yaml
+# A window asked for by the modal method (no 'window' section): the method's key
+# is named, not a 'window' key the scene does not have.
+expect method-window-reach 2 "command line --set catenary.modal.method=window|key 'catenary.modal.method'|window: the window's front reaches the line's end|default margins" \
+  yes run "$S/runs/interaction/two-pantographs-300.yaml" --set catenary.model=modal --set catenary.modal.method=window
+expect method-window-sections 2 "command line --set catenary.modal.method=window|key 'catenary.modal.method'|window: needs a line of identical spans" \
+  yes run "$S/runs/lines/three-sections-300.yaml" --set catenary.model=modal --set catenary.modal.method=window
 expect too-fast 2 "too-fast.yaml|key 'simulation.speed_kmh'|wave speed" yes run too-fast.yaml
 expect panto-key 2 "panto-key.yaml|key 'pantographs[0].stiffnes'|unknown key" yes run panto-key.yaml
 expect missing-model 2 "missing-model.yaml|key 'pantographs[0].model'|no such file" yes run missing-model.yaml

@@ -125,8 +125,8 @@ void check_filter_edges(const InputNode& scene, RunScene& run);
 // once the scene is read, the window fitted to the train (several
 // pantographs: its mesh rebuilt with train_spans, still shorter than the
 // line) and that the pantographs and outputs allow a moving window.
-// 'w': the node errors name (the 'window' section, or catenary.modal where
-// method: window asks for one).
+// 'w': the 'window' section, whose keys errors name, or the catenary where
+// catenary.modal.method: window asks for a window (errors name that key).
 RunWindow read_window_keys(const InputNode& scene);
 // Where a window over the scene's pantographs reaches: the train's spans,
 // the window's spans with them, the leading pantograph's start and end
