@@ -194,32 +194,29 @@ bool ModalCatenary::line_candidates(std::size_t few) {
   return true;
 }
 
-// dl = dl_e + fl(B (eta - eta_e)) from the last exact anchor by the rows
-// in half or single precision, within g |b| |x| (RoundedRows::error_factor),
-// x the change over the bar's block: it follows the distance from eta_e and
-// does not add up over the updates; a block with no change takes no product.
-// False, with no product, if in a block max_d scale_d times that bound would
-// exceed 'reset' (scale_d: |b_d| for the check, k_d |b_d| for the records'
-// forces). *bound: the bound per unit |b| (if given), the largest block's.
-bool ModalCatenary::rounded_anchor(double reset, Rounding rounding, double* bound) const {
-  const bool half = rounding == Rounding::half;
+// The records' anchor: dl = dl_e + fl(B (eta - eta_e)) from the last exact
+// anchor by the rows in single precision, within g |b| |x|
+// (RoundedRows::error_factor), x the change over the bar's block: it follows
+// the distance from eta_e and does not add up over the updates; a block with
+// no change takes no product. False, with no product, if in a block max_d
+// k_d |b_d| times that bound would exceed 'reset' (a recorded force's bound).
+// *bound: the bound per unit |b|, the largest block's.
+bool ModalCatenary::single_anchor(double reset, double* bound) const {
   work_ = eta_ - exact_eta_;
   block_norms(false);
   for (std::size_t g = 0; g < row_blocks_.size(); ++g) {
     const RowBlock& b = row_blocks_[g];
-    const double factor = (half ? b.half : b.single).error_factor();
-    if (factor * (half ? b.bnorm_max : b.force_scale_max) * block_step_[g] > reset) return false;
+    if (b.single.error_factor() * b.force_scale_max * block_step_[g] > reset) return false;
   }
   double largest = 0;
   for (std::size_t g = 0; g < row_blocks_.size(); ++g) {
-    const RoundedRows& rows = half ? row_blocks_[g].half : row_blocks_[g].single;
-    rounded_block(row_blocks_[g], rows, block_step_[g]);
-    largest = std::max(largest, rows.error_factor() * block_step_[g]);
+    rounded_block(row_blocks_[g], row_blocks_[g].single, block_step_[g]);
+    largest = std::max(largest, row_blocks_[g].single.error_factor() * block_step_[g]);
   }
   anchor_ = eta_;
   anchor_version_ = eta_version_;
-  ++(half ? half_products_ : single_products_);
-  if (bound) *bound = largest;
+  ++single_products_;
+  *bound = largest;
   return true;
 }
 
@@ -232,18 +229,19 @@ bool ModalCatenary::rounded_anchor(double reset, Rounding rounding, double* boun
 void ModalCatenary::check_anchor() {
   work_ = eta_ - exact_eta_;
   block_norms(false);
-  std::size_t over = 0;
-  for (std::size_t g = 0; g < row_blocks_.size(); ++g) {
+  const auto over = [this](std::size_t g) {
     const RowBlock& b = row_blocks_[g];
-    if (b.half.error_factor() * b.bnorm_max * block_step_[g] > kErrorReset) ++over;
-  }
-  if (over == row_blocks_.size()) {
+    return b.half.error_factor() * b.bnorm_max * block_step_[g] > kErrorReset;
+  };
+  std::size_t exact = 0;
+  for (std::size_t g = 0; g < row_blocks_.size(); ++g) exact += over(g) ? 1 : 0;
+  if (exact == row_blocks_.size()) {
     exact_anchor();
     return;
   }
   for (std::size_t g = 0; g < row_blocks_.size(); ++g) {
     const RowBlock& b = row_blocks_[g];
-    if (b.half.error_factor() * b.bnorm_max * block_step_[g] <= kErrorReset) {
+    if (!over(g)) {
       rounded_block(b, b.half, block_step_[g]);
       continue;
     }
@@ -251,7 +249,7 @@ void ModalCatenary::check_anchor() {
     ++exact_count_;
     evaluations_ += static_cast<long>(b.bars.size());
   }
-  if (over > 0) exact_norm_ = exact_eta_.norm();
+  if (exact > 0) exact_norm_ = exact_eta_.norm();
   anchor_ = eta_;
   anchor_version_ = eta_version_;
   ++half_products_;
@@ -360,7 +358,7 @@ void ModalCatenary::record_anchor() const {
   // Exact here already (a load's reset, or every dropper checked): on the line too.
   if (anchor_version_ == eta_version_ && anchor_error_.isZero(0)) return;
   double single_bound = 0;
-  if (!rounded_anchor(kRecordForceError, Rounding::single, &single_bound)) {
+  if (!single_anchor(kRecordForceError, &single_bound)) {
     exact_anchor();
     return;
   }

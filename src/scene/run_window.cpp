@@ -17,9 +17,11 @@ namespace {
 // the catenary), on that key, with the margins it takes.
 [[noreturn]] void fail_window(const InputNode& w, const std::string& key, const std::string& reason,
                               bool margins = true) {
+  const RunWindow defaults;
   const std::string said =
-      margins ? " (its default margins: 2 spans behind the train, 3 ahead; a 'window' section "
-                "sets them)"
+      margins ? " (its default margins: " + std::to_string(defaults.spans_behind) +
+                    " spans behind the train, " + std::to_string(defaults.spans_ahead) +
+                    " ahead; a 'window' section sets them)"
               : "";
   if (w.path() != "window" && w.has("modal") && w["modal"].is_map() && w["modal"].has("method"))
     w["modal"].fail_key("method", "window: " + reason + said);

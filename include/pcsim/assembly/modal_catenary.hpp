@@ -209,8 +209,7 @@ class ModalCatenary : public CatenaryModel {
   void exact_anchor() const;
   void push_line_anchor(double bound) const;
   void record_anchor() const;
-  enum class Rounding { half, single };  // the check's rows, the records'
-  bool rounded_anchor(double reset, Rounding rounding, double* bound = nullptr) const;
+  bool single_anchor(double reset, double* bound) const;
   // The step's check's new anchor: each block's in half precision, exact
   // where its rounding bound would exceed the reset (modal_slack_set.cpp).
   void check_anchor();
