@@ -6,14 +6,15 @@
 // last exact anchor eta_E by B's rows in single or half precision, within
 // g |b| |eta - eta_E| (rounded_rows.hpp: g ~ 2^-24 + n/8 2^-24 in single,
 // 2^-11 more in half). The step's check takes the half rows (half the
-// bytes). Records made one at a time (dropper_forces(): a run's where
-// batches do not pay, modal_records.cpp; a stepper's) make one anchor per
-// step: in single precision while that bound keeps every recorded force
-// within kRecordForceError, else exact. The last two record (or exact) anchors are
-// the line of the bounds
-// of the next states (line_candidates), each with its error bound per unit
-// |b| (the exact product's rounding gamma_n |eta_E| plus the single-precision
-// part).
+// bytes) from its base: the exact anchor, or a single-precision one that
+// renews it while within kBaseError (block_anchor_kind). Records made one
+// at a time (dropper_forces(): a run's where batches do not pay,
+// modal_records.cpp; a stepper's) make one anchor per step: in single
+// precision while that bound keeps every recorded force within
+// kRecordForceError, else exact. The last two record (or exact) anchors
+// are the line of the bounds of the next states (line_candidates), each
+// with its error bound per unit |b| (the exact product's rounding gamma_n
+// |eta_E| plus the single-precision part).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -26,8 +27,12 @@ namespace {
 
 constexpr double kUnitDouble = 1.1102230246251565e-16;  // 2^-53
 // [m] rounding bound of a half-precision update of the bounded check
-// (margins ~1 mm): an exact anchor instead.
+// (margins ~1 mm): a new base instead.
 constexpr double kErrorReset = 1e-4;
+// [m] rounding bound of a single-precision base from the exact anchor (it
+// takes half of kErrorReset, the half-precision updates from it the rest):
+// an exact anchor instead.
+constexpr double kBaseError = kErrorReset / 2;
 
 }  // namespace
 
@@ -103,6 +108,9 @@ void ModalCatenary::exact_anchor() const {
   anchor_elongation_.resize(n);
   anchor_error_.resize(n);
   exact_elongation_.resize(n);
+  base_eta_ = eta_;
+  base_elongation_.resize(n);
+  base_distance_.assign(row_blocks_.size(), 0.0);
   for (const RowBlock& b : row_blocks_) exact_block(b);
   exact_norm_ = eta_.norm();
   ++exact_count_;
@@ -111,8 +119,8 @@ void ModalCatenary::exact_anchor() const {
 }
 
 // Block b's elongations exactly at the loaded state, its bars' new exact
-// base and anchor (none computed where its coordinates are all zero: the
-// static stretches).
+// anchor, the check's base and the anchor (none computed where its
+// coordinates are all zero: the static stretches).
 void ModalCatenary::exact_block(const RowBlock& b) const {
   const auto x = eta_.segment(b.lo, b.n);
   const bool rest = x.isZero(0);
@@ -121,28 +129,76 @@ void ModalCatenary::exact_block(const RowBlock& b) const {
     const long d = b.bars[i];
     exact_elongation_[d] = rest ? stretch_[d] : stretch_[d] + block_out_[static_cast<long>(i)];
     anchor_elongation_[d] = exact_elongation_[d];
+    base_elongation_[d] = exact_elongation_[d];
     anchor_error_[d] = 0;
   }
   exact_eta_.segment(b.lo, b.n) = x;
+  base_eta_.segment(b.lo, b.n) = x;
+  base_distance_[static_cast<std::size_t>(&b - row_blocks_.data())] = 0;
   anchor_.segment(b.lo, b.n) = x;
 }
 
-// Block b's elongations at the loaded state from its exact base by 'rows'
-// (rounded), within error_factor |b_d| distance, distance = |x| for x the
-// change from the base over the block (no product where it is 0).
+// Block b's elongations at the loaded state from a base (the exact anchor,
+// or the check's base) by 'rows' (rounded), within error_factor |b_d|
+// distance + base_error |b_d|, distance = |x| for x the change from the base
+// over the block (no product where it is 0).
 void ModalCatenary::rounded_block(const RowBlock& b, const RoundedRows& rows,
-                                  double distance) const {
+                                  const Eigen::VectorXd& base_eta,
+                                  const Eigen::VectorXd& base_elongation, double distance,
+                                  double base_error) const {
   if (distance > 0) {
-    block_in_ = eta_.segment(b.lo, b.n) - exact_eta_.segment(b.lo, b.n);
+    block_in_ = eta_.segment(b.lo, b.n) - base_eta.segment(b.lo, b.n);
     rows.multiply(block_in_, block_out_);
   }
   for (std::size_t i = 0; i < b.bars.size(); ++i) {
     const long d = b.bars[i];
-    anchor_elongation_[d] = distance > 0 ? exact_elongation_[d] + block_out_[static_cast<long>(i)]
-                                         : exact_elongation_[d];
-    anchor_error_[d] = rows.error_factor() * bnorm_[d] * distance;
+    anchor_elongation_[d] =
+        distance > 0 ? base_elongation[d] + block_out_[static_cast<long>(i)] : base_elongation[d];
+    anchor_error_[d] = rows.error_factor() * bnorm_[d] * distance + base_error * bnorm_[d];
   }
   anchor_.segment(b.lo, b.n) = eta_.segment(b.lo, b.n);
+}
+
+// Block g's next anchor for the check: half precision from its base while
+// that bound, with the base's own, stays within kErrorReset; else a new base
+// in single precision from the exact anchor while its bound stays within
+// kBaseError; else exact. to_base, to_exact: the block's distances.
+ModalCatenary::BlockAnchor ModalCatenary::block_anchor_kind(std::size_t g, double* to_base,
+                                                            double* to_exact) const {
+  const RowBlock& b = row_blocks_[g];
+  *to_base = (eta_.segment(b.lo, b.n) - base_eta_.segment(b.lo, b.n)).norm();
+  *to_exact = 0;
+  if (b.half.error_factor() * b.bnorm_max * *to_base +
+          b.single.error_factor() * b.bnorm_max * base_distance_[g] <=
+      kErrorReset)
+    return BlockAnchor::half;
+  *to_exact = (eta_.segment(b.lo, b.n) - exact_eta_.segment(b.lo, b.n)).norm();
+  if (b.single.error_factor() * b.bnorm_max * *to_exact <= kBaseError) return BlockAnchor::single;
+  return BlockAnchor::exact;
+}
+
+// Block g's anchor of that kind (block_anchor_kind), counted.
+void ModalCatenary::make_block_anchor(std::size_t g, BlockAnchor kind, double to_base,
+                                      double to_exact) const {
+  const RowBlock& b = row_blocks_[g];
+  switch (kind) {
+    case BlockAnchor::half:
+      rounded_block(b, b.half, base_eta_, base_elongation_, to_base,
+                    b.single.error_factor() * base_distance_[g]);
+      return;
+    case BlockAnchor::single:  // the block's new base
+      rounded_block(b, b.single, exact_eta_, exact_elongation_, to_exact);
+      base_eta_.segment(b.lo, b.n) = eta_.segment(b.lo, b.n);
+      for (long d : b.bars) base_elongation_[d] = anchor_elongation_[d];
+      base_distance_[g] = to_exact;
+      ++single_products_;
+      return;
+    case BlockAnchor::exact:
+      exact_block(b);
+      ++exact_count_;
+      evaluations_ += static_cast<long>(b.bars.size());
+      return;
+  }
 }
 
 // The anchor just made (anchor_, anchor_elongation_), within 'bound' |b| of
@@ -210,7 +266,8 @@ bool ModalCatenary::single_anchor(double reset, double* bound) const {
   }
   double largest = 0;
   for (std::size_t g = 0; g < row_blocks_.size(); ++g) {
-    rounded_block(row_blocks_[g], row_blocks_[g].single, block_step_[g]);
+    rounded_block(row_blocks_[g], row_blocks_[g].single, exact_eta_, exact_elongation_,
+                  block_step_[g]);
     largest = std::max(largest, row_blocks_[g].single.error_factor() * block_step_[g]);
   }
   anchor_ = eta_;
@@ -220,39 +277,32 @@ bool ModalCatenary::single_anchor(double reset, double* bound) const {
   return true;
 }
 
-// The check's new anchor at the loaded state: each block from its last exact
-// base in half precision, exact where its rounding bound would exceed
-// kErrorReset. Only the blocks over it take the double rows (a tension
-// section the train has passed, vibrating freely, moves away from its base
-// at its own pace: before, one such block made every block's product
-// exact). All exact: exact_anchor(), the line's newest point too.
+// The check's new anchor at the loaded state, block by block
+// (block_anchor_kind): only the blocks over the bounds take a new base or
+// the double rows (a tension section the train has passed, vibrating
+// freely, moves away from its base at its own pace). All exact:
+// exact_anchor(), the line's newest point too.
 void ModalCatenary::check_anchor() {
-  work_ = eta_ - exact_eta_;
-  block_norms(false);
-  const auto over = [this](std::size_t g) {
-    const RowBlock& b = row_blocks_[g];
-    return b.half.error_factor() * b.bnorm_max * block_step_[g] > kErrorReset;
-  };
-  std::size_t exact = 0;
-  for (std::size_t g = 0; g < row_blocks_.size(); ++g) exact += over(g) ? 1 : 0;
-  if (exact == row_blocks_.size()) {
+  const std::size_t blocks = row_blocks_.size();
+  block_kind_.resize(blocks);
+  block_to_base_.resize(blocks);
+  block_to_exact_.resize(blocks);
+  std::size_t exact = 0, half = 0;
+  for (std::size_t g = 0; g < blocks; ++g) {
+    block_kind_[g] = block_anchor_kind(g, &block_to_base_[g], &block_to_exact_[g]);
+    exact += block_kind_[g] == BlockAnchor::exact ? 1 : 0;
+    half += block_kind_[g] == BlockAnchor::half ? 1 : 0;
+  }
+  if (exact == blocks) {
     exact_anchor();
     return;
   }
-  for (std::size_t g = 0; g < row_blocks_.size(); ++g) {
-    const RowBlock& b = row_blocks_[g];
-    if (!over(g)) {
-      rounded_block(b, b.half, block_step_[g]);
-      continue;
-    }
-    exact_block(b);
-    ++exact_count_;
-    evaluations_ += static_cast<long>(b.bars.size());
-  }
+  for (std::size_t g = 0; g < blocks; ++g)
+    make_block_anchor(g, block_kind_[g], block_to_base_[g], block_to_exact_[g]);
   if (exact > 0) exact_norm_ = exact_eta_.norm();
   anchor_ = eta_;
   anchor_version_ = eta_version_;
-  ++half_products_;
+  if (half > 0) ++half_products_;
 }
 
 // The droppers not certainly taut at the loaded state: a bar's bound takes
@@ -287,17 +337,11 @@ bool ModalCatenary::refresh_blocks(std::size_t few) {
   if (refreshed == 0) return true;  // a few in each: evaluated exactly
   for (std::size_t g = 0; g < row_blocks_.size(); ++g) {
     if (count[g] <= few) continue;
-    const RowBlock& b = row_blocks_[g];
-    const double distance = (eta_.segment(b.lo, b.n) - exact_eta_.segment(b.lo, b.n)).norm();
-    if (b.half.error_factor() * b.bnorm_max * distance > kErrorReset) {  // the block's new base
-      exact_block(b);
-      exact_norm_ = exact_eta_.norm();
-      ++exact_count_;
-      evaluations_ += static_cast<long>(b.bars.size());
-    } else {
-      rounded_block(b, b.half, distance);
-      ++half_products_;
-    }
+    double to_base = 0, to_exact = 0;
+    const BlockAnchor kind = block_anchor_kind(g, &to_base, &to_exact);
+    make_block_anchor(g, kind, to_base, to_exact);
+    if (kind == BlockAnchor::exact) exact_norm_ = exact_eta_.norm();
+    if (kind == BlockAnchor::half) ++half_products_;
   }
   work_ = eta_ - anchor_;
   find_candidates(false);

@@ -134,9 +134,11 @@ half, exact = m["half_precision_updates_per_step"], m["exact_updates_per_step"]
 print(f"bounded vs every dropper in a window: {rel:.2e}; {half:.3f} half-precision updates "
       f"and {exact:.4f} exact anchors per step")
 assert rel <= 1e-11, rel
-# A window records no dropper forces: its check's updates are all in half
-# precision (src/assembly/half_rows.cpp), and they are exercised.
-assert half > 0.1 and m["single_precision_updates_per_step"] == 0, m
+# A window records no dropper forces: its check's updates are in half
+# precision (src/assembly/rounded_rows.cpp), and they are exercised; a
+# single-precision one only renews their base (src/assembly/modal_slack_set.cpp;
+# none in this short run, tests/simulation/test_modal_parts.sh has them).
+assert half > 0.1 and m["single_precision_updates_per_step"] <= half, m
 assert exact <= 0.01, m
 # The cache holds every mode's data (1.) besides: they serve only every mode,
 # so this basis has its dropper shapes (with them it is the basis computed

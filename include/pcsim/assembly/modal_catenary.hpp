@@ -183,6 +183,11 @@ class ModalCatenary : public CatenaryModel {
   // single-precision ones (modal_slack_set.cpp).
   mutable Eigen::VectorXd exact_eta_, exact_elongation_;
   mutable double exact_norm_ = 0;
+  // The base of the check's half-precision anchors, per block: the exact
+  // anchor, or a single-precision one from it (eta_S, dl_S) within g_s |b|
+  // base_distance_ (|eta_S - eta_E| over the block; 0 where exact).
+  mutable Eigen::VectorXd base_eta_, base_elongation_;
+  mutable std::vector<double> base_distance_;
   mutable long exact_count_ = 0;
   // The line of the bounds through the last two record or exact anchors:
   // its newest point (eta_e, dl_e), line_ = eta_e - eta_p, line_elongation_ =
@@ -218,7 +223,18 @@ class ModalCatenary : public CatenaryModel {
   void find_candidates(bool at_anchor);
   bool refresh_blocks(std::size_t few);
   void exact_block(const RowBlock& b) const;
-  void rounded_block(const RowBlock& b, const RoundedRows& rows, double distance) const;
+  // Block b's anchor from (base_eta, base_elongation) by 'rows', within
+  // error_factor |b_d| distance + base_error |b_d|.
+  void rounded_block(const RowBlock& b, const RoundedRows& rows, const Eigen::VectorXd& base_eta,
+                     const Eigen::VectorXd& base_elongation, double distance,
+                     double base_error = 0) const;
+  // The check's next anchor of block g: half precision from its base, a new
+  // base in single precision from the exact anchor, or exact.
+  enum class BlockAnchor { half, single, exact };
+  BlockAnchor block_anchor_kind(std::size_t g, double* to_base, double* to_exact) const;
+  void make_block_anchor(std::size_t g, BlockAnchor kind, double to_base, double to_exact) const;
+  mutable std::vector<BlockAnchor> block_kind_;
+  mutable std::vector<double> block_to_base_, block_to_exact_;
   std::vector<std::size_t> block_candidates_;  // refresh_blocks: candidates per block
   bool line_candidates(std::size_t few);
   // Wire-point weights of the last few x of each contact wire (they depend
