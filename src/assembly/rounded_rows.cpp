@@ -184,17 +184,14 @@ std::size_t RoundedRows::bytes() const {
 
 void RoundedRows::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y, Kernel kernel) const {
   y.resize(rows_);
-  double largest = 0;
-  bool finite = true;  // one pass: the largest |x_i| and whether every x_i is finite
-  for (long i = 0; i < cols_; ++i) {
-    const double a = std::abs(x[i]);
-    finite = finite && a <= std::numeric_limits<double>::max();  // false for inf and NaN
-    largest = std::max(largest, a);
-  }
-  if (!finite) {  // as a product in floating point would
+  // Eigen's vectorised reductions (a loop whose test chains the elements
+  // runs one element at a time): finite first, then the largest |x_i|.
+  const auto head = x.head(cols_);
+  if (!head.allFinite()) {  // as a product in floating point would
     y.setConstant(std::numeric_limits<double>::quiet_NaN());
     return;
   }
+  const double largest = cols_ > 0 ? head.cwiseAbs().maxCoeff() : 0.0;
   if (!(largest > 0)) {
     y.setZero();
     return;

@@ -233,8 +233,9 @@ class ModalCatenary : public CatenaryModel {
   enum class BlockAnchor { half, single, exact };
   BlockAnchor block_anchor_kind(std::size_t g, double* to_base, double* to_exact) const;
   void make_block_anchor(std::size_t g, BlockAnchor kind, double to_base, double to_exact) const;
-  mutable std::vector<BlockAnchor> block_kind_;
-  mutable std::vector<double> block_to_base_, block_to_exact_;
+  // check_anchor's per block: kinds and distances (kept: no fresh memory in a step)
+  std::vector<BlockAnchor> block_kind_;
+  std::vector<double> block_to_base_, block_to_exact_;
   std::vector<std::size_t> block_candidates_;  // refresh_blocks: candidates per block
   bool line_candidates(std::size_t few);
   // Wire-point weights of the last few x of each contact wire (they depend
