@@ -2,17 +2,11 @@
 // TS type (test_hht.cpp, test_hht_alpha_term.cpp).
 #pragma once
 
-#include <gtest/gtest.h>
 #include <petscts.h>
 
 #include <Eigen/Dense>
 #include <cmath>
-#include <cstdio>
-#include <fstream>
 #include <functional>
-#include <iostream>
-#include <memory>
-#include <sstream>
 #include <vector>
 
 #include "pcsim/core/error.hpp"

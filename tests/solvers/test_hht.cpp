@@ -6,7 +6,10 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <fstream>
+#include <iostream>
 #include <memory>
+#include <sstream>
 #include <vector>
 
 #include "hht_test_models.hpp"
