@@ -1,5 +1,5 @@
 // Small dense second-order models and a TS driver for the tests of the HHT-α
-// TS type (test_hht.cpp, test_hht_alpha_term.cpp).
+// TS type (test_hht.cpp, test_hht_alpha_term.cpp, test_hht_newton.cpp).
 #pragma once
 
 #include <petscts.h>

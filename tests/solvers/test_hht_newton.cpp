@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "hht_test_models.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/solvers/hht.hpp"
 
@@ -19,6 +20,8 @@ namespace {
 
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
+using hht_models::from_eigen;
+using hht_models::to_eigen;
 
 constexpr int kDofs = 3;
 
@@ -43,21 +46,9 @@ MatrixXd tangent(const VectorXd& u, double sv, double sa) {
   return J;
 }
 
-VectorXd to_eigen(Vec x) {
-  const PetscScalar* a = nullptr;
-  PCSIM_PETSC(VecGetArrayRead(x, &a));
-  VectorXd out = Eigen::Map<const VectorXd>(a, kDofs);
-  PCSIM_PETSC(VecRestoreArrayRead(x, &a));
-  return out;
-}
-
 PetscErrorCode i2function(TS, PetscReal t, Vec U, Vec V, Vec A, Vec F, void*) {
   PCSIM_CALLBACK_BEGIN
-  const VectorXd r = residual(t, to_eigen(U), to_eigen(V), to_eigen(A));
-  PetscScalar* f = nullptr;
-  PCSIM_PETSC(VecGetArray(F, &f));
-  Eigen::Map<VectorXd>(f, kDofs) = r;
-  PCSIM_PETSC(VecRestoreArray(F, &f));
+  from_eigen(residual(t, to_eigen(U), to_eigen(V), to_eigen(A)), F);
   PCSIM_CALLBACK_END
 }
 
