@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 #include <petscsys.h>
 
+#include <string>
+
 #include "../assembly/catenary_fixtures.hpp"
 #include "../catenary/design_fixtures.hpp"
 #include "pcsim/assembly/static_problem.hpp"
@@ -96,17 +98,8 @@ TEST(StaticChecks, TautWireIsStable) {
 // 10 N: its lower half must push (down to -4.4e3 N). No tension distribution
 // exists: an input error on the design's wires.
 TEST(StaticChecks, CompressedCableAfterFormFindingIsAnInputError) {
-  const auto mesh = scene::build_catenary_design(scene::InputNode::load_string(R"(
-type: explicit
-gravity: 9.81
-form_finding: true
-nodes: [[0, 0, 0], [0, 0, 10]]
-wires:
-  - {name: hanger, nodes: {from: 0, to: 1, elements: 10}, mass_per_length: 100, EA: 1.0e7, EI: 1, tension: 10}
-supports: [{node: 0}, {node: 1}]
-tension_segments: [{wire: hanger, tension: 10}]
-)",
-                                                                           "hanging.yaml"));
+  const auto mesh = scene::build_catenary_design(scene::InputNode::load_file(
+      std::string(PCSIM_SOURCE_DIR) + "/tests/solvers/data/hanging-design.yaml"));
   try {
     solve(mesh, true);
     FAIL() << "no error";
