@@ -31,7 +31,6 @@ namespace pcsim::simulation {
 namespace {
 
 void apply_stretch(const PilotStretch& s, scene::RunScene& run) {
-  for (auto& p : run.pantographs) p.start_x += s.shift;
   run.end_x = s.end_x;
   run.analysis_from_span = s.from_span;
   run.analysis_to_span = s.to_span;
@@ -254,7 +253,6 @@ nlohmann::json PilotEstimate::json() const {
                       {"runs", runs},
                       {"from_x", from_x},
                       {"to_x", to_x},
-                      {"start_shift_m", start_shift_m},
                       {"refined_mesh", refined_mesh},
                       {"second_process", second_process},
                       {"second_process_peak_memory_mb", second_process_peak_mb},
@@ -288,7 +286,6 @@ PilotEstimate PilotEstimate::from_json(const nlohmann::json& j) {
   p.runs = j.at("runs").get<int>();
   p.from_x = j.at("from_x").get<double>();
   p.to_x = j.at("to_x").get<double>();
-  p.start_shift_m = j.at("start_shift_m").get<double>();
   p.refined_mesh = j.at("refined_mesh").get<bool>();
   p.second_process = j.value("second_process", false);
   p.second_process_peak_mb = j.value("second_process_peak_memory_mb", 0.0);
@@ -433,10 +430,8 @@ PilotEstimate run_accuracy_pilot(const Context& ctx, const SceneSource& source,
   pilot.done = true;
   pilot.from_x = stretch.from_x;
   pilot.to_x = stretch.to_x;
-  pilot.start_shift_m = stretch.shift;
-  print0(ctx, "  accuracy pilot: spans %d-%d (x %.0f-%.0f m), pantographs %.0f m later%s\n",
-         stretch.from_span, stretch.to_span, stretch.from_x, stretch.to_x, stretch.shift,
-         pilot_stretch_note(stretch, run).c_str());
+  print0(ctx, "  accuracy pilot: spans %d-%d (x %.0f-%.0f m)%s\n", stretch.from_span,
+         stretch.to_span, stretch.from_x, stretch.to_x, pilot_stretch_note(stretch, run).c_str());
   PilotRuns runs{ctx,   source, stretch, ctx.cache_dir + "/accuracy-pilot-" + key.substr(0, 12),
                  pilot, nullptr};
   StudyVariant linear;  // the run's dt and element length

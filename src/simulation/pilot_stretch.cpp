@@ -22,25 +22,14 @@ PilotStretch pilot_stretch(const scene::RunScene& run) {
   s.to_span = std::min(run.analysis_to_span, run.analysis_from_span + spans - 1);
   s.from_x = support_x[s.from_span - 1];
   s.to_x = support_x[s.to_span];
-  double rear = run.pantographs.front().start_x, front = rear;
-  for (const auto& p : run.pantographs) {
-    rear = std::min(rear, p.start_x);
-    front = std::max(front, p.start_x);
-  }
-  // Lead-in: two spans (the start's transient), at least a ramp and the
-  // filter's edge (3 / cutoff_hz of travel, scene/run_scene_edges.cpp) more
-  // than one span, before the train's front: every pantograph has it.
-  const int lead_from = std::max(0, s.from_span - 3);
-  double ramp = 0;
-  for (const auto& p : run.pantographs) ramp = std::max(ramp, p.ramps() ? p.ramp_distance : 0.0);
-  const double edge = 3 / run.cutoff_hz * run.speed;
-  const double lead = std::max(s.from_x - support_x[lead_from],
-                               ramp + edge + (s.to_x - s.from_x) / (s.to_span - s.from_span + 1));
-  s.shift = std::max(0.0, s.from_x - lead - front);
-  // A later start that saves less than half of the run's travel is not worth
-  // the difference it makes (the pilot then repeats the run's own start).
-  // A moving window starts where the line starts: its pantographs too.
-  if (s.shift < 0.5 * (run.end_x - run.pantographs.front().start_x) || run.window) s.shift = 0;
+  // The train starts where the run starts it, however far along the stretch
+  // lies: the figures of a stretch are those of the trajectory that reaches
+  // it (a train started two spans before it missed the reduction error of
+  // the run's own trajectory: docs/benchmarks.md, "Tried and not kept: a
+  // later start for every pilot that saves a span").
+  double rear = run.pantographs.front().start_x;
+  for (const auto& p : run.pantographs) rear = std::min(rear, p.start_x);
+  const double edge = 3 / run.cutoff_hz * run.speed;  // scene/run_scene_edges.cpp
   // The rearmost pantograph passes to_x by the filter's edge and a metre
   // (end_x is where the scene's first pantograph stops).
   s.end_x = std::min(run.end_x, s.to_x + edge + 1.0 + (run.pantographs.front().start_x - rear));
@@ -57,8 +46,7 @@ std::string pilot_stretch_note(const PilotStretch& s, const scene::RunScene& run
 
 void check_pilot_not_cut_short(const scene::RunScene& run, const PilotStretch& stretch) {
   // RunScene::duration() of the scene apply_stretch makes.
-  const double duration =
-      (stretch.end_x - (run.pantographs.front().start_x + stretch.shift)) / run.speed;
+  const double duration = (stretch.end_x - run.pantographs.front().start_x) / run.speed;
   const long steps = std::lround(std::ceil(duration / (run.dt / 2) - 1e-9));  // at dt/2
   PetscInt max_steps = 0;
   PetscReal max_time = 0;

@@ -1,9 +1,9 @@
-// Where the accuracy pilot runs (simulation::pilot_stretch): on a long line
-// whose analysis section lies far from the start, the pilot's train starts
-// later, and every pantograph of it, the leading one too, must start at
-// least two spans before the pilot's stretch and cross all of it. (The shift
-// was once taken from the rearmost pantograph: on two pantographs 200 m
-// apart the leading one started inside its stretch and the pilot gave up.)
+// Where the accuracy pilot runs (simulation::pilot_stretch): every
+// pantograph starts where the run starts it, however far along the line the
+// analysis section lies (the figures of a stretch are those of the trajectory
+// that reaches it: a pilot whose train started two spans before its stretch
+// estimated EN 50318's sigma error on spans 15-16 of 20 at 0.30 % against an
+// actual 0.94 %), and the rearmost one crosses all of the stretch.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -24,25 +24,21 @@ scene::RunScene load(const std::string& relative, const std::vector<std::string>
       scene::load_composed(std::string(PCSIM_SOURCE_DIR) + "/" + relative, overrides));
 }
 
-// Every pantograph's lead-in before the stretch, and the rearmost one's
-// travel past it when the first one stops (filter edge 3 / cutoff_hz).
+// The rearmost pantograph's travel past the stretch when the first one
+// stops (filter edge 3 / cutoff_hz).
 void expect_crossed(const scene::RunScene& run, const simulation::PilotStretch& s) {
-  const double span = run.catenary.mesh.support_x[1] - run.catenary.mesh.support_x[0];
   const double edge = 3 / run.cutoff_hz * run.speed;
   double rear = run.pantographs.front().start_x;
-  for (const auto& p : run.pantographs) {
-    rear = std::min(rear, p.start_x);
-    // A later start leaves two spans of lead-in; without one the pilot
-    // repeats the run's own start.
-    if (s.shift > 0) EXPECT_LE(p.start_x + s.shift, s.from_x - 2 * span + 1e-9) << p.name;
-  }
+  for (const auto& p : run.pantographs) rear = std::min(rear, p.start_x);
   const double rear_at_end = s.end_x - (run.pantographs.front().start_x - rear);
   EXPECT_GE(rear_at_end, s.to_x + edge);
+  EXPECT_LE(s.end_x, run.end_x);
 }
 
 TEST(PilotStretch, TwoPantographsFarAlongALongLine) {
   // 40 spans of 60 m, the section at spans 29-32 (1680-1920 m), the train's
-  // front at 205 m, its rear at 5 m.
+  // front at 205 m, its rear at 5 m: the pilot's stretch is the section's
+  // first two spans, its train the run's until the rear is past them.
   const auto run = load("runs/interaction/two-pantographs-300.yaml",
                         {"catenary.design.spans.count=40", "simulation.end_x=2300",
                          "analysis.from_span=29", "analysis.to_span=32"});
@@ -51,9 +47,9 @@ TEST(PilotStretch, TwoPantographsFarAlongALongLine) {
   EXPECT_EQ(s.to_span, 30);
   EXPECT_DOUBLE_EQ(s.from_x, 1680);
   EXPECT_DOUBLE_EQ(s.to_x, 1800);
-  // The front two spans (120 m: more than ramp 20 m + edge 12.5 m + a span)
-  // before the stretch.
-  EXPECT_NEAR(s.shift, 1680 - 120 - 205, 1e-9);
+  // The rear past 1800 m by the filter's edge (12.5 m) and a metre: the
+  // front 200 m further.
+  EXPECT_NEAR(s.end_x, 1800 + 12.5 + 1 + 200, 1e-9);
   expect_crossed(run, s);
 }
 
@@ -62,15 +58,13 @@ TEST(PilotStretch, OnePantographFarAlongALongLine) {
                         {"catenary.design.spans.count=40", "simulation.end_x=2300",
                          "analysis.from_span=29", "analysis.to_span=32"});
   const auto s = simulation::pilot_stretch(run);
-  EXPECT_NEAR(s.shift, 1680 - 120 - run.pantographs.front().start_x, 1e-9);
+  EXPECT_NEAR(s.end_x, 1800 + 12.5 + 1, 1e-9);
   expect_crossed(run, s);
 }
 
-TEST(PilotStretch, ShortLineRepeatsTheRunsStart) {
-  // The 20-span scene: a later start would save less than half the travel.
+TEST(PilotStretch, TheTrainStopsOnceTheRearIsPast) {
   const auto run = load("runs/interaction/two-pantographs-300.yaml", {});
   const auto s = simulation::pilot_stretch(run);
-  EXPECT_EQ(s.shift, 0);
   EXPECT_DOUBLE_EQ(s.from_x, 480);
   EXPECT_DOUBLE_EQ(s.to_x, 600);
   expect_crossed(run, s);

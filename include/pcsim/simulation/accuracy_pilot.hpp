@@ -72,7 +72,6 @@ struct PilotEstimate {
   double seconds = 0;   // wall time of the pilot runs (0 when cached)
   int runs = 0;
   double from_x = 0, to_x = 0;  // the stretch whose figures were compared [m]
-  double start_shift_m = 0;     // the pantographs started this much later than in the run
   double cutoff_hz = 0;         // modal: the cut-off the run uses
   int cutoff_raises = 0;        // modal: times the default cut-off was raised
   // modal: the highest cut-off tried when the run takes a lower one
@@ -122,16 +121,14 @@ std::string loss_samples_note(const PilotEstimate::OutsideTarget& t);
 // vectors in every step.
 std::size_t lowest_sufficient_cutoff(const std::vector<std::vector<FigureErrors>>& tried);
 
-// Where the pilot runs: every pantograph starts 'shift' later than in the
-// run, the figures are taken over [from_x, to_x] (spans from_span..to_span,
+// Where the pilot runs: every pantograph starts where the run starts it,
+// the figures are taken over [from_x, to_x] (spans from_span..to_span,
 // 1-based: two on a line of identical spans, CatenaryMesh::identical_spans,
 // else the section up to kPilotMaxSpans), and the scene's first pantograph
 // stops at end_x, when the rearmost one has passed to_x by the filter's
-// edge. The shift leaves every pantograph at least two spans (and its ramp,
-// the filter's edge and a span) before from_x; it is 0 with a moving window
-// or when it would save less than half of the run's travel.
+// edge.
 struct PilotStretch {
-  double shift = 0, from_x = 0, to_x = 0, end_x = 0;
+  double from_x = 0, to_x = 0, end_x = 0;
   int from_span = 0, to_span = 0;
   bool spans_alike = true;  // the line's spans are identical: two stand for all
 };
