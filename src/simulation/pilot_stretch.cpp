@@ -25,8 +25,8 @@ PilotStretch pilot_stretch(const scene::RunScene& run) {
   // The train starts where the run starts it, however far along the stretch
   // lies: the figures of a stretch are those of the trajectory that reaches
   // it (a train started two spans before it missed the reduction error of
-  // the run's own trajectory: docs/benchmarks.md, "Tried and not kept: a
-  // later start for every pilot that saves a span").
+  // the run's own trajectory: docs/benchmarks.md, "A pilot's train where
+  // the run starts it").
   double rear = run.pantographs.front().start_x;
   for (const auto& p : run.pantographs) rear = std::min(rear, p.start_x);
   const double edge = 3 / run.cutoff_hz * run.speed;  // scene/run_scene_edges.cpp
