@@ -260,6 +260,17 @@ void add_fidelity_facts(const scene::RunScene& run, const CatenarySetup& setup,
   facts["accuracy_estimate"] = estimate.json();
 }
 
+namespace {
+
+// Why a pilot that left figures outside the targets raised no further.
+const char* why_raises_ended(const PilotEstimate& pilot) {
+  return pilot.cutoff_raises >= kMaxCutoffRaisesWhileCloser
+             ? "the most the pilot raises it"
+             : "where a raise no longer brought every figure outside the targets closer";
+}
+
+}  // namespace
+
 void print_pilot(const Context& ctx, const PilotEstimate& pilot) {
   if (!pilot.done) return;
   const auto discretisation = pilot.discretisation(), reduction = pilot.reduction();
@@ -274,14 +285,13 @@ void print_pilot(const Context& ctx, const PilotEstimate& pilot) {
            pilot.cutoff_raises, pilot.cutoff_hz);
   else if (modal && pilot.cutoff_lowered_from_hz > 0)
     print0(ctx,
-           "    modal cut-off raised %d time(s) to %.1f Hz, the most the pilot raises it; the run "
-           "takes %.1f Hz: no figure there or at a cut-off above it is further from its target "
-           "than at %.1f Hz\n",
-           pilot.cutoff_raises, pilot.cutoff_lowered_from_hz, pilot.cutoff_hz,
-           pilot.cutoff_lowered_from_hz);
+           "    modal cut-off raised %d time(s) to %.1f Hz, %s; the run takes %.1f Hz: no figure "
+           "there or at a cut-off above it is further from its target than at %.1f Hz\n",
+           pilot.cutoff_raises, pilot.cutoff_lowered_from_hz, why_raises_ended(pilot),
+           pilot.cutoff_hz, pilot.cutoff_lowered_from_hz);
   else if (modal && pilot.cutoff_raises > 0)
-    print0(ctx, "    modal cut-off raised %d time(s) to %.1f Hz, the most the pilot raises it\n",
-           pilot.cutoff_raises, pilot.cutoff_hz);
+    print0(ctx, "    modal cut-off raised %d time(s) to %.1f Hz, %s\n", pilot.cutoff_raises,
+           pilot.cutoff_hz, why_raises_ended(pilot));
   // Where the raises above the run's cut-off brought nothing closer, raising
   // it again is no advice.
   char hint[96] = "catenary.max_frequency_hz raises the cut-off";

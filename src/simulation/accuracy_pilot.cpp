@@ -367,7 +367,11 @@ void print_outside(const Context& ctx, double cutoff, const std::vector<FigureEr
 }
 
 // The modal runs: the cut-off 'run' has, raised until the reduction is
-// within the targets (kMaxCutoffRaises at most; kept if the scene set it).
+// within the targets (kMaxCutoffRaises at most, kMaxCutoffRaisesWhileCloser
+// while each raise brings the figures outside closer; kept if the scene set
+// it). A raise beyond kMaxCutoffRaises computes its modes afresh: the third
+// raise frees what the modes were computed with (a 1000-span window's peak
+// memory), since most pilots end there.
 // 'reference' (linear FE at dt and h) is collected after the first.
 double choose_cutoff(PilotRuns& runs, const scene::RunScene& run,
                      std::optional<PilotFigures>& reference, const std::string& reference_label) {
@@ -379,7 +383,7 @@ double choose_cutoff(PilotRuns& runs, const scene::RunScene& run,
   std::vector<double> cutoffs;
   std::vector<std::vector<FigureErrors>> tried;
   for (;;) {
-    if (run.catenary.modal_cutoff_given || pilot.cutoff_raises == kMaxCutoffRaises)
+    if (run.catenary.modal_cutoff_given || pilot.cutoff_raises >= kMaxCutoffRaises)
       raises.last_computation_next();
     char label[96];
     std::snprintf(label, sizeof label, "modal at %.1f Hz (its modes computed unless cached)",
@@ -399,7 +403,10 @@ double choose_cutoff(PilotRuns& runs, const scene::RunScene& run,
     if (run.catenary.modal_cutoff_given ||
         figures_outside_targets(pilot.reduction_measured).empty() || cutoff <= 0)
       return cutoff;
-    if (pilot.cutoff_raises == kMaxCutoffRaises) {
+    const bool may_raise =
+        pilot.cutoff_raises < kMaxCutoffRaises ||
+        (pilot.cutoff_raises < kMaxCutoffRaisesWhileCloser && last_raise_closer(tried));
+    if (!may_raise) {
       const std::size_t k = lowest_sufficient_cutoff(tried);
       if (k + 1 < tried.size()) {
         pilot.cutoff_lowered_from_hz = cutoff;

@@ -79,4 +79,18 @@ std::size_t lowest_sufficient_cutoff(const std::vector<std::vector<FigureErrors>
   return k;
 }
 
+bool last_raise_closer(const std::vector<std::vector<FigureErrors>>& tried) {
+  if (tried.size() < 2) return false;
+  const auto &last = tried.back(), &before = tried[tried.size() - 2];
+  if (last.size() != before.size()) return false;
+  bool outside = false;
+  for (std::size_t p = 0; p < last.size(); ++p)
+    for (int f = 0; f < kPilotFigures; ++f) {
+      if (last[p].value[f] <= kPilotTargets[f]) continue;
+      outside = true;
+      if (last[p].value[f] >= before[p].value[f]) return false;
+    }
+  return outside;
+}
+
 }  // namespace pcsim::simulation

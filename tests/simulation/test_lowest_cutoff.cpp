@@ -3,6 +3,8 @@
 // lowest one tried whose every reduction error is within its target or no
 // larger than at the highest. Figures: mean, σ, Fm+3σ, actual max, uplift,
 // Fm−3σ, actual min, loss of contact (targets 0.5, 1, 1, 1, 2, 2, 2, 0.1).
+// And whether the pilot raises beyond its third raise
+// (simulation::last_raise_closer): every figure outside came closer.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -15,6 +17,7 @@
 namespace {
 
 using pcsim::simulation::FigureErrors;
+using pcsim::simulation::last_raise_closer;
 using pcsim::simulation::lowest_sufficient_cutoff;
 
 FigureErrors errors(const char* pantograph, std::array<double, 8> value) {
@@ -92,6 +95,47 @@ TEST(LowestSufficientCutoff, FiguresNotSettledKeepTheLast) {
 TEST(LowestSufficientCutoff, OneCutoffIsItselfAndNoneIsAnError) {
   EXPECT_EQ(lowest_sufficient_cutoff({{errors("p", {0, 2, 0, 0, 0, 0, 0, 1})}}), 0u);
   EXPECT_THROW(lowest_sufficient_cutoff({}), std::invalid_argument);
+}
+
+// Beyond its third raise the pilot raises again only while the last raise
+// brought every figure outside its target closer (last_raise_closer).
+std::vector<std::vector<FigureErrors>> one_pantograph(std::vector<std::array<double, 8>> rows) {
+  std::vector<std::vector<FigureErrors>> tried;
+  for (const auto& row : rows) tried.push_back({errors("p", row)});
+  return tried;
+}
+
+TEST(LastRaiseCloser, EveryFigureOutsideCloserRaisesAgain) {
+  // The pilot of runs/lines/supports-300.yaml: loss of contact 0.139 and
+  // 0.104 pt at 108.8 and 136.1 Hz, its only figure outside.
+  EXPECT_TRUE(last_raise_closer(one_pantograph(
+      {{0, 0.4, 0.2, 0.3, 0.1, 0.4, 0.2, 0.139}, {0, 0.3, 0.2, 0.2, 0.1, 0.3, 0.2, 0.104}})));
+  // Two pantographs, each with a figure outside that came closer.
+  EXPECT_TRUE(last_raise_closer({{errors("leading", {0, 1.4, 0.1, 0.2, 0.1, 0.2, 0.1, 0}),
+                                  errors("trailing", {0, 0.2, 0.1, 0.2, 0.1, 0.2, 0.1, 0.3})},
+                                 {errors("leading", {0, 1.2, 0.1, 0.2, 0.1, 0.2, 0.1, 0}),
+                                  errors("trailing", {0, 0.2, 0.1, 0.2, 0.1, 0.2, 0.1, 0.2})}}));
+}
+
+TEST(LastRaiseCloser, AFigureOutsideNotCloserEndsTheRaises) {
+  // runs/lines/irregular-random-300.yaml: the loss of contact the same,
+  // 0.208 pt at 108.8 and 136.1 Hz.
+  EXPECT_FALSE(last_raise_closer(one_pantograph(
+      {{0, 0.5, 0.2, 0.3, 0.2, 0.4, 0.5, 0.208}, {0, 0.4, 0.1, 0.2, 0.2, 0.3, 0.4, 0.208}})));
+  // runs/interaction/three-pantographs-300.yaml's trailing pantograph: its
+  // actual maximum closer (1.080 → 1.069 %), its loss of contact further
+  // (0.625 → 0.764 pt).
+  EXPECT_FALSE(last_raise_closer(one_pantograph(
+      {{0, 0.7, 0.4, 1.080, 0.2, 1.1, 0.5, 0.625}, {0, 0.7, 0.4, 1.069, 0.2, 1.1, 0.5, 0.764}})));
+  // A figure that went from within its target to outside it.
+  EXPECT_FALSE(last_raise_closer({{errors("leading", {0, 1.4, 0.1, 0.2, 0.1, 0.2, 0.1, 0}),
+                                   errors("trailing", {0, 0.2, 0.1, 0.2, 0.1, 0.2, 0.1, 0})},
+                                  {errors("leading", {0, 1.2, 0.1, 0.2, 0.1, 0.2, 0.1, 0}),
+                                   errors("trailing", {0, 0.2, 0.1, 0.2, 0.1, 0.2, 0.1, 0.2})}}));
+  // Nothing outside at the last cut-off, or a single cut-off: nothing to raise for.
+  EXPECT_FALSE(last_raise_closer(one_pantograph(
+      {{0, 1.5, 0.2, 0.3, 0.2, 0.4, 0.5, 0.2}, {0, 0.5, 0.2, 0.3, 0.2, 0.4, 0.5, 0.1}})));
+  EXPECT_FALSE(last_raise_closer(one_pantograph({{0, 1.5, 0, 0, 0, 0, 0, 0.2}})));
 }
 
 }  // namespace
