@@ -105,16 +105,27 @@ std::vector<std::vector<FigureErrors>> one_pantograph(std::vector<std::array<dou
   return tried;
 }
 
+// A leading and a trailing pantograph at two cut-offs: the leading σ 1.4 then
+// 1.2 % (outside, closer), the trailing loss of contact given.
+std::vector<std::vector<FigureErrors>> two_pantographs(double trailing_loss_before,
+                                                       double trailing_loss_last) {
+  const auto leading = [](double sigma) {
+    return errors("leading", {0, sigma, 0.1, 0.2, 0.1, 0.2, 0.1, 0});
+  };
+  const auto trailing = [](double loss) {
+    return errors("trailing", {0, 0.2, 0.1, 0.2, 0.1, 0.2, 0.1, loss});
+  };
+  return {{leading(1.4), trailing(trailing_loss_before)},
+          {leading(1.2), trailing(trailing_loss_last)}};
+}
+
 TEST(LastRaiseCloser, EveryFigureOutsideCloserRaisesAgain) {
   // The pilot of runs/lines/supports-300.yaml: loss of contact 0.139 and
   // 0.104 pt at 108.8 and 136.1 Hz, its only figure outside.
   EXPECT_TRUE(last_raise_closer(one_pantograph(
       {{0, 0.4, 0.2, 0.3, 0.1, 0.4, 0.2, 0.139}, {0, 0.3, 0.2, 0.2, 0.1, 0.3, 0.2, 0.104}})));
   // Two pantographs, each with a figure outside that came closer.
-  EXPECT_TRUE(last_raise_closer({{errors("leading", {0, 1.4, 0.1, 0.2, 0.1, 0.2, 0.1, 0}),
-                                  errors("trailing", {0, 0.2, 0.1, 0.2, 0.1, 0.2, 0.1, 0.3})},
-                                 {errors("leading", {0, 1.2, 0.1, 0.2, 0.1, 0.2, 0.1, 0}),
-                                  errors("trailing", {0, 0.2, 0.1, 0.2, 0.1, 0.2, 0.1, 0.2})}}));
+  EXPECT_TRUE(last_raise_closer(two_pantographs(0.3, 0.2)));
 }
 
 TEST(LastRaiseCloser, AFigureOutsideNotCloserEndsTheRaises) {
@@ -128,10 +139,7 @@ TEST(LastRaiseCloser, AFigureOutsideNotCloserEndsTheRaises) {
   EXPECT_FALSE(last_raise_closer(one_pantograph(
       {{0, 0.7, 0.4, 1.080, 0.2, 1.1, 0.5, 0.625}, {0, 0.7, 0.4, 1.069, 0.2, 1.1, 0.5, 0.764}})));
   // A figure that went from within its target to outside it.
-  EXPECT_FALSE(last_raise_closer({{errors("leading", {0, 1.4, 0.1, 0.2, 0.1, 0.2, 0.1, 0}),
-                                   errors("trailing", {0, 0.2, 0.1, 0.2, 0.1, 0.2, 0.1, 0})},
-                                  {errors("leading", {0, 1.2, 0.1, 0.2, 0.1, 0.2, 0.1, 0}),
-                                   errors("trailing", {0, 0.2, 0.1, 0.2, 0.1, 0.2, 0.1, 0.2})}}));
+  EXPECT_FALSE(last_raise_closer(two_pantographs(0.0, 0.2)));
   // Nothing outside at the last cut-off, or a single cut-off: nothing to raise for.
   EXPECT_FALSE(last_raise_closer(one_pantograph(
       {{0, 1.5, 0.2, 0.3, 0.2, 0.4, 0.5, 0.2}, {0, 0.5, 0.2, 0.3, 0.2, 0.4, 0.5, 0.1}})));
