@@ -12,8 +12,8 @@ place: an interrupt, or a virtual machine's processor held by its host. The
 table gives the stalls per minute above each threshold, and how many of
 them had no context switch. A modal step's 99.99th percentile is the
 slowest step or two of its run. A stall that falls in a step adds its
-length to that step, so a run is as likely to have one as the stalls
-above its step time are frequent.
+length to that step: a run that steps for T seconds meets about T times
+the stalls per second of them.
 
 --stall-every S --stall-ms T makes a stall of T ms every S seconds (the
 thread spins on another clock meanwhile): known stalls without a context
