@@ -26,6 +26,10 @@ if [ ${#scenes[@]} -eq 0 ]; then  # the run scenes of runs/interaction and runs/
 fi
 mkdir -p "$OUT"
 echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
+# The hour's stalls of the machine itself: a step's time includes any that
+# falls in it (docs/benchmarks.md, "What a modal run's slow steps are").
+echo "the machine's stalls before the runs (runs/bench/stall_probe.py 10):"
+/usr/bin/python3 runs/bench/stall_probe.py 10
 names=()
 for scene in "${scenes[@]}"; do
   name=$(basename "$scene" .yaml)

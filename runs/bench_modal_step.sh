@@ -26,6 +26,10 @@ source runs/bench/modal_scenes.sh
 OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
 echo "load before: $(cut -d' ' -f1-3 /proc/loadavg)"
+# The hour's stalls of the machine itself: a step's time includes any that
+# falls in it (docs/benchmarks.md, "What a modal run's slow steps are").
+echo "the machine's stalls before the runs (runs/bench/stall_probe.py 10):"
+/usr/bin/python3 runs/bench/stall_probe.py 10
 for rep in $(seq "$REPS"); do
   for s in $SCENES; do
     # The order alternates from one repetition to the next: the second run of
