@@ -82,10 +82,10 @@ def main():
         above = [switched for gap, switched in gaps if gap > ms * 1e6]
         quiet = sum(1 for switched in above if not switched)
         print(f"| {ms:g} ms | {len(above) * per_minute:.1f} | {quiet * per_minute:.1f} |")
-    quiet = [gap for gap, switched in gaps if not switched]
+    unswitched = [gap for gap, switched in gaps if not switched]
     longest = max(gap for gap, _ in gaps) / 1e6 if gaps else 0.0
     print(f"longest stall {longest:.3f} ms, longest without a context switch "
-          f"{(max(quiet) / 1e6 if quiet else 0.0):.3f} ms")
+          f"{(max(unswitched) / 1e6 if unswitched else 0.0):.3f} ms")
 
 
 if __name__ == "__main__":
