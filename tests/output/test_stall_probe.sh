@@ -19,7 +19,7 @@ awk -v q="$quiet" -v l="$longest" 'BEGIN {
   if (q + 0 < 150) { print "stalls above 1 ms without a switch: " q " a minute, expected >= 150"; exit 1 }
   if (l + 0 < 1.5) { print "longest stall without a switch " l " ms, expected >= 1.5 (the known stalls)"; exit 1 }
 }'
-# Bad input: one message, exit 2.
+# Bad input: a negative duration is refused (argparse: one message, exit 2).
 if "$PCSIM_PYTHON" "$PCSIM_SOURCE_DIR/runs/bench/stall_probe.py" -- -1 2>/dev/null; then
   echo "a negative duration was accepted"; exit 1
 fi
