@@ -177,8 +177,9 @@ void read_effects_and_output(const InputNode& scene, RunScene& run) {
 // level's method (window, or auto on a long line of identical spans).
 struct WindowChoice {
   ModalMethodRequest method;
-  bool automatic = false;  // auto chose a window; it may still be dropped
-  std::string declined;    // auto: why the line got none
+  bool automatic = false;               // auto chose a window; it may still be dropped
+  std::string declined;                 // auto: why the line got none
+  std::optional<RunWindow> whole_line;  // an FE level's line a window could serve
 };
 
 // The catenary section, and the window's mesh with the line's supports.
@@ -208,6 +209,8 @@ WindowChoice load_catenary_and_window(const InputNode& scene, const RunSceneOpti
   if (window)
     builder =
         choice.automatic ? auto_window_builder(*window) : window_design_builder(where, *window);
+  else if (choice.method.method.empty())  // an FE level: the whole line (a warning may say so)
+    builder = whole_line_probe(choice.whole_line);
   run.catenary = scene::load_catenary_scene(scene, options.size_check, builder);
   if (window && window->line_spans == 0) {  // auto: the line is no window's
     choice.declined = window->declined;
@@ -236,13 +239,15 @@ void settle_window(const InputNode& scene, const RunSceneOptions& options,
   } else if (run.window) {
     const InputNode where = scene.has("window") ? scene["window"] : scene["catenary"];
     check_window(scene, where, run, options.size_check);
-    run.modal_method_note = scene.has("window") ? "window (the scene's 'window')" : "window";
+    if (!method.method.empty())  // the modal level's (an FE level has no method to say)
+      run.modal_method_note = scene.has("window") ? "window (the scene's 'window')" : "window";
   } else if (!method.method.empty()) {
     run.modal_method_note = method.automatic() ? "whole (auto: " + choice.declined + ")" : "whole";
   }
   if (!method.method.empty())
     run.catenary.modal.method = run.window ? catenary::ModalSettings::Method::window
                                            : catenary::ModalSettings::Method::whole;
+  if (choice.whole_line && !run.window) warn_whole_fe_line(scene, run, *choice.whole_line);
 }
 
 }  // namespace

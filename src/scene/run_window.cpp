@@ -151,6 +151,22 @@ scene::DesignBuilder auto_window_builder(RunWindow& window) {
   };
 }
 
+scene::DesignBuilder whole_line_probe(std::optional<RunWindow>& line) {
+  return [&line](const InputNode& design, const scene::MeshSizeCheck& size_check) {
+    line.reset();
+    if (design.get_string("type", "") == "parametric") {
+      const catenary::ParametricDesign d = scene::read_parametric_design(design);
+      if (catenary::spans_differ(d).empty()) {
+        line = RunWindow{};
+        line->line_spans = static_cast<int>(d.span_count);
+        line->span_length = d.span_length;
+        line->design = d;
+      }
+    }
+    return scene::build_catenary_design(design, size_check);
+  };
+}
+
 WindowReach window_reach(const RunScene& run, const RunWindow& window) {
   WindowReach r;
   const auto [lo, hi] =

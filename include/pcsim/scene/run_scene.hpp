@@ -159,4 +159,17 @@ scene::DesignBuilder auto_window_builder(RunWindow& window);
 bool keep_auto_window(const InputNode& scene, RunScene& run, const scene::MeshSizeCheck& size_check,
                       std::string& why);
 
+// The FE levels integrate the whole line unless the scene has a 'window'
+// section. On a parametric line of identical spans at least
+// kWholeLineWarningFactor times as long as the window over the train, where
+// a window would fit the run, that is probably not meant: a warning on the
+// key 'window' says so (run_modal_method.cpp). Below that factor the whole
+// line costs at most about that many windows and is the usual reference
+// (the 40-span line against its 7-span window, docs/scaling.md).
+constexpr int kWholeLineWarningFactor = 10;
+// The line's facts (line_spans, span_length, design) where the design is such
+// a line, without building a window: the line is built whole.
+scene::DesignBuilder whole_line_probe(std::optional<RunWindow>& line);
+void warn_whole_fe_line(const InputNode& scene, RunScene& run, RunWindow line);
+
 }  // namespace pcsim::scene
