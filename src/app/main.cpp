@@ -278,6 +278,11 @@ int main(int argc, char** argv) {
   }
   status = agree_exit_status(agreement_comm, status, message, failed);
   MPI_Comm_free(&agreement_comm);
+  // Refused input: its one message is the last thing said. PETSc's summaries
+  // at finalisation (-log_view, -options_left) would follow it with a page
+  // about a run that did not start.
+  if (status == 2)
+    for (const char* name : {"-log_view", "-options_left"}) PetscOptionsClearValue(nullptr, name);
   SlepcFinalize();
   return status;
 }

@@ -340,5 +340,19 @@ expect2 output "key '-o'" static good-static.yaml -o foreign
 expect2 design-dir "key 'catenary.design'" static design-dir.yaml
 expect2 form-finding "key 'wires'" static hanging.yaml
 
+# A refused run's message is the last thing said: PETSc's summaries at
+# finalisation (-log_view, -options_left) would follow it with a page on stdout.
+cases=$((cases + 1))
+status=0
+(cd "$w" && timeout 60 mpirun -n 2 "$PCSIM_BIN" run good-run.yaml -ts_dt abc -log_view -options_left \
+  > "$tmp/out.txt" 2> "$tmp/err.txt") || status=$?
+if [ "$status" -ne 2 ] || [ -s "$tmp/out.txt" ] || [ "$(grep -c "^pcsim: error" "$tmp/err.txt" || true)" -ne 1 ]; then
+  echo "FAIL 2 ranks -log_view: exit $status, $(wc -l < "$tmp/out.txt") line(s) on stdout" >&2
+  head -3 "$tmp/out.txt" "$tmp/err.txt" >&2
+  failures=$((failures + 1))
+else
+  echo "ok   2 ranks -log_view -options_left: nothing on stdout after the refusal"
+fi
+
 echo "$cases runs, $failures failure(s)"
 [ "$failures" -eq 0 ]
