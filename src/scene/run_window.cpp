@@ -1,6 +1,7 @@
 // The 'window' section of a run scene (run_scene.hpp, RunWindow).
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "pcsim/catenary/geometry.hpp"
@@ -131,37 +132,48 @@ scene::DesignBuilder window_design_builder(const InputNode& w, RunWindow& window
 
 // A window over a parametric line of identical spans long enough for it
 // (line_spans filled); any other line whole (line_spans 0, 'declined' says why).
+namespace {
+
+// The design when it is a parametric line of identical spans; else none, and
+// 'why' says why not.
+std::optional<catenary::ParametricDesign> identical_spans_line(const InputNode& design,
+                                                               std::string& why) {
+  why = "not a parametric design";
+  if (design.get_string("type", "") != "parametric") return std::nullopt;
+  catenary::ParametricDesign d = scene::read_parametric_design(design);
+  const std::string differ = catenary::spans_differ(d);
+  why = "not a line of identical spans (the design has " + differ + ")";
+  if (!differ.empty()) return std::nullopt;
+  why.clear();
+  return d;
+}
+
+}  // namespace
+
 scene::DesignBuilder auto_window_builder(RunWindow& window) {
   return [&window](const InputNode& design, const scene::MeshSizeCheck& size_check) {
     window.line_spans = 0;
-    window.declined = "not a parametric design";
-    if (design.get_string("type", "") != "parametric")
-      return scene::build_catenary_design(design, size_check);
-    const catenary::ParametricDesign d = scene::read_parametric_design(design);
-    const std::string why = catenary::spans_differ(d);
-    window.declined = "not a line of identical spans (the design has " + why + ")";
-    if (!why.empty()) return scene::build_catenary_design(design, size_check);
-    window.declined = "the line (" + std::to_string(d.span_count) + " spans) is shorter than " +
+    const auto d = identical_spans_line(design, window.declined);
+    if (!d) return scene::build_catenary_design(design, size_check);
+    window.declined = "the line (" + std::to_string(d->span_count) + " spans) is shorter than " +
                       std::to_string(kAutoWindowFactor) + " x a window (" +
                       std::to_string(window.spans()) + " spans)";
-    if (d.span_count < kAutoWindowFactor * window.spans())
+    if (d->span_count < kAutoWindowFactor * window.spans())
       return scene::build_catenary_design(design, size_check);
     window.declined.clear();
-    return build_window(window, d, size_check);
+    return build_window(window, *d, size_check);
   };
 }
 
 scene::DesignBuilder whole_line_probe(std::optional<RunWindow>& line) {
   return [&line](const InputNode& design, const scene::MeshSizeCheck& size_check) {
     line.reset();
-    if (design.get_string("type", "") == "parametric") {
-      const catenary::ParametricDesign d = scene::read_parametric_design(design);
-      if (catenary::spans_differ(d).empty()) {
-        line = RunWindow{};
-        line->line_spans = static_cast<int>(d.span_count);
-        line->span_length = d.span_length;
-        line->design = d;
-      }
+    std::string why;
+    if (const auto d = identical_spans_line(design, why)) {
+      line = RunWindow{};
+      line->line_spans = static_cast<int>(d->span_count);
+      line->span_length = d->span_length;
+      line->design = *d;
     }
     return scene::build_catenary_design(design, size_check);
   };
