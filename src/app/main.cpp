@@ -202,6 +202,13 @@ int parse_arguments(int argc, char** argv, const Command& command, CommandContex
   return -1;
 }
 
+// Refused input: its one message is the last thing said. PETSc's summaries
+// at finalisation (-log_view, -options_left) would follow it with a page
+// about a run that did not start.
+void drop_finalize_summaries() {
+  for (const char* name : {"-log_view", "-options_left"}) PetscOptionsClearValue(nullptr, name);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -278,11 +285,7 @@ int main(int argc, char** argv) {
   }
   status = agree_exit_status(agreement_comm, status, message, failed);
   MPI_Comm_free(&agreement_comm);
-  // Refused input: its one message is the last thing said. PETSc's summaries
-  // at finalisation (-log_view, -options_left) would follow it with a page
-  // about a run that did not start.
-  if (status == 2)
-    for (const char* name : {"-log_view", "-options_left"}) PetscOptionsClearValue(nullptr, name);
+  if (status == 2) drop_finalize_summaries();
   SlepcFinalize();
   return status;
 }
