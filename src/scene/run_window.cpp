@@ -102,13 +102,18 @@ RunWindow read_window_keys(const InputNode& scene) {
 
 namespace {
 
+// The line's facts a window over design d keeps.
+void keep_line(RunWindow& window, const catenary::ParametricDesign& d) {
+  window.line_spans = static_cast<int>(d.span_count);
+  window.span_length = d.span_length;
+  window.design = d;
+}
+
 // The window over the line of design d: the line's facts kept, the mesh of
 // spans() spans built (only that is checked against the memory).
 catenary::CatenaryMesh build_window(RunWindow& window, catenary::ParametricDesign d,
                                     const scene::MeshSizeCheck& size_check) {
-  window.line_spans = static_cast<int>(d.span_count);
-  window.span_length = d.span_length;
-  window.design = d;
+  keep_line(window, d);
   d.span_count = window.spans();
   if (size_check) size_check(catenary::mesh_size(d));
   return catenary::build_parametric(d);
@@ -130,8 +135,6 @@ scene::DesignBuilder window_design_builder(const InputNode& w, RunWindow& window
   };
 }
 
-// A window over a parametric line of identical spans long enough for it
-// (line_spans filled); any other line whole (line_spans 0, 'declined' says why).
 namespace {
 
 // The design when it is a parametric line of identical spans; else none, and
@@ -150,6 +153,8 @@ std::optional<catenary::ParametricDesign> identical_spans_line(const InputNode& 
 
 }  // namespace
 
+// A window over a parametric line of identical spans long enough for it
+// (line_spans filled); any other line whole (line_spans 0, 'declined' says why).
 scene::DesignBuilder auto_window_builder(RunWindow& window) {
   return [&window](const InputNode& design, const scene::MeshSizeCheck& size_check) {
     window.line_spans = 0;
@@ -171,9 +176,7 @@ scene::DesignBuilder whole_line_probe(std::optional<RunWindow>& line) {
     std::string why;
     if (const auto d = identical_spans_line(design, why)) {
       line = RunWindow{};
-      line->line_spans = static_cast<int>(d->span_count);
-      line->span_length = d->span_length;
-      line->design = *d;
+      keep_line(*line, *d);
     }
     return scene::build_catenary_design(design, size_check);
   };
