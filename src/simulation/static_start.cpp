@@ -113,15 +113,35 @@ PetscInt catenary_start(assembly::CoupledSystem& system, Vec U0) {
 // on the EN 50318 one, where Newton then stops on its step (stol).
 constexpr double kStartTolerance = 1e-5;
 
+// The coupled Newton's problem. The rows of the pantographs that do not start
+// static (ramp starts) are held at their start state, U_i - U0_i = 0: they are
+// in their own equilibrium already, and a pantograph whose uplift force does
+// not depend on its height (the DSA-380's uplift characteristic) has no
+// stiffness of its own out of contact, so its rows would make J singular.
 struct CoupledStatic {
   assembly::CoupledSystem* system;
   Vec zero;
+  Vec start = nullptr;              // U0 before the Newton, for the held rows
+  std::vector<PetscInt> held_rows;  // this rank's held rows
 };
 
 PetscErrorCode coupled_residual(SNES, Vec U, Vec F, void* ptr) {
   PCSIM_CALLBACK_BEGIN
   auto* c = static_cast<CoupledStatic*>(ptr);
   c->system->residual(0.0, U, c->zero, c->zero, F);
+  if (!c->held_rows.empty()) {
+    PetscInt lo, hi;
+    PCSIM_PETSC(VecGetOwnershipRange(F, &lo, &hi));
+    const PetscScalar *u, *u0;
+    PetscScalar* f;
+    PCSIM_PETSC(VecGetArrayRead(U, &u));
+    PCSIM_PETSC(VecGetArrayRead(c->start, &u0));
+    PCSIM_PETSC(VecGetArray(F, &f));
+    for (PetscInt row : c->held_rows) f[row - lo] = u[row - lo] - u0[row - lo];
+    PCSIM_PETSC(VecRestoreArray(F, &f));
+    PCSIM_PETSC(VecRestoreArrayRead(c->start, &u0));
+    PCSIM_PETSC(VecRestoreArrayRead(U, &u));
+  }
   PCSIM_CALLBACK_END
 }
 
@@ -129,6 +149,10 @@ PetscErrorCode coupled_jacobian(SNES, Vec U, Mat J, Mat P, void* ptr) {
   PCSIM_CALLBACK_BEGIN
   auto* c = static_cast<CoupledStatic*>(ptr);
   c->system->jacobian(0.0, U, c->zero, c->zero, {0.0, 0.0}, P);
+  // The held rows: identity (collective; the pattern kept for the next assembly).
+  PCSIM_PETSC(MatSetOption(P, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
+  PCSIM_PETSC(MatZeroRows(P, static_cast<PetscInt>(c->held_rows.size()), c->held_rows.data(), 1.0,
+                          nullptr, nullptr));
   if (J != P) {
     PCSIM_PETSC(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
     PCSIM_PETSC(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
@@ -178,26 +202,15 @@ bool in_equilibrium(assembly::CoupledSystem& system, Vec F) {
   return within;
 }
 
-PetscInt solve_coupled_static(assembly::CoupledSystem& system, Vec U0) {
-  CoupledStatic ctx{&system, system.create_vector()};
-  PCSIM_PETSC(VecSet(ctx.zero, 0.0));
-  Vec F = system.create_vector();
-  // A start already in equilibrium (a modal catenary's closed form) needs no
-  // Newton matrix (a modal one is dense).
-  system.residual(0.0, U0, ctx.zero, ctx.zero, F);
-  const double tolerance = start_tolerance(system);
-  if (in_equilibrium(system, F)) {
-    PCSIM_PETSC(VecDestroy(&F));
-    PCSIM_PETSC(VecDestroy(&ctx.zero));
-    return 0;
-  }
+// The Newton of the coupled start from U0 (its residual in F), with -start_.
+PetscInt start_newton(assembly::CoupledSystem& system, CoupledStatic& ctx, Vec F, Vec U0) {
   Mat J = system.create_matrix();
   SNES snes;
   PCSIM_PETSC(SNESCreate(system.comm(), &snes));
   PCSIM_PETSC(SNESSetOptionsPrefix(snes, "start_"));
   PCSIM_PETSC(SNESSetFunction(snes, F, coupled_residual, &ctx));
   PCSIM_PETSC(SNESSetJacobian(snes, J, J, coupled_jacobian, &ctx));
-  PCSIM_PETSC(SNESSetTolerances(snes, tolerance, 1e-12, 1e-12, 50, 100000));
+  PCSIM_PETSC(SNESSetTolerances(snes, start_tolerance(system), 1e-12, 1e-12, 50, 100000));
   SNESLineSearch line_search;
   PCSIM_PETSC(SNESGetLineSearch(snes, &line_search));
   PCSIM_PETSC(SNESLineSearchSetType(line_search, SNESLINESEARCHBASIC));
@@ -214,11 +227,76 @@ PetscInt solve_coupled_static(assembly::CoupledSystem& system, Vec U0) {
   PCSIM_PETSC(SNESGetIterationNumber(snes, &iterations));
   PCSIM_PETSC(SNESDestroy(&snes));
   PCSIM_PETSC(MatDestroy(&J));
-  PCSIM_PETSC(VecDestroy(&F));
-  PCSIM_PETSC(VecDestroy(&ctx.zero));
   if (reason <= 0)
     throw SolverError(std::string("static start (coupled equilibrium) did not converge: ") +
                       SNESConvergedReasons[reason]);
+  return iterations;
+}
+
+// Clear of the wire by this much while held (the largest gap start).
+constexpr double kHeldClearance = 0.5;
+
+// Holds the pantographs that do not start static at their state in U0, clear
+// of the wire (no contact force while the catenary finds its equilibrium
+// under the others); returns the wire's height at each of them (NaN for the
+// others).
+std::vector<double> hold_ramp_starts(assembly::CoupledSystem& system, CoupledStatic& ctx, Vec U0) {
+  auto& pantographs = system.pantographs();
+  std::vector<double> wire_z(pantographs.size(), std::nan(""));
+  PetscInt lo, hi;
+  PCSIM_PETSC(VecGetOwnershipRange(U0, &lo, &hi));
+  for (std::size_t p = 0; p < pantographs.size(); ++p) {
+    auto& slot = pantographs[p];
+    if (slot.run.static_start) continue;
+    double flexibility = 0;
+    wire_z[p] = wire_height(system.catenary(), U0, slot.run.start_x, p, flexibility);
+    slot.head_offset -= kHeldClearance;
+    for (PetscInt i = slot.first_dof; i < slot.first_dof + slot.dof_count(); ++i)
+      if (i >= lo && i < hi) ctx.held_rows.push_back(i);
+  }
+  PCSIM_PETSC(VecDuplicate(U0, &ctx.start));
+  PCSIM_PETSC(VecCopy(U0, ctx.start));
+  return wire_z;
+}
+
+// The held pantographs touch the solved wire again: each moves with the wire
+// under it (zero contact force, as before the Newton).
+void touch_solved_wire(assembly::CoupledSystem& system, const std::vector<double>& wire_z,
+                       Vec U0) {
+  auto& pantographs = system.pantographs();
+  for (std::size_t p = 0; p < pantographs.size(); ++p) {
+    if (std::isnan(wire_z[p])) continue;
+    double flexibility = 0;
+    const double solved_z =
+        wire_height(system.catenary(), U0, pantographs[p].run.start_x, p, flexibility);
+    pantographs[p].head_offset += kHeldClearance + (solved_z - wire_z[p]);
+  }
+}
+
+PetscInt solve_coupled_static(assembly::CoupledSystem& system, Vec U0) {
+  CoupledStatic ctx{&system, system.create_vector(), nullptr, {}};
+  Vec F = system.create_vector();
+  const auto destroy = [&] {
+    VecDestroy(&F);
+    VecDestroy(&ctx.zero);
+    VecDestroy(&ctx.start);
+  };
+  PetscInt iterations = 0;
+  try {
+    PCSIM_PETSC(VecSet(ctx.zero, 0.0));
+    // A start already in equilibrium (a modal catenary's closed form) needs no
+    // Newton matrix (a modal one is dense).
+    system.residual(0.0, U0, ctx.zero, ctx.zero, F);
+    if (!in_equilibrium(system, F)) {
+      const std::vector<double> wire_z = hold_ramp_starts(system, ctx, U0);
+      iterations = start_newton(system, ctx, F, U0);
+      touch_solved_wire(system, wire_z, U0);
+    }
+  } catch (...) {
+    destroy();
+    throw;
+  }
+  destroy();
   return iterations;
 }
 
