@@ -261,8 +261,7 @@ std::vector<double> hold_ramp_starts(assembly::CoupledSystem& system, CoupledSta
 
 // The held pantographs touch the solved wire again: each moves with the wire
 // under it (zero contact force, as before the Newton).
-void touch_solved_wire(assembly::CoupledSystem& system, const std::vector<double>& wire_z,
-                       Vec U0) {
+void touch_solved_wire(assembly::CoupledSystem& system, const std::vector<double>& wire_z, Vec U0) {
   auto& pantographs = system.pantographs();
   for (std::size_t p = 0; p < pantographs.size(); ++p) {
     if (std::isnan(wire_z[p])) continue;

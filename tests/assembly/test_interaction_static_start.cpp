@@ -24,7 +24,7 @@ TEST_P(StaticStart, IsAnEquilibriumOfTheDynamicModel) {
   auto run = pcsim::scene::load_run_scene(
       pcsim::scene::load_composed(contact_data(std::string(GetParam()) + ".yaml")));
   const double vanishing_speed = 1e-6;  // [m/s]: 50 ms move the contact point by 50 nm
-  std::vector<double> static_force;  // the contact force at the start: F0, or 0 (ramp)
+  std::vector<double> static_force;     // the contact force at the start: F0, or 0 (ramp)
   for (auto& p : run.pantographs) {
     p.speed = vanishing_speed;
     static_force.push_back(p.static_start ? p.static_force : 0.0);
