@@ -265,17 +265,6 @@ RunScene load_run_scene(const InputNode& scene, const RunSceneOptions& options) 
   for (std::size_t i = 0; i < list.size(); ++i) read_pantograph(list.at(i), i, run);
   check_pantograph_names(scene, run);
   check_pantograph_positions(scene, run);
-  // A gap start is out of equilibrium on purpose; the coupled static equilibrium that
-  // any static start solves would put that pantograph in contact too.
-  const auto& pantographs = run.pantographs;
-  const bool any_static = std::any_of(pantographs.begin(), pantographs.end(),
-                                      [](const auto& p) { return p.static_start; });
-  for (std::size_t i = 0; i < pantographs.size(); ++i)
-    if (any_static && pantographs[i].start_gap > 0)
-      list.at(i).fail_key("start",
-                          "a gap start cannot be combined with static starts of other "
-                          "pantographs (their coupled static equilibrium would close "
-                          "the gap)");
   read_effects_and_output(scene, run);
   read_analysis(scene, run);
   // Default modal cut-off: the modes the contact force shows below the filter

@@ -114,10 +114,11 @@ PetscInt catenary_start(assembly::CoupledSystem& system, Vec U0) {
 constexpr double kStartTolerance = 1e-5;
 
 // The coupled Newton's problem. The rows of the pantographs that do not start
-// static (ramp starts) are held at their start state, U_i - U0_i = 0: they are
-// in their own equilibrium already, and a pantograph whose uplift force does
-// not depend on its height (the DSA-380's uplift characteristic) has no
-// stiffness of its own out of contact, so its rows would make J singular.
+// static (ramp and gap starts) are held at their start state, U_i - U0_i = 0:
+// a ramp start is in its own equilibrium already, a gap start out of it on
+// purpose, and a pantograph whose uplift force does not depend on its height
+// (the DSA-380's uplift characteristic) has no stiffness of its own out of
+// contact, so its rows would make J singular.
 struct CoupledStatic {
   assembly::CoupledSystem* system;
   Vec zero;
@@ -176,8 +177,8 @@ double start_tolerance(assembly::CoupledSystem& system) {
   return tolerance;
 }
 
-// In equilibrium: each pantograph's rows of F within its tolerance, the
-// other rows (the catenary's) within kStartTolerance (collective).
+// In equilibrium: each static start's rows of F within its tolerance, the
+// catenary's rows within kStartTolerance (collective).
 bool in_equilibrium(assembly::CoupledSystem& system, Vec F) {
   const auto& pantographs = system.pantographs();
   std::vector<double> squares(pantographs.size() + 1, 0.0);  // the pantographs', the rest's
@@ -197,8 +198,9 @@ bool in_equilibrium(assembly::CoupledSystem& system, Vec F) {
   MPI_Allreduce(MPI_IN_PLACE, squares.data(), static_cast<int>(squares.size()), MPI_DOUBLE, MPI_SUM,
                 system.comm());
   bool within = std::sqrt(squares.back()) < kStartTolerance;
-  for (std::size_t p = 0; p < pantographs.size(); ++p)
-    within = within && std::sqrt(squares[p]) < pantograph_tolerance(pantographs[p]);
+  for (std::size_t p = 0; p < pantographs.size(); ++p)  // the others are held (a gap start is
+    if (pantographs[p].run.static_start)                // out of equilibrium on purpose)
+      within = within && std::sqrt(squares[p]) < pantograph_tolerance(pantographs[p]);
   return within;
 }
 
@@ -240,7 +242,7 @@ constexpr double kHeldClearance = 0.5;
 // of the wire (no contact force while the catenary finds its equilibrium
 // under the others); returns the wire's height at each of them (NaN for the
 // others).
-std::vector<double> hold_ramp_starts(assembly::CoupledSystem& system, CoupledStatic& ctx, Vec U0) {
+std::vector<double> hold_other_starts(assembly::CoupledSystem& system, CoupledStatic& ctx, Vec U0) {
   auto& pantographs = system.pantographs();
   std::vector<double> wire_z(pantographs.size(), std::nan(""));
   PetscInt lo, hi;
@@ -259,9 +261,10 @@ std::vector<double> hold_ramp_starts(assembly::CoupledSystem& system, CoupledSta
   return wire_z;
 }
 
-// The held pantographs touch the solved wire again: each moves with the wire
-// under it (zero contact force, as before the Newton).
-void touch_solved_wire(assembly::CoupledSystem& system, const std::vector<double>& wire_z, Vec U0) {
+// The held pantographs follow the solved wire: each moves with the wire under
+// it, touching it (ramp) or its gap below it, as before the Newton.
+void follow_solved_wire(assembly::CoupledSystem& system, const std::vector<double>& wire_z,
+                        Vec U0) {
   auto& pantographs = system.pantographs();
   for (std::size_t p = 0; p < pantographs.size(); ++p) {
     if (std::isnan(wire_z[p])) continue;
@@ -287,9 +290,9 @@ PetscInt solve_coupled_static(assembly::CoupledSystem& system, Vec U0) {
     // Newton matrix (a modal one is dense).
     system.residual(0.0, U0, ctx.zero, ctx.zero, F);
     if (!in_equilibrium(system, F)) {
-      const std::vector<double> wire_z = hold_ramp_starts(system, ctx, U0);
+      const std::vector<double> wire_z = hold_other_starts(system, ctx, U0);
       iterations = start_newton(system, ctx, F, U0);
-      touch_solved_wire(system, wire_z, U0);
+      follow_solved_wire(system, wire_z, U0);
     }
   } catch (...) {
     destroy();

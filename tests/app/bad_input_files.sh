@@ -82,8 +82,6 @@ run_scene panto-key "  - {name: p, model: $two_mass, start_x: 13.1, stiffnes: 3}
 run_scene missing-model "  - {name: p, model: no-such-model.yaml, start_x: 13.1}"
 run_scene model-dir "  - {name: p, model: adir, start_x: 13.1}"
 run_scene negative-panto "  - {name: p, model: negative-panto-model.yaml, start_x: 13.1}"
-run_scene gap-static "  - {name: p, model: $two_mass, start_x: 13.1, start: {gap: 0.01}}
-  - {name: q, model: $two_mass, start_x: 3.1, start: static}"
 run_scene cutoff "$one" "" ", cutoff_hz: 600"
 run_scene dt-one "$one" ", dt: 1.0"
 run_scene few-samples "$one" ", dt: 0.5" ", cutoff_hz: 0.5"

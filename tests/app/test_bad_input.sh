@@ -132,7 +132,6 @@ expect missing-model 2 "missing-model.yaml|key 'pantographs[0].model'|no such fi
 expect model-dir 2 "model-dir.yaml|key 'pantographs[0].model'|is a folder" yes run model-dir.yaml
 expect negative-panto 2 "negative-panto-model.yaml|key 'stages[0].mass'|positive" yes run negative-panto.yaml
 expect model-file 2 "negative-panto-model.yaml|key 'stages[0].mass'|positive" no check negative-panto-model.yaml
-expect gap-static 2 "gap-static.yaml|key 'pantographs[0].start'|gap start cannot be combined" yes run gap-static.yaml
 expect cutoff 2 "cutoff.yaml|key 'analysis.cutoff_hz'|Nyquist frequency 500 Hz" yes run cutoff.yaml
 expect dt-one 2 "dt-one.yaml|key 'analysis.cutoff_hz'|Nyquist|simulation.dt = 1 s" yes run dt-one.yaml
 expect few-samples 2 "few-samples.yaml|key 'simulation.dt'|filter needs more than 15" yes run few-samples.yaml

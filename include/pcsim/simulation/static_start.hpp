@@ -6,9 +6,9 @@
 //    static equilibrium F(0, U, 0, 0) = 0 of the dynamic model itself, by SNES
 //    with the exact Jacobian, so that nothing drifts at t = 0. Its guess is the
 //    catenary under the point loads F0 of those pantographs (options prefix
-//    -start_load_); the coupled solve takes -start_. Ramp starts are held at
-//    their own equilibrium, clear of the wire, while it runs, and then touch
-//    the solved wire.
+//    -start_load_); the coupled solve takes -start_. Ramp and gap starts are
+//    held at their start state, clear of the wire, while it runs, and then
+//    follow the solved wire (touching it, or their gap below it).
 #pragma once
 
 #include <petscvec.h>
