@@ -246,7 +246,7 @@ std::unique_ptr<simulation::RunCheckpoint> load_restart(
                      "window on a long line: catenary.modal.method) cannot be restarted");
   simulation::check_restart_target(dir, request.dir);
   auto checkpoint = std::make_unique<simulation::RunCheckpoint>(
-      simulation::load_run_checkpoint(ctx, dir, inputs));
+      simulation::load_run_checkpoint(ctx, dir, inputs, ctx.overrides));
   check_restart_stop(inputs_read.numerics, dir, *checkpoint);
   return checkpoint;
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -189,9 +190,38 @@ std::string damage(const RunCheckpoint& c) {
   return "";
 }
 
-// Why this run cannot continue checkpoint c ("" if it can).
+// "--set A --set B", or "no --set".
+std::string overrides_text(const std::vector<std::string>& overrides) {
+  if (overrides.empty()) return "no --set";
+  std::string text;
+  for (const auto& o : overrides) text += (text.empty() ? "--set " : " --set ") + o;
+  return text;
+}
+
+// Where a scene that differs may come from: the --set overrides of the
+// checkpointed run (provenance.overrides of DIR's summary.json) against this
+// command's; "" if that summary cannot be read.
+std::string overrides_hint(const std::string& dir, const std::vector<std::string>& overrides) {
+  std::vector<std::string> were;
+  try {
+    std::ifstream in(dir + "/summary.json");
+    if (!in) return "";
+    were =
+        nlohmann::json::parse(in).at("provenance").at("overrides").get<std::vector<std::string>>();
+  } catch (const std::exception&) {
+    return "";
+  }
+  if (were == overrides)
+    return " (both runs have " + overrides_text(were) +
+           ": the scene file or a base file it names is not what the checkpointed run read)";
+  return " (the checkpointed run had " + overrides_text(were) + ", this command has " +
+         overrides_text(overrides) + ": give the same --set overrides)";
+}
+
+// Why this run cannot continue checkpoint c, read from folder dir ("" if it can).
 std::string mismatch(const Context& ctx, const RunCheckpoint& c,
-                     const std::vector<InputFile>& inputs) {
+                     const std::vector<InputFile>& inputs, const std::string& dir,
+                     const std::vector<std::string>& overrides) {
   if (c.ranks != ctx.size)
     return "the checkpoint was written on " + std::to_string(c.ranks) +
            " rank(s) and this run has " + std::to_string(ctx.size) +
@@ -205,7 +235,8 @@ std::string mismatch(const Context& ctx, const RunCheckpoint& c,
              "(with its base files and overrides) differs from the one the checkpoint was "
              "written with ('" +
              was.path + "', SHA-256 " + was.sha256.substr(0, 12) +
-             "...); a restart needs the same scene, design and pantograph models";
+             "...); a restart needs the same scene, design and pantograph models" +
+             (was.role == "scene" ? overrides_hint(dir, overrides) : "");
   }
   if (c.inputs.size() != inputs.size())
     return "the scene has other input files than the checkpointed run";
@@ -297,7 +328,8 @@ void write_run_checkpoint(const Context& ctx, const std::string& file,
 }
 
 RunCheckpoint load_run_checkpoint(const Context& ctx, const std::string& dir,
-                                  const std::vector<InputFile>& inputs) {
+                                  const std::vector<InputFile>& inputs,
+                                  const std::vector<std::string>& overrides) {
   const std::string file = dir + "/" + output::kCheckpointName;
   RunCheckpoint c;
   std::string why;
@@ -317,7 +349,7 @@ RunCheckpoint load_run_checkpoint(const Context& ctx, const std::string& dir,
         c = from_data(data);
         why = damage(c);
         if (!why.empty()) why = file + " is damaged: " + why;
-        if (why.empty()) why = mismatch(ctx, c, inputs);
+        if (why.empty()) why = mismatch(ctx, c, inputs, dir, overrides);
       } catch (const std::exception& e) {
         why = std::string("cannot read the checkpoint: ") + e.what();
       }

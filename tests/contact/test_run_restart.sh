@@ -10,7 +10,8 @@
 #    step (complete = 0), a checkpoint and a summary saying "complete": false,
 #    no final folder, no lock; restarting it gives the uninterrupted run;
 #  - refused restarts (exit 2, one message naming --restart, nothing written):
-#    a changed scene file, a --set the first run did not have, another rank
+#    a changed scene file, a --set the first run did not have (the message
+#    names both runs' overrides), another rank
 #    count, the restart folder as the new result's folder, a folder without
 #    checkpoint.
 set -euo pipefail
@@ -117,9 +118,10 @@ refused() {  # refused NAME NEEDLE -- COMMAND...
   fi
 }
 sed -e 's/static_force: 120/static_force: 121/' short.yaml > changed.yaml
-refused changed-scene "scene file 'changed.yaml' (with its base files and overrides) differs" -- \
+refused changed-scene "scene file 'changed.yaml' (with its base files and overrides) differs.*(both runs have no --set: the scene file or a base file it names is not what the checkpointed run read)$" -- \
   timeout 300 "$PCSIM_BIN" run changed.yaml --restart stop60
-refused changed-override "scene file 'short.yaml' (with its base files and overrides) differs" -- \
+# The message names both runs' overrides (the checkpointed one's from its summary.json).
+refused changed-override "scene file 'short.yaml' (with its base files and overrides) differs.*(the checkpointed run had no --set, this command has --set pantographs.0..static_force=121: give the same --set overrides)$" -- \
   timeout 300 "$PCSIM_BIN" run short.yaml --set 'pantographs[0].static_force=121' --restart stop60
 refused two-ranks "written on 1 rank(s) and this run has 2" -- \
   timeout 300 mpirun -n 2 "$PCSIM_BIN" run short.yaml --restart stop60

@@ -75,10 +75,13 @@ void write_run_checkpoint(const Context& ctx, const std::string& file,
 
 // The checkpoint in folder 'dir' (given with --restart), checked against this
 // run: the same input files and rank count; else InputError("command line",
-// "--restart", why) on every rank. Collective: rank 0 reads, the rest is
-// broadcast (vectors stay on rank 0).
+// "--restart", why) on every rank (a scene that differs names the --set
+// overrides of both runs, those of the checkpointed one from DIR's
+// summary.json). Collective: rank 0 reads, the rest is broadcast (vectors
+// stay on rank 0).
 RunCheckpoint load_run_checkpoint(const Context& ctx, const std::string& dir,
-                                  const std::vector<InputFile>& inputs);
+                                  const std::vector<InputFile>& inputs,
+                                  const std::vector<std::string>& overrides);
 
 // Refuses (InputError on --restart) a new result folder that is the restart
 // folder or its partial folder: a restart reads DIR and writes a new result.
