@@ -25,6 +25,7 @@
 #include "pcsim/output/run_results.hpp"
 #include "pcsim/scene/composition.hpp"
 #include "pcsim/scene/run_scene.hpp"
+#include "pcsim/simulation/accuracy_pilot.hpp"
 #include "pcsim/simulation/run.hpp"
 #include "pcsim/simulation/run_checkpoint.hpp"
 #include "pcsim/simulation/run_session.hpp"
@@ -150,11 +151,32 @@ std::string scratch_folder(const simulation::Context& ctx) {
   return broadcast_text(ctx.comm, dir);
 }
 
+// The accuracy pilot as `pcsim run` runs it (-pcsim_accuracy_pilot: auto, a
+// modal run's, whose cut-off it chooses): its estimate, or null where none is
+// wanted or a pilot run failed (then a RuntimeWarning, and the run goes on
+// without it, as `pcsim run` does).
+nlohmann::json accuracy_pilot(const Scene& s, const simulation::Context& ctx,
+                              scene::RunScene& run_scene) {
+  if (!simulation::wants_accuracy_pilot(simulation::accuracy_pilot_choice(), run_scene)) return {};
+  const simulation::SceneSource source{s.path, s.overrides, s.composed, provenance(s, ctx.size)};
+  try {
+    const auto pilot = simulation::run_accuracy_pilot(ctx, source, run_scene);
+    simulation::print_pilot(ctx, pilot);
+    return pilot.json();
+  } catch (const SolverError& e) {
+    const std::string text = std::string("pcsim: no accuracy pilot: ") + e.what() +
+                             "; the run goes on with the calibrated estimate";
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, text.c_str(), 1) != 0) throw py::error_already_set();
+    return {};
+  }
+}
+
 py::dict run(const Scene& s, const std::string& output, const std::string& options, bool quiet,
              bool overwrite) {
   if (!options.empty()) PCSIM_PETSC(PetscOptionsInsertString(nullptr, options.c_str()));
   const auto ctx = context(quiet);
   auto run_scene = scene::load_run_scene(s.composed);
+  const nlohmann::json pilot = accuracy_pilot(s, ctx, run_scene);
   const std::string dir = output.empty() ? scratch_folder(ctx) : output;
   output::OutputRequest request{
       dir, "pcsim.run", "output", "run", s.path, s.name, provenance(s, ctx.size)};
@@ -165,6 +187,7 @@ py::dict run(const Scene& s, const std::string& output, const std::string& optio
   what.scene_path = s.path;
   what.inputs = simulation::run_input_files(s.path, s.composed);
   what.stop_on_signal = false;
+  what.accuracy_pilot = pilot;
   simulation::RunOutcome outcome;
   {
     output::OutputDir out(ctx.comm, request);
@@ -232,7 +255,9 @@ std::unique_ptr<Simulation> start_simulation(const Scene& s, const std::string& 
   if (!options.empty()) PCSIM_PETSC(PetscOptionsInsertString(nullptr, options.c_str()));
   auto sim = std::make_unique<Simulation>();
   sim->run_scene = scene::load_run_scene(s.composed);
-  sim->stepper = std::make_unique<simulation::Stepper>(context(quiet), sim->run_scene);
+  const auto ctx = context(quiet);
+  accuracy_pilot(s, ctx, sim->run_scene);  // a modal run's cut-off, as `pcsim run` chooses it
+  sim->stepper = std::make_unique<simulation::Stepper>(ctx, sim->run_scene);
   return sim;
 }
 
@@ -358,7 +383,8 @@ PYBIND11_MODULE(pcsim, m) {
           "yaml", [](const Scene& s) { return scene::to_yaml(s.composed); }, "the composed scene");
   m.def("run", &run, py::arg("scene"), py::arg("output") = "", py::arg("options") = "",
         py::arg("quiet") = true, py::arg("overwrite") = false,
-        "Runs the scene through the run pipeline (as `pcsim run`); returns a dict: time, "
+        "Runs the scene through the run pipeline (as `pcsim run`, a modal scene after its "
+        "accuracy pilot: -pcsim_accuracy_pilot); returns a dict: time, "
         "pantographs (name -> position, contact_force, contact_force_filtered, head_z), "
         "support_z, dropper_force (when the scene records them), en50318, assessment, facts, "
         "complete, "

@@ -1,7 +1,8 @@
 #!/bin/bash
 # The Python API (docs/python.md) on 1 and 2 ranks against `pcsim run` on the
 # same scene (tests/python/python_api_check.py says what is checked), the
-# step-wise interface (tests/python/stepping_check.py), and the
+# step-wise interface (tests/python/stepping_check.py), the accuracy pilot
+# of a modal scene (tests/python/pilot_api_check.py), and the
 # worked study of docs/python.md, executed as written.
 set -euo pipefail
 : "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:=/usr/bin/python3}"
@@ -20,6 +21,15 @@ for np in 1 2; do
     "$PCSIM_SOURCE_DIR" "ref-$np/summary.json"
   "$mpirun" -n $np "$PCSIM_PYTHON" -m mpi4py "$PCSIM_SOURCE_DIR/tests/python/stepping_check.py" \
     "$PCSIM_SOURCE_DIR"
+  # A modal scene: the API runs the accuracy pilot `pcsim run` runs.
+  for pilot in true false; do
+    "$mpirun" -n $np "$PCSIM_BIN" run "$scene" --set catenary.model=modal -o "modal-$pilot-$np" \
+      --no-report -pcsim_accuracy_pilot $pilot > "modal-$pilot-$np.log" 2>&1 ||
+      { cat "modal-$pilot-$np.log"; exit 1; }
+  done
+  # Without the suite's PETSC_OPTIONS (-pcsim_accuracy_pilot false): the API's default.
+  PETSC_OPTIONS='' "$mpirun" -n $np "$PCSIM_PYTHON" -m mpi4py "$PCSIM_SOURCE_DIR/tests/python/pilot_api_check.py" \
+    "$PCSIM_SOURCE_DIR" "modal-true-$np" "modal-false-$np"
 done
 # docs/python.md's study (its first ```python block) and its step-wise
 # example (the second), run from the repository as written.
