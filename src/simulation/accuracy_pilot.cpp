@@ -40,6 +40,19 @@ void apply_stretch(const PilotStretch& s, scene::RunScene& run) {
   run.checkpoint_every = 0;
 }
 
+constexpr const char* kPilotCommand = "run (accuracy pilot)";
+
+// A leftover "<dir>.partial" of a pilot run (its manifest's command is a
+// pilot's): a pilot or its second process ended by a signal or killed. It is
+// pcsim's scratch, replaced; the folder's lock keeps a pilot that still runs
+// from losing it. Anything else is refused as OutputDir refuses it.
+output::OutputRequest::Leftover pilot_leftover(const std::string& partial, std::string&) {
+  std::ifstream in(partial + "/" + output::OutputDir::kManifestName);
+  const auto manifest = nlohmann::json::parse(in, nullptr, false);
+  const bool pilot = manifest.is_object() && manifest.value("command", "") == kPilotCommand;
+  return pilot ? output::OutputRequest::Leftover::replace : output::OutputRequest::Leftover::refuse;
+}
+
 // One pilot run, quietly, in a folder of the cache that is removed after.
 PilotFigures run_pilot(const Context& ctx, const SceneSource& source, const StudyVariant& variant,
                        const PilotStretch& stretch, double dt, double cutoff_hz,
@@ -49,10 +62,10 @@ PilotFigures run_pilot(const Context& ctx, const SceneSource& source, const Stud
   apply_stretch(stretch, run);
   run.dt = dt;
   if (cutoff_hz > 0) run.catenary.modal.max_frequency_hz = cutoff_hz;
-  output::OutputRequest request{
-      dir,         "command line",   "--cache",        "run (accuracy pilot)",
-      source.path, "accuracy pilot", source.provenance};
+  output::OutputRequest request{dir,         "command line",   "--cache",        kPilotCommand,
+                                source.path, "accuracy pilot", source.provenance};
   request.overwrite = true;  // the pilot's own folder of an earlier, killed pilot
+  request.leftover = pilot_leftover;
   output::OutputDir out(ctx.comm, request);
   RunRequest what;
   what.name = "accuracy-pilot";

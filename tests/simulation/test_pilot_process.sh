@@ -9,6 +9,8 @@
 #  - a second process that dies (-pcsim_debug_pilot_process_dies: a crash,
 #    the out-of-memory killer) is said in one warning, and the run goes on
 #    without the estimate (exit 0);
+#  - the folders of a pilot killed while its runs wrote are replaced by the
+#    scene's next pilot;
 #  - killed with its parent: no pcsim process is left;
 #  - another value than auto, true or false is an input error (exit 2,
 #    nothing made).
@@ -60,6 +62,32 @@ grep -q "^pcsim: warning: no accuracy pilot: the accuracy pilot's second process
 import json
 s = json.load(open('dies/summary.json'))
 assert s['accuracy_estimate'].get('pilot') is None, s['accuracy_estimate']"
+
+# A pilot killed while its runs wrote (a signal in the set-up, SIGKILL, a
+# crash) leaves their folders in the cache: "<cache>/accuracy-pilot-<key>.partial"
+# and, from its second process, "...-fe.partial", each with its manifest and
+# results. The same scene's next pilot uses the same folders: it replaces
+# them, as pcsim's own scratch (until 2026-12-05 every later run of the scene
+# stopped: "internal error: ... holds the results of an interrupted pcsim
+# run"), and leaves none. The leftovers are made here as a killed pilot left
+# them (the manifest a pilot run writes, a results file), under the key of a
+# first run of the scene, whose cached estimate is then removed.
+run --set catenary.model=modal --cache cache-left -o left-first > left-first.log 2>&1 ||
+  { cat left-first.log; fail "the first run of the leftover case"; }
+estimate=$(find cache-left -name 'accuracy-pilot-*.json')
+key=$(basename "$estimate" .json | sed 's/^accuracy-pilot-//' | cut -c1-12)
+rm "$estimate"
+for leftover in "cache-left/accuracy-pilot-$key.partial" "cache-left/accuracy-pilot-$key-fe.partial"; do
+  mkdir "$leftover"
+  printf '{"pcsim_result": 1, "command": "run (accuracy pilot)", "complete": false, "pid": 1}\n' \
+    > "$leftover/.pcsim-result"
+  printf 'partly written' > "$leftover/results.h5"
+done
+run --set catenary.model=modal --cache cache-left -o left-again > left-again.log 2>&1 ||
+  { cat left-again.log; fail "the run after a killed pilot"; }
+grep -q "pilot runs in" left-again.log || { cat left-again.log; fail "no pilot after the killed one"; }
+[ -z "$(find cache-left -name '*.partial')" ] || { ls -a cache-left; fail "pilot folders left"; }
+echo "a killed pilot's folders: replaced by the scene's next pilot, none left"
 
 # Killed with its parent: the second process ends too (PR_SET_PDEATHSIG).
 # (-pcsim_pilot_process true: on a machine of one CPU too.)
