@@ -3,6 +3,7 @@
 // line and prints.
 #include <petscsys.h>
 
+#include <fstream>
 #include <memory>
 
 #include "command.hpp"
@@ -281,6 +282,43 @@ nlohmann::json accuracy_pilot(const app::CommandContext& ctx, const scene::Input
   return nullptr;
 }
 
+// The accuracy pilot's estimate of the run a restart continues (its
+// summary.json in DIR; null if there is none): a restart runs no pilot.
+nlohmann::json checkpointed_pilot(const app::CommandContext& ctx, const std::string& dir) {
+  std::string text;
+  if (ctx.rank == 0) {
+    std::ifstream in(dir + "/summary.json");
+    const auto summary = nlohmann::json::parse(in, nullptr, false);
+    if (summary.is_object() && summary.contains("accuracy_estimate") &&
+        summary["accuracy_estimate"].contains("pilot"))
+      text = summary["accuracy_estimate"]["pilot"].dump();
+  }
+  text = broadcast_text(ctx.comm, text);
+  return text.empty() ? nlohmann::json() : nlohmann::json::parse(text);
+}
+
+// The run's accuracy pilot: its own, or a restart's checkpointed run's; null
+// for none (then the calibrated estimate, which the console says).
+nlohmann::json run_accuracy(const app::CommandContext& ctx, const scene::InputNode& scene,
+                            scene::RunScene& run, const simulation::RunRequest& request) {
+  const auto pilot = simulation::accuracy_pilot_choice();
+  if (request.restart) {
+    auto checkpointed = checkpointed_pilot(ctx, request.restart_dir);
+    if (!checkpointed.is_null())
+      app::print0(ctx,
+                  "  accuracy: the estimate of the checkpointed run's pilot (%s/summary.json)\n",
+                  request.restart_dir.c_str());
+    return checkpointed;
+  }
+  if (!request.stop_before_stepping && simulation::wants_accuracy_pilot(pilot, run))
+    return accuracy_pilot(ctx, scene, run);
+  if (pilot == simulation::PilotChoice::automatic && !request.stop_before_stepping)
+    app::print0(ctx,
+                "  accuracy: the calibrated estimate below; -pcsim_accuracy_pilot true "
+                "estimates this run's errors from pilot runs of its scene (docs/fidelity.md)\n");
+  return {};
+}
+
 int run_dynamic(const app::CommandContext& ctx) {
   app::RunInputs run_inputs = app::read_run_inputs(ctx);  // every input checked: exit 2 before work
   const scene::InputNode& scene = run_inputs.scene;
@@ -294,6 +332,9 @@ int run_dynamic(const app::CommandContext& ctx) {
   const auto restart = load_restart(ctx, run_inputs, output, request.inputs);
   request.restart = restart.get();
   request.restart_dir = app::restart_dir(ctx);
+  // The cut-off the checkpointed run had: its pilot's, which a restart does not run again.
+  if (restart && restart->modal_cutoff_hz > 0)
+    run.catenary.modal.max_frequency_hz = restart->modal_cutoff_hz;
   PetscBool help = PETSC_FALSE;
   PCSIM_PETSC(PetscOptionsHasHelp(nullptr, &help));
   request.stop_before_stepping = help == PETSC_TRUE;
@@ -303,14 +344,7 @@ int run_dynamic(const app::CommandContext& ctx) {
   app::print_warnings(ctx, run.warnings);
   simulation::RunOutcome outcome;
   try {
-    const auto pilot = simulation::accuracy_pilot_choice();
-    if (!request.stop_before_stepping && !request.restart &&
-        simulation::wants_accuracy_pilot(pilot, run))
-      request.accuracy_pilot = accuracy_pilot(ctx, scene, run);
-    else if (pilot == simulation::PilotChoice::automatic && !request.stop_before_stepping)
-      app::print0(ctx,
-                  "  accuracy: the calibrated estimate below; -pcsim_accuracy_pilot true "
-                  "estimates this run's errors from pilot runs of its scene (docs/fidelity.md)\n");
+    request.accuracy_pilot = run_accuracy(ctx, scene, run, request);
     outcome = simulation::run(ctx, run, request, out);
   } catch (...) {
     keep_partial_if_not_written(ctx, out, std::current_exception());

@@ -111,6 +111,8 @@ RunSession::Options session_options(const scene::RunScene& run, const output::Ou
   options.energy = run.energy;
   options.checkpoint_file = out.file(output::kCheckpointName);
   options.inputs = request.inputs;
+  if (run.catenary.fidelity == catenary::CatenaryFidelity::modal)
+    options.modal_cutoff_hz = run.catenary.modal.max_frequency_hz;
   return options;
 }
 

@@ -78,6 +78,7 @@ nlohmann::json scalars_json(const RunCheckpoint& c) {
           {"wall_time_s", c.progress.wall_time_s},
           {"path", c.path},
           {"ranks", c.ranks},
+          {"modal_cutoff_hz", c.modal_cutoff_hz},
           {"inputs", inputs_json(c.inputs)}};
 }
 
@@ -103,6 +104,7 @@ void from_scalars_json(const nlohmann::json& j, RunCheckpoint& c) {
   c.path = j.at("path");
   c.ranks = j.at("ranks");
   c.inputs = inputs_from(j.at("inputs"));
+  c.modal_cutoff_hz = j.value("modal_cutoff_hz", 0.0);  // absent before it was kept
 }
 
 output::CheckpointData to_data(const RunCheckpoint& c) {

@@ -441,6 +441,7 @@ void RunSession::write_checkpoint() {
   c.path = path_;
   c.ranks = ctx_.size;
   c.inputs = options_.inputs;
+  c.modal_cutoff_hz = options_.modal_cutoff_hz;
   write_run_checkpoint(ctx_, options_.checkpoint_file, c);
   last_checkpoint_ = c.state.step;
 }

@@ -67,6 +67,10 @@ struct RunCheckpoint {
   std::string path;  // Jacobian path: "cheap" or "full"
   int ranks = 1;
   std::vector<InputFile> inputs;
+  // The modal level's cut-off the run had (its accuracy pilot may have raised
+  // it from the scene's default): a restart takes it. 0: an FE level, or a
+  // checkpoint from before it was kept.
+  double modal_cutoff_hz = 0;
 };
 
 // Writes 'file' on rank 0 (atomically); collective, the outcome agreed.

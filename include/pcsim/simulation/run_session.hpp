@@ -59,6 +59,7 @@ class RunSession {
     bool energy = false;              // E(t) and the powers every step (output.energy)
     std::string checkpoint_file;      // in the partial output folder
     std::vector<InputFile> inputs;    // fingerprint stored in checkpoints
+    double modal_cutoff_hz = 0;       // stored in checkpoints (0: an FE level)
     MovingWindow* window = nullptr;   // scene key 'window': shifts after steps, line records
     RunObserver* observer = nullptr;  // sees every record
   };
