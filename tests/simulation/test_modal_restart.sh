@@ -11,11 +11,11 @@
 # uninterrupted run's bit for bit (one rank: the same arithmetic), the same
 # pilot estimate in summary.json.
 set -euo pipefail
-: "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:=/usr/bin/python3}"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-cd "$tmp"
 fail() { echo "FAIL: $*"; exit 1; }
+: "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:=/usr/bin/python3}"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
 # The suite's PETSC_OPTIONS switch the pilot off; the command line wins.
 run() {
   "$PCSIM_BIN" run "$PCSIM_SOURCE_DIR/tests/contact/data/three-span-lumped.yaml" \
