@@ -187,6 +187,8 @@ std::string damage(const RunCheckpoint& c) {
   if (s.has_alpha_term && (s.alpha_term.size() != s.U.size() || !finite(s.alpha_term)))
     return "its HHT alpha-term is not finite or not of the state's length";
   if (!finite(s.head_offsets)) return "its pantograph head offsets are not finite";
+  if (!std::isfinite(c.modal_cutoff_hz) || c.modal_cutoff_hz < 0)
+    return "its modal cut-off 'modal_cutoff_hz' is not a frequency";
   for (const auto& t : s.terms)
     if (!finite(t)) return "a term's saved state is not finite";
   return "";

@@ -11,7 +11,7 @@ scene=$PCSIM_SOURCE_DIR/tests/contact/data/three-span-lumped.yaml
 "$PCSIM_BIN" run "$scene" -o "$tmp/first" --no-report -ts_max_steps 50 > "$tmp/first.log" 2>&1 ||
   { cat "$tmp/first.log"; exit 1; }
 [ -f "$tmp/first/checkpoint.h5" ] || { echo "no checkpoint written"; exit 1; }
-for what in t-nan step-negative U-nan dt-zero reference-inf not-hdf5; do
+for what in t-nan step-negative U-nan dt-zero reference-inf cutoff-inf not-hdf5; do
   cp -r "$tmp/first" "$tmp/$what"
   "$PCSIM_PYTHON" - "$tmp/$what/checkpoint.h5" "$what" <<'PY'
 import sys
@@ -28,6 +28,8 @@ with h5py.File(path, "r+") as f:
         f.attrs["step"] = -3.0
     elif what == "dt-zero":
         f.attrs["time_step"] = 0.0
+    elif what == "cutoff-inf":  # the modal cut-off a restart takes
+        f.attrs["modal_cutoff_hz"] = np.inf
     elif what == "U-nan":
         u = f["state/U"][:]
         u[3] = np.nan
