@@ -3,7 +3,6 @@
 // line and prints.
 #include <petscsys.h>
 
-#include <fstream>
 #include <memory>
 
 #include "command.hpp"
@@ -287,8 +286,7 @@ nlohmann::json accuracy_pilot(const app::CommandContext& ctx, const scene::Input
 nlohmann::json checkpointed_pilot(const app::CommandContext& ctx, const std::string& dir) {
   std::string text;
   if (ctx.rank == 0) {
-    std::ifstream in(dir + "/summary.json");
-    const auto summary = nlohmann::json::parse(in, nullptr, false);
+    const auto summary = simulation::checkpointed_summary(dir);
     if (summary.is_object() && summary.contains("accuracy_estimate") &&
         summary["accuracy_estimate"].contains("pilot"))
       text = summary["accuracy_estimate"]["pilot"].dump();

@@ -202,16 +202,24 @@ std::string overrides_text(const std::vector<std::string>& overrides) {
   return text;
 }
 
+}  // namespace
+
+nlohmann::json checkpointed_summary(const std::string& dir) {
+  std::ifstream in(dir + "/summary.json");
+  auto summary = nlohmann::json::parse(in, nullptr, false);
+  return summary.is_discarded() ? nlohmann::json() : summary;
+}
+
+namespace {
+
 // Where a scene that differs may come from: the --set overrides of the
 // checkpointed run (provenance.overrides of DIR's summary.json) against this
 // command's; "" if that summary cannot be read.
 std::string overrides_hint(const std::string& dir, const std::vector<std::string>& overrides) {
   std::vector<std::string> were;
   try {
-    std::ifstream in(dir + "/summary.json");
-    if (!in) return "";
     were =
-        nlohmann::json::parse(in).at("provenance").at("overrides").get<std::vector<std::string>>();
+        checkpointed_summary(dir).at("provenance").at("overrides").get<std::vector<std::string>>();
   } catch (const std::exception&) {
     return "";
   }

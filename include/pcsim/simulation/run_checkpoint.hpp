@@ -3,6 +3,7 @@
 // the fingerprint of the input files, and the checks a restart makes.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -86,6 +87,10 @@ void write_run_checkpoint(const Context& ctx, const std::string& file,
 RunCheckpoint load_run_checkpoint(const Context& ctx, const std::string& dir,
                                   const std::vector<InputFile>& inputs,
                                   const std::vector<std::string>& overrides);
+
+// The summary.json of the run in folder 'dir' (a restart's checkpointed run),
+// read where it is called; null if it is missing or not JSON.
+nlohmann::json checkpointed_summary(const std::string& dir);
 
 // Refuses (InputError on --restart) a new result folder that is the restart
 // folder or its partial folder: a restart reads DIR and writes a new result.
