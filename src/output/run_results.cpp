@@ -93,7 +93,7 @@ PantographStatistics pantograph_results(hid_t file, const RunSettings& s,
   const auto x = h5::read(file, g + "/position");
   const auto force = h5::read(file, g + "/contact_force");
   const auto filtered = filter_uniformly_sampled(time, force, s.cutoff_hz);
-  h5::write(file, g + "/contact_force_filtered", filtered, {filtered.size()}, "N",
+  h5::write(file, g + "/" + kContactForceFiltered, filtered, {filtered.size()}, "N",
             "contact force, zero-phase low-pass filtered (analysis cutoff)");
   PantographStatistics st;
   st.name = s.pantograph_names[p];
@@ -103,9 +103,9 @@ PantographStatistics pantograph_results(hid_t file, const RunSettings& s,
     st.force = force_statistics(x, filtered, force, s.analysis_from_x, s.analysis_to_x);
   const bool cross_wind = p < s.cross_wind.size() && s.cross_wind[p].on;
   if (cross_wind) {
-    h5::write(file, g + "/cross_wind_force", {s.cross_wind[p].force_n}, {1}, "N",
+    h5::write(file, g + "/" + kCrossWindForce, {s.cross_wind[p].force_n}, {1}, "N",
               "the mean cross-wind's lateral force on the pantograph (towards +y)");
-    h5::write(file, g + "/head_lateral_offset", {s.cross_wind[p].offset_m}, {1}, "m",
+    h5::write(file, g + "/" + kHeadLateralOffset, {s.cross_wind[p].offset_m}, {1}, "m",
               "the head's quasi-static lateral deflection under that force (towards +y)");
   }
   if (st.complete && h5::exists(file, g + "/wire_lateral")) {

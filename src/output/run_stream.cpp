@@ -277,10 +277,14 @@ void RunStream::reopen(const std::string& path, std::size_t records, std::size_t
     for (std::size_t k = snapshots; h5::exists(file_, snapshot_view(name, k)); ++k)
       H5Ldelete(file_, snapshot_view(name, k).c_str(), H5P_DEFAULT);
   written_ = records;
-  // What the end of the earlier run added.
+  // What the end of the earlier run added beside each pantograph's series
+  // (until 2026-12-06 the cross wind's: a restart of a windy run stopped at its end).
   for (auto& c : columns_) {
-    const std::string filtered = c->path + "_filtered";
-    if (h5::exists(file_, filtered)) H5Ldelete(file_, filtered.c_str(), H5P_DEFAULT);
+    const std::string group = c->path.substr(0, c->path.rfind('/'));
+    for (const char* name : {kContactForceFiltered, kCrossWindForce, kHeadLateralOffset}) {
+      const std::string added = group + "/" + name;
+      if (h5::exists(file_, added)) H5Ldelete(file_, added.c_str(), H5P_DEFAULT);
+    }
   }
 }
 
