@@ -240,13 +240,21 @@ std::unique_ptr<simulation::RunCheckpoint> load_restart(
   const scene::RunScene& run = inputs_read.run;
   const std::string dir = app::restart_dir(ctx);
   if (dir.empty()) return nullptr;
-  if (run.window)
-    throw InputError("command line", "--restart",
-                     "a run with a moving window (scene key 'window', or the modal level's "
-                     "window on a long line: catenary.modal.method) cannot be restarted");
   simulation::check_restart_target(dir, request.dir);
   auto checkpoint = std::make_unique<simulation::RunCheckpoint>(
       simulation::load_run_checkpoint(ctx, dir, inputs, ctx.overrides));
+  if ((checkpoint->window_shifts >= 0) != static_cast<bool>(run.window))
+    throw InputError("command line", "--restart",
+                     "the checkpoint in '" + dir + "' is of a run " +
+                         (run.window ? "without" : "with") + " a moving window; this run has " +
+                         (run.window ? "one" : "none") +
+                         " (scene key 'window', or the modal level's window on a long line: "
+                         "catenary.modal.method)");
+  if (run.window && checkpoint->window_shifts > run.window->max_shifts())
+    throw InputError("command line", "--restart",
+                     "the checkpoint in '" + dir + "' is of a moving window shifted " +
+                         std::to_string(checkpoint->window_shifts) + " times; this run's shifts " +
+                         std::to_string(run.window->max_shifts()) + " times at most");
   check_restart_stop(inputs_read.numerics, dir, *checkpoint);
   return checkpoint;
 }

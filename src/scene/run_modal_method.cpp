@@ -35,9 +35,9 @@ std::string window_misfit(const InputNode& scene, const RunScene& run, const Run
   if (reach.lead_end > reach.end_limit) return "the run ends too near the line's end";
   if (scene.has("output")) {
     const InputNode o = scene["output"];
-    if (o.get_int("snapshot_every", 0) > 0 || o.get_int("checkpoint_every", 0) > 0 ||
-        o.get_bool("energy", false) || o.get_bool("dropper_forces", false))
-      return "an output needs the whole line (snapshots, checkpoints, energy or dropper forces)";
+    if (o.get_int("snapshot_every", 0) > 0 || o.get_bool("energy", false) ||
+        o.get_bool("dropper_forces", false))
+      return "an output needs the whole line (snapshots, energy or dropper forces)";
   }
   return "";
 }

@@ -77,10 +77,8 @@ void fit_train(const InputNode& w, RunScene& run, const scene::MeshSizeCheck& si
 void check_outputs(const InputNode& scene) {
   if (!scene.has("output")) return;
   const InputNode o = scene["output"];
-  const char* per_line[] = {"snapshot_every", "checkpoint_every"};
-  for (const char* key : per_line)
-    if (o.get_int(key, 0) > 0)
-      o.fail_key(key, "not available with a moving window (its state is the window's)");
+  if (o.get_int("snapshot_every", 0) > 0)
+    o.fail_key("snapshot_every", "not available with a moving window (its state is the window's)");
   if (o.get_bool("energy", false))
     o.fail_key("energy", "not available with a moving window (energy leaves through its ends)");
   if (o.get_bool("dropper_forces", false))

@@ -29,7 +29,7 @@ MovingWindow::MovingWindow(const scene::RunWindow& window, assembly::CoupledSyst
   const auto& pantographs = system.pantographs();
   for (std::size_t i = 1; i < pantographs.size(); ++i)
     if (pantographs[i].run.start_x > pantographs[lead_].run.start_x) lead_ = i;
-  max_shifts_ = (window.line_spans - window.spans()) / 2;
+  max_shifts_ = window.max_shifts();
   window_supports_ = static_cast<int>(mesh.support_x.size());
   for (int node : mesh.support_nodes)
     window_static_z_.push_back(fe_ ? fe_->static_node_values()[catenary::kNodeDofs * node + 2]
@@ -115,10 +115,27 @@ void MovingWindow::shift(solvers::DynamicSolver& solver) {
       shift_modal(s);
   }
   solver.replace_state(s.U, s.V, s.A);
-  for (auto& pantograph : system_.pantographs()) pantograph.run.start_x -= 2.0 * span_length_;
-  ++shifts_;
-  set_pins();                                 // J0 is rebuilt at the next step (replace_state)
-  for (const auto& term : system_.terms()) {  // the line's turbulence over the window
+  moved(1);  // J0 is rebuilt at the next step (replace_state)
+}
+
+// A restart's window: the checkpointed run's shifts (their count checked
+// when the checkpoint was read), its state already the window's after them
+// (RunCheckpoint::window_shifts).
+void MovingWindow::resume(int shifts) {
+  if (shifts < 0 || shifts > max_shifts_) throw SolverError("moving window: no such shift count");
+  moved(shifts);
+}
+
+// What follows the window's count shifts of two spans: the pantographs' contact
+// points (one subtraction a shift: the same bits as a run that shifted), the
+// pins at the line's ends, the line's turbulence over the window.
+void MovingWindow::moved(int count) {
+  for (int k = 0; k < count; ++k)
+    for (auto& pantograph : system_.pantographs()) pantograph.run.start_x -= 2.0 * span_length_;
+  shifts_ += count;
+  set_pins();
+  if (count == 0) return;
+  for (const auto& term : system_.terms()) {
     if (auto* wind = dynamic_cast<assembly::WindTurbulence*>(term.get())) wind->follow(offset());
     if (auto* wind = dynamic_cast<assembly::ModalWindTurbulence*>(term.get()))
       wind->follow(offset());

@@ -334,6 +334,7 @@ RunOutcome run(const Context& ctx, scene::RunScene& scene, const RunRequest& req
   PCSIM_PETSC(VecDestroy(&V0));
   if (request.restart) {
     warn_if_start_differs(ctx, *system, request.restart->state);
+    if (window) window->resume(request.restart->window_shifts);  // its pins before J0
     solver.restore_state(request.restart->state);
     print0(ctx, "  restarted from %s at t = %.4f s, step %ld\n", request.restart_dir.c_str(),
            request.restart->state.t, request.restart->state.step);

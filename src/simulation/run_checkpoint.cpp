@@ -79,6 +79,7 @@ nlohmann::json scalars_json(const RunCheckpoint& c) {
           {"path", c.path},
           {"ranks", c.ranks},
           {"modal_cutoff_hz", c.modal_cutoff_hz},
+          {"window_shifts", c.window_shifts},
           {"inputs", inputs_json(c.inputs)}};
 }
 
@@ -105,6 +106,7 @@ void from_scalars_json(const nlohmann::json& j, RunCheckpoint& c) {
   c.ranks = j.at("ranks");
   c.inputs = inputs_from(j.at("inputs"));
   c.modal_cutoff_hz = j.value("modal_cutoff_hz", 0.0);  // absent before it was kept
+  c.window_shifts = j.value("window_shifts", -1);       // absent before windows restarted
 }
 
 output::CheckpointData to_data(const RunCheckpoint& c) {
@@ -143,6 +145,12 @@ RunCheckpoint from_data(output::CheckpointData& d) {
   for (const char* key : {"step", "accepted_since_cut", "records", "snapshots", "newton_iterations",
                           "rejected_steps", "ranks"})
     j[key] = static_cast<long>(d.numbers.at(key));
+  if (d.numbers.count("window_shifts")) {  // not a whole number: damaged (below)
+    const double shifts = d.numbers.at("window_shifts");
+    j["window_shifts"] = std::isfinite(shifts) && shifts == std::floor(shifts) && shifts < 1e9
+                             ? static_cast<long>(shifts)
+                             : -2L;
+  }
   j["inputs"] = nlohmann::json::parse(d.texts.at("inputs"));
   j["head_offsets"] = d.arrays.at("/pantographs/head_offset");
   j["terms"] = nlohmann::json::array();
@@ -189,6 +197,7 @@ std::string damage(const RunCheckpoint& c) {
   if (!finite(s.head_offsets)) return "its pantograph head offsets are not finite";
   if (!std::isfinite(c.modal_cutoff_hz) || c.modal_cutoff_hz < 0)
     return "its modal cut-off 'modal_cutoff_hz' is not a frequency";
+  if (c.window_shifts < -1) return "its moving window's 'window_shifts' is not a count of shifts";
   for (const auto& t : s.terms)
     if (!finite(t)) return "a term's saved state is not finite";
   return "";

@@ -442,6 +442,7 @@ void RunSession::write_checkpoint() {
   c.ranks = ctx_.size;
   c.inputs = options_.inputs;
   c.modal_cutoff_hz = options_.modal_cutoff_hz;
+  c.window_shifts = options_.window ? options_.window->shifts() : -1;
   write_run_checkpoint(ctx_, options_.checkpoint_file, c);
   last_checkpoint_ = c.state.step;
 }
@@ -449,8 +450,7 @@ void RunSession::write_checkpoint() {
 bool RunSession::checkpoint_last_step() {
   TSType type;
   PCSIM_PETSC(TSGetType(solver_.ts(), &type));
-  // A moving window's state is not the line's: no restart from it.
-  if (std::string(type) != solvers::kTSHHT || options_.window) return false;
+  if (std::string(type) != solvers::kTSHHT) return false;
   if (last_checkpoint_ != steps_) write_checkpoint();
   return true;
 }

@@ -53,6 +53,8 @@ struct RunWindow {
   int spans() const { return spans_behind + train_spans + 2 + spans_ahead; }
   // Spans from the window's rear to where the leading pantograph shifts it.
   int shift_spans() const { return spans_behind + train_spans + 2; }
+  // Shifts of two spans before the window's front reaches the line's end.
+  int max_shifts() const { return (line_spans - spans()) / 2; }
   int line_spans = 0;                 // the line's (the scene's design's)
   double span_length = 0;             // [m]
   catenary::ParametricDesign design;  // the line's design, read

@@ -40,6 +40,10 @@ class MovingWindow {
   // The layout's supports: the line's, with static heights of the window's.
   void set_line_supports(output::RunLayout& layout) const;
   int shifts() const { return shifts_; }
+  // A restart (before the checkpoint's state is restored; collective): the
+  // window as the checkpointed run left it after 'shifts' shifts (0 to
+  // RunWindow::max_shifts()).
+  void resume(int shifts);
   // A core to spare (collective choice, RunSession): a large modal shift's
   // pass over P on two threads, the second started a few milliseconds ahead
   // of the shift. Each row is one thread's: the state is the same bits.
@@ -48,6 +52,7 @@ class MovingWindow {
 
  private:
   void shift(solvers::DynamicSolver& solver);
+  void moved(int count);
   void fe_source(const assembly::FECatenary& fe);
   void shift_fe(solvers::DynamicState& s) const;
   void shift_modal(solvers::DynamicState& s) const;

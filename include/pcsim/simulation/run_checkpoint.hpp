@@ -72,6 +72,9 @@ struct RunCheckpoint {
   // it from the scene's default): a restart takes it. 0: an FE level, or a
   // checkpoint from before it was kept.
   double modal_cutoff_hz = 0;
+  // The moving window's shifts at the checkpoint (the state is the window's
+  // after them); -1: a run without a window.
+  int window_shifts = -1;
 };
 
 // Writes 'file' on rank 0 (atomically); collective, the outcome agreed.
