@@ -39,6 +39,13 @@ void hht_recompute_initial_acceleration(TS ts) {
 
 void hht_get_acceleration(TS ts, Vec A) {
   HHTData* th = checked_data(ts);
+  // One set for the next step (a moving window's shift, a restart) is the
+  // state's; until 2026-12-06 the last step's was returned, so a checkpoint at
+  // a window's shift held the acceleration from before it.
+  if (th->user_accel_pending) {
+    PCSIM_PETSC(VecCopy(th->A_user, A));
+    return;
+  }
   if (!th->accel_valid) throw SolverError("hht_get_acceleration: no step taken yet");
   PCSIM_PETSC(VecCopy(th->A1, A));
 }

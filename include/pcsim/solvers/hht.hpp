@@ -70,7 +70,8 @@ void hht_set_initial_acceleration(TS ts, Vec A0);
 // Makes the next step solve F(t, U, V, A) = 0 for its starting acceleration (call it after
 // changing the solution from outside without changing the time; a new time does it anyway).
 void hht_recompute_initial_acceleration(TS ts);
-// Copies the acceleration belonging to the current solution (after at least one step).
+// Copies the acceleration belonging to the current solution: the one set with
+// hht_set_initial_acceleration for the next step, else the last step's.
 void hht_get_acceleration(TS ts, Vec A);
 // Sets α (γ and β follow); α must lie in [0, 1/3].
 void hht_set_alpha(TS ts, PetscReal alpha);
