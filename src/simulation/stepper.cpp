@@ -9,6 +9,7 @@
 #include "pcsim/assembly/prescribed_forces.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/simulation/catenary_setup.hpp"
+#include "pcsim/simulation/moving_window.hpp"
 #include "pcsim/simulation/run_session.hpp"
 #include "pcsim/simulation/run_setup.hpp"
 #include "pcsim/simulation/static_start.hpp"
@@ -37,22 +38,41 @@ struct Stepper::Impl {
   assembly::PrescribedHeadForces* forces = nullptr;
   std::vector<std::shared_ptr<HeldBase>> bases;  // per pantograph
   std::unique_ptr<solvers::DynamicSolver> solver;
+  std::unique_ptr<MovingWindow> window;  // the scene's 'window' (or the modal level's)
   Impl(const Context& c, scene::RunScene& s) : ctx(c), scene(s) {}
 };
 
+namespace {
+// After every accepted step: the moving window shifts when due (collective).
+PetscErrorCode window_after_step(TS ts) {
+  PCSIM_CALLBACK_BEGIN
+  Stepper::Impl* s;
+  PCSIM_PETSC(TSGetApplicationContext(ts, &s));
+  PetscReal t;
+  PCSIM_PETSC(TSGetTime(ts, &t));
+  s->window->after_step(t, *s->solver);
+  PCSIM_CALLBACK_END
+}
+}  // namespace
+
 Stepper::Stepper(const Context& ctx, scene::RunScene& scene)
     : impl_(std::make_unique<Impl>(ctx, scene)) {
-  if (scene.window)
-    throw InputError("scene", "window", "a run advanced step by step cannot have a moving window");
   auto& s = *impl_;
   s.prepared = set_up_run(ctx, scene, nullptr);
   s.system = s.prepared.system.get();
+  if (scene.window)  // as simulation::run: the line's supports for the records
+    s.window =
+        std::make_unique<MovingWindow>(*scene.window, *s.system, scene.catenary.mesh.support_x);
   s.forces = static_cast<assembly::PrescribedHeadForces*>(&s.system->add_load_term(
       std::make_unique<assembly::PrescribedHeadForces>(s.system->pantographs())));
   Vec U0 = s.system->create_vector(), V0 = s.system->create_vector();
   initial_state(*s.system, U0, V0);
   s.solver = make_run_solver(scene, *s.system);
   s.solver->set_initial_state(U0, V0);
+  if (s.window) {
+    PCSIM_PETSC(TSSetApplicationContext(s.solver->ts(), impl_.get()));
+    PCSIM_PETSC(TSSetPostStep(s.solver->ts(), window_after_step));
+  }
   PCSIM_PETSC(VecDestroy(&U0));
   PCSIM_PETSC(VecDestroy(&V0));
   read();
@@ -87,7 +107,8 @@ void Stepper::read() {
   PCSIM_PETSC(TSGetStepNumber(ts, &step));
   PCSIM_PETSC(TSGetTime(ts, &t));
   PCSIM_PETSC(TSGetSolution(ts, &U));
-  const auto record = impl_->system->record(t, U);  // complete on rank 0
+  auto record = impl_->system->record(t, U);          // complete on rank 0
+  if (impl_->window) impl_->window->to_line(record);  // the line's stations
   const int n = static_cast<int>(impl_->system->pantographs().size());
   std::vector<double> values(3 * n, 0.0);
   if (impl_->ctx.rank == 0)

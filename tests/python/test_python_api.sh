@@ -1,7 +1,8 @@
 #!/bin/bash
 # The Python API (docs/python.md) on 1 and 2 ranks against `pcsim run` on the
 # same scene (tests/python/python_api_check.py says what is checked), the
-# step-wise interface (tests/python/stepping_check.py), the accuracy pilot
+# step-wise interface (tests/python/stepping_check.py; with a moving window,
+# tests/python/window_stepping_check.py), the accuracy pilot
 # of a modal scene (tests/python/pilot_api_check.py), and the
 # worked study of docs/python.md, executed as written.
 set -euo pipefail
@@ -21,6 +22,8 @@ for np in 1 2; do
     "$PCSIM_SOURCE_DIR" "ref-$np/summary.json"
   "$mpirun" -n $np "$PCSIM_PYTHON" -m mpi4py "$PCSIM_SOURCE_DIR/tests/python/stepping_check.py" \
     "$PCSIM_SOURCE_DIR"
+  "$mpirun" -n $np "$PCSIM_PYTHON" -m mpi4py \
+    "$PCSIM_SOURCE_DIR/tests/python/window_stepping_check.py" "$PCSIM_SOURCE_DIR"
   # A modal scene: the API runs the accuracy pilot `pcsim run` runs.
   for pilot in true false; do
     "$mpirun" -n $np "$PCSIM_BIN" run "$scene" --set catenary.model=modal -o "modal-$pilot-$np" \

@@ -14,8 +14,10 @@
 //               [m/s^2] from the next step on, held until set again (as the
 //               scene's base_motion, which it replaces; a lumped model reads
 //               z and v, a DSA-380 model's moving frame needs a too).
-// Nothing is written: the caller keeps what it needs. No moving window and
-// no restart. Collective over ctx.comm; failures are exceptions on every rank.
+// Nothing is written: the caller keeps what it needs. A moving window (the
+// scene's, or the modal level's on a long line) shifts as in a run, and the
+// contact stations are the line's. No restart. Collective over ctx.comm;
+// failures are exceptions on every rank.
 #pragma once
 
 #include <array>
@@ -40,8 +42,7 @@ struct StepReading {
 
 class Stepper {
  public:
-  // InputError for a scene with a moving window; the set-up's console lines
-  // unless ctx.quiet.
+  // The set-up's console lines unless ctx.quiet.
   Stepper(const Context& ctx, scene::RunScene& scene);
   ~Stepper();
   Stepper(const Stepper&) = delete;
@@ -59,8 +60,10 @@ class Stepper {
   void set_base_motion(std::size_t pantograph, double displacement_m, double velocity_m_s,
                        double acceleration_m_s2 = std::numeric_limits<double>::quiet_NaN());
 
+ public:
+  struct Impl;  // stepper.cpp (public for its TS callback)
+
  private:
-  struct Impl;
   std::unique_ptr<Impl> impl_;
   StepReading reading_;
   void read();  // reading_ at the TS's state (collective)
