@@ -34,12 +34,12 @@
 #     the earlier run's end datasets).
 set -euo pipefail
 : "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:=/usr/bin/python3}"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
 small=$PCSIM_SOURCE_DIR/tests/assembly/data/small-window-linear.yaml
 train=$PCSIM_SOURCE_DIR/tests/contact/data/window-two-pantographs.yaml
 equal="$PCSIM_PYTHON $PCSIM_SOURCE_DIR/tests/contact/compare_runs.py"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
 problem() { echo "FAIL: $*" >&2; exit 1; }
 pcsim_run() {  # pcsim_run LOG ARGS...: exits 0 or the test fails with the log
   local log=$1 code=0
