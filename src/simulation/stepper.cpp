@@ -40,20 +40,19 @@ struct Stepper::Impl {
   std::unique_ptr<solvers::DynamicSolver> solver;
   std::unique_ptr<MovingWindow> window;  // the scene's 'window' (or the modal level's)
   Impl(const Context& c, scene::RunScene& s) : ctx(c), scene(s) {}
+  // After every accepted step: the moving window shifts when due (collective).
+  static PetscErrorCode window_after_step(TS ts);
 };
 
-namespace {
-// After every accepted step: the moving window shifts when due (collective).
-PetscErrorCode window_after_step(TS ts) {
+PetscErrorCode Stepper::Impl::window_after_step(TS ts) {
   PCSIM_CALLBACK_BEGIN
-  Stepper::Impl* s;
+  Impl* s;
   PCSIM_PETSC(TSGetApplicationContext(ts, &s));
   PetscReal t;
   PCSIM_PETSC(TSGetTime(ts, &t));
   s->window->after_step(t, *s->solver);
   PCSIM_CALLBACK_END
 }
-}  // namespace
 
 Stepper::Stepper(const Context& ctx, scene::RunScene& scene)
     : impl_(std::make_unique<Impl>(ctx, scene)) {
@@ -71,7 +70,7 @@ Stepper::Stepper(const Context& ctx, scene::RunScene& scene)
   s.solver->set_initial_state(U0, V0);
   if (s.window) {
     PCSIM_PETSC(TSSetApplicationContext(s.solver->ts(), impl_.get()));
-    PCSIM_PETSC(TSSetPostStep(s.solver->ts(), window_after_step));
+    PCSIM_PETSC(TSSetPostStep(s.solver->ts(), Impl::window_after_step));
   }
   PCSIM_PETSC(VecDestroy(&U0));
   PCSIM_PETSC(VecDestroy(&V0));

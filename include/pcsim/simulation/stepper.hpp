@@ -60,10 +60,8 @@ class Stepper {
   void set_base_motion(std::size_t pantograph, double displacement_m, double velocity_m_s,
                        double acceleration_m_s2 = std::numeric_limits<double>::quiet_NaN());
 
- public:
-  struct Impl;  // stepper.cpp (public for its TS callback)
-
  private:
+  struct Impl;
   std::unique_ptr<Impl> impl_;
   StepReading reading_;
   void read();  // reading_ at the TS's state (collective)
