@@ -147,8 +147,9 @@ std::vector<FigureErrors> errors_from_json(const nlohmann::json& j) {
 }
 
 // Options that only observe a run (logs, monitors, viewers, help, the
-// pilot's own switch): they change no figure, so they stay out of the key
-// (a run with -log_view read the cache of the same run without it).
+// pilot's own switch) or stop it (RunStopsSetAside: not the pilot's): they
+// change no figure of the pilot, so they stay out of the key (a run with
+// -log_view or -ts_max_steps reads the cache of the same run without it).
 bool observing_option(const std::string& name) {
   const auto ends_with = [&](const std::string& tail) {
     return name.size() >= tail.size() &&
@@ -159,7 +160,7 @@ bool observing_option(const std::string& name) {
          starts_with("on_error") || name == "info" || name == "help" || name == "version" ||
          name == "memory_view" || name == "pcsim_accuracy_pilot" || name == "pcsim_pilot_process" ||
          ends_with("_view") || name.find("_monitor") != std::string::npos ||
-         ends_with("_converged_reason");
+         ends_with("_converged_reason") || run_stop_option(name);
 }
 
 // The options database without the observing options: "-name [value]" pairs,
@@ -446,7 +447,7 @@ PilotEstimate run_accuracy_pilot(const Context& ctx, const SceneSource& source,
   const double start = wall_clock_s();
   const PilotStretch stretch = pilot_stretch(run);
   check_pilot_without_jacobian_test();
-  check_pilot_not_cut_short(run, stretch);
+  const RunStopsSetAside run_stops;
   pilot.done = true;
   pilot.from_x = stretch.from_x;
   pilot.to_x = stretch.to_x;

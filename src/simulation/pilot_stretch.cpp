@@ -1,4 +1,5 @@
-// Where the accuracy pilot runs (accuracy_pilot.hpp, PilotStretch).
+// Where the accuracy pilot runs (accuracy_pilot.hpp, PilotStretch), and the
+// run's options it sets aside (RunStopsSetAside).
 #include <petscsys.h>
 
 #include <algorithm>
@@ -44,29 +45,31 @@ std::string pilot_stretch_note(const PilotStretch& s, const scene::RunScene& run
          std::to_string(run.analysis_to_span - run.analysis_from_span + 1) + " spans)";
 }
 
-void check_pilot_not_cut_short(const scene::RunScene& run, const PilotStretch& stretch) {
-  // RunScene::duration() of the scene apply_stretch makes.
-  const double duration = (stretch.end_x - run.pantographs.front().start_x) / run.speed;
-  const long steps = std::lround(std::ceil(duration / (run.dt / 2) - 1e-9));  // at dt/2
-  PetscInt max_steps = 0;
-  PetscReal max_time = 0;
-  PetscBool steps_given = PETSC_FALSE, time_given = PETSC_FALSE;
-  PCSIM_PETSC(PetscOptionsGetInt(nullptr, nullptr, "-ts_max_steps", &max_steps, &steps_given));
-  PCSIM_PETSC(PetscOptionsGetReal(nullptr, nullptr, "-ts_max_time", &max_time, &time_given));
-  char why[160] = "";
-  if (steps_given && max_steps < steps)
-    std::snprintf(why, sizeof why,
-                  "-ts_max_steps %ld stops its runs before their stretch "
-                  "(its run at dt/2 needs %ld steps)",
-                  static_cast<long>(max_steps), steps);
-  else if (time_given && max_time < duration)
-    std::snprintf(why, sizeof why,
-                  "-ts_max_time %g stops its runs before their stretch "
-                  "(they need %.3f s)",
-                  static_cast<double>(max_time), duration);
-  if (why[0])
-    throw SolverError(std::string("the accuracy pilot: ") + why +
-                      " (-pcsim_accuracy_pilot false skips it)");
+namespace {
+constexpr const char* kRunStops[] = {"-ts_max_steps", "-ts_max_time", "-pcsim_debug_signal_step",
+                                     "-pcsim_debug_signal_rank"};
+}  // namespace
+
+bool run_stop_option(const std::string& name) {
+  for (const char* stop : kRunStops)
+    if (name == stop + 1) return true;
+  return false;
+}
+
+RunStopsSetAside::RunStopsSetAside() {
+  for (const char* name : kRunStops) {
+    char value[256] = "";
+    PetscBool given = PETSC_FALSE;
+    PCSIM_PETSC(PetscOptionsGetString(nullptr, nullptr, name, value, sizeof value, &given));
+    if (!given) continue;
+    kept_.emplace_back(name, value);
+    PCSIM_PETSC(PetscOptionsClearValue(nullptr, name));
+  }
+}
+
+RunStopsSetAside::~RunStopsSetAside() {
+  for (const auto& [name, value] : kept_)
+    PetscOptionsSetValue(nullptr, name.c_str(), value.empty() ? nullptr : value.c_str());
 }
 
 void check_pilot_without_jacobian_test() {

@@ -23,6 +23,7 @@
 #include <array>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pcsim/scene/run_scene.hpp"
@@ -143,10 +144,26 @@ struct PilotStretch {
   bool spans_alike = true;  // the line's spans are identical: two stand for all
 };
 PilotStretch pilot_stretch(const scene::RunScene& run);
-// A SolverError, before any pilot run, if -ts_max_steps or -ts_max_time
-// (they bind the pilot's runs too) would stop a pilot run before it crosses
-// 'stretch' (the run goes on without the estimate, app/cmd_run.cpp).
-void check_pilot_not_cut_short(const scene::RunScene& run, const PilotStretch& stretch);
+// The run's own stop (-ts_max_steps, -ts_max_time) and its test signal
+// (-pcsim_debug_signal_step, -pcsim_debug_signal_rank), out of the options
+// database while the pilot runs (its second process, a fork, too) and back
+// after: the pilot's runs cross their stretch whatever the run's stop, and
+// a run made in parts (-ts_max_steps, then --restart) has the whole run's
+// cut-off. Until 2026-12-06 such a stop ran no pilot (a warning), and the
+// parts kept the scene's default cut-off.
+class RunStopsSetAside {
+ public:
+  RunStopsSetAside();
+  ~RunStopsSetAside();
+  RunStopsSetAside(const RunStopsSetAside&) = delete;
+  RunStopsSetAside& operator=(const RunStopsSetAside&) = delete;
+
+ private:
+  std::vector<std::pair<std::string, std::string>> kept_;  // option, value
+};
+// Whether option 'name' (without its '-') is one of those: not in the
+// pilot's cache key.
+bool run_stop_option(const std::string& name);
 // A SolverError, before any pilot run, under -snes_test_jacobian, -snes_fd
 // or -snes_fd_color: the options bind the pilot's runs too, and finite
 // differences in every Newton iteration of its linear FE runs (tens of
