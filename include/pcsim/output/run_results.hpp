@@ -19,13 +19,13 @@
 
 namespace pcsim::output {
 
-// What the writer needs to know of the run.
 // A pantograph's datasets that the end of a run adds beside its series (a
 // restart's copy of results.h5 drops them: RunStream).
 inline constexpr const char* kContactForceFiltered = "contact_force_filtered";
 inline constexpr const char* kCrossWindForce = "cross_wind_force";
 inline constexpr const char* kHeadLateralOffset = "head_lateral_offset";
 
+// What the writer needs to know of the run.
 struct RunSettings {
   std::string scene_name;
   double speed = 0;  // [m/s]
