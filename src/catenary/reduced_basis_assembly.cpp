@@ -252,9 +252,11 @@ ReducedBasis assemble(const ModalData& data, std::vector<double> shift_products,
   // The data's rows freed: given back before the shift is formed (in pcsim's
   // processes the C library keeps freed blocks; simulation/modal_basis_internal.hpp).
   if (release) malloc_trim(0);
-  if (!shift_products.empty() && shift_products.size() == vectors * vectors)
-    b.shift =
+  if (!shift_products.empty() && shift_products.size() == vectors * vectors) {
+    const auto P =
         shift_in_basis(std::move(shift_products), static_cast<long>(vectors), modes, keep, ritz);
+    b.shift.assign(P.begin(), P.end());  // rounded to nearest (reduced_basis.hpp)
+  }
   if (!mesh.contact_wire_list().empty()) {
     const Eigen::Map<const RowMatrix> rows(b.rows.data(), static_cast<long>(b.row_keys.size()),
                                            static_cast<long>(b.omega2.size()));

@@ -87,6 +87,12 @@ void H5File::write(const std::string& path, const std::vector<double>& data, std
   check(write_any(file_, path, data.data(), H5T_NATIVE_DOUBLE, rows, cols));
 }
 
+void H5File::write(const std::string& path, const std::vector<float>& data, std::size_t rows,
+                   std::size_t cols) {
+  ensure_parent_groups(path);
+  check(write_any(file_, path, data.data(), H5T_NATIVE_FLOAT, rows, cols));
+}
+
 void H5File::write_int(const std::string& path, const std::vector<long>& data, std::size_t rows,
                        std::size_t cols) {
   ensure_parent_groups(path);

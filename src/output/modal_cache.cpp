@@ -118,7 +118,9 @@ void add_mesh(KeyBuffer& key, const catenary::CatenaryMesh& mesh) {
   key.add_all(mesh.contact_wire_list());
 }
 
-// A dataset of doubles or longs, whatever its size; false if absent.
+// A dataset of doubles, floats or longs, whatever its size (HDF5 converts a
+// stored type to T: a shift stored in double by an earlier pcsim is read
+// rounded to float); false if absent.
 template <typename T>
 bool read_dataset(hid_t file, const char* path, std::vector<T>& out) {
   if (H5Lexists(file, path, H5P_DEFAULT) <= 0) return false;
@@ -127,7 +129,9 @@ bool read_dataset(hid_t file, const char* path, std::vector<T>& out) {
   const hid_t space = H5Dget_space(set);
   out.resize(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
   H5Sclose(space);
-  const hid_t type = std::is_same_v<T, long> ? H5T_NATIVE_LONG : H5T_NATIVE_DOUBLE;
+  const hid_t type = std::is_same_v<T, long>    ? H5T_NATIVE_LONG
+                     : std::is_same_v<T, float> ? H5T_NATIVE_FLOAT
+                                                : H5T_NATIVE_DOUBLE;
   const bool ok = out.empty() || H5Dread(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) >= 0;
   H5Dclose(set);
   return ok;
@@ -168,7 +172,8 @@ bool read_key(hid_t file, std::string& key) {
 }
 
 // Writes a row-major matrix (rows x cols) or nothing when empty.
-void write_matrix(H5File& h5, const char* path, const std::vector<double>& data, std::size_t rows) {
+template <typename T>
+void write_matrix(H5File& h5, const char* path, const std::vector<T>& data, std::size_t rows) {
   if (rows == 0 || data.empty()) return;
   h5.write(path, data, rows, data.size() / rows);
 }
@@ -228,10 +233,11 @@ bool read_basis_file(hid_t file, const std::string& key, catenary::ReducedBasis&
       !read_dataset(file, "/row_keys", b.row_keys) || !read_dataset(file, "/rows", b.rows) ||
       !read_dataset(file, "/column_blocks", b.column_blocks))  // none: a file of an older pcsim
     return false;
-  for (auto [path, v] :
-       {std::pair{"/contact_flexibility", &b.contact_flexibility}, std::pair{"/shift", &b.shift},
-        std::pair{"/wind_damping", &b.wind_damping}})
+  for (auto [path, v] : {std::pair{"/contact_flexibility", &b.contact_flexibility},
+                         std::pair{"/wind_damping", &b.wind_damping}})
     if (H5Lexists(file, path, H5P_DEFAULT) > 0 && !read_dataset(file, path, *v)) return false;
+  if (H5Lexists(file, "/shift", H5P_DEFAULT) > 0 && !read_dataset(file, "/shift", b.shift))
+    return false;
   b.eigenmodes = static_cast<int>(eigenmodes);
   b.dropped_modes = static_cast<int>(dropped);
   const std::size_t n = b.size();

@@ -43,8 +43,8 @@ void broadcast(catenary::ModalData& d, MPI_Comm comm) {
 }
 
 void broadcast(catenary::ReducedBasis& b, MPI_Comm comm) {
-  for (auto* v : {&b.omega2, &b.rows, &b.contact_flexibility, &b.shift, &b.wind_damping})
-    broadcast(*v, comm);
+  for (auto* v : {&b.omega2, &b.rows, &b.contact_flexibility, &b.wind_damping}) broadcast(*v, comm);
+  broadcast(b.shift, comm);
   broadcast(b.row_keys, comm);
   broadcast(b.column_blocks, comm);
   int counts[2] = {b.eigenmodes, b.dropped_modes};

@@ -6,11 +6,13 @@
 #    374 unknowns) equal the linearised FE window (small-window-linear.yaml)
 #    on the full Newton path over 1764 steps with two window shifts, the rear
 #    end pinned (the line's anchor) before the first: with a complete basis the
-#    shift eta' = P eta, P = B^T M S B, is the FE shift exactly, the end
-#    dashpots and pins are the FE ones. max |dFc| <= 1e-9 max Fc: measured
-#    2.4e-10 (before the first shift 7e-11), the floor of the Newton
-#    tolerance -snes_atol 1e-6 N as in test_modal_catenary.sh (a shift that
-#    moved the state by one node, or a missing dashpot, gives > 1e-3).
+#    shift eta' = P eta, P = B^T M S B, is the FE shift exactly up to P's
+#    rounding to single precision (catenary::ReducedBasis::shift), the end
+#    dashpots and pins are the FE ones. max |dFc| <= 1e-7 max Fc: measured
+#    2.9e-8 (2.4e-10 with P in double, the floor of the Newton tolerance
+#    -snes_atol 1e-6 N as in test_modal_catenary.sh; P's entries are
+#    rounded by up to 2^-24 = 6e-8 of themselves); a shift that moved the
+#    state by one node, or a missing dashpot, gives > 1e-3.
 # 2. -snes_test_jacobian on the truncated modal window (169 vectors, pins
 #    active, dashpots): the operator against PETSc's finite differences on
 #    the cheap path (J0 + rank-one terms of contact, pins, dashpots) and the
@@ -37,7 +39,7 @@
 #    computes only the modes above the last one, and the window's shift
 #    products of the new vectors only (simulation::ModalDataBuilder): the run
 #    equals one whose modes at the raised cut-off were computed at once, in a
-#    cache of its own, to 1e-9 of max Fc (measured 9.4e-13: the eigenvectors
+#    cache of its own, to 1e-9 of max Fc (measured 4.0e-12: the eigenvectors
 #    of other slicing intervals, equal to round-off; without the products of
 #    the new rows with the old columns the contact force reaches 6e9 N).
 set -euo pipefail
@@ -68,7 +70,7 @@ shifts = [json.load(open(d + "/summary.json"))["window_shifts"] for d in sys.arg
 assert shifts == [2, 2], shifts
 rel = np.max(np.abs(a - b)) / np.max(np.abs(a))
 print(f"every mode against FE in a window with {shifts[0]} shifts: max |dFc| / max Fc = {rel:.2e}")
-assert rel <= 1e-9, rel
+assert rel <= 1e-7, rel
 PY
 
 # 2. The Jacobian of the truncated modal window.

@@ -104,9 +104,11 @@ struct ReducedBasis {
   // at contact_wire_nodes() [m/N] (0 when not computed).
   std::vector<double> contact_flexibility;
   // A moving window's shift in the basis: eta' = P eta with P = B^T M S B
-  // (the M-projection of the shifted field), size() x size() row-major;
-  // empty without a window.
-  std::vector<double> shift;
+  // (the M-projection of the shifted field), size() x size() row-major,
+  // rounded to single precision (the pass over it is bound by memory: half
+  // the bytes; its rounding, 2^-24 of an entry, is far below what the
+  // projection on a truncated basis loses); empty without a window.
+  std::vector<float> shift;
   // The diagonal of the wires' aerodynamic damping in the basis, size() [1/s]:
   // the modes' phi_k^T C phi_k; 0 for the droppers' Ritz vectors (above the
   // cut-off, where it damps by less than rho Cd d V / (2 mu omega): 0.03 %

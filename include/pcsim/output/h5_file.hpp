@@ -43,6 +43,9 @@ class H5File {
   void write(const std::string& path, const std::vector<double>& data) {
     write(path, data, data.size(), 1);
   }
+  // The same in single precision (a dataset of 32-bit floats).
+  void write(const std::string& path, const std::vector<float>& data, std::size_t rows,
+             std::size_t cols = 1);
   void write_int(const std::string& path, const std::vector<long>& data, std::size_t rows,
                  std::size_t cols = 1);
   void write_int(const std::string& path, const std::vector<long>& data) {
