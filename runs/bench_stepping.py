@@ -41,7 +41,14 @@ def cached_setup(spans):
     code = (f"import time, pcsim; s = pcsim.Scene({SCENE!r}, {{'catenary.design.spans.count': "
             f"{spans}, 'catenary.model': 'modal'}}); t = time.perf_counter(); "
             f"pcsim.Simulation(s, options={OPTIONS!r}); print(time.perf_counter() - t)")
-    out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True)
+    # The child runs in the temporary folder: it finds pcsim where this
+    # process did (PYTHONPATH=build/python is relative to the repository).
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join(
+        [os.path.dirname(os.path.abspath(pcsim.__file__))] +
+        [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p])
+    out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True,
+                         env=env)
     return float(out.stdout.split()[-1])
 
 
