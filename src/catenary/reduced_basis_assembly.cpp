@@ -221,8 +221,7 @@ std::vector<double> shift_in_basis(std::vector<double> g, long total, long modes
   for (long i = 0; i < m; ++i)
     std::memmove(g.data() + i * c, g.data() + keep[i] * total, sizeof(double) * c);
   std::copy(bottom.data(), bottom.data() + bottom.size(), g.data() + m * c);
-  g.resize(static_cast<std::size_t>(c * c));
-  if (c < total) g.shrink_to_fit();  // data above the cut-off: the run keeps P only
+  g.resize(static_cast<std::size_t>(c * c));  // kept only until rounded to float (assemble)
   return g;
 }
 
