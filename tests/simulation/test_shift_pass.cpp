@@ -20,6 +20,7 @@ struct Case {
   long m;
   std::vector<float> P;
   std::vector<double> x[3];
+  const double* inputs[3];
   explicit Case(long size) : m(size), P(static_cast<std::size_t>(size * size)) {
     std::mt19937_64 random(static_cast<unsigned long>(size));
     std::uniform_real_distribution<double> entry(-1.0, 1.0);
@@ -28,12 +29,10 @@ struct Case {
       v.resize(static_cast<std::size_t>(size));
       for (auto& e : v) e = entry(random) * 1e-3;  // displacements of a mm
     }
+    for (int s = 0; s < 3; ++s) inputs[s] = x[s].data();
   }
-  const double* const* inputs() const {
-    static thread_local const double* in[3];
-    for (int s = 0; s < 3; ++s) in[s] = x[s].data();
-    return in;
-  }
+  Case(const Case&) = delete;  // inputs point into x
+  Case& operator=(const Case&) = delete;
 };
 
 using Outputs = std::vector<std::vector<double>>;
@@ -42,9 +41,9 @@ Outputs run(const Case& c, bool portable, long first, long last) {
   Outputs y(3, std::vector<double>(static_cast<std::size_t>(c.m), -7.0));
   double* const out[3] = {y[0].data(), y[1].data(), y[2].data()};
   if (portable)
-    shift_rows_portable(c.P.data(), c.m, c.inputs(), out, first, last);
+    shift_rows_portable(c.P.data(), c.m, c.inputs, out, first, last);
   else
-    shift_rows(c.P.data(), c.m, c.inputs(), out, first, last);
+    shift_rows(c.P.data(), c.m, c.inputs, out, first, last);
   return y;
 }
 
