@@ -252,11 +252,12 @@ PetscErrorCode RunSession::monitor(TS ts, PetscInt step, PetscReal t, Vec U, voi
     }
   }
   s.print_progress(step, t);
-  // A record's own exact anchor (ModalCatenary::dropper_forces) is not the next step's.
-  if (s.modal_) s.counted_.exact_dropper_anchors = s.modal_->exact_anchors();
   s.batch_beside_ = s.computing_job_.valid() &&
                     s.computing_job_.wait_for(std::chrono::seconds(0)) != std::future_status::ready;
   s.timing_.add_output(wall_clock_s() - start);
+  // What the record did (its own exact anchor, ModalCatenary::dropper_forces;
+  // its page faults and context switches) is not the next step's.
+  s.counted_ = s.counters_now();
   s.step_end_ = wall_clock_s();
   PCSIM_CALLBACK_END
 }
@@ -268,6 +269,7 @@ RunSession::StepCounters RunSession::counters_now() const {
   StepCounters c;
   c.reference_builds = solver_.reference_builds();
   c.involuntary_switches = usage.ru_nivcsw;
+  c.page_faults = usage.ru_minflt + usage.ru_majflt;
   if (options_.window) c.window_shifts = options_.window->shifts();
   if (const solvers::LowRankStepSolver* low_rank = solver_.low_rank()) {
     c.rank_one_set_changes = low_rank->active_set_changes();
@@ -285,6 +287,7 @@ void RunSession::time_step(long step, double start, long newton_iterations) {
   events.newton_iterations = newton_iterations;
   events.reference_builds = now.reference_builds - counted_.reference_builds;
   events.involuntary_switches = now.involuntary_switches - counted_.involuntary_switches;
+  events.page_faults = now.page_faults - counted_.page_faults;
   events.window_shift = now.window_shifts != counted_.window_shifts;
   events.output_flush_before = flushed_;
   events.records_batch_beside = batch_beside_;

@@ -46,6 +46,7 @@ const std::array<const char*, StepTiming::kCauses> StepTiming::kCauseKeys = {
     "window_shift",
     "after_output_flush",
     "records_batch_beside",
+    "page_faults",
     "context_switch",
     "none"};
 
@@ -58,6 +59,7 @@ std::array<bool, StepTiming::kCauses> StepTiming::cause_flags(const StepEvents& 
                                      e.window_shift,
                                      e.output_flush_before,
                                      e.records_batch_beside,
+                                     e.page_faults > 0,
                                      e.involuntary_switches > 0,
                                      false};
   flags[kCauses - 1] = std::none_of(flags.begin(), flags.end(), [](bool f) { return f; });
@@ -83,6 +85,8 @@ std::string StepTiming::cause_text(std::size_t c, const StepEvents& e) {
     case 6:
       return "records' batch computing beside it";
     case 7:
+      return std::to_string(e.page_faults) + " page fault(s)";
+    case 8:
       return std::to_string(e.involuntary_switches) + " involuntary context switch(es)";
     default:
       return "none found";

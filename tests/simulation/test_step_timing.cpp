@@ -46,14 +46,16 @@ TEST(StepTiming, SlowestStepsNameTheirCauses) {
   busy.newton_iterations = 3;
   busy.reference_builds = 1;
   busy.involuntary_switches = 2;
+  busy.page_faults = 3;
   timing.add(2, 4e-3, anchor);
   timing.add(3, 3e-3, switched);
   timing.add(4, 2e-3, moving_contact);
   timing.add(5, 5e-3, busy);
   const auto slowest = timing.json()["slowest"];
   ASSERT_EQ(slowest.size(), 4u);
-  EXPECT_EQ(slowest[0]["causes"],
-            "J0 refactored, 3 Newton iterations, 2 involuntary context switch(es)");
+  EXPECT_EQ(
+      slowest[0]["causes"],
+      "J0 refactored, 3 Newton iterations, 3 page fault(s), 2 involuntary context switch(es)");
   EXPECT_EQ(slowest[1]["causes"], "dropper check's exact anchor");
   EXPECT_EQ(slowest[2]["causes"],
             "contacts or slack droppers changed (4 rank-one terms, 3 capacitance rows formed), "
@@ -63,7 +65,8 @@ TEST(StepTiming, SlowestStepsNameTheirCauses) {
   EXPECT_DOUBLE_EQ(timing.json()["max_without_context_switch_ms"].get<double>(), 4.0);
   // Each step counts under each of its causes; the first step is apart.
   const auto by_cause = timing.json()["by_cause"];
-  EXPECT_EQ(by_cause.size(), 7u);
+  EXPECT_EQ(by_cause.size(), 8u);
+  EXPECT_DOUBLE_EQ(by_cause["page_faults"]["mean_ms"].get<double>(), 5.0);
   EXPECT_EQ(by_cause["none"]["steps"], 1);
   EXPECT_DOUBLE_EQ(by_cause["none"]["mean_ms"].get<double>(), 2.0);
   EXPECT_EQ(by_cause["dropper_exact_anchor"]["steps"], 1);

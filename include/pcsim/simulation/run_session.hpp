@@ -132,7 +132,7 @@ class RunSession {
   double step_end_ = -1;         // when the previous step's record ended [s]
   // Counts whose changes over a step are its events (StepEvents).
   struct StepCounters {
-    long reference_builds = 0, involuntary_switches = 0, window_shifts = 0;
+    long reference_builds = 0, involuntary_switches = 0, page_faults = 0, window_shifts = 0;
     long rank_one_set_changes = 0, capacitance_rows = 0;  // the cheap path's
     long exact_dropper_anchors = 0;                       // a reduced catenary's
   };

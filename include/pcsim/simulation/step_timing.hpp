@@ -21,6 +21,7 @@ struct StepEvents {
   long newton_iterations = 0;
   long reference_builds = 0;          // J0 assembled and factored (cheap path)
   long involuntary_switches = 0;      // the OS took the stepping thread's core away (getrusage)
+  long page_faults = 0;               // memory touched for the first time (getrusage)
   bool window_shift = false;          // a moving window moved
   bool output_flush_before = false;   // the previous record flushed results.h5
   bool records_batch_beside = false;  // a records' batch was computing on its own thread
@@ -58,7 +59,7 @@ class StepTiming {
     StepEvents events;
   };
   static std::string causes(const StepEvents& e);
-  static constexpr std::size_t kCauses = 9;
+  static constexpr std::size_t kCauses = 10;
   static const std::array<const char*, kCauses> kCauseKeys;
   static std::array<bool, kCauses> cause_flags(const StepEvents& e);
   static std::string cause_text(std::size_t c, const StepEvents& e);
