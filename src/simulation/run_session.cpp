@@ -296,7 +296,6 @@ void RunSession::time_step(long step, double start, long newton_iterations) {
   if (const solvers::LowRankStepSolver* low_rank = solver_.low_rank())
     events.rank_one_terms = static_cast<long>(low_rank->active_terms());
   events.exact_dropper_anchors = now.exact_dropper_anchors - counted_.exact_dropper_anchors;
-  counted_ = now;
   if (step_end_ > 0) timing_.add(step, start - step_end_, events);
 }
 
