@@ -43,7 +43,8 @@ std::size_t row_of(const std::vector<long>& keys, long key) {
   return static_cast<std::size_t>(it - keys.begin());
 }
 
-// Solves with K_T (one Cholesky factorisation, solvers::use_line_cholesky).
+// Solves with K_T (one Cholesky factorisation on every rank,
+// solvers::use_line_cholesky_on_every_rank).
 class StiffnessSolver {
  public:
   explicit StiffnessSolver(Mat K) {
@@ -53,7 +54,7 @@ class StiffnessSolver {
     PCSIM_PETSC(KSPSetOperators(ksp_, K, K));
     PCSIM_PETSC(KSPSetType(ksp_, KSPPREONLY));
     PCSIM_PETSC(KSPGetPC(ksp_, &pc));
-    solvers::use_line_cholesky(pc);
+    solvers::use_line_cholesky_on_every_rank(pc);
     PCSIM_PETSC(KSPSetFromOptions(ksp_));
     PCSIM_PETSC(KSPSetUp(ksp_));
   }

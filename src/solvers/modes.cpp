@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numeric>
+#include <vector>
 
 #include "pcsim/core/blas_kernels.hpp"
 #include "pcsim/core/error.hpp"
@@ -71,11 +72,51 @@ bool use_line_cholesky(PC pc) {
   return false;
 }
 
+void use_line_cholesky_on_every_rank(PC pc) {
+  PetscMPIInt ranks;
+  PCSIM_PETSC(MPI_Comm_size(PetscObjectComm(reinterpret_cast<PetscObject>(pc)), &ranks));
+  if (ranks == 1) {
+    use_line_cholesky(pc);
+    return;
+  }
+  PCSIM_PETSC(PCSetType(pc, PCREDUNDANT));
+  PCSIM_PETSC(PCRedundantSetNumber(pc, ranks));  // one rank per copy
+  KSP inner;
+  PC inner_pc;
+  PCSIM_PETSC(PCRedundantGetKSP(pc, &inner));  // (options are read after)
+  PCSIM_PETSC(KSPSetType(inner, KSPPREONLY));
+  PCSIM_PETSC(KSPGetPC(inner, &inner_pc));
+  use_line_cholesky(inner_pc);
+}
+
+namespace {
+
+// How many parts of the interval the ranks slice apart: the option
+// <prefix>eps_krylovschur_partitions, else one a rank.
+PetscInt slicing_partitions(EPS eps) {
+  PetscMPIInt ranks;
+  PCSIM_PETSC(MPI_Comm_size(PetscObjectComm(reinterpret_cast<PetscObject>(eps)), &ranks));
+  const char* prefix = nullptr;
+  PCSIM_PETSC(EPSGetOptionsPrefix(eps, &prefix));
+  PetscInt parts = ranks;
+  PetscBool set = PETSC_FALSE;
+  PCSIM_PETSC(PetscOptionsGetInt(nullptr, prefix, "-eps_krylovschur_partitions", &parts, &set));
+  return set ? parts : ranks;  // (SLEPc checks a value that was set: 1 to the ranks)
+}
+
+}  // namespace
+
 // Spectrum slicing (spectrum.hpp). The basis vectors contiguous (SLEPc's
 // default: the orthogonalisation in the BLAS's dgemv) with an optimised BLAS,
 // as separate Vecs with the reference BLAS, whose dgemv PETSc's multi-vector
 // kernels outrun ~3x (docs/benchmarks.md, "What the first modal run costs").
-// Options (-st_pc_factor_mat_solver_type, -bv_type) still win.
+// On several ranks each rank slices a part of the interval on its own
+// (SLEPc's multi-communicator slicing) with the one-rank factorisation:
+// parts of equal width in omega, which hold about as many of a line's modes
+// (uniform in omega, as a string's). With MUMPS's parallel factors the
+// slicing took ~10 times as long on 2 ranks as on one (docs/benchmarks.md,
+// "The modes on several ranks"). Options (-st_pc_factor_mat_solver_type,
+// -bv_type, -eps_krylovschur_partitions) still win.
 void configure_slicing(EPS eps, double lambda_lo, double lambda_hi) {
   ST st;
   KSP ksp;
@@ -90,7 +131,21 @@ void configure_slicing(EPS eps, double lambda_lo, double lambda_hi) {
   PCSIM_PETSC(EPSSetInterval(eps, lambda_lo, lambda_hi));
   PCSIM_PETSC(EPSSetWhichEigenpairs(eps, EPS_ALL));
   PCSIM_PETSC(EPSSetTolerances(eps, 1e-12, 200));
-  PCSIM_PETSC(EPSKrylovSchurGetKSP(eps, &ksp));  // the slicing solver's KSP, with operators
+  const PetscInt parts = slicing_partitions(eps);
+  if (parts > 1) {
+    PCSIM_PETSC(EPSKrylovSchurSetPartitions(eps, parts));
+    const double omega_lo = std::sqrt(std::max(lambda_lo, 0.0));
+    const double omega_hi = std::sqrt(lambda_hi);
+    std::vector<PetscReal> ends(static_cast<std::size_t>(parts) + 1);
+    for (PetscInt i = 0; i <= parts; ++i) {
+      const double omega = omega_lo + (omega_hi - omega_lo) * static_cast<double>(i) / parts;
+      ends[i] = omega * omega;
+    }
+    ends.front() = lambda_lo;  // (exactly the interval's ends)
+    ends.back() = lambda_hi;
+    PCSIM_PETSC(EPSKrylovSchurSetSubintervals(eps, ends.data()));
+  }
+  PCSIM_PETSC(EPSKrylovSchurGetKSP(eps, &ksp));  // a part's solver, on its ranks
   PCSIM_PETSC(KSPSetType(ksp, KSPPREONLY));
   PCSIM_PETSC(KSPGetPC(ksp, &pc));
   if (!use_line_cholesky(pc)) return;

@@ -24,10 +24,21 @@ void assemble_stiffness_and_mass(assembly::CatenarySystem& system, Vec x, Mat K,
 // parallel MUMPS. Returns true for MUMPS. Options still win.
 bool use_line_cholesky(PC pc);
 
+// For many solves with a line's matrix of moderate size (the modal basis's
+// static shapes, a solve per dropper and contact-wire node): on several
+// ranks every rank factorises the whole matrix as use_line_cholesky does on
+// one (PCREDUNDANT; each solve gathers its right-hand side), where MUMPS's
+// parallel solves took ~10 ms each on 2 ranks (docs/benchmarks.md, "The
+// modes on several ranks"); on one rank use_line_cholesky. No inertia.
+// Options still win.
+void use_line_cholesky_on_every_rank(PC pc);
+
 // Krylov-Schur spectrum slicing of the GHEP K x = lambda M x over
 // [lambda_lo, lambda_hi], shift-and-invert with use_line_cholesky (its
-// inertia), the basis as separate vectors; tolerance 1e-12. The caller sets
-// the operators and calls EPSSetFromOptions.
+// inertia), the basis as separate vectors; tolerance 1e-12. On several
+// ranks each rank slices a part of the interval with a factorisation of its
+// own (SLEPc's partitions, one a rank). The caller sets the operators and
+// calls EPSSetFromOptions.
 void configure_slicing(EPS eps, double lambda_lo, double lambda_hi);
 
 // The converged eigenvalues of a solved EPS (real parts) and their indices
