@@ -17,6 +17,7 @@
 #include "pcsim/simulation/modal_basis.hpp"
 #include "pcsim/simulation/setup_memory.hpp"
 #include "pcsim/simulation/statics.hpp"
+#include "pcsim/solvers/spectrum.hpp"
 
 namespace pcsim::simulation {
 
@@ -114,10 +115,15 @@ std::unique_ptr<KeptBuilder> new_builder(const Context& ctx, const scene::RunSce
 }
 
 // The mode count's note on parts computed apart (modal_basis_internal.hpp,
-// component_groups).
-std::string parts_text(int parts) {
-  if (parts <= 1) return "";
-  return "; " + std::to_string(parts) + " parts that share no element, each on its own";
+// component_groups) and, on several ranks, on the slices of the frequency
+// interval computed at once (solvers/spectrum.hpp, configure_slicing).
+std::string parts_text(int parts, MPI_Comm comm) {
+  std::string text;
+  if (parts > 1)
+    text = "; " + std::to_string(parts) + " parts that share no element, each on its own";
+  const int slices = solvers::slicing_parts(comm, "modal_");
+  if (slices > 1) text += "; the interval in " + std::to_string(slices) + " slices at once";
+  return text;
 }
 
 catenary::ModalData compute_data(const Context& ctx, const scene::RunScene& run,
@@ -139,10 +145,10 @@ catenary::ModalData compute_data(const Context& ctx, const scene::RunScene& run,
     const double elapsed = now - start;
     if (done == 0 && extends)
       print0(ctx, "  modes: %ld between %.1f and %.1f Hz to compute (the %ld below, kept%s)\n",
-             total, from_hz, cutoff_hz, kept_modes, parts_text(parts).c_str());
+             total, from_hz, cutoff_hz, kept_modes, parts_text(parts, ctx.comm).c_str());
     else if (done == 0)
       print0(ctx, "  modes: %ld below %.1f Hz to compute (dropper shapes and factor: %.1f s%s)\n",
-             total, cutoff_hz, elapsed, parts_text(parts).c_str());
+             total, cutoff_hz, elapsed, parts_text(parts, ctx.comm).c_str());
     else
       print0(ctx, "  modes: %ld of %ld (%.0f%%), %.1f s, ETA %.0f s\n", done, total,
              100.0 * done / std::max(total, 1L), elapsed,

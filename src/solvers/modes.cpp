@@ -89,22 +89,14 @@ void use_line_cholesky_on_every_rank(PC pc) {
   use_line_cholesky(inner_pc);
 }
 
-namespace {
-
-// How many parts of the interval the ranks slice apart: the option
-// <prefix>eps_krylovschur_partitions, else one a rank.
-PetscInt slicing_partitions(EPS eps) {
+int slicing_parts(MPI_Comm comm, const char* prefix) {
   PetscMPIInt ranks;
-  PCSIM_PETSC(MPI_Comm_size(PetscObjectComm(reinterpret_cast<PetscObject>(eps)), &ranks));
-  const char* prefix = nullptr;
-  PCSIM_PETSC(EPSGetOptionsPrefix(eps, &prefix));
+  PCSIM_PETSC(MPI_Comm_size(comm, &ranks));
   PetscInt parts = ranks;
   PetscBool set = PETSC_FALSE;
   PCSIM_PETSC(PetscOptionsGetInt(nullptr, prefix, "-eps_krylovschur_partitions", &parts, &set));
-  return set ? parts : ranks;  // (SLEPc checks a value that was set: 1 to the ranks)
+  return set ? static_cast<int>(parts) : ranks;  // (SLEPc checks a value set: 1 to the ranks)
 }
-
-}  // namespace
 
 // Spectrum slicing (spectrum.hpp). The basis vectors contiguous (SLEPc's
 // default: the orthogonalisation in the BLAS's dgemv) with an optimised BLAS,
@@ -131,7 +123,9 @@ void configure_slicing(EPS eps, double lambda_lo, double lambda_hi) {
   PCSIM_PETSC(EPSSetInterval(eps, lambda_lo, lambda_hi));
   PCSIM_PETSC(EPSSetWhichEigenpairs(eps, EPS_ALL));
   PCSIM_PETSC(EPSSetTolerances(eps, 1e-12, 200));
-  const PetscInt parts = slicing_partitions(eps);
+  const char* prefix = nullptr;
+  PCSIM_PETSC(EPSGetOptionsPrefix(eps, &prefix));
+  const PetscInt parts = slicing_parts(PetscObjectComm(reinterpret_cast<PetscObject>(eps)), prefix);
   if (parts > 1) {
     PCSIM_PETSC(EPSKrylovSchurSetPartitions(eps, parts));
     const double omega_lo = std::sqrt(std::max(lambda_lo, 0.0));

@@ -7,8 +7,8 @@
 #  - the console says the line was computed in 3 parts;
 #  - the same eigenvalues (the caches' omega2) and the same figures of every
 #    pantograph (summary.json);
-#  - the parts on 2 ranks (MUMPS's factors, each part's submatrices spread
-#    over both ranks) give the figures of 1 rank;
+#  - the parts on 2 ranks (each rank slicing a part of the frequency interval
+#    for each part, and saying so) give the figures of 1 rank;
 #  - the parts' basis is in 3 column blocks, the whole line's in 1, and the
 #    droppers' forces of both agree;
 #  - with records in batches the bounded dropper check renews its base by
@@ -40,6 +40,12 @@ cache_of=whole run whole-batches -- -pcsim_debug_modes_whole -pcsim_record_batch
 cache_of=parts run every-batches -- -pcsim_record_batches true --set catenary.modal.droppers=all
 grep -q "3 parts that share no element, each on its own" "$tmp/parts.log" ||
   { echo "FAIL: no word of the 3 parts"; cat "$tmp/parts.log"; exit 1; }
+# On 2 ranks each rank slices a part of the frequency interval (configure_slicing).
+grep -q "3 parts that share no element, each on its own; the interval in 2 slices at once" \
+  "$tmp/parts-np2.log" || { echo "FAIL: no word of the 2 slices"; cat "$tmp/parts-np2.log"; exit 1; }
+if grep -q "slices at once" "$tmp/parts.log"; then
+  echo "FAIL: the 1-rank run says it sliced parts of the interval at once"; exit 1
+fi
 if grep -q "parts that share no element" "$tmp/whole.log"; then
   echo "FAIL: the whole line's run says it computed parts"; exit 1
 fi

@@ -41,6 +41,10 @@ void use_line_cholesky_on_every_rank(PC pc);
 // calls EPSSetFromOptions.
 void configure_slicing(EPS eps, double lambda_lo, double lambda_hi);
 
+// The parts of the interval configure_slicing slices at once on comm: the
+// option <prefix>eps_krylovschur_partitions, else one a rank.
+int slicing_parts(MPI_Comm comm, const char* prefix);
+
 // The converged eigenvalues of a solved EPS (real parts) and their indices
 // in ascending order of eigenvalue.
 struct ConvergedSpectrum {
