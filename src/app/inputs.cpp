@@ -9,6 +9,7 @@
 #include "pcsim/simulation/run.hpp"
 #include "pcsim/simulation/run_checkpoint.hpp"
 #include "pcsim/solvers/dynamics.hpp"
+#include "pcsim/solvers/spectrum.hpp"
 
 namespace pcsim::app {
 
@@ -60,6 +61,7 @@ ModesInputs read_modes_inputs(const CommandContext& ctx) {
   const scene::InputNode scene = ctx.load_scene();
   // The count decides the eigensolver's memory: read it first.
   const auto request = solvers::modes_request_from_options(ctx.comm, scene_modes(scene));
+  solvers::slicing_parts(ctx.comm, nullptr);  // -eps_krylovschur_partitions, before any work
   ModesInputs in{{scene, ctx.scene_name(scene), {}, {}}, request};
   const int modes = request.max_frequency_hz > 0 ? 20 : request.count;
   in.statics.catenary = scene::load_catenary_scene(
@@ -75,6 +77,7 @@ RunInputs read_run_inputs(const CommandContext& ctx, const scene::InputNode& sce
   RunInputs in{scene, "", {}, {}, false, {}};
   in.name = ctx.scene_name(in.scene);
   in.numerics = solvers::read_time_integration_options(ctx.comm);
+  solvers::slicing_parts(ctx.comm, "modal_");  // -modal_eps_krylovschur_partitions, before any work
   scene::RunSceneOptions options;
   options.size_check = memory_check(ctx, simulation::MemoryUse::run, in.memory);
   options.command_line_dt = in.numerics.dt;

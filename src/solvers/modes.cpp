@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numeric>
+#include <string>
 #include <vector>
 
 #include "pcsim/core/blas_kernels.hpp"
@@ -92,10 +93,19 @@ void use_line_cholesky_on_every_rank(PC pc) {
 int slicing_parts(MPI_Comm comm, const char* prefix) {
   PetscMPIInt ranks;
   PCSIM_PETSC(MPI_Comm_size(comm, &ranks));
-  PetscInt parts = ranks;
+  char text[64] = "";
   PetscBool set = PETSC_FALSE;
-  PCSIM_PETSC(PetscOptionsGetInt(nullptr, prefix, "-eps_krylovschur_partitions", &parts, &set));
-  return set ? static_cast<int>(parts) : ranks;  // (SLEPc checks a value set: 1 to the ranks)
+  PCSIM_PETSC(PetscOptionsGetString(nullptr, prefix, "-eps_krylovschur_partitions", text,
+                                    sizeof text, &set));
+  if (!set) return ranks;
+  const std::string option =
+      std::string("-") + (prefix ? prefix : "") + "eps_krylovschur_partitions";
+  const long parts = parse_int_option(option, text);
+  if (parts < 1 || parts > ranks)
+    throw InputError("command line", option,
+                     "must be a number of slices from 1 to the number of ranks, " +
+                         std::to_string(ranks) + " (got " + text + ")");
+  return static_cast<int>(parts);
 }
 
 // Spectrum slicing (spectrum.hpp). The basis vectors contiguous (SLEPc's

@@ -106,6 +106,11 @@ expect long-wire 2 "long-wire-design.yaml|key 'wires[0].nodes.elements'|too larg
 expect eps-nev-0 2 "command line|key '-eps_nev'|from 1" yes modes modes-scene.yaml -eps_nev 0
 expect eps-nev-abc 2 "command line|key '-eps_nev'|integer" yes modes modes-scene.yaml -eps_nev abc
 expect modes-fmax 2 "command line|key '-modes_fmax'|>= 0" yes modes modes-scene.yaml -modes_fmax -1
+# The slices of the modes' interval computed at once: 1 to the ranks (solvers/spectrum.hpp).
+expect modes-slices 2 "command line|key '-eps_krylovschur_partitions'|integer" yes \
+  modes modes-scene.yaml -modes_fmax 3 -eps_krylovschur_partitions abc
+expect modal-slices 2 "command line|key '-modal_eps_krylovschur_partitions'|from 1 to the number of ranks, 1 (got 2)" yes \
+  run good-run.yaml --set catenary.model=modal -modal_eps_krylovschur_partitions 2
 expect check-as 2 "command line|key '--as'|static, modes, run or pantograph" no check good-static.yaml --as nonsense
 expect check-as-run 2 "good-static.yaml|key 'simulation'|missing" no check good-static.yaml --as run
 
@@ -334,6 +339,8 @@ expect2 nyquist "key 'analysis.cutoff_hz'" run cutoff.yaml
 expect2 memory "key 'spans.count'" static huge.yaml
 expect2 numerics "key '-ts_dt'" run good-run.yaml -ts_dt abc
 expect2 modes "key '-eps_nev'" modes modes-scene.yaml -eps_nev 0
+expect2 slices "key '-modal_eps_krylovschur_partitions'" run good-run.yaml --set catenary.model=modal \
+  -modal_eps_krylovschur_partitions 3
 expect2 geometry "key 'pantographs[0].working_height'" run dsa-high.yaml
 expect2 output "key '-o'" static good-static.yaml -o foreign
 expect2 design-dir "key 'catenary.design'" static design-dir.yaml

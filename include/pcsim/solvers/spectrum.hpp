@@ -42,7 +42,9 @@ void use_line_cholesky_on_every_rank(PC pc);
 void configure_slicing(EPS eps, double lambda_lo, double lambda_hi);
 
 // The parts of the interval configure_slicing slices at once on comm: the
-// option <prefix>eps_krylovschur_partitions, else one a rank.
+// option <prefix>eps_krylovschur_partitions, else one a rank. A value that
+// is not an integer from 1 to the ranks is InputError naming the option
+// (the commands check it before any work: app/inputs.cpp).
 int slicing_parts(MPI_Comm comm, const char* prefix);
 
 // The converged eigenvalues of a solved EPS (real parts) and their indices
