@@ -184,9 +184,12 @@ void configure_eps(EPS eps, int nev, double max_frequency_hz) {
   PCSIM_PETSC(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT));
   PCSIM_PETSC(EPSSetTarget(eps, 0.0));
   PCSIM_PETSC(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE));
-  // As the slicing: on one rank PETSc's Cholesky (RCM), whose solves took
-  // 4.9 ms against MUMPS's 154 ms on 100 spans (docs/catenary.md, benchmark).
-  use_line_cholesky(pc);
+  // On one rank PETSc's Cholesky (RCM), whose solves took 4.9 ms against
+  // MUMPS's 154 ms on 100 spans (docs/catenary.md, benchmark); on several a
+  // copy of it on every rank: 20 modes of 1000 spans took 12.7 s on 2 ranks
+  // so, 151.6 s with MUMPS's factors over both (docs/benchmarks.md, "The
+  // modes on several ranks"). No inertia needed here.
+  use_line_cholesky_on_every_rank(pc);
   PCSIM_PETSC(EPSSetTolerances(eps, 1e-12, 200));
   PCSIM_PETSC(EPSSetFromOptions(eps));
 }

@@ -24,12 +24,13 @@ void assemble_stiffness_and_mass(assembly::CatenarySystem& system, Vec x, Mat K,
 // parallel MUMPS. Returns true for MUMPS. Options still win.
 bool use_line_cholesky(PC pc);
 
-// For many solves with a line's matrix of moderate size (the modal basis's
-// static shapes, a solve per dropper and contact-wire node): on several
-// ranks every rank factorises the whole matrix as use_line_cholesky does on
-// one (PCREDUNDANT; each solve gathers its right-hand side), where MUMPS's
-// parallel solves took ~10 ms each on 2 ranks (docs/benchmarks.md, "The
-// modes on several ranks"); on one rank use_line_cholesky. No inertia.
+// For many solves with a line's matrix (the modal basis's static shapes, a
+// solve per dropper and contact-wire node; shift-and-invert for a count of
+// modes): on several ranks every rank factorises the whole matrix as
+// use_line_cholesky does on one (PCREDUNDANT; each solve gathers its
+// right-hand side), where MUMPS's parallel solves took ~10 ms each on 2
+// ranks (docs/benchmarks.md, "The modes on several ranks"); each rank then
+// holds what one rank would. On one rank use_line_cholesky. No inertia.
 // Options still win.
 void use_line_cholesky_on_every_rank(PC pc);
 
