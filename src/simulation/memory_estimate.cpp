@@ -47,10 +47,12 @@ MemoryEstimate estimate_memory(const catenary::MeshSize& size, MemoryUse use, in
   const double factor = kBytesPerFactorEntry * e.factor_entries;
   double shared = 2 * kBytesPerMatrixEntry * nnz + factor + 8 * kWorkVectors * dofs;
   if (use == MemoryUse::modes) {
-    // K, M, MUMPS's copy and factors of K, the Krylov basis (ncv = max(2 nev,
-    // nev + 15) vectors), and the mode shapes every rank keeps (3 per node).
+    // K, M, the Krylov basis (ncv = max(2 nev, nev + 15) vectors), the mode
+    // shapes every rank keeps (3 per node); the factor and the factored
+    // copy of K, on several ranks whole on every rank.
     const double ncv = std::max(2.0 * modes, modes + 15.0);
-    shared = 3 * kBytesPerMatrixEntry * nnz + factor + 8 * (ncv + kWorkVectors) * dofs;
+    shared = 2 * kBytesPerMatrixEntry * nnz + 8 * (ncv + kWorkVectors) * dofs;
+    e.replicated_bytes = kBytesPerMatrixEntry * nnz + factor;
     e.bytes_per_rank += 24.0 * modes * size.nodes;
   } else if (use == MemoryUse::run) {
     // Step matrix, M, K0 and C, the step matrix's factors (twice MUMPS's fill:

@@ -6,11 +6,12 @@
 // node values, MUMPS's analysis on the host); shared over the ranks, the
 // sparse matrices (12 bytes per nonzero each) and the LU/Cholesky factors
 // (fill measured with MUMPS's INFOG(29) on EN 50318 lines of 10 and 100 spans:
-// 1.61 entries per matrix nonzero). Calibrated against the peak resident
-// memory of `pcsim static`, `modes` and `run` on 10, 100 and 1000 spans (README
+// 1.61 entries per matrix nonzero); the modes' factor whole on every rank. Calibrated against the
+// peak resident memory of `pcsim static`, `modes` and `run` on 10, 100 and 1000 spans (README
 // "Benchmarks"; the table is in docs/catenary.md, "Memory estimate").
 #pragma once
 
+#include <algorithm>
 #include <string>
 
 #include "pcsim/catenary/geometry.hpp"
@@ -27,7 +28,12 @@ struct MemoryEstimate {
   double factor_entries = 0;       // of its LU factors
   double bytes_per_rank = 0;       // held by every rank (libraries, per-node data)
   double shared_bytes = 0;         // divided among the ranks (matrices, factors, vectors)
-  double total_bytes(int ranks) const { return ranks * bytes_per_rank + shared_bytes; }
+  // Held once on one rank and whole by every rank on several (the modes'
+  // factor, a copy on every rank: solvers/spectrum.hpp).
+  double replicated_bytes = 0;
+  double total_bytes(int ranks) const {
+    return ranks * bytes_per_rank + shared_bytes + std::max(ranks, 1) * replicated_bytes;
+  }
 };
 
 // 'modes' is the number of modes asked for (MemoryUse::modes only).
