@@ -86,7 +86,7 @@ PilotFigures run_pilot(const Context& ctx, const SceneSource& source, const Stud
       figures.force.push_back(p.force);
     }
   });
-  return figures;
+  return broadcast_figures(ctx.comm, figures);  // (rank 0's: the raises decided alike)
 }
 
 double relative_percent(double value, double reference) {

@@ -18,6 +18,7 @@
 
 #include "pcsim/core/error.hpp"
 #include "pcsim/core/profiling.hpp"
+#include "pcsim/core/vec_root.hpp"
 #include "pcsim/simulation/accuracy_pilot.hpp"
 #include "pcsim/simulation/auto_option.hpp"
 #include "pcsim/simulation/run_session.hpp"
@@ -211,6 +212,11 @@ void PilotProcess::reap(bool kill_first) {
   last_status_ = status;
   peak_mb_ = usage.ru_maxrss / 1024.0;
   g_running = false;
+}
+
+PilotFigures broadcast_figures(MPI_Comm comm, const PilotFigures& figures) {
+  const std::string text = broadcast_text(comm, figures_json(figures, 0).dump());
+  return result_from_json(nlohmann::json::parse(text)).figures;
 }
 
 }  // namespace pcsim::simulation

@@ -28,6 +28,10 @@ struct PilotFigures {
   double uplift_m = 0;
 };
 
+// Rank 0's figures on every rank of comm (collective): a pilot's decisions
+// (raise the cut-off or not) must be the same on every rank.
+PilotFigures broadcast_figures(MPI_Comm comm, const PilotFigures& figures);
+
 // Whether this pilot's FE runs go to a second process (collective on ctx.comm).
 bool use_pilot_process(const Context& ctx);
 // True while a pilot's second process runs: it takes the core a run would
