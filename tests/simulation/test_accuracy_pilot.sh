@@ -31,9 +31,14 @@
 #    out) no pilot run, the same cut-off. Until 2026-12-06 such a stop ran no
 #    pilot (a warning) and kept the default cut-off, so a run made in parts
 #    (-ts_max_steps, then --restart) was not the whole run.
+#  - On 2 ranks the raising pilot decides as on one (rank 0's figures are
+#    broadcast, simulation::broadcast_figures): the same cut-off after the
+#    same raises, within a time limit. Until 2026-12-06 rank 1 went on to the
+#    run while rank 0 raised, and the run hung.
 #  - A value other than auto, true or false is an input error (exit 2, nothing made).
 # The tests' PETSC_OPTIONS switch the pilot off (tests/CMakeLists.txt); the
 # command line switches it on here.
+# pcsim-test-processors: 2
 set -euo pipefail
 : "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:=/usr/bin/python3}"
 tmp=$(mktemp -d)
@@ -121,6 +126,25 @@ print(f"-ts_max_steps 20, {cache}: the pilot's cut-off {cutoff:.1f} Hz, "
       f"{'read from the cache' if pilot['cached'] else 'its runs to the end of their stretch'}")
 PY
 done
+# On 2 ranks, an empty cache: 18 s on this machine; 300 s turns a hang into a
+# failure.
+launch=$(command -v mpiexec || command -v mpirun)
+timeout 300 "$launch" -n 2 "$PCSIM_BIN" run "$scene" --cache "$tmp/np2-cache" --no-report \
+  --set catenary.model=modal -o short-np2 -pcsim_accuracy_pilot true -ts_max_steps 20 \
+  > short-np2.log 2>&1 || { cat short-np2.log; echo "2 ranks: failed or hung"; exit 1; }
+"$PCSIM_PYTHON" - "$cutoff" <<'PY' || { cat short-np2.log; exit 1; }
+import json
+import sys
+one = json.load(open("modal/summary.json"))["accuracy_estimate"]["pilot"]
+two = json.load(open("short-np2/summary.json"))
+pilot = two["accuracy_estimate"]["pilot"]
+assert not pilot["cached"] and two["steps"] == 20, (pilot["cached"], two["steps"])
+assert pilot["cutoff_hz"] == one["cutoff_hz"] == two["modal"]["cutoff_hz"], (
+    pilot["cutoff_hz"], one["cutoff_hz"], two["modal"]["cutoff_hz"])
+assert pilot["cutoff_raises"] == one["cutoff_raises"] >= 1, (
+    pilot["cutoff_raises"], one["cutoff_raises"])
+print(f"2 ranks: the pilot raised {pilot['cutoff_raises']} time(s) to {pilot['cutoff_hz']:.1f} Hz, as on one")
+PY
 status=0
 run -o bad -pcsim_accuracy_pilot maybe > bad.log 2>&1 || status=$?
 [ "$status" = 2 ] || { echo "exit $status, not 2"; cat bad.log; exit 1; }
