@@ -21,13 +21,15 @@ namespace {
 
 // Prefixes of the options that solver objects read (PETSc's, SLEPc's and
 // pcsim's: static_, start_, start_load_, modal_, modal_static_, cheap_,
-// pantograph_, pcsim_dd_, elasticity_; study_, modes_fmax and sweep_: commands). After a command,
-// such an option that nothing read is warned about.
-const char* const kObjectPrefixes[] = {"ts_",    "snes_",  "ksp_",        "pc_",     "mat_",
-                                       "vec_",   "eps_",   "st_",         "bv_",     "ds_",
-                                       "rg_",    "fn_",    "svd_",        "sf_",     "dm_",
-                                       "pcsim_", "study_", "modes_",      "static_", "start_",
-                                       "modal_", "cheap_", "pantograph_", "sweep_",  "elasticity_"};
+// pantograph_, pcsim_dd_, elasticity_; study_, modes_fmax and sweep_: commands;
+// redundant_ and sub_: the inner solvers of -pc_type redundant, bjacobi and asm
+// on a solver without a prefix). After a command, such an option that nothing
+// read is warned about.
+const char* const kObjectPrefixes[] = {
+    "ts_",    "snes_",       "ksp_",   "pc_",         "mat_",       "vec_",   "eps_",
+    "st_",    "bv_",         "ds_",    "rg_",         "fn_",        "svd_",   "sf_",
+    "dm_",    "pcsim_",      "study_", "modes_",      "static_",    "start_", "modal_",
+    "cheap_", "pantograph_", "sweep_", "elasticity_", "redundant_", "sub_"};
 // PETSc's own (start-up, viewers, finalisation: -log_view, -options_left,
 // -malloc_dump, ...): known, but read outside any command's objects.
 const char* const kSystemPrefixes[] = {"viewer_",

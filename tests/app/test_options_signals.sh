@@ -3,7 +3,8 @@
 #  1. a single-dash option that neither pcsim nor PETSc reads (-foo_bar) is an
 #     input error (exit 2) naming it, before any work, nothing left behind;
 #  2. one with a solver's prefix that no solver read (-ts_dtt, a typo of
-#     -ts_dt) is a warning on stderr after the run;
+#     -ts_dt) is a warning on stderr after the run; the inner solvers'
+#     prefixes of -pc_type redundant (redundant_) are known;
 #  3. -help lists the options a run reads and stops before the time loop,
 #     exit 0, nothing written; -citations cites the HHT method and the thesis;
 #  4. SIGTERM during the set-up ends the run with 143 and nothing left behind;
@@ -39,6 +40,12 @@ run 0 "$PCSIM_BIN" run "$scene" -o r2 --no-report -ts_max_steps 5 -ts_dtt 1e-3
 grep -qF "warning: option -ts_dtt was not read" err.log || fail "no warning: $(cat err.log)"
 ! grep -qF "ts_max_steps" err.log || fail "-ts_max_steps was read, yet warned about"
 echo "ok   -ts_dtt: warned on stderr"
+# The inner solvers of PETSc's -pc_type redundant on a solver without a prefix
+# (pcsim static's): known prefixes, read, no warning.
+run 0 "$PCSIM_BIN" static "$scene" -o r2s -pc_type redundant -redundant_pc_type lu \
+  -redundant_pc_factor_mat_solver_type klu
+! grep -q "warning: option" err.log || fail "redundant_: warned: $(cat err.log)"
+echo "ok   -redundant_pc_type: known and read"
 # A run too short for the statistics' filter (9 to 15 samples once threw an
 # internal error): the run ends normally and says why there are no figures.
 run 0 "$PCSIM_BIN" run "$scene" -o r2b --no-report -ts_max_steps 12
