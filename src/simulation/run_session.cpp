@@ -243,9 +243,11 @@ PetscErrorCode RunSession::monitor(TS ts, PetscInt step, PetscReal t, Vec U, voi
       s.time_step(step, start, its);
     }
     try {
-      if (!s.output_failure_) s.flushed_ = s.record(ts, step, t, U);
+      if (!s.output_stopped_) s.flushed_ = s.record(ts, step, t, U);
+      // (A record that failed on rank 0 just now agreed first: every rank or none.)
       if (s.options_.checkpoint_every > 0 && step > s.first_step_ &&
-          step % s.options_.checkpoint_every == 0 && !s.output_failure_)
+          step % s.options_.checkpoint_every == 0 && !s.output_stopped_ &&
+          !s.agreed_output_failure())
         s.write_checkpoint();
     } catch (...) {  // an output failure stops the run in post_step, on every rank
       if (!s.hold_output_failure(std::current_exception())) throw;
@@ -418,6 +420,7 @@ PetscErrorCode RunSession::post_step(TS ts) {
     return 0;
   }
   const bool output_failed = flags[2] != 0;
+  if (output_failed) s->output_stopped_ = true;
   TSConvergedReason reason;
   PCSIM_PETSC(TSGetConvergedReason(ts, &reason));
   if (reason != TS_CONVERGED_ITERATING)

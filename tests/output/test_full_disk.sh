@@ -3,9 +3,11 @@
 # mounts. Each run must end with exit 5 (or 0 where the results fit), one
 # 'pcsim: error' line naming the file and the OS error, no HDF5 error stack,
 # no signal (a crash gave 139), no final folder, and a readable .partial
-# folder (its manifest says incomplete). Then a modal cache on a full file
+# folder (its manifest says incomplete). The same on 2 ranks, with and
+# without checkpoints: exit 5, no hang. Then a modal cache on a full file
 # system: a warning, and the run goes on (exit 0).
 # Needs root for mount (CI runs as root); fails (does not skip) without it.
+# pcsim-test-processors: 2
 set -euo pipefail
 : "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}"
 tmp=$(mktemp -d)
@@ -59,6 +61,28 @@ for size in 20k 60k 150k 400k 4m; do
 done
 [ "$failures" -gt 0 ] && cat "$tmp"/*.err | head -40
 
+# On 2 ranks (only rank 0 writes; every rank must stop at the same step and
+# take the same collectives after it, with and without checkpoints): exit 5,
+# one error line, within the time limit (a hang is a failure).
+launch=$(command -v mpiexec || command -v mpirun)
+for size in 150k 400k; do
+  for every in 0 20; do
+    fs=$(mount_tmpfs "$size")
+    mounts+=("$fs")
+    status=0
+    (cd "$tmp" && timeout 120 "$launch" -n 2 "$PCSIM_BIN" run "$scene" -o "$fs/r" --no-report \
+      --set output.checkpoint_every=$every < /dev/null > "$tmp/np2-$size-$every.out" \
+      2> "$tmp/np2-$size-$every.err") || status=$?
+    errors=$(grep -c '^pcsim: error' "$tmp/np2-$size-$every.err" || true)
+    if [ "$status" -ne 5 ] || [ "$errors" -ne 1 ]; then
+      fail "2 ranks, $size, checkpoint_every $every: exit $status, $errors error line(s)"
+    fi
+    [ ! -e "$fs/r" ] || fail "2 ranks, $size: a final folder appeared"
+    echo "2 ranks, $size, checkpoint_every $every: exit $status"
+    umount "$fs"
+  done
+done
+
 # Results that fit, a report that does not (results ~0.6 MB, report ~0.25 MB
 # on 0.7 MB): exit 5 naming report.html, the results kept in the partial
 # folder, no half-written report.
@@ -87,7 +111,7 @@ status=0
 grep -q '^pcsim: warning: the modal data are not cached' "$tmp/modal.err" ||
   fail "modal cache on a full disk: no warning"
 if grep -q 'HDF5-DIAG' "$tmp/modal.err"; then fail "modal cache: HDF5 error stack"; fi
-if ls "$fs/cache" 2> /dev/null | grep -q tmp; then fail "modal cache: temporary file left"; fi
+if compgen -G "$fs/cache/*tmp*" > /dev/null; then fail "modal cache: temporary file left"; fi
 [ "$failures" -gt 0 ] && cat "$tmp/modal.err"
 echo "$failures failure(s)"
 [ "$failures" -eq 0 ]

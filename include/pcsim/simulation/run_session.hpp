@@ -142,7 +142,11 @@ class RunSession {
   bool flushed_ = false;                            // the previous record flushed results.h5
   bool batch_beside_ = false;          // a records' batch was computing on its thread after it
   std::exception_ptr output_failure_;  // this rank's OutputError (or its FailedOnOtherRank)
-  bool not_finite_ = false;            // the state became NaN or inf
+  // Some rank's output failed, as every rank agreed after a step: from then
+  // on no rank records. (Only rank 0 writes: a test of output_failure_ would
+  // let the other ranks into the record's collectives alone, and hang.)
+  bool output_stopped_ = false;
+  bool not_finite_ = false;  // the state became NaN or inf
   double not_finite_time_ = 0;
   // Records waiting for their support heights and dropper forces (a reduced
   // catenary computes them for kRecordBatch states at once).
