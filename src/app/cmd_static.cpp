@@ -45,10 +45,11 @@ int run_static(const app::CommandContext& ctx) {
   const std::string conditions = simulation::conditions_summary(statics);
   if (!conditions.empty()) app::print0(ctx, "  %s\n", conditions.c_str());
   print_blow_off(ctx, statics.result.blow_off);
-  if (ctx.rank == 0)
+  simulation::on_rank0(ctx, [&] {  // a failed write stops every rank at once
     output::write_static_results(out, statics.mesh, statics.result,
                                  {ctx.scene_name(scene), static_cast<long>(statics.catenary_dofs),
                                   ctx.size, cat.form_finding});
+  });
   if (cat.elasticity) {
     const auto e = simulation::static_elasticity(ctx.comm, statics, cat.elasticity->stations(),
                                                  cat.elasticity->force);
@@ -58,7 +59,7 @@ int run_static(const app::CommandContext& ctx) {
                 "non-uniformity (max - min) / (max + min) = %.1f%%\n",
                 e.force, e.x.size(), 1e5 * *lo / e.force, 1e5 * *hi / e.force,
                 100.0 * (*hi - *lo) / (*hi + *lo));
-    if (ctx.rank == 0) output::write_elasticity(out, e);
+    simulation::on_rank0(ctx, [&] { output::write_elasticity(out, e); });
   }
   out.commit();
   app::print0(ctx, "  results in %s/\n", out.final_dir().c_str());

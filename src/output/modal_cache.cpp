@@ -183,14 +183,24 @@ void write_matrix(H5File& h5, const char* path, const std::vector<T>& data, std:
 // opened or read returns false.
 template <typename Read>
 bool read_quietly(const std::string& file, Read read) {
-  if (!std::filesystem::exists(file)) return false;
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) return false;  // (a folder it cannot look in too)
   H5E_auto2_t handler;
   void* client;
   H5Eget_auto2(H5E_DEFAULT, &handler, &client);
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   const hid_t h5 = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  const bool ok = h5 >= 0 && read(h5);
-  if (h5 >= 0) H5Fclose(h5);
+  bool ok = false;
+  if (h5 >= 0) {
+    // A damaged file is a miss too: only rank 0 reads, and an exception here
+    // would leave the other ranks waiting for its broadcast.
+    try {
+      ok = read(h5);
+    } catch (const std::exception&) {
+      ok = false;
+    }
+    H5Fclose(h5);
+  }
   H5Eset_auto2(H5E_DEFAULT, handler, client);
   return ok;
 }

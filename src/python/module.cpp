@@ -168,6 +168,9 @@ nlohmann::json accuracy_pilot(const Scene& s, const simulation::Context& ctx,
                              "; the run goes on with the calibrated estimate";
     if (PyErr_WarnEx(PyExc_RuntimeWarning, text.c_str(), 1) != 0) throw py::error_already_set();
     return {};
+  } catch (const simulation::FailedOnOtherRank& e) {  // the other ranks of rank 0's SolverError
+    if (e.status() != simulation::kExitSolver) throw;
+    return {};  // (rank 0 warns)
   }
 }
 

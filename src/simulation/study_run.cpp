@@ -135,6 +135,9 @@ output::StudyRun run_variant(const Context& ctx, const SceneSource& source, cons
   } catch (const SolverError& e) {
     out.ok = false;
     out.failure = e.what();
+  } catch (const FailedOnOtherRank& e) {  // the other ranks of rank 0's SolverError
+    if (e.status() != kExitSolver) throw;
+    out.ok = false;  // (rank 0 holds the message)
   }
   out.peak_memory_mb = peak_memory(ctx.comm);
   return out;
