@@ -164,10 +164,15 @@ std::string judge_convergence(SNESConvergedReason reason, double residual_inf, d
 // The tangent without form-finding is symmetric (a potential's Hessian):
 // Cholesky, on one rank PETSc's with RCM ordering (the line's band), as the
 // modes (spectrum.hpp); the elasticity of stitched.yaml took 75 s with MUMPS's
-// LU and 7 s so (docs/catenary.md). Form-finding's rows make it unsymmetric: LU.
+// LU and 7 s so (docs/catenary.md). Form-finding's rows make it unsymmetric
+// and put zeros on its diagonal: an LU with pivots, on one rank SuiteSparse's
+// KLU (no BLAS: MUMPS's solves are slow with BLIS; 1000 spans: SNESSolve
+// 19.3 s against 45.1 s, docs/catenary.md), in parallel MUMPS's.
 void use_static_factorisation(KSP ksp, Mat J, bool form_finding) {
   if (form_finding) {
-    use_direct_lu(ksp, MATSOLVERMUMPS);
+    PetscMPIInt ranks;
+    PCSIM_PETSC(MPI_Comm_size(PetscObjectComm(reinterpret_cast<PetscObject>(J)), &ranks));
+    use_direct_lu(ksp, ranks > 1 ? MATSOLVERMUMPS : MATSOLVERKLU);
     return;
   }
   PCSIM_PETSC(MatSetOption(J, MAT_SYMMETRIC, PETSC_TRUE));
