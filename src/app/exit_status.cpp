@@ -34,8 +34,8 @@ int exit_status_of(std::exception_ptr error, const CommandContext& ctx, std::str
   }
 }
 
-int agree_exit_status(MPI_Comm comm, int status, const std::string& message, bool failed_here,
-                      double timeout_s) {
+void wait_for_ranks_or_abort(MPI_Comm comm, int status, const std::string& message,
+                             bool failed_here, double timeout_s) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   MPI_Request arrived;
@@ -54,6 +54,13 @@ int agree_exit_status(MPI_Comm comm, int status, const std::string& message, boo
     }
     usleep(1000);
   }
+}
+
+int agree_exit_status(MPI_Comm comm, int status, const std::string& message, bool failed_here,
+                      double timeout_s) {
+  wait_for_ranks_or_abort(comm, status, message, failed_here, timeout_s);
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
   // Every rank is here: the highest status wins, printed by its lowest rank
   // that has a message (MPI_MAXLOC takes the lowest rank among equals).
   struct {

@@ -37,6 +37,11 @@ int exit_status_of(std::exception_ptr error, const CommandContext& ctx, std::str
 int agree_exit_status(MPI_Comm comm, int status, const std::string& message, bool failed_here,
                       double timeout_s = 10.0);
 
+// The first half of agree_exit_status: returns once every rank of 'comm' is
+// here; a rank that failed and waited 'timeout_s' in vain ends the job so.
+void wait_for_ranks_or_abort(MPI_Comm comm, int status, const std::string& message,
+                             bool failed_here, double timeout_s = 10.0);
+
 // Debugging aid for the tests of the above: with
 //   -pcsim_debug_fail_rank R -pcsim_debug_fail_class input|solver|internal
 // rank R alone throws that class of error as the command starts.

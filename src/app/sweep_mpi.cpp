@@ -36,6 +36,18 @@ PetscErrorCode read_ranks_per_case(MPI_Comm comm, char* text, std::size_t size, 
   PetscFunctionReturn(0);
 }
 
+// Debugging aid for tests/studies/test_sweep_mpi.sh: the group rank that
+// fails alone as each case starts (-1: none). Declared so that -help lists it.
+PetscErrorCode read_case_fail_rank(MPI_Comm comm, PetscInt* rank) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "pcsim sweep tests", "pcsim");
+  PetscCall(PetscOptionsInt("-pcsim_debug_case_fail_rank",
+                            "group rank that fails alone as each case starts", "", *rank, rank,
+                            nullptr));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
 // This process's stdout and stderr into a file for its lifetime (a case's
 // log); left as they are if the file cannot be made (the case's run, on every
 // rank of its group, says why its folder cannot be written).
@@ -77,7 +89,8 @@ struct CaseEnd {
 
 class GroupRunner {
  public:
-  GroupRunner(const CommandContext& ctx, SweepPlan& plan, const output::OutputDir& out, int ranks_per_case);
+  GroupRunner(const CommandContext& ctx, SweepPlan& plan, const output::OutputDir& out,
+              int ranks_per_case);
   ~GroupRunner();
   GroupRunner(const GroupRunner&) = delete;
   GroupRunner& operator=(const GroupRunner&) = delete;
@@ -94,7 +107,9 @@ class GroupRunner {
   SweepPlan& plan_;
   const output::OutputDir& out_;
   MPI_Comm group_ = MPI_COMM_NULL;
+  MPI_Comm agreement_ = MPI_COMM_NULL;  // group_'s ranks, for a case's end only
   int group_index_ = 0, group_rank_ = 0;
+  PetscInt debug_fail_rank_ = -1;
   MPI_Win window_ = MPI_WIN_NULL;  // on world rank 0: {next case to claim, cases finished}
   long* counters_ = nullptr;
   std::vector<std::size_t> todo_;
@@ -108,6 +123,8 @@ GroupRunner::GroupRunner(const CommandContext& ctx, SweepPlan& plan, const outpu
   group_index_ = ctx.rank / ranks_per_case;
   MPI_Comm_split(ctx.comm, group_index_, ctx.rank, &group_);
   MPI_Comm_rank(group_, &group_rank_);
+  MPI_Comm_dup(group_, &agreement_);
+  PCSIM_PETSC(read_case_fail_rank(ctx.comm, &debug_fail_rank_));
   const MPI_Aint bytes = ctx.rank == 0 ? 2 * sizeof(long) : 0;
   MPI_Win_allocate(bytes, sizeof(long), MPI_INFO_NULL, ctx.comm, &counters_, &window_);
   if (ctx.rank == 0) {
@@ -126,6 +143,7 @@ GroupRunner::~GroupRunner() {
   // here, main's agree_exit_status ends the job (exit_status.hpp).
   if (std::uncaught_exceptions() > 0) return;
   MPI_Win_free(&window_);
+  MPI_Comm_free(&agreement_);
   MPI_Comm_free(&group_);
 }
 
@@ -179,10 +197,15 @@ CaseEnd GroupRunner::run_case(std::size_t k) {
     std::unique_ptr<ConsoleToFile> log;
     if (group_rank_ == 0) log = std::make_unique<ConsoleToFile>(folder + ".log");
     try {
+      if (group_rank_ == debug_fail_rank_)
+        throw SolverError("debug failure of a case on group rank " + std::to_string(group_rank_));
       end.status = run_scene_command(c);
     } catch (...) {
       end.status = exit_status_of(std::current_exception(), c, message);
     }
+    // A rank that failed alone may leave the others in a collective of the
+    // case: after 10 s it ends the job (a resumable sweep) with its message.
+    wait_for_ranks_or_abort(agreement_, end.status, message, end.status != 0);
     // The highest status, with the message of the lowest rank that has one.
     struct {
       int key, rank;

@@ -8,7 +8,8 @@
 #     other cases finished; the tables' figures equal;
 #  2. sweep.h5 opens with h5py: one dataset per column, each with its unit;
 #  3. -sweep_ranks_per_case 3 on 2 ranks: exit 2, one message naming the
-#     option, nothing written;
+#     option, nothing written; a case that fails on one rank of its group
+#     alone ends the job within a time limit (no hang);
 #  4. SIGTERM to the ranks while cases run: exit 143, the group journals
 #     merged into journal.jsonl; SIGKILL (no chance to merge): the group
 #     journals kept; each time the same command resumes the sweep and its
@@ -132,6 +133,23 @@ expect 2 bad "$mpirun" -n 2 "$PCSIM_BIN" "${sweep[@]}" -o bad -sweep_ranks_per_c
   { cat bad.log; fail "not one message naming the option"; }
 [ -z "$(ls -d bad* 2> /dev/null | grep -v bad.log)" ] || fail "left behind: $(ls -d bad*)"
 echo "ok   -sweep_ranks_per_case 3 on 2 ranks: $(grep "pcsim: error" bad.log)"
+
+# 3b. A case that fails on one rank of its group alone
+# (-pcsim_debug_case_fail_rank 1: before the case starts) while the other
+# rank runs it and waits in its collectives: the failed rank ends the job
+# after 10 s with its message, no hang (the time limit turns one into a
+# failure). Until 2026-12-06 the failed rank went on to the case's agreement
+# while the other was in the case's collectives: a mismatched collective, and
+# the job ended by MPI_Abort with errorcode 59 and no message.
+code=0
+timeout 120 "$mpirun" -n 2 "$PCSIM_BIN" "${sweep[@]}" -o alone -sweep_ranks_per_case 2 \
+  -pcsim_debug_case_fail_rank 1 > alone.log 2>&1 || code=$?
+[ $code -ne 124 ] || { cat alone.log; fail "a case failed on one rank: the sweep hung"; }
+[ $code -ne 0 ] || { cat alone.log; fail "a case failed on one rank: exit 0"; }
+grep -q "debug failure of a case on group rank 1" alone.log &&
+  grep -q "other ranks did not stop within 10 s; ending the job" alone.log ||
+  { cat alone.log; fail "a case failed on one rank: no message"; }
+echo "ok   a case failed on one rank of its group: the job ended (exit $code), no hang"
 
 # 4. Stopped (SIGTERM to the ranks, as SLURM does at a time limit) and
 # killed (SIGKILL), then resumed; twelve cases of ~1 s (with six, mpirun's
