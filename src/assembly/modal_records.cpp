@@ -68,11 +68,14 @@ double ModalCatenary::record_force(std::size_t d, double dl) const {
 // "Rounded rows"): batches pay once the float rows exceed half a core's
 // level-2 cache (the DSA-380 at 136.1 Hz: 90 x 4804 floats, 1.7 MB, a real-
 // time factor 9 % higher), and not below (EN 50318: 90 x 2736, 1.0 MB, the
-// same either way).
+// same either way). Each node's own cache decides; the ranks agree (a batch's
+// records are collective), batching only where every rank's pays.
 bool ModalCatenary::records_batch_pays() const {
   long cache = sysconf(_SC_LEVEL2_CACHE_SIZE);
   if (cache <= 0) cache = 1L << 21;  // not known: 2 MiB
-  return static_cast<long>(single_bytes_) > cache / 2;
+  int pays = static_cast<long>(single_bytes_) > cache / 2 ? 1 : 0;
+  MPI_Allreduce(MPI_IN_PLACE, &pays, 1, MPI_INT, MPI_MIN, comm_);
+  return pays != 0;
 }
 
 // Every rank counts the kept states; the owner keeps them.

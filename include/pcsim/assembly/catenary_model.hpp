@@ -122,7 +122,7 @@ class CatenaryModel {
   };
   virtual bool batches_records() const { return false; }
   // Whether batches cost less than records one at a time (which also anchor
-  // the next step's checks, as a batch does not).
+  // the next step's checks, as a batch does not). Collective.
   virtual bool records_batch_pays() const { return false; }
   virtual void keep_record_state() {}
   virtual std::function<RecordQuantities()> take_kept_records(bool dropper_forces) {
