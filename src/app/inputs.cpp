@@ -8,6 +8,7 @@
 #include "pcsim/scene/pantograph_scene.hpp"
 #include "pcsim/simulation/run.hpp"
 #include "pcsim/simulation/run_checkpoint.hpp"
+#include "pcsim/simulation/run_session.hpp"
 #include "pcsim/solvers/dynamics.hpp"
 #include "pcsim/solvers/spectrum.hpp"
 
@@ -16,11 +17,14 @@ namespace pcsim::app {
 namespace {
 
 // Refuses, before it is built, a mesh that would not fit in this machine's
-// memory; keeps the estimate for the reports.
+// memory (what the job's ranks on this machine hold, up to all of the run's:
+// on a cluster each node holds its ranks' share); keeps the estimate for the
+// reports.
 scene::MeshSizeCheck memory_check(const CommandContext& ctx, simulation::MemoryUse use,
                                   simulation::MemoryEstimate& estimate, int modes = 20) {
   return [&ctx, use, &estimate, modes](const catenary::MeshSize& size) {
-    simulation::check_memory(size, use, ctx.size, simulation::machine_memory_bytes(), modes);
+    simulation::check_memory(size, use, ctx.size, simulation::machine_memory_bytes(), modes,
+                             simulation::counted_node_processes());
     estimate = simulation::estimate_memory(size, use, modes);
   };
 }

@@ -76,18 +76,24 @@ double machine_memory_bytes() {
 }
 
 void check_memory(const catenary::MeshSize& size, MemoryUse use, int ranks, double machine_bytes,
-                  int modes) {
+                  int modes, int ranks_here) {
   if (machine_bytes <= 0) return;
   const MemoryEstimate e = estimate_memory(size, use, modes);
-  const double need = e.total_bytes(ranks), limit = 0.9 * machine_bytes;
+  const int here = ranks_here > 0 ? std::min(ranks_here, ranks) : ranks;
+  const double need = e.node_bytes(ranks, here), limit = 0.9 * machine_bytes;
   if (need <= limit) return;
-  char text[400];
+  char ranks_text[64];
+  if (here == ranks)
+    std::snprintf(ranks_text, sizeof ranks_text, "%d rank(s)", ranks);
+  else
+    std::snprintf(ranks_text, sizeof ranks_text, "the %d of %d ranks on this machine", here, ranks);
+  char text[480];
   std::snprintf(text, sizeof text,
                 "the mesh is too large for this machine: %ld nodes, %ld unknowns, %.3g matrix "
-                "nonzeros and %.3g factor entries need an estimated %.1f GB on %d rank(s), more "
+                "nonzeros and %.3g factor entries need an estimated %.1f GB on %s, more "
                 "than 90%% of the machine's %.1f GB (/proc/meminfo MemTotal); use fewer spans or "
                 "longer elements",
-                e.nodes, e.dofs, e.matrix_nonzeros, e.factor_entries, need / 1e9, ranks,
+                e.nodes, e.dofs, e.matrix_nonzeros, e.factor_entries, need / 1e9, ranks_text,
                 machine_bytes / 1e9);
   throw InputError(size.file, size.key, text);
 }

@@ -1,7 +1,6 @@
 #include "pcsim/simulation/run_session.hpp"
 
 #include <petsctime.h>
-#include <sched.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -66,19 +65,6 @@ RecordThread record_thread_choice() {
 
 namespace {
 
-// This node's processes of the job (count_node_processes; 0: not counted).
-int node_processes = 0;
-
-// The ranks of comm on this node (collective on comm).
-int ranks_on_node(MPI_Comm comm) {
-  MPI_Comm node;
-  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
-  int ranks = 1;
-  MPI_Comm_size(node, &ranks);
-  MPI_Comm_free(&node);
-  return ranks;
-}
-
 // Whether every rank has a core to spare for a record thread
 // (core_to_spare_here) and MPI allows threads that make no MPI calls
 // (MPI_THREAD_FUNNELED: PETSc's default when it starts MPI). Agreed by all
@@ -94,18 +80,6 @@ bool cores_to_spare(MPI_Comm comm) {
 }
 
 }  // namespace
-
-bool core_to_spare_here(MPI_Comm comm) {
-  cpu_set_t allowed;
-  CPU_ZERO(&allowed);
-  const int cpus = sched_getaffinity(0, sizeof allowed, &allowed) == 0 ? CPU_COUNT(&allowed) : 1;
-  const int processes = node_processes > 0 ? node_processes : ranks_on_node(comm);
-  return cpus > 1 && sysconf(_SC_NPROCESSORS_ONLN) > processes;
-}
-
-void count_node_processes(MPI_Comm world) {
-  node_processes = ranks_on_node(world);
-}
 
 RunSession::RunSession(const Context& ctx, assembly::CoupledSystem& system,
                        solvers::DynamicSolver& solver, output::RunStream* stream, Options options,

@@ -137,6 +137,22 @@ TEST(MemoryEstimate, CalibratedAgainstMeasuredPeaks) {
   }
 }
 
+// On a cluster a machine holds its own ranks' share: a line too large for 8
+// ranks on one 24 GiB machine fits where 2 of the 8 are on it.
+TEST(MemoryEstimate, AMachineHoldsItsRanksShare) {
+  const double machine = 24.0 * 1024 * 1024 * 1024;
+  auto design = design_fixtures::reference_design(10000);
+  design.file = "long.yaml";
+  const auto line = catenary::mesh_size(design);
+  const auto e = simulation::estimate_memory(line, MemoryUse::run);
+  EXPECT_NEAR(e.node_bytes(8, 8), e.total_bytes(8), 1e-12 * e.total_bytes(8));
+  EXPECT_GT(e.total_bytes(8), 0.9 * machine);  // the premise: not on one machine
+  EXPECT_LT(e.node_bytes(8, 2), 0.9 * machine);
+  EXPECT_THROW(simulation::check_memory(line, MemoryUse::run, 8, machine), InputError);
+  EXPECT_THROW(simulation::check_memory(line, MemoryUse::run, 8, machine, 20, 8), InputError);
+  EXPECT_NO_THROW(simulation::check_memory(line, MemoryUse::run, 8, machine, 20, 2));
+}
+
 TEST(MemoryEstimate, ThousandSpansFitIn24GiBAndHundredThousandDoNot) {
   const double machine = 24.0 * 1024 * 1024 * 1024;
   const auto line = catenary::mesh_size(design_fixtures::reference_design(1000));

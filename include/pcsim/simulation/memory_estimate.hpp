@@ -34,6 +34,12 @@ struct MemoryEstimate {
   double total_bytes(int ranks) const {
     return ranks * bytes_per_rank + shared_bytes + std::max(ranks, 1) * replicated_bytes;
   }
+  // What the 'ranks_here' of a run's 'ranks' on one node hold: theirs and
+  // their share of the shared data (total_bytes(ranks) when all are there).
+  double node_bytes(int ranks, int ranks_here) const {
+    return ranks_here * (bytes_per_rank + replicated_bytes) +
+           shared_bytes * ranks_here / std::max(ranks, 1);
+  }
 };
 
 // 'modes' is the number of modes asked for (MemoryUse::modes only).
@@ -42,9 +48,10 @@ MemoryEstimate estimate_memory(const catenary::MeshSize& size, MemoryUse use, in
 // Total memory of this machine [bytes] (/proc/meminfo MemTotal); 0 if unknown.
 double machine_memory_bytes();
 
-// Throws InputError(size.file, size.key, ...) when the estimate for 'ranks'
-// ranks exceeds 90 % of 'machine_bytes' (skipped when machine_bytes is 0).
+// Throws InputError(size.file, size.key, ...) when the estimate for the
+// 'ranks_here' of 'ranks' ranks on this machine (0: all of them) exceeds 90 %
+// of 'machine_bytes' (skipped when machine_bytes is 0).
 void check_memory(const catenary::MeshSize& size, MemoryUse use, int ranks, double machine_bytes,
-                  int modes = 20);
+                  int modes = 20, int ranks_here = 0);
 
 }  // namespace pcsim::simulation

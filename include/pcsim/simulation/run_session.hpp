@@ -43,6 +43,7 @@ RecordThread record_thread_choice();
 // start-up, before a sweep splits the ranks into groups). Uncounted, a run
 // counts its own ranks on the node.
 void count_node_processes(MPI_Comm world);
+int counted_node_processes();  // as counted (0: not counted)
 // Whether this process has a core to spare: its affinity allows more than
 // one CPU and its node has more online CPUs than the job's processes there
 // (as counted, else comm's ranks on it; collective on comm).
