@@ -97,15 +97,52 @@ void sum_lanes(const std::vector<double>& lanes, std::vector<double>& out) {
   }
 }
 
-}  // namespace
+// sum_p w[p] v[index[p] - lo] over the entries of the rank's rows [lo, lo + n).
+double sparse_dot(const SparseU& u, const double* v, PetscInt lo, PetscInt n) {
+  double sum = 0;
+  for (std::size_t p = 0; p < u.size; ++p) {
+    const PetscInt i = u.index[p] - lo;
+    if (i >= 0 && i < n) sum += u.weight[p] * v[i];
+  }
+  return sum;
+}
 
-void capacitance_dots(const CapacitanceDots& in, std::vector<double>& uz, std::vector<double>& zu,
+// The rank's part of every product from the u's entries; a symmetric row as
+// the dense kernel's (u_a . z_b with a <= b, the other rows' entries 0).
+void sparse_local_dots(const CapacitanceDots& in, std::vector<double>& uz, std::vector<double>& zu,
+                       std::vector<double>& ux) {
+  const std::size_t k = in.us.size();
+  const auto& u = in.sparse_us;
+  PetscInt lo, hi;
+  PCSIM_PETSC(VecGetOwnershipRange(in.zs[0], &lo, &hi));
+  const PetscInt n = hi - lo;
+  auto z = read_all(in.zs);
+  std::vector<bool> is_row(k, false);
+  for (std::size_t i : in.rows) is_row[i] = true;
+  for (std::size_t r = 0; r < in.rows.size(); ++r) {
+    const std::size_t i = in.rows[r];
+    for (std::size_t j = 0; j < k; ++j) {
+      if (in.symmetric) {
+        if (j >= i) uz[r * k + j] = sparse_dot(u[i], z[j], lo, n);
+        if (j < i && !is_row[j]) uz[r * k + j] = sparse_dot(u[j], z[i], lo, n);
+        continue;
+      }
+      uz[r * k + j] = sparse_dot(u[i], z[j], lo, n);
+      if (in.transposed) zu[r * k + j] = sparse_dot(u[j], z[i], lo, n);
+    }
+  }
+  release_all(in.zs, z);
+  if (!in.x) return;
+  const PetscScalar* x;
+  PCSIM_PETSC(VecGetArrayRead(in.x, &x));
+  for (std::size_t j = 0; j < k; ++j) ux[j] = sparse_dot(u[j], x, lo, n);
+  PCSIM_PETSC(VecRestoreArrayRead(in.x, &x));
+}
+
+// The dense kernel's pass over the rank's entries (4 lanes, blocks of 256).
+void dense_local_dots(const CapacitanceDots& in, std::vector<double>& uz, std::vector<double>& zu,
                       std::vector<double>& ux, bool vector_kernel) {
   const std::size_t k = in.us.size(), nr = in.rows.size();
-  uz.assign(nr * k, 0.0);
-  zu.assign(in.transposed ? nr * k : 0, 0.0);
-  ux.assign(in.x ? k : 0, 0.0);
-  if (k == 0) return;
   PetscInt n = 0;
   PCSIM_PETSC(VecGetLocalSize(in.us[0], &n));
   auto u = read_all(in.us), z = read_all(in.zs);
@@ -162,6 +199,21 @@ void capacitance_dots(const CapacitanceDots& in, std::vector<double>& uz, std::v
     sum_lanes(lower_lanes[r], sums);
     for (std::size_t p = 0; p < sums.size(); ++p) uz[r * k + lower_terms[r][p]] = sums[p];
   }
+}
+
+}  // namespace
+
+void capacitance_dots(const CapacitanceDots& in, std::vector<double>& uz, std::vector<double>& zu,
+                      std::vector<double>& ux, bool vector_kernel) {
+  const std::size_t k = in.us.size(), nr = in.rows.size();
+  uz.assign(nr * k, 0.0);
+  zu.assign(in.transposed ? nr * k : 0, 0.0);
+  ux.assign(in.x ? k : 0, 0.0);
+  if (k == 0) return;
+  if (in.sparse_us.size() == k)
+    sparse_local_dots(in, uz, zu, ux);
+  else
+    dense_local_dots(in, uz, zu, ux, vector_kernel);
   int size = 1;
   MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(in.us[0]));
   MPI_Comm_size(comm, &size);

@@ -10,8 +10,23 @@
 
 namespace pcsim::solvers {
 
+// A u by its entries (global indices, none twice; the weights of the rank's
+// own rows are read, the others skipped): a product with it reads only those
+// entries of the other vector.
+struct SparseU {
+  const PetscInt* index = nullptr;
+  const double* weight = nullptr;
+  std::size_t size = 0;
+};
+
 struct CapacitanceDots {
-  std::vector<Vec> us, zs;        // the k active terms' u and J0^-1 u (one layout)
+  std::vector<Vec> us, zs;  // the k active terms' u and J0^-1 u (one layout)
+  // Every u by its entries instead of the dense passes over us (empty: the
+  // dense kernel): the FE catenary's terms, a contact's or a dropper's few
+  // entries in vectors of tens of thousands. Each product sums its entries in
+  // their order, then over the ranks: other bits than the dense kernel's
+  // lanes, and the same symmetric and transposed bits as those.
+  std::vector<SparseU> sparse_us;
   std::vector<std::size_t> rows;  // the changed terms, indices into us/zs
   bool transposed = false;        // z_r . u_j too (zu)
   // z_j = A^-1 u_j with A symmetric, so that u_i . z_j = u_j . z_i: each
@@ -30,7 +45,8 @@ struct CapacitanceDots {
 // and zu, and u_j . z_i of a symmetric row (formed with z_i's loads shared)
 // has the bits of row j's. The vector kernel (AVX2 and FMA, where the
 // processor has them) shares each load of a u among four products;
-// vector_kernel false takes the portable one (tests).
+// vector_kernel false takes the portable one (tests). With sparse_us (one
+// per term) every product is summed from the u's entries instead.
 void capacitance_dots(const CapacitanceDots& in, std::vector<double>& uz, std::vector<double>& zu,
                       std::vector<double>& ux, bool vector_kernel = true);
 

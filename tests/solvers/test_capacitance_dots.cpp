@@ -152,4 +152,103 @@ TEST(CapacitanceDots, SymmetricRowsFormEachPairOnce) {
   v.in.x = x;
 }
 
+// Sparse u's (CapacitanceDots::sparse_us, the FE catenary's terms): each
+// term's entries at a few global indices on every rank, at the ranks' first
+// and last rows among them; the dense u's set to the same entries.
+struct SparseTerms {
+  std::vector<std::vector<PetscInt>> index;
+  std::vector<std::vector<double>> weight;
+  explicit SparseTerms(Vectors& v) {
+    PetscInt size = 0;
+    PCSIM_PETSC(VecGetSize(v.in.us[0], &size));
+    for (std::size_t j = 0; j < kTerms; ++j) {
+      const auto t = static_cast<PetscInt>(j);
+      index.push_back({t, kLocal - 1, kLocal, size / 2 + 3 * t, size - 1 - t});
+      std::sort(index.back().begin(), index.back().end());
+      index.back().erase(std::unique(index.back().begin(), index.back().end()), index.back().end());
+      weight.emplace_back();
+      for (std::size_t p = 0; p < index.back().size(); ++p)
+        weight.back().push_back(0.5 + static_cast<double>(j) - 0.25 * static_cast<double>(p));
+      Vec u = v.in.us[j];
+      PCSIM_PETSC(VecSet(u, 0.0));
+      PetscInt lo, hi;
+      PCSIM_PETSC(VecGetOwnershipRange(u, &lo, &hi));
+      for (std::size_t p = 0; p < index.back().size(); ++p)
+        if (index.back()[p] >= lo && index.back()[p] < hi)
+          PCSIM_PETSC(VecSetValue(u, index.back()[p], weight.back()[p], INSERT_VALUES));
+      PCSIM_PETSC(VecAssemblyBegin(u));
+      PCSIM_PETSC(VecAssemblyEnd(u));
+    }
+  }
+  void use(pcsim::solvers::CapacitanceDots& in) const {
+    in.sparse_us.clear();
+    for (std::size_t j = 0; j < kTerms; ++j)
+      in.sparse_us.push_back({index[j].data(), weight[j].data(), index[j].size()});
+  }
+};
+
+// Each sparse product sums at most 5 entries: within 5 eps sum |a_i b_i| of
+// the exact one (asserted at 1e-15, above that bound's 1.1e-15).
+TEST(CapacitanceDots, SparseUsGiveEveryProductToTheirEntriesBound) {
+  Vectors v;
+  const SparseTerms terms(v);
+  terms.use(v.in);
+  v.in.rows = {1, 4};
+  v.in.transposed = true;
+  std::vector<double> uz, zu, ux;
+  pcsim::solvers::capacitance_dots(v.in, uz, zu, ux);
+  ASSERT_EQ(uz.size(), 2 * kTerms);
+  ASSERT_EQ(zu.size(), 2 * kTerms);
+  ASSERT_EQ(ux.size(), kTerms);
+  const auto near = [](Vec a, Vec b, double value) {
+    double dot = 0, size = 0;
+    exact_dot(a, b, dot, size);
+    EXPECT_NEAR(value, dot, 1e-15 * size);
+    EXPECT_GT(size, 0.1);  // every product has entries (a 0 = 0 would prove nothing)
+  };
+  for (std::size_t r = 0; r < 2; ++r)
+    for (std::size_t j = 0; j < kTerms; ++j) {
+      const std::size_t i = v.in.rows[r];
+      near(v.in.us[i], v.in.zs[j], uz[r * kTerms + j]);
+      near(v.in.us[j], v.in.zs[i], zu[r * kTerms + j]);
+    }
+  for (std::size_t j = 0; j < kTerms; ++j) near(v.in.x, v.in.us[j], ux[j]);
+}
+
+// The sparse path keeps the dense one's layouts and bits between rows: a
+// changed row's transposed products are those of the rows formed whole, and
+// a symmetric row forms each pair once (u_a . z_b, a <= b; other rows' 0).
+TEST(CapacitanceDots, SparseRowsKeepTheLayoutsOfTheDenseOnes) {
+  Vectors v;
+  const SparseTerms terms(v);
+  terms.use(v.in);
+  Vec x = v.in.x;  // no x . u_j here; given back for ~Vectors
+  v.in.x = nullptr;
+  std::vector<double> whole, unused, ux;
+  for (std::size_t i = 0; i < kTerms; ++i) v.in.rows.push_back(i);
+  pcsim::solvers::capacitance_dots(v.in, whole, unused, ux);
+  const std::vector<std::size_t> rows{2, 5};
+  v.in.rows = rows;
+  for (bool symmetric : {false, true}) {
+    v.in.symmetric = symmetric;
+    v.in.transposed = !symmetric;
+    std::vector<double> uz, zu;
+    pcsim::solvers::capacitance_dots(v.in, uz, zu, ux);
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      for (std::size_t j = 0; j < kTerms; ++j) {
+        const std::size_t i = rows[r];
+        if (!symmetric) {
+          EXPECT_EQ(uz[r * kTerms + j], whole[i * kTerms + j]);
+          EXPECT_EQ(zu[r * kTerms + j], whole[j * kTerms + i]);
+          continue;
+        }
+        const bool other_row = j < i && std::find(rows.begin(), rows.end(), j) != rows.end();
+        const double expected =
+            other_row ? 0.0 : (j >= i ? whole[i * kTerms + j] : whole[j * kTerms + i]);
+        EXPECT_EQ(uz[r * kTerms + j], expected) << "row " << i << ", term " << j;
+      }
+  }
+  v.in.x = x;
+}
+
 }  // namespace

@@ -39,6 +39,8 @@ inline constexpr const char* kPCWoodbury = "pcsimwoodbury";
 class BlockDiagonalInverse;
 class VaryingBlocks;
 
+struct CapacitanceDots;  // src/solvers/capacitance_dots.hpp
+
 class LowRankStepSolver {
  public:
   // J0: the factored part (the SNES's preconditioning matrix).
@@ -94,6 +96,7 @@ class LowRankStepSolver {
     Vec u = nullptr, z = nullptr;
     bool z_valid = false;
     bool changed = true;  // u or z since the capacitance's products
+    bool sparse = false;  // u's entries few and none twice: its products read only them
   };
   static PetscErrorCode pc_create(PC pc);
   static LowRankStepSolver* attached(PC pc);  // the solver install() attached
@@ -107,6 +110,7 @@ class LowRankStepSolver {
   Vec unit_solution(PetscInt g);
   void evict_unused_columns();
   void update_capacitance(Vec x, std::vector<PetscScalar>& ux);
+  CapacitanceDots active_dots() const;  // the active terms' u and z (capacitance_dots.hpp)
   void choose_inner(Mat P);
   void solve_j0(Vec r, Vec x) const;     // with the varying blocks' current values
   void solve_fixed(Vec r, Vec x) const;  // J0 as factored
