@@ -149,12 +149,15 @@ void LowRankStepSolver::build_u(Entry& e) {
   }
   PCSIM_PETSC(VecRestoreArray(e.u, &u));
   // Sparse where u is at most an eighth of the vector (an FE contact's or
-  // dropper's few entries; a modal term's are every mode's).
+  // dropper's few entries; a modal term's are every mode's, not sorted here
+  // at every step).
   PetscInt size = 0;
   PCSIM_PETSC(VecGetSize(e.u, &size));
+  e.sparse = 8 * n <= size;
+  if (!e.sparse) return;
   std::vector<PetscInt> sorted(index.begin(), index.end());
   std::sort(sorted.begin(), sorted.end());
-  e.sparse = 8 * n <= size && std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end();
+  e.sparse = std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end();
 }
 
 CapacitanceDots LowRankStepSolver::active_dots() const {
