@@ -56,20 +56,27 @@ void wait_for_ranks_or_abort(MPI_Comm comm, int status, const std::string& messa
   }
 }
 
+AgreedStatus agree_status(MPI_Comm comm, int status, bool has_message) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  // The highest status wins, with its lowest rank that has a message
+  // (MPI_MAXLOC takes the lowest rank among equals).
+  struct {
+    int key, rank;
+  } mine{2 * status + (has_message ? 1 : 0), rank}, agreed{0, 0};
+  MPI_Allreduce(&mine, &agreed, 1, MPI_2INT, MPI_MAXLOC, comm);
+  return {agreed.key / 2, agreed.key % 2 ? agreed.rank : -1};
+}
+
 int agree_exit_status(MPI_Comm comm, int status, const std::string& message, bool failed_here,
                       double timeout_s) {
   wait_for_ranks_or_abort(comm, status, message, failed_here, timeout_s);
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
-  // Every rank is here: the highest status wins, printed by its lowest rank
-  // that has a message (MPI_MAXLOC takes the lowest rank among equals).
-  struct {
-    int key, rank;
-  } mine{2 * status + (message.empty() ? 0 : 1), rank}, agreed{0, 0};
-  MPI_Allreduce(&mine, &agreed, 1, MPI_2INT, MPI_MAXLOC, comm);
-  if (agreed.rank == rank && !message.empty()) std::fprintf(stderr, "%s\n", message.c_str());
+  const AgreedStatus agreed = agree_status(comm, status, !message.empty());
+  if (agreed.message_rank == rank) std::fprintf(stderr, "%s\n", message.c_str());
   std::fflush(stderr);
-  return agreed.key / 2;
+  return agreed.status;
 }
 
 // Declared (not only read) so that -help lists them.

@@ -37,6 +37,14 @@ int exit_status_of(std::exception_ptr error, const CommandContext& ctx, std::str
 int agree_exit_status(MPI_Comm comm, int status, const std::string& message, bool failed_here,
                       double timeout_s = 10.0);
 
+// Every rank of 'comm' together: the highest status, and the lowest rank
+// with that status that has a message (-1: none has one).
+struct AgreedStatus {
+  int status = 0;
+  int message_rank = -1;
+};
+AgreedStatus agree_status(MPI_Comm comm, int status, bool has_message);
+
 // The first half of agree_exit_status: returns once every rank of 'comm' is
 // here; a rank that failed and waited 'timeout_s' in vain ends the job so.
 void wait_for_ranks_or_abort(MPI_Comm comm, int status, const std::string& message,

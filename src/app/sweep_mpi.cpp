@@ -206,13 +206,9 @@ CaseEnd GroupRunner::run_case(std::size_t k) {
     // A rank that failed alone may leave the others in a collective of the
     // case: after 10 s it ends the job (a resumable sweep) with its message.
     wait_for_ranks_or_abort(agreement_, end.status, message, end.status != 0);
-    // The highest status, with the message of the lowest rank that has one.
-    struct {
-      int key, rank;
-    } mine{2 * end.status + (message.empty() ? 0 : 1), group_rank_}, agreed{0, 0};
-    MPI_Allreduce(&mine, &agreed, 1, MPI_2INT, MPI_MAXLOC, group_);
-    end.status = agreed.key / 2;
-    if (agreed.key % 2) end.error = broadcast_text(group_, message, agreed.rank);
+    const AgreedStatus agreed = agree_status(group_, end.status, !message.empty());
+    end.status = agreed.status;
+    if (agreed.message_rank >= 0) end.error = broadcast_text(group_, message, agreed.message_rank);
     if (group_rank_ == 0 && !end.error.empty()) std::fprintf(stderr, "%s\n", end.error.c_str());
   }
   end.wall_s = std::chrono::duration<double>(Clock::now() - start).count();

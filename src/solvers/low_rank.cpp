@@ -162,14 +162,14 @@ void LowRankStepSolver::build_u(Entry& e) {
 
 CapacitanceDots LowRankStepSolver::active_dots() const {
   CapacitanceDots in;
-  bool sparse = true;
+  const bool sparse =
+      std::all_of(active_.begin(), active_.end(), [](auto* e) { return e->sparse; });
   for (const Entry* e : active_) {
     in.us.push_back(e->u);
     in.zs.push_back(e->z);
-    in.sparse_us.push_back({e->term.index.data(), e->term.weight.data(), e->term.index.size()});
-    sparse = sparse && e->sparse;
+    if (sparse)
+      in.sparse_us.push_back({e->term.index.data(), e->term.weight.data(), e->term.index.size()});
   }
-  if (!sparse) in.sparse_us.clear();
   return in;
 }
 
