@@ -356,6 +356,8 @@ RunOutcome run(const Context& ctx, scene::RunScene& scene, const RunRequest& req
   print0(ctx, "  %s at %.0f km/h, %.3f s simulated, dt = %.2e s, TS %s\n",
          system->pantographs().size() > 1 ? "pantographs" : "pantograph",
          system->pantographs().front().run.speed * 3.6, scene.duration(), dt, ts_type);
+  if (const auto throttled = session.timing().scheduling().throttle_warning(); !throttled.empty())
+    print_warnings(ctx, std::vector<std::string>{throttled});
   outcome.setup_s = wall_clock_s() - start;
   stage.next("Time loop");
   outcome.signal = session.integrate();

@@ -128,7 +128,8 @@ nlohmann::json StepTiming::json() const {
           {"output_max_ms", 1e3 * output_max_},
           {"output_mean_ms", output_count_ > 0 ? 1e3 * output_total_ / output_count_ : 0.0},
           {"slowest", slowest},
-          {"by_cause", by_cause}};
+          {"by_cause", by_cause},
+          {"scheduling", scheduling_.json()}};
 }
 
 std::string StepTiming::summary_line() const {

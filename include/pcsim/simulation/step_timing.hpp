@@ -14,6 +14,8 @@
 #include <utility>
 #include <vector>
 
+#include "pcsim/simulation/step_scheduling.hpp"
+
 namespace pcsim::simulation {
 
 // What a step did besides its plain Newton iteration.
@@ -45,12 +47,16 @@ class StepTiming {
   // {steps, first_step_ms, median_ms, p99_ms, p99_9_ms, p99_99_ms, max_ms,
   //  max_without_context_switch_ms, steps_with_context_switch, output_max_ms,
   //  output_mean_ms, slowest: [{step, ms, causes}], by_cause: {cause: {steps,
-  //  mean_ms}}}; percentiles over the steps after the first (nearest rank).
+  //  mean_ms}}, scheduling: StepScheduling::json()}; percentiles over the
+  //  steps after the first (nearest rank).
   //  by_cause counts a step under each of its causes (kCauseKeys), "none"
   //  for a step without one: what the run's mean step time is made of.
   nlohmann::json json() const;
   // One console line: the percentiles and the slowest steps' causes.
   std::string summary_line() const;
+  // The stepping thread's scheduling, read where the timing is made (the
+  // run's session, on the thread that steps).
+  const StepScheduling& scheduling() const { return scheduling_; }
 
  private:
   struct Slow {
@@ -63,6 +69,7 @@ class StepTiming {
   static const std::array<const char*, kCauses> kCauseKeys;
   static std::array<bool, kCauses> cause_flags(const StepEvents& e);
   static std::string cause_text(std::size_t c, const StepEvents& e);
+  StepScheduling scheduling_ = StepScheduling::of_this_thread();
   std::vector<double> seconds_;  // after the first step
   double first_ = -1, max_quiet_ = 0, output_max_ = 0, output_total_ = 0;
   long output_count_ = 0, switched_steps_ = 0;
