@@ -18,6 +18,7 @@
 #include "pcsim/scene/run_scene.hpp"
 #include "pcsim/simulation/accuracy_pilot.hpp"
 #include "pcsim/simulation/interrupt.hpp"
+#include "pcsim/simulation/pilot_extremes.hpp"
 #include "pcsim/simulation/run.hpp"
 #include "processes.hpp"
 #include "rerun.hpp"
@@ -189,6 +190,7 @@ int report_complete(const app::CommandContext& ctx, output::OutputDir& out,
   if (ctx.rank == 0) {
     print_statistics(ctx, outcome.settings, outcome.stats);
     print_line_zones(ctx, facts.value("line_zones", nlohmann::json()));
+    app::print0(ctx, "%s", simulation::extremes_outside_pilot_text(facts).c_str());
     if (energy) print_energy(ctx, outcome.energy);
   }
   app::print0(ctx,

@@ -107,6 +107,8 @@ nlohmann::json force_statistics_json(const ForceStatistics& st) {
           {"stat_min_N", st.statistical_min},
           {"max_N", st.actual_max},
           {"min_N", st.actual_min},
+          {"max_at_x_m", st.actual_max_x},
+          {"min_at_x_m", st.actual_min_x},
           {"min_unfiltered_N", st.unfiltered_min},
           {"loss_of_contact_percent", st.loss_of_contact_percent},
           {"samples", st.samples}};

@@ -140,8 +140,8 @@ ForceStatistics force_statistics(const std::vector<double>& position,
     if (position[i] < x_start || position[i] > x_end) continue;
     ++st.samples;
     sum += filtered[i];
-    st.actual_max = std::max(st.actual_max, filtered[i]);
-    st.actual_min = std::min(st.actual_min, filtered[i]);
+    if (filtered[i] > st.actual_max) st.actual_max = filtered[i], st.actual_max_x = position[i];
+    if (filtered[i] < st.actual_min) st.actual_min = filtered[i], st.actual_min_x = position[i];
     st.unfiltered_min = std::min(st.unfiltered_min, raw[i]);
     if (raw[i] <= 0) ++lost;
   }

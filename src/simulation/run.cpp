@@ -22,6 +22,7 @@
 #include "pcsim/simulation/catenary_setup.hpp"
 #include "pcsim/simulation/interrupt.hpp"
 #include "pcsim/simulation/moving_window.hpp"
+#include "pcsim/simulation/pilot_extremes.hpp"
 #include "pcsim/simulation/run_session.hpp"
 #include "pcsim/simulation/run_settings.hpp"
 #include "pcsim/simulation/run_setup.hpp"
@@ -178,6 +179,7 @@ void write_complete_results(const output::OutputDir& out, const catenary::Catena
   const auto& s = outcome.settings;
   outcome.stats = output::finish_run_results(out, line, s);
   assess_figures(s, outcome.stats, outcome.facts);
+  add_extremes_outside_pilot(outcome.stats, outcome.facts);
   outcome.facts["provenance"] = out.provenance();
   if (line.zones.size() >= 2) {
     auto zones =

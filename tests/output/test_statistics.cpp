@@ -155,7 +155,8 @@ TEST(Statistics, RejectsBadParameters) {
   EXPECT_THROW(pcsim::output::zero_phase_lowpass(std::vector<double>(10, 1.0), 1000, 20, 4),
                std::invalid_argument);
   EXPECT_THROW(pcsim::output::force_statistics({0, 1}, {1, 2}, {1}, 0, 1), std::invalid_argument);
-  EXPECT_THROW(pcsim::output::force_statistics({0, 1}, {1, 2}, {1, 2}, 5, 6), std::invalid_argument);
+  EXPECT_THROW(pcsim::output::force_statistics({0, 1}, {1, 2}, {1, 2}, 5, 6),
+               std::invalid_argument);
 }
 
 TEST(Statistics, SectionStatistics) {
@@ -180,6 +181,27 @@ TEST(Statistics, SectionStatistics) {
   EXPECT_EQ(st.actual_max, 110.0);
   EXPECT_EQ(st.actual_min, 90.0);
   EXPECT_NEAR(st.loss_of_contact_percent, 100.0 * 2 / 40, 1e-12);  // raw <= 0, not filtered
+}
+
+// Where the extremes fall: the position of the first sample at the section's
+// largest and smallest force, not of larger ones outside the section nor of
+// a later sample at the same value.
+TEST(Statistics, ExtremesArePlacedAtTheirFirstSampleInsideTheSection) {
+  std::vector<double> pos, filt, raw;
+  for (int i = 0; i < 200; ++i) {
+    pos.push_back(0.5 * i);  // [m]
+    filt.push_back(100 +
+                   20 * std::sin(0.1 * i));  // peaks at i = 16, 79, 141; troughs at 47, 110, 173
+    raw.push_back(filt.back());
+  }
+  filt[5] = 500;          // outside the section [20, 80] m: not its maximum
+  filt[190] = -50;        // outside: not its minimum
+  filt[150] = filt[141];  // inside, later, the same value: the first sample's position stays
+  const auto st = pcsim::output::force_statistics(pos, filt, raw, 20.0, 80.0);
+  EXPECT_EQ(st.actual_max, filt[141]);
+  EXPECT_EQ(st.actual_max_x, 70.5);  // i = 141
+  EXPECT_EQ(st.actual_min, filt[110]);
+  EXPECT_EQ(st.actual_min_x, 55.0);  // i = 110
 }
 
 TEST(Statistics, FilteredMinimumOfAClippedForceIsNegativeTheUnfilteredOneIsNot) {
@@ -221,9 +243,9 @@ TEST(Statistics, LossOfContactWithAMinimumDuration) {
               all.loss_of_contact_percent, 1e-12);
   EXPECT_NEAR(all.loss_of_contact_percent, 100.0 * 26 / 800, 1e-12);
   // From 5 ms on: the 5-, 12- and the 6-sample stretch (3 inside): 20 of 800.
-  EXPECT_NEAR(pcsim::output::loss_of_contact_percent(pos, time, raw, 100.0, 899.0, 5e-3), 100.0 * 20 / 800,
-              1e-12);
+  EXPECT_NEAR(pcsim::output::loss_of_contact_percent(pos, time, raw, 100.0, 899.0, 5e-3),
+              100.0 * 20 / 800, 1e-12);
   // From 10 ms on: the 12-sample one only.
-  EXPECT_NEAR(pcsim::output::loss_of_contact_percent(pos, time, raw, 100.0, 899.0, 10e-3), 100.0 * 12 / 800,
-              1e-12);
+  EXPECT_NEAR(pcsim::output::loss_of_contact_percent(pos, time, raw, 100.0, 899.0, 10e-3),
+              100.0 * 12 / 800, 1e-12);
 }

@@ -39,6 +39,8 @@ struct ForceStatistics {
   double statistical_min = 0;  // Fm - 3σ
   double actual_max = 0;       // of the filtered force
   double actual_min = 0;
+  double actual_max_x = 0;             // position of the first sample at actual_max [m]
+  double actual_min_x = 0;             // ... at actual_min
   double loss_of_contact_percent = 0;  // samples with UNFILTERED force <= 0, in %
   // Of the UNFILTERED force: never below 0 (the penalty force is clipped at
   // zero while the head is off the wire), where the filtered minimum can be

@@ -1,0 +1,72 @@
+#include "pcsim/simulation/pilot_extremes.hpp"
+
+#include <cstdio>
+
+#include "pcsim/simulation/accuracy_pilot.hpp"
+
+namespace pcsim::simulation {
+
+namespace {
+
+constexpr int kActualMaxFigure = 3;  // kPilotFigureKeys
+constexpr int kActualMinFigure = 6;
+
+// The stretch [from_x, to_x] of the run's pilot; false where it has none.
+bool pilot_stretch(const nlohmann::json& facts, double& from_x, double& to_x) {
+  const auto estimate = facts.find("accuracy_estimate");
+  if (estimate == facts.end() || !estimate->is_object()) return false;
+  const auto pilot = estimate->find("pilot");
+  if (pilot == estimate->end() || !pilot->is_object() || !pilot->contains("from_x") ||
+      !pilot->contains("to_x"))
+    return false;
+  from_x = pilot->at("from_x").get<double>();
+  to_x = pilot->at("to_x").get<double>();
+  return true;
+}
+
+}  // namespace
+
+std::vector<ExtremeOutsidePilot> extremes_outside_pilot(const output::RunStatistics& stats,
+                                                        double from_x, double to_x) {
+  std::vector<ExtremeOutsidePilot> out;
+  const auto outside = [&](double x) { return x < from_x || x > to_x; };
+  for (const auto& p : stats.pantographs) {
+    if (!p.complete) continue;
+    if (outside(p.force.actual_max_x))
+      out.push_back({p.name, kActualMaxFigure, p.force.actual_max_x});
+    if (outside(p.force.actual_min_x))
+      out.push_back({p.name, kActualMinFigure, p.force.actual_min_x});
+  }
+  return out;
+}
+
+void add_extremes_outside_pilot(const output::RunStatistics& stats, nlohmann::json& facts) {
+  double from_x = 0, to_x = 0;
+  if (!pilot_stretch(facts, from_x, to_x)) return;
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& e : extremes_outside_pilot(stats, from_x, to_x))
+    list.push_back(
+        {{"pantograph", e.pantograph}, {"figure", kPilotFigureKeys[e.figure]}, {"at_x_m", e.at_x}});
+  facts["accuracy_estimate"]["extremes_outside_pilot"] = list;
+}
+
+std::string extremes_outside_pilot_text(const nlohmann::json& facts) {
+  double from_x = 0, to_x = 0;
+  if (!pilot_stretch(facts, from_x, to_x)) return "";
+  const auto& list = facts["accuracy_estimate"].value("extremes_outside_pilot", nlohmann::json());
+  std::string text;
+  char line[400];
+  for (const auto& e : list) {
+    const bool max = e["figure"].get<std::string>() == kPilotFigureKeys[kActualMaxFigure];
+    std::snprintf(line, sizeof line,
+                  "  accuracy: the actual %s of '%s' falls at x = %.1f m, outside the pilot's "
+                  "stretch (x %.0f-%.0f m):\n    its estimate is from the pilot's spans, not from "
+                  "where it falls (docs/fidelity.md, \"Where the extremes fall\")\n",
+                  max ? "maximum" : "minimum", e["pantograph"].get<std::string>().c_str(),
+                  e["at_x_m"].get<double>(), from_x, to_x);
+    text += line;
+  }
+  return text;
+}
+
+}  // namespace pcsim::simulation
