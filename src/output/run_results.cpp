@@ -72,18 +72,22 @@ std::vector<std::vector<double>> read_rows(hid_t file, const std::string& path) 
   return rows;
 }
 
-// Largest uplift of the contact wire at the supports of the analysis section.
-double max_uplift(hid_t file, const catenary::CatenaryMesh& mesh, const RunSettings& s) {
+// Largest uplift of the contact wire at the supports of the analysis section
+// into stats, with its support (the first to reach it; none where no support rose).
+void max_uplift(hid_t file, const catenary::CatenaryMesh& mesh, const RunSettings& s,
+                RunStatistics& stats) {
   std::vector<hsize_t> dims;
   const auto uplift = h5::read(file, "/supports/uplift", &dims);
   const std::size_t ns = mesh.support_x.size();
   double largest = 0;
   for (std::size_t i = 0; i < uplift.size(); ++i) {
     const double xs = mesh.support_x[i % ns];
-    if (xs >= s.analysis_from_x - 1e-9 && xs <= s.analysis_to_x + 1e-9)
-      largest = std::max(largest, uplift[i]);
+    if (xs >= s.analysis_from_x - 1e-9 && xs <= s.analysis_to_x + 1e-9 && uplift[i] > largest) {
+      largest = uplift[i];
+      stats.max_uplift_x = xs;
+    }
   }
-  return largest;
+  stats.max_uplift_m = largest;
 }
 
 // Pantograph p: its filtered contact force into results.h5, and its statistics.
@@ -160,7 +164,7 @@ RunStatistics finish_run_results(const OutputDir& out, const catenary::CatenaryM
   RunStatistics stats;
   try {
     const auto time = h5::read(file, "/time");
-    stats.max_uplift_m = max_uplift(file, mesh, s);
+    max_uplift(file, mesh, s, stats);
     for (std::size_t p = 0; p < s.pantograph_names.size(); ++p)
       stats.pantographs.push_back(pantograph_results(file, s, time, p));
     errno = 0;
@@ -245,6 +249,9 @@ void write_run_summary(const OutputDir& out, const RunSettings& s, const RunStat
       summary["pantographs"].push_back(figures);
     }
     summary["max_uplift_at_support_m"] = stats->max_uplift_m;
+    summary["max_uplift_at_support_x_m"] = std::isnan(stats->max_uplift_x)
+                                               ? nlohmann::json(nullptr)
+                                               : nlohmann::json(stats->max_uplift_x);
   }
   const std::string path = out.file("summary.json"), tmp = path + ".tmp";
   errno = 0;

@@ -1,5 +1,6 @@
 #include "pcsim/simulation/pilot_extremes.hpp"
 
+#include <cmath>
 #include <cstdio>
 
 #include "pcsim/simulation/accuracy_pilot.hpp"
@@ -9,6 +10,7 @@ namespace pcsim::simulation {
 namespace {
 
 constexpr int kActualMaxFigure = 3;  // kPilotFigureKeys
+constexpr int kUpliftFigure = 4;
 constexpr int kActualMinFigure = 6;
 
 // The stretch [from_x, to_x] of the run's pilot; false where it has none.
@@ -36,6 +38,9 @@ std::vector<ExtremeOutsidePilot> extremes_outside_pilot(const output::RunStatist
       out.push_back({p.name, kActualMaxFigure, p.force.actual_max_x});
     if (outside(p.force.actual_min_x))
       out.push_back({p.name, kActualMinFigure, p.force.actual_min_x});
+    // The line's largest uplift at a support: each pantograph's figure (NaN: none rose).
+    if (!std::isnan(stats.max_uplift_x) && outside(stats.max_uplift_x))
+      out.push_back({p.name, kUpliftFigure, stats.max_uplift_x});
   }
   return out;
 }
@@ -56,14 +61,22 @@ std::string extremes_outside_pilot_text(const nlohmann::json& facts) {
   const auto& list = facts["accuracy_estimate"].value("extremes_outside_pilot", nlohmann::json());
   std::string text;
   char line[400];
+  bool uplift_said = false;  // the line's, once
   for (const auto& e : list) {
-    const bool max = e["figure"].get<std::string>() == kPilotFigureKeys[kActualMaxFigure];
+    const std::string figure = e["figure"].get<std::string>();
+    const bool uplift = figure == kPilotFigureKeys[kUpliftFigure];
+    if (uplift && uplift_said) continue;
+    uplift_said = uplift_said || uplift;
+    const std::string what =
+        uplift ? std::string("largest uplift at a support")
+               : std::string("actual ") +
+                     (figure == kPilotFigureKeys[kActualMaxFigure] ? "maximum" : "minimum") +
+                     " of '" + e["pantograph"].get<std::string>() + "'";
     std::snprintf(line, sizeof line,
-                  "  accuracy: the actual %s of '%s' falls at x = %.1f m, outside the pilot's "
-                  "stretch (x %.0f-%.0f m):\n    its estimate is from the pilot's spans, not from "
-                  "where it falls (docs/fidelity.md, \"Where the extremes fall\")\n",
-                  max ? "maximum" : "minimum", e["pantograph"].get<std::string>().c_str(),
-                  e["at_x_m"].get<double>(), from_x, to_x);
+                  "  accuracy: the %s falls at x = %.1f m, outside the pilot's stretch (x "
+                  "%.0f-%.0f m):\n    its estimate is from the pilot's spans, not from where it "
+                  "falls (docs/fidelity.md, \"Where the extremes fall\")\n",
+                  what.c_str(), e["at_x_m"].get<double>(), from_x, to_x);
     text += line;
   }
   return text;

@@ -5,6 +5,7 @@
 // and a run without a pilot's estimate gets no list.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "pcsim/simulation/accuracy_pilot.hpp"
@@ -63,6 +64,33 @@ TEST(PilotExtremes, SummaryAndConsoleSayWhichAndWhere) {
             std::string::npos)
       << text;
   EXPECT_EQ(text.find("leading"), std::string::npos) << text;
+}
+
+// The line's largest uplift at a support is each pantograph's uplift figure:
+// listed for each where its support lies outside, said once on the console.
+TEST(PilotExtremes, TheUpliftsSupportOutsideIsListedForEachPantographAndSaidOnce) {
+  output::RunStatistics stats;
+  stats.pantographs = {pantograph("leading", 170.0, 180.0), pantograph("trailing", 200.0, 210.0),
+                       pantograph("late", 400.0, 400.0, false)};
+  stats.max_uplift_x = 330.0;
+  auto facts = facts_with_pilot(165.0, 275.0);
+  simulation::add_extremes_outside_pilot(stats, facts);
+  const auto& list = facts["accuracy_estimate"]["extremes_outside_pilot"];
+  ASSERT_EQ(list.size(), 2u) << list.dump();
+  for (const auto& e : list) {
+    EXPECT_EQ(e["figure"], "uplift_percent");
+    EXPECT_EQ(e["at_x_m"].get<double>(), 330.0);
+  }
+  EXPECT_EQ(list[0]["pantograph"], "leading");
+  EXPECT_EQ(list[1]["pantograph"], "trailing");
+  const std::string text = simulation::extremes_outside_pilot_text(facts);
+  const std::string said = "the largest uplift at a support falls at x = 330.0 m, outside";
+  ASSERT_NE(text.find(said), std::string::npos) << text;
+  EXPECT_EQ(text.find(said, text.find(said) + 1), std::string::npos) << text;
+  for (double inside_or_none : {275.0, std::nan("")}) {  // the stretch's end; no support rose
+    stats.max_uplift_x = inside_or_none;
+    EXPECT_TRUE(simulation::extremes_outside_pilot(stats, 165.0, 275.0).empty());
+  }
 }
 
 TEST(PilotExtremes, EveryExtremeInsideGivesAnEmptyListAndNoLine) {

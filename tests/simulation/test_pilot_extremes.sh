@@ -7,8 +7,10 @@
 #  - summary.json's max_at_x_m and min_at_x_m are where the filtered contact
 #    force of results.h5 (h5py, not pcsim's code) is largest and smallest in
 #    the section;
+#  - max_uplift_at_support_x_m is the support of the largest uplift in
+#    /supports/uplift over the section's supports;
 #  - accuracy_estimate.extremes_outside_pilot lists exactly those of them
-#    outside the pilot's stretch (accuracy_estimate.pilot from_x, to_x), and
+#    outside the pilot's stretch (the uplift's for every pantograph) (accuracy_estimate.pilot from_x, to_x), and
 #    the console says so for each; on this scene the trailing pantograph's
 #    maximum and minimum (at 328 and 283 m, 2026-12-06) and not the leading
 #    one's, so both outcomes are checked.
@@ -47,8 +49,19 @@ with h5py.File("run/results.h5", "r") as f:
                 expected[(p["name"], figure)] = at
                 line = f"the actual {word} of '{p['name']}' falls at x = {at:.1f} m, outside"
                 assert line in log, line
+    # The largest uplift at a support of the section, the first in results.h5's order.
+    xs, uplift = f["supports/x"][:], f["supports/uplift"][:]
+    at_support = (xs >= section["from_x"] - 1e-9) & (xs <= section["to_x"] + 1e-9)
+    rows = np.where(at_support[None, :], uplift, -np.inf)
+    support = xs[np.unravel_index(np.argmax(rows), rows.shape)[1]]
+    assert rows.max() > 0 and summary["max_uplift_at_support_x_m"] == support, (
+        summary["max_uplift_at_support_x_m"], support)
+    if support < pilot["from_x"] or support > pilot["to_x"]:
+        for p in summary["pantographs"]:
+            expected[(p["name"], "uplift_percent")] = support
+        assert f"the largest uplift at a support falls at x = {support:.1f} m" in log
 assert listed == expected, (listed, expected)
-names = {name for name, _ in listed}
+names = {name for name, figure in listed if figure != "uplift_percent"}
 assert names == {"trailing"}, names  # one pantograph outside, one inside: both outcomes
 print("extremes outside the pilot's stretch:", sorted(listed.items()))
 PY

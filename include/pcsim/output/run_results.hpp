@@ -5,6 +5,7 @@
 // ParaView) and summary.json. Called on rank 0.
 #pragma once
 
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -67,6 +68,8 @@ struct PantographStatistics {
 struct RunStatistics {
   std::vector<PantographStatistics> pantographs;
   double max_uplift_m = 0;  // contact wire at the supports of the analysis section
+  // The support of that largest uplift [m]; NaN where no support rose.
+  double max_uplift_x = std::numeric_limits<double>::quiet_NaN();
 };
 
 // Zero-phase low-pass of a signal sampled at the accepted time steps; when

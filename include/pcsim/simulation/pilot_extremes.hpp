@@ -16,12 +16,13 @@ namespace pcsim::simulation {
 
 struct ExtremeOutsidePilot {
   std::string pantograph;
-  int figure = 0;   // index into kPilotFigureKeys: the actual maximum or minimum
+  int figure = 0;   // index into kPilotFigureKeys: actual maximum, minimum or uplift
   double at_x = 0;  // where the run's extreme falls [m]
 };
 
 // The complete pantographs' actual maxima and minima that fall outside the
-// stretch [from_x, to_x] [m].
+// stretch [from_x, to_x] [m], and for each the line's largest uplift at a
+// support (each pantograph's uplift figure) where its support does.
 std::vector<ExtremeOutsidePilot> extremes_outside_pilot(const output::RunStatistics& stats,
                                                         double from_x, double to_x);
 
