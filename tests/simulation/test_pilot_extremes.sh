@@ -13,7 +13,9 @@
 #    outside the pilot's stretch (the uplift's for every pantograph) (accuracy_estimate.pilot from_x, to_x), and
 #    the console says so for each; on this scene the trailing pantograph's
 #    maximum and minimum (at 328 and 283 m, 2026-12-06) and not the leading
-#    one's, so both outcomes are checked.
+#    one's, so both outcomes are checked;
+#  - postproc/pilot_check.py against linear FE of the same scene marks the
+#    estimates of those figures, and only those.
 set -euo pipefail
 : "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:=/usr/bin/python3}"
 tmp=$(mktemp -d)
@@ -64,5 +66,24 @@ assert listed == expected, (listed, expected)
 names = {name for name, figure in listed if figure != "uplift_percent"}
 assert names == {"trailing"}, names  # one pantograph outside, one inside: both outcomes
 print("extremes outside the pilot's stretch:", sorted(listed.items()))
+PY
+# postproc/pilot_check.py marks those estimates, and only those.
+"$PCSIM_BIN" run "$PCSIM_SOURCE_DIR/tests/simulation/data/span55-two-pantographs-short.yaml" \
+  --set catenary.design.spans.count=10 --set simulation.end_x=460 --set analysis.to_span=6 \
+  -pcsim_accuracy_pilot false -o linear --no-report > linear.log 2>&1 || { cat linear.log; exit 1; }
+"$PCSIM_PYTHON" "$PCSIM_SOURCE_DIR/postproc/pilot_check.py" run --reference linear > check.log
+"$PCSIM_PYTHON" - <<'PY' || { cat check.log; exit 1; }
+import json
+summary = json.load(open("run/summary.json"))
+listed = summary["accuracy_estimate"]["extremes_outside_pilot"]
+words = {"actual_max_percent": "actual max", "actual_min_percent_of_mean": "actual min",
+         "uplift_percent": "uplift"}
+# Its columns: kind (15), pantograph (12), figure (16), one space apart.
+marked = [(line[16:28].strip(), line[29:45].strip()) for line in open("check.log")
+          if "(falls outside the pilot's stretch)" in line]
+assert sorted(marked) == sorted(
+    (e["pantograph"], words[e["figure"]]) for e in listed), (marked, listed)
+assert f"{len(listed)} estimates of extremes outside the pilot's stretch" in open("check.log").read()
+print(f"pilot_check.py: {len(marked)} estimates marked")
 PY
 echo "pilot extremes: ok"
