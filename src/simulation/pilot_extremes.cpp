@@ -9,10 +9,6 @@ namespace pcsim::simulation {
 
 namespace {
 
-constexpr int kActualMaxFigure = 3;  // kPilotFigureKeys
-constexpr int kUpliftFigure = 4;
-constexpr int kActualMinFigure = 6;
-
 // The stretch [from_x, to_x] of the run's pilot; false where it has none.
 bool pilot_stretch(const nlohmann::json& facts, double& from_x, double& to_x) {
   const auto estimate = facts.find("accuracy_estimate");

@@ -37,6 +37,9 @@ namespace pcsim::simulation {
 // uplift relative [%]; Fm−3σ and actual minimum [% of Fm]; loss of contact
 // [percentage points].
 constexpr int kPilotFigures = 8;
+constexpr int kActualMaxFigure = 3;
+constexpr int kUpliftFigure = 4;
+constexpr int kActualMinFigure = 6;
 constexpr int kLossOfContactFigure = 7;
 extern const std::array<const char*, kPilotFigures> kPilotFigureKeys;    // summary.json
 extern const std::array<const char*, kPilotFigures> kPilotFigureLabels;  // console
