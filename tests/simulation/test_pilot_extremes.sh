@@ -21,10 +21,11 @@ set -euo pipefail
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cd "$tmp"
-"$PCSIM_BIN" run "$PCSIM_SOURCE_DIR/tests/simulation/data/span55-two-pantographs-short.yaml" \
-  --set catenary.model=modal --set catenary.design.spans.count=10 --set simulation.end_x=460 \
-  --set analysis.to_span=6 -pcsim_accuracy_pilot true --cache "$tmp/cache" -o run --no-report \
-  > run.log 2>&1 || { cat run.log; exit 1; }
+# The scene on 10 spans, its section on spans 4-6: the modal run and its reference.
+scene=("$PCSIM_SOURCE_DIR/tests/simulation/data/span55-two-pantographs-short.yaml"
+  --set catenary.design.spans.count=10 --set simulation.end_x=460 --set analysis.to_span=6)
+"$PCSIM_BIN" run "${scene[@]}" --set catenary.model=modal -pcsim_accuracy_pilot true \
+  --cache "$tmp/cache" -o run --no-report > run.log 2>&1 || { cat run.log; exit 1; }
 grep -q "accuracy pilot: spans 4-5" run.log || { cat run.log; exit 1; }
 "$PCSIM_PYTHON" - <<'PY' || { cat run.log; exit 1; }
 import json
@@ -68,9 +69,8 @@ assert names == {"trailing"}, names  # one pantograph outside, one inside: both 
 print("extremes outside the pilot's stretch:", sorted(listed.items()))
 PY
 # postproc/pilot_check.py marks those estimates, and only those.
-"$PCSIM_BIN" run "$PCSIM_SOURCE_DIR/tests/simulation/data/span55-two-pantographs-short.yaml" \
-  --set catenary.design.spans.count=10 --set simulation.end_x=460 --set analysis.to_span=6 \
-  -pcsim_accuracy_pilot false -o linear --no-report > linear.log 2>&1 || { cat linear.log; exit 1; }
+"$PCSIM_BIN" run "${scene[@]}" -pcsim_accuracy_pilot false -o linear --no-report > linear.log 2>&1 ||
+  { cat linear.log; exit 1; }
 "$PCSIM_PYTHON" "$PCSIM_SOURCE_DIR/postproc/pilot_check.py" run --reference linear > check.log
 "$PCSIM_PYTHON" - <<'PY' || { cat check.log; exit 1; }
 import json
