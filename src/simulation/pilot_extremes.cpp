@@ -27,7 +27,11 @@ bool pilot_stretch(const nlohmann::json& facts, double& from_x, double& to_x) {
 std::vector<ExtremeOutsidePilot> extremes_outside_pilot(const output::RunStatistics& stats,
                                                         double from_x, double to_x) {
   std::vector<ExtremeOutsidePilot> out;
-  const auto outside = [&](double x) { return x < from_x || x > to_x; };
+  // The stretch's ends included, with the section's tolerance for a support's
+  // x (output/run_results.cpp): an extreme at a support that ends the
+  // stretch, placed there by another sum of span lengths, is inside.
+  constexpr double kTolerance = 1e-9;  // [m]
+  const auto outside = [&](double x) { return x < from_x - kTolerance || x > to_x + kTolerance; };
   for (const auto& p : stats.pantographs) {
     if (!p.complete) continue;
     if (outside(p.force.actual_max_x))

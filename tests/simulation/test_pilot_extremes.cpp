@@ -1,7 +1,7 @@
 // The run's extremes against its accuracy pilot's stretch
 // (simulation/pilot_extremes.hpp): an actual maximum or minimum outside the
 // stretch is listed in summary.json and on the console, one inside it or at
-// its ends is not, a pantograph that did not cross the section is left out,
+// its ends (within round-off) is not, a pantograph that did not cross the section is left out,
 // and a run without a pilot's estimate gets no list.
 #include <gtest/gtest.h>
 
@@ -46,6 +46,20 @@ TEST(PilotExtremes, OnlyExtremesOutsideTheStretchAreListed) {
   EXPECT_EQ(out[1].at_x, 282.7);
   EXPECT_EQ(out[2].pantograph, "third");
   EXPECT_STREQ(simulation::kPilotFigureKeys[out[2].figure], "actual_max_percent");
+}
+
+// A support that ends the stretch, its x from another sum of span lengths,
+// is inside within 1e-9 m (the section's bounds' tolerance); a millimetre
+// beyond is not.
+TEST(PilotExtremes, AnExtremeAtTheStretchsEndWithinRoundOffIsInside) {
+  output::RunStatistics stats;
+  const double from_x = 0.1 + 0.2, to_x = 3 * 55.3;  // 0.30000000000000004, 165.89999999999998
+  stats.pantographs = {pantograph("leading", 165.9, 0.3), pantograph("trailing", to_x + 1e-3, 0.3)};
+  stats.max_uplift_x = 165.9;
+  const auto out = simulation::extremes_outside_pilot(stats, from_x, to_x);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].pantograph, "trailing");
+  EXPECT_STREQ(simulation::kPilotFigureKeys[out[0].figure], "actual_max_percent");
 }
 
 TEST(PilotExtremes, SummaryAndConsoleSayWhichAndWhere) {
