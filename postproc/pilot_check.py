@@ -10,8 +10,8 @@ per figure is compared with the pilot's reduction estimate; with --converged
 (linear FE at a much finer dt and mesh), the reference's actual
 discretisation error with the pilot's discretisation estimate (both runs must
 be of the same scene). Prints one table per pantograph, marking the
-estimates of the extremes that fall outside the pilot's stretch
-(accuracy_estimate.extremes_outside_pilot: estimated from other spans,
+estimates of the extremes and losses of contact that fall outside the
+pilot's stretch (accuracy_estimate.extremes_outside_pilot: estimated from other spans,
 docs/fidelity.md "Where the extremes fall"); with --check, exits 1
 unless every estimate is at or above its actual error and at most
 3 x actual + 0.3 (issue 21's bounds); with --targets, also unless RUN's
@@ -112,7 +112,7 @@ def main():
     print(f"{len(rows) - len(failed)} of {len(rows)} estimates within their bounds")
     if unseen:
         outside = [r for r in rows if (r[1], r[2]) in unseen]
-        print(f"{len(outside)} estimates of extremes outside the pilot's stretch, "
+        print(f"{len(outside)} estimates of figures that fall outside the pilot's stretch, "
               f"{sum(not r[5] for r in outside)} of them outside their bounds")
     missed = [r for r in rows if r[0] == "reduction" and r[4] > TARGETS[r[2]]]
     for kind, name, i, e, a, ok in missed:

@@ -143,7 +143,7 @@ ForceStatistics force_statistics(const std::vector<double>& position,
     if (filtered[i] > st.actual_max) st.actual_max = filtered[i], st.actual_max_x = position[i];
     if (filtered[i] < st.actual_min) st.actual_min = filtered[i], st.actual_min_x = position[i];
     st.unfiltered_min = std::min(st.unfiltered_min, raw[i]);
-    if (raw[i] <= 0) ++lost;
+    if (raw[i] <= 0) ++lost, st.lost_x.push_back(position[i]);
   }
   if (st.samples == 0)
     throw std::invalid_argument("force_statistics: no sample in the window [" +

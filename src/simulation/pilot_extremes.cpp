@@ -41,6 +41,11 @@ std::vector<ExtremeOutsidePilot> extremes_outside_pilot(const output::RunStatist
     // The line's largest uplift at a support: each pantograph's figure (NaN: none rose).
     if (!std::isnan(stats.max_uplift_x) && outside(stats.max_uplift_x))
       out.push_back({p.name, kUpliftFigure, stats.max_uplift_x});
+    // The loss of contact: the samples at zero outside the stretch, the first of them.
+    ExtremeOutsidePilot loss{p.name, kLossOfContactFigure, 0, 0, p.force.lost_x.size()};
+    for (double x : p.force.lost_x)
+      if (outside(x) && loss.samples_outside++ == 0) loss.at_x = x;
+    if (loss.samples_outside > 0) out.push_back(loss);
   }
   return out;
 }
@@ -49,9 +54,13 @@ void add_extremes_outside_pilot(const output::RunStatistics& stats, nlohmann::js
   double from_x = 0, to_x = 0;
   if (!pilot_stretch(facts, from_x, to_x)) return;
   nlohmann::json list = nlohmann::json::array();
-  for (const auto& e : extremes_outside_pilot(stats, from_x, to_x))
-    list.push_back(
-        {{"pantograph", e.pantograph}, {"figure", kPilotFigureKeys[e.figure]}, {"at_x_m", e.at_x}});
+  for (const auto& e : extremes_outside_pilot(stats, from_x, to_x)) {
+    nlohmann::json entry = {
+        {"pantograph", e.pantograph}, {"figure", kPilotFigureKeys[e.figure]}, {"at_x_m", e.at_x}};
+    if (e.figure == kLossOfContactFigure)
+      entry["samples_outside"] = e.samples_outside, entry["samples"] = e.samples;
+    list.push_back(entry);
+  }
   facts["accuracy_estimate"]["extremes_outside_pilot"] = list;
 }
 
@@ -67,11 +76,23 @@ std::string extremes_outside_pilot_text(const nlohmann::json& facts) {
     const bool uplift = figure == kPilotFigureKeys[kUpliftFigure];
     if (uplift && uplift_said) continue;
     uplift_said = uplift_said || uplift;
+    const std::string name = "'" + e["pantograph"].get<std::string>() + "'";
+    if (figure == kPilotFigureKeys[kLossOfContactFigure]) {
+      std::snprintf(line, sizeof line,
+                    "  accuracy: the loss of contact of %s has %zu of its %zu samples at zero "
+                    "outside the pilot's stretch (x %.0f-%.0f m), the first at x = %.1f m:\n"
+                    "    its estimate is from the pilot's spans, not from where they fall "
+                    "(docs/fidelity.md, \"Where the extremes fall\")\n",
+                    name.c_str(), e["samples_outside"].get<std::size_t>(),
+                    e["samples"].get<std::size_t>(), from_x, to_x, e["at_x_m"].get<double>());
+      text += line;
+      continue;
+    }
     const std::string what =
         uplift ? std::string("largest uplift at a support")
                : std::string("actual ") +
                      (figure == kPilotFigureKeys[kActualMaxFigure] ? "maximum" : "minimum") +
-                     " of '" + e["pantograph"].get<std::string>() + "'";
+                     " of " + name;
     std::snprintf(line, sizeof line,
                   "  accuracy: the %s falls at x = %.1f m, outside the pilot's stretch (x "
                   "%.0f-%.0f m):\n    its estimate is from the pilot's spans, not from where it "

@@ -181,6 +181,8 @@ TEST(Statistics, SectionStatistics) {
   EXPECT_EQ(st.actual_max, 110.0);
   EXPECT_EQ(st.actual_min, 90.0);
   EXPECT_NEAR(st.loss_of_contact_percent, 100.0 * 2 / 40, 1e-12);  // raw <= 0, not filtered
+  // Where: the section's samples at zero only (raw is -5 outside it).
+  EXPECT_EQ(st.lost_x, (std::vector<double>{25.0, 30.0}));
 }
 
 // Where the extremes fall: the position of the first sample at the section's

@@ -1,8 +1,8 @@
 // The run's extremes against its accuracy pilot's stretch
 // (simulation/pilot_extremes.hpp): an actual maximum or minimum outside the
 // stretch is listed in summary.json and on the console, one inside it or at
-// its ends (within round-off) is not, a pantograph that did not cross the section is left out,
-// and a run without a pilot's estimate gets no list.
+// its ends (within round-off) is not, nor is a loss of contact wholly inside, a pantograph that did
+// not cross the section is left out, and a run without a pilot's estimate gets no list.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -105,6 +105,32 @@ TEST(PilotExtremes, TheUpliftsSupportOutsideIsListedForEachPantographAndSaidOnce
     stats.max_uplift_x = inside_or_none;
     EXPECT_TRUE(simulation::extremes_outside_pilot(stats, 165.0, 275.0).empty());
   }
+}
+
+// A loss of contact is counted where the contact is lost: listed with its
+// first sample outside the stretch and how many of its samples are, said on
+// the console; one wholly inside the stretch, or none, is not listed.
+TEST(PilotExtremes, ALossOfContactOutsideTheStretchIsListedWithItsSamples) {
+  output::RunStatistics stats;
+  stats.pantographs = {pantograph("leading", 200.0, 210.0), pantograph("trailing", 220.0, 230.0),
+                       pantograph("third", 240.0, 250.0)};
+  stats.pantographs[0].force.lost_x = {170.0, 275.0};                // inside, its end included
+  stats.pantographs[1].force.lost_x = {160.0, 200.0, 301.5, 301.6};  // three of four outside
+  auto facts = facts_with_pilot(165.0, 275.0);
+  simulation::add_extremes_outside_pilot(stats, facts);
+  const auto& list = facts["accuracy_estimate"]["extremes_outside_pilot"];
+  ASSERT_EQ(list.size(), 1u) << list.dump();
+  EXPECT_EQ(list[0]["pantograph"], "trailing");
+  EXPECT_EQ(list[0]["figure"], "loss_of_contact_points");
+  EXPECT_EQ(list[0]["at_x_m"].get<double>(), 160.0);
+  EXPECT_EQ(list[0]["samples_outside"].get<int>(), 3);
+  EXPECT_EQ(list[0]["samples"].get<int>(), 4);
+  const std::string text = simulation::extremes_outside_pilot_text(facts);
+  EXPECT_NE(text.find("the loss of contact of 'trailing' has 3 of its 4 samples at zero outside "
+                      "the pilot's stretch (x 165-275 m), the first at x = 160.0 m"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(text.find("leading"), std::string::npos) << text;
 }
 
 TEST(PilotExtremes, EveryExtremeInsideGivesAnEmptyListAndNoLine) {

@@ -10,7 +10,9 @@
 #  - max_uplift_at_support_x_m is the support of the largest uplift in
 #    /supports/uplift over the section's supports;
 #  - accuracy_estimate.extremes_outside_pilot lists exactly those of them
-#    outside the pilot's stretch (the uplift's for every pantograph) (accuracy_estimate.pilot from_x, to_x), and
+#    outside the pilot's stretch (the uplift's for every pantograph) (accuracy_estimate.pilot from_x, to_x),
+#    and each pantograph's loss of contact where a sample of the unfiltered
+#    force at zero in the section is outside it, and
 #    the console says so for each; on this scene the trailing pantograph's
 #    maximum and minimum (at 328 and 283 m, 2026-12-06) and not the leading
 #    one's, so both outcomes are checked;
@@ -36,6 +38,7 @@ section = summary["analysis"]
 pilot = summary["accuracy_estimate"]["pilot"]
 listed = {(e["pantograph"], e["figure"]): e["at_x_m"]
           for e in summary["accuracy_estimate"]["extremes_outside_pilot"]}
+outside = lambda at: (at < pilot["from_x"]) | (at > pilot["to_x"])  # a position or an array
 log = open("run.log").read()
 expected = {}
 with h5py.File("run/results.h5", "r") as f:
@@ -48,10 +51,17 @@ with h5py.File("run/results.h5", "r") as f:
                                          "minimum")):
             at = x[inside][pick(force[inside])]
             assert p[key] == at, (p["name"], key, p[key], at)
-            if at < pilot["from_x"] or at > pilot["to_x"]:
+            if outside(at):
                 expected[(p["name"], figure)] = at
                 line = f"the actual {word} of '{p['name']}' falls at x = {at:.1f} m, outside"
                 assert line in log, line
+        # The loss of contact: the section's samples of the unfiltered force at zero.
+        lost = x[inside & (g["contact_force"][:] <= 0)]
+        if outside(lost).any():
+            expected[(p["name"], "loss_of_contact_points")] = lost[outside(lost)][0]
+            line = (f"the loss of contact of '{p['name']}' has {outside(lost).sum()} of its "
+                    f"{lost.size} samples at zero outside the pilot's stretch")
+            assert line in log, line
     # The largest uplift at a support of the section, the first in results.h5's order.
     xs, uplift = f["supports/x"][:], f["supports/uplift"][:]
     at_support = (xs >= section["from_x"] - 1e-9) & (xs <= section["to_x"] + 1e-9)
@@ -59,7 +69,7 @@ with h5py.File("run/results.h5", "r") as f:
     support = xs[np.unravel_index(np.argmax(rows), rows.shape)[1]]
     assert rows.max() > 0 and summary["max_uplift_at_support_x_m"] == support, (
         summary["max_uplift_at_support_x_m"], support)
-    if support < pilot["from_x"] or support > pilot["to_x"]:
+    if outside(support):
         for p in summary["pantographs"]:
             expected[(p["name"], "uplift_percent")] = support
         assert f"the largest uplift at a support falls at x = {support:.1f} m" in log
@@ -77,13 +87,14 @@ import json
 summary = json.load(open("run/summary.json"))
 listed = summary["accuracy_estimate"]["extremes_outside_pilot"]
 words = {"actual_max_percent": "actual max", "actual_min_percent_of_mean": "actual min",
-         "uplift_percent": "uplift"}
+         "uplift_percent": "uplift", "loss_of_contact_points": "loss of contact"}
 # Its columns: kind (15), pantograph (12), figure (16), one space apart.
 marked = [(line[16:28].strip(), line[29:45].strip()) for line in open("check.log")
           if "(falls outside the pilot's stretch)" in line]
 assert sorted(marked) == sorted(
     (e["pantograph"], words[e["figure"]]) for e in listed), (marked, listed)
-assert f"{len(listed)} estimates of extremes outside the pilot's stretch" in open("check.log").read()
+assert f"{len(listed)} estimates of figures that fall outside the pilot's stretch" in open(
+    "check.log").read()
 print(f"pilot_check.py: {len(marked)} estimates marked")
 PY
 echo "pilot extremes: ok"

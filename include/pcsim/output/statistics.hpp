@@ -42,6 +42,7 @@ struct ForceStatistics {
   double actual_max_x = 0;             // position of the first sample at actual_max [m]
   double actual_min_x = 0;             // ... at actual_min
   double loss_of_contact_percent = 0;  // samples with UNFILTERED force <= 0, in %
+  std::vector<double> lost_x;          // the positions of those samples [m], in order
   // Of the UNFILTERED force: never below 0 (the penalty force is clipped at
   // zero while the head is off the wire), where the filtered minimum can be
   // (the low-pass smooths the clipped edge; docs/assessment.md).
