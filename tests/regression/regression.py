@@ -244,6 +244,8 @@ def fidelity_time_step(run):
                   r"use -ts_dt ([\d.]+) \(or smaller\)", text)
     if not m:
         sys.exit(f"no time-step warning in\n{text}")
+    if "an accuracy pilot's discretisation estimate is then an indication, not a bound" not in text:
+        sys.exit(f"no word on the pilot's discretisation estimate under the warning in\n{text}")
     a = s["accuracy_estimate"]
     return [doc("highest frequency that matters [Hz]", a["highest_frequency_hz"], ".1f"),  # 0.1 Hz
             doc("steps per period", a["criteria"][0]["value"], ".1f"),  # docs print 0.1
