@@ -110,6 +110,12 @@ def main():
               f"{'yes' if ok else 'NO'}{mark}")
     failed = [r for r in rows if not r[5]]
     print(f"{len(rows) - len(failed)} of {len(rows)} estimates within their bounds")
+    below = [r for r in failed if r[4] > r[3] + 1e-12]
+    above = [r for r in failed if r not in below]
+    if failed:
+        print(f"{len(below)} below the actual error ({sum((r[1], r[2]) in unseen for r in below)} "
+              f"of figures outside the pilot's stretch), {len(above)} above 3 actual + 0.3 "
+              f"({sum((r[1], r[2]) in unseen for r in above)} of such figures)")
     if unseen:
         outside = [r for r in rows if (r[1], r[2]) in unseen]
         print(f"{len(outside)} estimates of figures that fall outside the pilot's stretch, "

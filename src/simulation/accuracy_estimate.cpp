@@ -220,7 +220,7 @@ void print_accuracy(const Context& ctx, const AccuracyEstimate& e) {
     // The pilot's discretisation estimate assumes second order from dt, h to
     // dt/2, h/2; at dt 2 ms it fell below a trailing pantograph's actual σ
     // error (docs/fidelity.md, "Coarse variants").
-    if (c.name != "modal cut-off" && !discretisation_said) {
+    if ((c.name == "time step" || c.name == "element length") && !discretisation_said) {
       print0(ctx,
              "    (an accuracy pilot's discretisation estimate is then an indication, not a bound: "
              "its runs at dt, h and dt/2, h/2 may not converge at second order yet; "
