@@ -82,7 +82,8 @@ void max_uplift(hid_t file, const catenary::CatenaryMesh& mesh, const RunSetting
   double largest = 0;
   for (std::size_t i = 0; i < uplift.size(); ++i) {
     const double xs = mesh.support_x[i % ns];
-    if (xs >= s.analysis_from_x - 1e-9 && xs <= s.analysis_to_x + 1e-9 && uplift[i] > largest) {
+    if (xs >= s.analysis_from_x - kSupportTolerance && xs <= s.analysis_to_x + kSupportTolerance &&
+        uplift[i] > largest) {
       largest = uplift[i];
       stats.max_uplift_x = xs;
     }

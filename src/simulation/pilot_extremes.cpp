@@ -10,7 +10,7 @@ namespace pcsim::simulation {
 namespace {
 
 // The stretch [from_x, to_x] of the run's pilot; false where it has none.
-bool pilot_stretch(const nlohmann::json& facts, double& from_x, double& to_x) {
+bool stretch_in_facts(const nlohmann::json& facts, double& from_x, double& to_x) {
   const auto estimate = facts.find("accuracy_estimate");
   if (estimate == facts.end() || !estimate->is_object()) return false;
   const auto pilot = estimate->find("pilot");
@@ -27,11 +27,10 @@ bool pilot_stretch(const nlohmann::json& facts, double& from_x, double& to_x) {
 std::vector<ExtremeOutsidePilot> extremes_outside_pilot(const output::RunStatistics& stats,
                                                         double from_x, double to_x) {
   std::vector<ExtremeOutsidePilot> out;
-  // The stretch's ends included, with the section's tolerance for a support's
-  // x (output/run_results.cpp): an extreme at a support that ends the
-  // stretch, placed there by another sum of span lengths, is inside.
-  constexpr double kTolerance = 1e-9;  // [m]
-  const auto outside = [&](double x) { return x < from_x - kTolerance || x > to_x + kTolerance; };
+  // The stretch's ends included, with the section's tolerance for a support:
+  // an extreme at a support that ends the stretch is inside.
+  constexpr double tol = output::kSupportTolerance;
+  const auto outside = [&](double x) { return x < from_x - tol || x > to_x + tol; };
   for (const auto& p : stats.pantographs) {
     if (!p.complete) continue;
     if (outside(p.force.actual_max_x))
@@ -52,7 +51,7 @@ std::vector<ExtremeOutsidePilot> extremes_outside_pilot(const output::RunStatist
 
 void add_extremes_outside_pilot(const output::RunStatistics& stats, nlohmann::json& facts) {
   double from_x = 0, to_x = 0;
-  if (!pilot_stretch(facts, from_x, to_x)) return;
+  if (!stretch_in_facts(facts, from_x, to_x)) return;
   nlohmann::json list = nlohmann::json::array();
   for (const auto& e : extremes_outside_pilot(stats, from_x, to_x)) {
     nlohmann::json entry = {
@@ -66,7 +65,7 @@ void add_extremes_outside_pilot(const output::RunStatistics& stats, nlohmann::js
 
 std::string extremes_outside_pilot_text(const nlohmann::json& facts) {
   double from_x = 0, to_x = 0;
-  if (!pilot_stretch(facts, from_x, to_x)) return "";
+  if (!stretch_in_facts(facts, from_x, to_x)) return "";
   const auto& list = facts["accuracy_estimate"].value("extremes_outside_pilot", nlohmann::json());
   std::string text;
   char line[400];

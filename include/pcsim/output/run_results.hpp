@@ -65,6 +65,11 @@ struct PantographStatistics {
   double judged_lateral_m = 0;
 };
 
+// A support lies in the analysis section (or in a stretch of it) within this
+// of its ends [m]: a support's x and a section's end may come from different
+// sums of span lengths.
+constexpr double kSupportTolerance = 1e-9;
+
 struct RunStatistics {
   std::vector<PantographStatistics> pantographs;
   double max_uplift_m = 0;  // contact wire at the supports of the analysis section
