@@ -261,6 +261,10 @@ std::vector<PilotEstimate::OutsideTarget> PilotEstimate::outside_targets() const
   return figures_outside_targets(reduction_measured);
 }
 
+std::vector<PilotEstimate::OutsideTarget> PilotEstimate::discretisation_outside_targets() const {
+  return figures_outside_targets(discretisation_measured);
+}
+
 nlohmann::json PilotEstimate::json() const {
   nlohmann::json j = {{"cached", cached},
                       {"seconds", seconds},
@@ -275,20 +279,14 @@ nlohmann::json PilotEstimate::json() const {
                       {"loss_of_contact_floor", kPilotLossFloor},
                       {"discretisation", errors_json(discretisation())},
                       {"discretisation_measured", errors_json(discretisation_measured)}};
+  j["discretisation_outside_targets"] = outside_targets_json(discretisation_outside_targets());
   if (cutoff_hz > 0) {
     j["cutoff_hz"] = cutoff_hz;
     j["cutoff_raises"] = cutoff_raises;
     j["cutoff_lowered_from_hz"] = cutoff_lowered_from_hz;
     j["reduction"] = errors_json(reduction());
     j["reduction_measured"] = errors_json(reduction_measured);
-    nlohmann::json o = nlohmann::json::array();
-    for (const auto& t : outside_targets())
-      o.push_back({{"pantograph", t.pantograph},
-                   {"figure", kPilotFigureKeys[t.figure]},
-                   {"measured", t.measured},
-                   {"samples", t.samples},
-                   {"target", kPilotTargets[t.figure]}});
-    j["reduction_outside_targets"] = o;
+    j["reduction_outside_targets"] = outside_targets_json(outside_targets());
   }
   return j;
 }

@@ -39,6 +39,17 @@ std::vector<PilotEstimate::OutsideTarget> figures_outside_targets(
   return out;
 }
 
+nlohmann::json outside_targets_json(const std::vector<PilotEstimate::OutsideTarget>& outside) {
+  nlohmann::json o = nlohmann::json::array();
+  for (const auto& t : outside)
+    o.push_back({{"pantograph", t.pantograph},
+                 {"figure", kPilotFigureKeys[t.figure]},
+                 {"measured", t.measured},
+                 {"samples", t.samples},
+                 {"target", kPilotTargets[t.figure]}});
+  return o;
+}
+
 long loss_samples(double points, std::size_t samples) {
   return std::lround(points / 100 * static_cast<double>(samples));
 }

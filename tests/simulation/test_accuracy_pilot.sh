@@ -24,6 +24,10 @@
 #    none at the raised cut-off; some, each above its target, at a cut-off
 #    the scene sets at 40 Hz (the pilot does not raise a cut-off the scene
 #    sets; 59.1 Hz already misses the targets here).
+#  - The figures the run's dt and h leave unconverged (the pilot's linear FE
+#    at dt, h and dt/2, h/2 differ beyond the targets) are those listed in
+#    summary.json (accuracy_estimate.pilot.discretisation_outside_targets)
+#    and said on the console, one line each, cached or not.
 #  - The run's own stop is not the pilot's (simulation::RunStopsSetAside):
 #    with -ts_max_steps 20 and an empty cache the pilot's runs cross their
 #    stretch and raise the cut-off as the whole run's did, then the run
@@ -108,6 +112,32 @@ for o in outside:
     assert o["measured"] == measured[(o["pantograph"], o["figure"])], o
 print(f"40 Hz: {len(outside)} figure(s) outside the targets, listed")
 PY
+# The figures the run's dt and h leave unconverged: the measured
+# (extrapolated) discretisation errors above the targets (docs/fidelity.md),
+# each on a console line and in summary.json, of the run and of its cached
+# estimate alike.
+for run in modal modal-again; do
+  "$PCSIM_PYTHON" - "$run" <<'PY' || exit 1
+import json
+import sys
+run = sys.argv[1]
+log = {"modal": "modal.log", "modal-again": "again.log"}[run]
+pilot = json.load(open(f"{run}/summary.json"))["accuracy_estimate"]["pilot"]
+targets = {"mean_percent": 0.5, "sigma_percent": 1, "mean_plus_3sigma_percent": 1,
+           "actual_max_percent": 1, "uplift_percent": 2, "mean_minus_3sigma_percent_of_mean": 2,
+           "actual_min_percent_of_mean": 2, "loss_of_contact_points": 0.1}
+expected = [(p["pantograph"], k, p[k]) for p in pilot["discretisation_measured"] for k in targets
+            if p[k] > targets[k]]
+listed = [(o["pantograph"], o["figure"], o["measured"]) for o in
+          pilot["discretisation_outside_targets"]]
+assert listed == expected, (listed, expected)
+lines = [l for l in open(log) if l.startswith("    beyond the targets at the run's dt and h: ")]
+assert len(lines) == len(listed), (lines, listed)
+for (pantograph, _, _), line in zip(listed, lines):
+    assert f"of '{pantograph}', discretisation " in line, line
+print(f"{run}: {len(listed)} figure(s) beyond the targets at the run's dt and h, listed and said")
+PY
+done
 # The run's stop, with an empty cache and with the whole run's.
 for cache in empty-cache cache; do
   "$PCSIM_BIN" run "$scene" --cache "$tmp/$cache" --no-report --set catenary.model=modal \

@@ -65,4 +65,36 @@ TEST(PilotMargin, LossOfContactInSamples) {
   EXPECT_EQ(again.reduction_measured.at(0).samples, 1440u);
 }
 
+// The figures the run's dt and h leave unconverged: the measured (extrapolated)
+// discretisation errors above their targets, in summary.json beside the
+// reduction's, a run without a cut-off (linear FE) included. The values are
+// the 1000-span window's trailing pantograph (docs/fidelity.md, "The
+// discretisation beyond the targets"): actual minimum 9.19 % of Fm, loss of
+// contact 1.48 points; a figure at its target (the maximum, 1.0 %) or below
+// it is not listed.
+TEST(PilotMargin, DiscretisationBeyondTheTargets) {
+  FigureErrors measured;
+  measured.pantograph = "trailing";
+  measured.value = {0.1, 0.9, 0.5, 1.0, 0.4, 1.9, 9.19, 1.48};
+  measured.samples = 2880;
+  PilotEstimate pilot;
+  pilot.discretisation_measured = {measured};
+  const auto outside = pilot.discretisation_outside_targets();
+  ASSERT_EQ(outside.size(), 2u);
+  EXPECT_EQ(outside[0].figure, 6);
+  EXPECT_EQ(outside[1].figure, pcsim::simulation::kLossOfContactFigure);
+  const auto j = pilot.json();
+  const auto& listed = j.at("discretisation_outside_targets");
+  ASSERT_EQ(listed.size(), 2u);
+  EXPECT_EQ(listed.at(0).at("figure"), "actual_min_percent_of_mean");
+  EXPECT_DOUBLE_EQ(listed.at(0).at("measured").get<double>(), 9.19);
+  EXPECT_DOUBLE_EQ(listed.at(0).at("target").get<double>(), 2.0);
+  EXPECT_EQ(listed.at(1).at("figure"), "loss_of_contact_points");
+  EXPECT_EQ(listed.at(1).at("pantograph"), "trailing");
+  EXPECT_FALSE(j.contains("reduction_outside_targets"));  // no cut-off: no reduction
+  // Within the targets: an empty list, not a missing key.
+  pilot.discretisation_measured[0].value = {0.1, 0.9, 0.5, 1.0, 0.4, 1.9, 2.0, 0.1};
+  EXPECT_TRUE(pilot.json().at("discretisation_outside_targets").empty());
+}
+
 }  // namespace

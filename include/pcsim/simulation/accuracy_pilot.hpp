@@ -108,6 +108,10 @@ struct PilotEstimate {
     std::size_t samples = 0;  // FigureErrors::samples
   };
   std::vector<OutsideTarget> outside_targets() const;
+  // The figures whose measured discretisation error (linear FE at the run's
+  // dt and h against dt/2, h/2, extrapolated) is above its target: the run's
+  // figures that its time step and element length leave unconverged.
+  std::vector<OutsideTarget> discretisation_outside_targets() const;
 
   nlohmann::json json() const;
   static PilotEstimate from_json(const nlohmann::json& j);
@@ -119,6 +123,9 @@ struct PilotEstimate {
 std::vector<PilotEstimate::OutsideTarget> figures_outside_targets(
     const std::vector<FigureErrors>& measured);
 std::string outside_targets_list(const std::vector<FigureErrors>& measured);
+// The same as summary.json's list (pantograph, figure key, measured, samples,
+// target).
+nlohmann::json outside_targets_json(const std::vector<PilotEstimate::OutsideTarget>& outside);
 const char* pilot_figure_unit(int figure);
 // " (5 of 1440 samples)" after a loss of contact's difference outside its
 // target, where the samples are known (a sample is 0.069 points of 1440);
