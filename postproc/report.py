@@ -6,7 +6,9 @@
 
 run:   the EN 50318 table of every pantograph (figure, unit, value, range, verdict), the
        contact force, its spectrum and the uplift at the supports, the run's facts
-       (steps, Newton iterations, times), its inputs (the composed scene, the overrides,
+       (steps, Newton iterations, times), its accuracy estimate (the pilot's estimated
+       errors per figure, those it measured beyond their targets marked, or the
+       calibrated criteria), its inputs (the composed scene, the overrides,
        the scene file as written) and its provenance.
 sweep: the swept keys and values, the EN 50318 figures of every case with their
        verdicts, the figures plotted against the swept values, failed cases with the end
@@ -88,6 +90,72 @@ def criteria_table(pantograph):
     return table(["figure", "unit", "value", "limit", "verdict", "clause"], rows, classes)
 
 
+# The pilot's figures (summary.json accuracy_estimate.pilot; docs/fidelity.md).
+PILOT_FIGURES = [("mean_percent", "mean", "%"), ("sigma_percent", "sigma", "%"),
+                 ("mean_plus_3sigma_percent", "Fm+3sigma", "%"),
+                 ("actual_max_percent", "actual maximum", "%"), ("uplift_percent", "uplift", "%"),
+                 ("mean_minus_3sigma_percent_of_mean", "Fm-3sigma", "% of Fm"),
+                 ("actual_min_percent_of_mean", "actual minimum", "% of Fm"),
+                 ("loss_of_contact_points", "loss of contact", "points")]
+
+
+def pilot_tables(pilot):
+    """Per pantograph: each figure's estimated discretisation (and reduction) error; a
+    cell is marked where the pilot measured that error beyond the figure's target."""
+    kinds = ["discretisation"] + (["reduction"] if pilot.get("reduction") else [])
+    beyond = {(o["pantograph"], o["figure"], kind) for kind in kinds
+              for o in pilot.get(kind + "_outside_targets", [])}
+    parts = []
+    for i, d in enumerate(pilot["discretisation"]):
+        name = d["pantograph"]
+        estimates = [pilot[kind][i] for kind in kinds]
+        rows = [[label, unit] + ["%.2f" % e[key] for e in estimates]
+                for key, label, unit in PILOT_FIGURES]
+        classes = [[None, None] + ["fail" if (name, key, kind) in beyond else "num"
+                                   for kind in kinds] for key, _, _ in PILOT_FIGURES]
+        parts += ["<h3>%s</h3>" % esc(name),
+                  table(["figure", "unit"] + ["%s estimate" % k for k in kinds], rows, classes)]
+    return parts
+
+
+def accuracy_section(estimate):
+    """The run's accuracy estimate: its pilot's table, or the calibrated criteria."""
+    parts = ["<h2 id=\"accuracy\">Accuracy estimate</h2>"]
+    if not estimate:
+        return parts[0] + "<p>none recorded</p>"
+    pilot = estimate.get("pilot")
+    if pilot:
+        cutoff = (", the modal level's reduction against linear FE at the same dt and h "
+                  "(cut-off %.1f Hz)" % pilot["cutoff_hz"]) if pilot.get("reduction") else ""
+        parts.append("<p>%s</p>" % esc(
+            "From the pilot's runs over x %.0f-%.0f m%s: the discretisation against converged "
+            "linear FE%s. An estimate is %g times the pilot's difference, at least %g (%g points "
+            "for the loss of contact). Marked: a figure the pilot measured beyond its target "
+            "(docs/fidelity.md)." % (pilot["from_x"], pilot["to_x"],
+                                      " (cached)" if pilot.get("cached") else "", cutoff,
+                                      pilot["safety_factor"], pilot["floor"],
+                                      pilot["loss_of_contact_floor"])))
+        parts += pilot_tables(pilot)
+        outside = estimate.get("extremes_outside_pilot") or []
+        if outside:
+            parts.append("<p>%s</p>" % esc("Outside the pilot's stretch (estimated from its "
+                                           "spans): " + ", ".join(
+                "%s of '%s' at x = %.1f m" % (e["figure"], e["pantograph"], e["at_x_m"])
+                for e in outside) + "."))
+        return "\n".join(parts)
+    rows, classes = [], []
+    for c in estimate.get("criteria", []):
+        rows.append([c["name"], "%.2f" % c["value"], c["measure"], "%.2f" % c["converged_min"],
+                     "%.1f" % c["estimated_sigma_error_percent"],
+                     "inside" if c["ok"] else "OUTSIDE", "" if c["ok"] else c["advice"]])
+        classes.append([None, "num", None, "num", "num", "pass" if c["ok"] else "fail", None])
+    parts.append("<p>Calibrated criteria (no pilot ran: docs/fidelity.md, \"Calibrated "
+                 "criteria\").</p>")
+    parts.append(table(["criterion", "value", "measure", "converged at or above",
+                        "sigma error ~ %", "region", "advice"], rows, classes))
+    return "\n".join(parts)
+
+
 def provenance_section(p):
     if not p:
         return "<h2 id=\"provenance\">Provenance</h2><p>none recorded</p>"
@@ -124,7 +192,8 @@ def run_report(folder):
             % (esc(", ".join(p["name"] for p in s["pantographs"])), s["speed_kmh"],
                s["analysis"]["from_x"], s["analysis"]["to_x"], s["analysis"]["cutoff_hz"]),
             "<p>Contents: <a href=\"#en50318\">EN 50318 figures</a>, <a href=\"#plots\">plots</a>, "
-            "<a href=\"#facts\">run</a>, <a href=\"#inputs\">inputs</a>, "
+            "<a href=\"#facts\">run</a>, <a href=\"#accuracy\">accuracy estimate</a>, "
+            "<a href=\"#inputs\">inputs</a>, "
             "<a href=\"#provenance\">provenance</a>.</p>",
             "<h2 id=\"en50318\">EN 50318 figures</h2>",
             "<p>%s</p>" % esc("Acceptance ranges of %s at %.0f km/h." % (ref["edition"], s["speed_kmh"])
@@ -173,6 +242,7 @@ def run_report(folder):
               "simulated_time_s", "real_time_factor", "peak_memory_mb", "ranks", "dofs", "path")
              if k in s]
     body += ["<h2 id=\"facts\">Run</h2>", table(["", ""], facts)]
+    body.append(accuracy_section(s.get("accuracy_estimate")))
     body += [inputs_section(s.get("provenance")), provenance_section(s.get("provenance"))]
     return page("pcsim run: %s" % s.get("scene", os.path.basename(folder.rstrip("/"))), "\n".join(body))
 

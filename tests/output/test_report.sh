@@ -5,7 +5,8 @@
 #    three pantographs gets a force and a spectrum panel per pantograph;
 #  - `pcsim sweep` over two speeds, two cases at a time: sweep.csv, sweep.md, sweep.png,
 #    report.html, summary.json, one run result per case;
-#  - each report.html is parsed: its tables (the EN 50318 figures with a verdict per row),
+#  - each report.html is parsed: its tables (the EN 50318 figures with a verdict per row,
+#    a run's accuracy estimate: its calibrated criteria without a pilot),
 #    its images (every one an embedded PNG that decodes), and no reference to anything
 #    outside the page (every href is an anchor of the page, every src a data: URI);
 #  - postproc/animate.py renders a GIF of the snapshots (one frame per snapshot);
@@ -79,6 +80,12 @@ assert any(t[0][0] == "" and any(r[0] == "git_commit" for r in t) for t in run.t
 summary = json.load(open(os.path.join(tmp, "run/summary.json")))
 assert summary["en50318"]["pantograph"]["edition"] == "EN 50318:2002"
 assert summary["provenance"]["overrides"] == ["catenary.design.spans.count=3", "output.snapshot_every=100"]
+# The accuracy estimate: without a pilot (the tests' options), the calibrated criteria
+# as summary.json has them, each inside or outside its converged region.
+criteria = next(t for t in run.tables if t and t[0][:2] == ["criterion", "value"])
+assert [r[0] for r in criteria[1:]] == [c["name"] for c in summary["accuracy_estimate"]["criteria"]]
+for r, c in zip(criteria[1:], summary["accuracy_estimate"]["criteria"]):
+    assert r[1] == "%.2f" % c["value"] and r[5] == ("inside" if c["ok"] else "OUTSIDE"), (r, c)
 
 sweep = check_page(os.path.join(tmp, "sweep/report.html"), 1, 2)  # figures vs speed; 2 cases
 rows = list(csv.DictReader(open(os.path.join(tmp, "sweep/sweep.csv"))))

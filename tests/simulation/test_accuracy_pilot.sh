@@ -27,7 +27,8 @@
 #  - The figures the run's dt and h leave unconverged (the pilot's linear FE
 #    at dt, h and dt/2, h/2 differ beyond the targets) are those listed in
 #    summary.json (accuracy_estimate.pilot.discretisation_outside_targets)
-#    and said on the console, one line each, cached or not.
+#    and said on the console, one line each, cached or not; the run's report
+#    (postproc/report.py) marks the same figures in its accuracy estimate.
 #  - The run's own stop is not the pilot's (simulation::RunStopsSetAside):
 #    with -ts_max_steps 20 and an empty cache the pilot's runs cross their
 #    stretch and raise the cut-off as the whole run's did, then the run
@@ -138,6 +139,33 @@ for (pantograph, _, _), line in zip(listed, lines):
 print(f"{run}: {len(listed)} figure(s) beyond the targets at the run's dt and h, listed and said")
 PY
 done
+# The run's report shows the pilot's estimates per pantograph, the cells of
+# the figures beyond their targets marked (postproc/report.py).
+"$PCSIM_PYTHON" "$PCSIM_SOURCE_DIR/postproc/report.py" run modal > report.log 2>&1 ||
+  { cat report.log; exit 1; }
+"$PCSIM_PYTHON" - <<'PY'
+import json
+import re
+pilot = json.load(open("modal/summary.json"))["accuracy_estimate"]["pilot"]
+page = open("modal/report.html").read()
+section = page[page.index('<h2 id="accuracy">'):page.index('<h2 id="inputs">')]
+labels = {"sigma_percent": "sigma", "actual_min_percent_of_mean": "actual minimum",
+          "loss_of_contact_points": "loss of contact", "actual_max_percent": "actual maximum",
+          "mean_minus_3sigma_percent_of_mean": "Fm-3sigma", "mean_plus_3sigma_percent": "Fm+3sigma",
+          "mean_percent": "mean", "uplift_percent": "uplift"}
+column = {"discretisation": 2, "reduction": 3}
+expected = sorted((o["pantograph"], labels[o["figure"]], column[kind]) for kind in column
+                  for o in pilot[kind + "_outside_targets"])
+marked = []
+for name, body in re.findall(r"<h3>([^<]*)</h3>\s*<table>(.*?)</table>", section, re.S):
+    for row in re.findall(r"<tr>(.*?)</tr>", body, re.S)[1:]:
+        cells = re.findall(r"<td( class=\"[a-z]+\")?>([^<]*)</td>", row)
+        marked += [(name.replace("&#x27;", "'"), cells[0][1], i) for i, (c, _) in enumerate(cells)
+                   if c == ' class="fail"']
+        assert len(cells) == 4, cells
+assert sorted(marked) == expected and expected, (marked, expected)
+print(f"report: {len(marked)} estimate(s) marked beyond their targets, as summary.json lists")
+PY
 # The run's stop, with an empty cache and with the whole run's.
 for cache in empty-cache cache; do
   "$PCSIM_BIN" run "$scene" --cache "$tmp/$cache" --no-report --set catenary.model=modal \
