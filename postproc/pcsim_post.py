@@ -5,7 +5,9 @@
   line on stderr (exit status 2);
 - the EN 50318 figures and acceptance ranges of meshes/en50318-ranges.json (the file pcsim
   embeds too): `reference`, `assess`;
-- `pyplot`: matplotlib with the Agg backend, or a clear message if it is missing.
+- `pyplot`: matplotlib with the Agg backend, or a clear message if it is missing;
+- `PILOT_KEYS`: the accuracy pilot's figures as summary.json names them, in the order of
+  simulation/accuracy_pilot.hpp (kPilotFigureKeys).
 """
 import json
 import os
@@ -14,6 +16,10 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 RANGES_FILE = os.path.join(HERE, os.pardir, "meshes", "en50318-ranges.json")
+
+PILOT_KEYS = ["mean_percent", "sigma_percent", "mean_plus_3sigma_percent", "actual_max_percent",
+              "uplift_percent", "mean_minus_3sigma_percent_of_mean", "actual_min_percent_of_mean",
+              "loss_of_contact_points"]
 
 
 class ScriptError(Exception):

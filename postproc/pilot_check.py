@@ -24,10 +24,10 @@ import argparse
 import json
 import sys
 
+import pcsim_post
+
 # Same order, units and names as simulation/accuracy_pilot.hpp.
-KEYS = ["mean_percent", "sigma_percent", "mean_plus_3sigma_percent", "actual_max_percent",
-        "uplift_percent", "mean_minus_3sigma_percent_of_mean", "actual_min_percent_of_mean",
-        "loss_of_contact_points"]
+KEYS = pcsim_post.PILOT_KEYS
 LABELS = ["mean", "sigma", "Fm+3sigma", "actual max", "uplift", "Fm-3sigma", "actual min",
           "loss of contact"]
 UNITS = ["%", "%", "%", "%", "%", "%Fm", "%Fm", "pt"]

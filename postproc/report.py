@@ -90,13 +90,12 @@ def criteria_table(pantograph):
     return table(["figure", "unit", "value", "limit", "verdict", "clause"], rows, classes)
 
 
-# The pilot's figures (summary.json accuracy_estimate.pilot; docs/fidelity.md).
-PILOT_FIGURES = [("mean_percent", "mean", "%"), ("sigma_percent", "sigma", "%"),
-                 ("mean_plus_3sigma_percent", "Fm+3sigma", "%"),
-                 ("actual_max_percent", "actual maximum", "%"), ("uplift_percent", "uplift", "%"),
-                 ("mean_minus_3sigma_percent_of_mean", "Fm-3sigma", "% of Fm"),
-                 ("actual_min_percent_of_mean", "actual minimum", "% of Fm"),
-                 ("loss_of_contact_points", "loss of contact", "points")]
+# The pilot's figures (summary.json accuracy_estimate.pilot; docs/fidelity.md): key,
+# label and unit on the page.
+PILOT_FIGURES = list(zip(pcsim_post.PILOT_KEYS,
+                         ["mean", "sigma", "Fm+3sigma", "actual maximum", "uplift", "Fm-3sigma",
+                          "actual minimum", "loss of contact"],
+                         ["%"] * 5 + ["% of Fm"] * 2 + ["points"]))
 
 
 def pilot_tables(pilot):
