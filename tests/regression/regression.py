@@ -21,8 +21,10 @@ relative at worst, 5e-5 at best) separates a genuine change from round-off.
 For a docs figure it is half a unit of the digit the page prints: the test
 fails when the page's figure no longer rounds from what the command gives.
 
-usage: regression.py CASE --bin PCSIM [--ranks N] [--regenerate]
+usage: regression.py CASE [CASE ...] --bin PCSIM [--ranks N] [--regenerate]
        regression.py --list
+  Several cases run in one temporary folder: one cache, and a pcsim command
+  two cases give runs once; each is diffed against its own expected file.
   PCSIM_REGENERATE=1 in the environment also regenerates; then the .out file
   is rewritten and the test passes.
 """
