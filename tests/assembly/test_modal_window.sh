@@ -56,8 +56,9 @@ run() {  # run NAME SCENE [options]: pcsim run, output in $tmp/NAME, log in $tmp
 }
 
 # 1. Every mode = FE, across shifts.
-# At dt = 2 ms, twice the scenes' (the equality holds at any dt; the modal
-# run, a dense LU of 374 unknowns at every iteration, takes half the time).
+# At dt = 2 ms, twice the scenes' (the equality holds at any dt): 882 steps
+# of the modal run's dense LU of 374 unknowns instead of 1764, at 1.8 Newton
+# iterations a step instead of 1.1 (its log; 42 s of stepping instead of 57).
 run fe "$data/small-window-linear.yaml" -pcsim_path full -snes_atol 1e-6 --set simulation.dt=0.002
 run all "$data/small-window-modal-all.yaml" -snes_atol 1e-6 --set simulation.dt=0.002
 grep -q "modal method: window (the scene's 'window')" "$tmp/all.log" || { cat "$tmp/all.log"; exit 1; }

@@ -24,9 +24,9 @@ scene=$PCSIM_SOURCE_DIR/tests/contact/data/en50318-short.yaml
 mpirun=$PCSIM_SOURCE_DIR/scripts/mpirun.sh
 
 for path in cheap full; do
+  mkdir "$tmp/$path"
   for np in 1 2; do
     out=$tmp/$path/np$np
-    mkdir -p "$tmp/$path"
     "$mpirun" -n $np "$PCSIM_BIN" run "$scene" -o "$out" -ts_max_steps 200 -pcsim_path $path \
       > "$out.log" 2>&1 || { cat "$out.log"; exit 1; }
   done

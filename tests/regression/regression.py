@@ -21,10 +21,11 @@ relative at worst, 5e-5 at best) separates a genuine change from round-off.
 For a docs figure it is half a unit of the digit the page prints: the test
 fails when the page's figure no longer rounds from what the command gives.
 
-usage: regression.py CASE [CASE ...] --bin PCSIM [--ranks N] [--regenerate]
+usage: regression.py CASE|GROUP [...] --bin PCSIM [--ranks N] [--regenerate]
        regression.py --list
-  Several cases run in one temporary folder: one cache, and a pcsim command
-  two cases give runs once; each is diffed against its own expected file.
+  Several cases (a GROUP names some) run in one temporary folder: one cache,
+  and a pcsim command two cases give runs once; each is diffed against its
+  own expected file.
   PCSIM_REGENERATE=1 in the environment also regenerates; then the .out file
   is rewritten and the test passes.
 """
@@ -335,6 +336,13 @@ DOC_CASES = {
     "fidelity-slack-exact": fidelity_slack_exact,  # ~45 s (6 runs, the modes of 69.7 Hz once)
 }
 
+# Cases run together, by one name: they share the EN 50318 line's basis at
+# 69.7 Hz and a linear FE run (89 s for the three, against 18 + 50 + 39 s one
+# by one, idle machine, 2026-12-07).
+GROUPS = {
+    "en50318-modal-cases": ["en50318-300-modal", "readme-fast-level", "fidelity-slack-exact"],
+}
+
 
 def matches(value, expected_text):
     expected = float(expected_text)
@@ -399,9 +407,9 @@ def compare(case, got, ranks=1, regenerate=False):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    # Several cases run with one runner: the same cache (a basis computed
-    # once), a command two cases give run once; each case is compared with
-    # its own expected file.
+    # Several cases (or a group of GROUPS) run with one runner: the same cache
+    # (a basis computed once), a command two cases give run once; each case
+    # is compared with its own expected file.
     ap.add_argument("cases", nargs="*", metavar="case", help="one or more of --list")
     ap.add_argument("--bin", help="the pcsim executable")
     ap.add_argument("--ranks", type=int, default=1)
@@ -410,7 +418,9 @@ def main():
     args = ap.parse_args()
     if args.list or not args.cases:
         print("cases: " + " ".join(list(CASES) + list(DOC_CASES)))
+        print("groups: " + " ".join(f"{g} ({' '.join(c)})" for g, c in GROUPS.items()))
         return
+    args.cases = [c for name in args.cases for c in GROUPS.get(name, [name])]
     unknown = [c for c in args.cases if c not in CASES and c not in DOC_CASES]
     if unknown:
         ap.error(f"unknown case(s) {' '.join(unknown)}; --list lists them")
