@@ -75,8 +75,12 @@ std::string check_command(const app::CommandContext& ctx, const std::string& com
                   in.numerics.ts_type.c_str(), in.cheap_path ? "cheap" : "full");
     const std::string method =
         in.run.modal_method_note.empty() ? "" : "modal method " + in.run.modal_method_note + "; ";
+    // The modal basis's memory needs its modes' count (the run checks it
+    // then: simulation::check_modal_memory).
+    const bool modal = in.run.catenary.fidelity == catenary::CatenaryFidelity::modal;
     return text + method +
-           ("design " + in.run.catenary.design_path + ": " + memory_text(in.memory, ctx.size));
+           ("design " + in.run.catenary.design_path + ": " + memory_text(in.memory, ctx.size)) +
+           (modal ? ", the modal basis apart (the run checks it once its modes are counted)" : "");
   }
   if (command == "pantograph") {
     const auto in = app::read_pantograph_inputs(ctx);

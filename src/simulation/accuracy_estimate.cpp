@@ -276,6 +276,8 @@ namespace {
 
 // Why a pilot that left figures outside the targets raised no further.
 const char* why_raises_ended(const PilotEstimate& pilot) {
+  if (pilot.cutoff_raise_refused_hz > 0)
+    return "where the next raise would not fit in this machine's memory";
   return pilot.cutoff_raises >= kMaxCutoffRaisesWhileCloser
              ? "the most the pilot raises it"
              : "where a raise no longer brought every figure outside the targets closer";
@@ -317,13 +319,21 @@ void print_pilot(const Context& ctx, const PilotEstimate& pilot) {
            "there or at a cut-off above it is further from its target than at %.1f Hz\n",
            pilot.cutoff_raises, pilot.cutoff_lowered_from_hz, why_raises_ended(pilot),
            pilot.cutoff_hz, pilot.cutoff_lowered_from_hz);
+  else if (modal && pilot.cutoff_raise_refused_hz > 0)
+    print0(ctx,
+           "    modal cut-off raised %d time(s), to %.1f Hz: its raise to %.1f Hz would not fit "
+           "in this machine's memory\n",
+           pilot.cutoff_raises, pilot.cutoff_hz, pilot.cutoff_raise_refused_hz);
   else if (modal && pilot.cutoff_raises > 0)
     print0(ctx, "    modal cut-off raised %d time(s) to %.1f Hz, %s\n", pilot.cutoff_raises,
            pilot.cutoff_hz, why_raises_ended(pilot));
   // Where the raises above the run's cut-off brought nothing closer, raising
   // it again is no advice.
   char hint[96] = "catenary.max_frequency_hz raises the cut-off";
-  if (pilot.cutoff_lowered_from_hz > 0)
+  if (pilot.cutoff_raise_refused_hz > 0)
+    std::snprintf(hint, sizeof hint, "%.1f Hz would not fit in memory",
+                  pilot.cutoff_raise_refused_hz);
+  else if (pilot.cutoff_lowered_from_hz > 0)
     std::snprintf(hint, sizeof hint, "no closer up to %.1f Hz", pilot.cutoff_lowered_from_hz);
   for (const auto& t : outside)
     print0(ctx, "    outside the targets at %.1f Hz: %s\n", pilot.cutoff_hz,

@@ -22,6 +22,7 @@
 #include "pcsim/core/version.hpp"
 #include "pcsim/output/output_dir.hpp"
 #include "pcsim/simulation/catenary_setup.hpp"
+#include "pcsim/simulation/memory_estimate.hpp"
 #include "pcsim/simulation/run.hpp"
 #include "pcsim/simulation/run_checkpoint.hpp"
 #include "pilot_process.hpp"
@@ -284,6 +285,7 @@ nlohmann::json PilotEstimate::json() const {
     j["cutoff_hz"] = cutoff_hz;
     j["cutoff_raises"] = cutoff_raises;
     j["cutoff_lowered_from_hz"] = cutoff_lowered_from_hz;
+    j["cutoff_raise_refused_hz"] = cutoff_raise_refused_hz;
     j["reduction"] = errors_json(reduction());
     j["reduction_measured"] = errors_json(reduction_measured);
     j["reduction_outside_targets"] = outside_targets_json(outside_targets());
@@ -306,6 +308,7 @@ PilotEstimate PilotEstimate::from_json(const nlohmann::json& j) {
     p.cutoff_hz = j.at("cutoff_hz").get<double>();
     p.cutoff_raises = j.at("cutoff_raises").get<int>();
     p.cutoff_lowered_from_hz = j.value("cutoff_lowered_from_hz", 0.0);
+    p.cutoff_raise_refused_hz = j.value("cutoff_raise_refused_hz", 0.0);
     p.reduction_measured = errors_from_json(j.at("reduction_measured"));
   }
   return p;
@@ -401,7 +404,16 @@ double choose_cutoff(PilotRuns& runs, const scene::RunScene& run,
     std::snprintf(label, sizeof label, "modal at %.1f Hz (its modes computed unless cached)",
                   cutoff);
     const long before = last_modal_computation().serial;
-    const auto figures = runs.here(label, reduced, run.dt, cutoff);
+    PilotFigures figures;
+    try {
+      figures = runs.here(label, reduced, run.dt, cutoff);
+    } catch (const ModalMemoryError& e) {  // a raise the machine cannot hold: raised no further
+      if (cutoffs.empty()) throw;
+      print0(runs.ctx, "not raised: %s\n", e.needed().c_str());
+      --pilot.cutoff_raises;
+      pilot.cutoff_raise_refused_hz = cutoff;
+      return settle_cutoff(pilot, cutoffs, tried);
+    }
     const auto modes = last_modal_computation();
     if (modes.serial != before && modes.kept > 0)
       print0(runs.ctx, "      %ld modes computed, the %ld below %.1f Hz kept from the last\n",
@@ -418,14 +430,7 @@ double choose_cutoff(PilotRuns& runs, const scene::RunScene& run,
     const bool may_raise =
         pilot.cutoff_raises < kMaxCutoffRaises ||
         (pilot.cutoff_raises < kMaxCutoffRaisesWhileCloser && last_raise_closer(tried));
-    if (!may_raise) {
-      const std::size_t k = lowest_sufficient_cutoff(tried);
-      if (k + 1 < tried.size()) {
-        pilot.cutoff_lowered_from_hz = cutoff;
-        pilot.reduction_measured = tried[k];
-      }
-      return cutoffs[k];
-    }
+    if (!may_raise) return settle_cutoff(pilot, cutoffs, tried);
     cutoff *= kCutoffRaise;
     ++pilot.cutoff_raises;
   }
@@ -480,7 +485,7 @@ PilotEstimate run_accuracy_pilot(const Context& ctx, const SceneSource& source,
   if (pilot.second_process)
     print0(ctx, " (the second process's peak memory %.0f MB)", pilot.second_process_peak_mb);
   print0(ctx, "\n");
-  write_cached(ctx, key, pilot);
+  if (pilot.cutoff_raise_refused_hz <= 0) write_cached(ctx, key, pilot);  // (else this machine's)
   return pilot;
 }
 

@@ -14,7 +14,9 @@
 #include "pcsim/core/vec_root.hpp"
 #include "pcsim/output/modal_cache.hpp"
 #include "pcsim/simulation/context.hpp"
+#include "pcsim/simulation/memory_estimate.hpp"
 #include "pcsim/simulation/modal_basis.hpp"
+#include "pcsim/simulation/run_session.hpp"
 #include "pcsim/simulation/setup_memory.hpp"
 #include "pcsim/simulation/statics.hpp"
 #include "pcsim/solvers/spectrum.hpp"
@@ -126,6 +128,35 @@ std::string parts_text(int parts, MPI_Comm comm) {
   return text;
 }
 
+// Refuses a basis of 'modes' modes that would not fit in memory, now that
+// their number is known (the inertia below the cut-off), before they are
+// computed: an error of the scene's cut-off if it set one, else of its model.
+void check_basis_memory(const Context& ctx, const scene::RunScene& run,
+                        const simulation::ModalDataBuilder& builder, long modes, double cutoff_hz) {
+  simulation::ModalMemoryNeed need;
+  need.rows = builder.kept_rows();
+  need.modes = modes;
+  need.vectors = modes + builder.shapes();
+  need.cutoff_hz = cutoff_hz;
+  need.window = run.window.has_value();
+  int here = simulation::counted_node_processes();
+  if (here <= 0) here = ctx.size;
+  double resident = simulation::resident_memory_bytes();  // the largest rank's: one verdict
+  MPI_Allreduce(MPI_IN_PLACE, &resident, 1, MPI_DOUBLE, MPI_MAX, ctx.comm);
+  // The tests' -pcsim_debug_modal_memory_above_hz F: a cut-off above F as if
+  // its basis did not fit (the accuracy pilot's raise that the machine
+  // cannot hold: tests/simulation/test_modal_memory.sh).
+  PetscReal above_hz = 0;
+  PetscBool debug = PETSC_FALSE;
+  PCSIM_PETSC(PetscOptionsGetReal(nullptr, nullptr, "-pcsim_debug_modal_memory_above_hz", &above_hz,
+                                  &debug));
+  const bool refused = debug && cutoff_hz > above_hz;
+  simulation::check_modal_memory(
+      need, resident, std::min(here, ctx.size), refused ? 1.0 : simulation::machine_memory_bytes(),
+      run.catenary.scene_file,
+      run.catenary.modal_cutoff_given ? "catenary.max_frequency_hz" : "catenary.model");
+}
+
 catenary::ModalData compute_data(const Context& ctx, const scene::RunScene& run,
                                  const simulation::StaticConfiguration& statics,
                                  const std::string& key, double cutoff_hz, bool full_shapes) {
@@ -137,9 +168,12 @@ catenary::ModalData compute_data(const Context& ctx, const scene::RunScene& run,
   const long kept_modes = extends ? kept_builder->builder->modes() : 0;
   PetscLogDouble start;
   PetscTime(&start);
+  const simulation::ModalDataBuilder* building = nullptr;  // (set below)
   // A line per chunk of modes: how many, the time so far and the ETA (the
-  // chunks are about equal in modes and cost).
+  // chunks are about equal in modes and cost); before the first, whether
+  // the basis fits in memory.
   const auto progress = [&](long done, long total, int parts) {
+    if (done == 0) check_basis_memory(ctx, run, *building, kept_modes + total, cutoff_hz);
     PetscLogDouble now;
     PetscTime(&now);
     const double elapsed = now - start;
@@ -162,6 +196,7 @@ catenary::ModalData compute_data(const Context& ctx, const scene::RunScene& run,
   auto builder =
       extends ? std::move(kept_builder) : new_builder(ctx, run, statics, kept_key, full_shapes);
   kept_builder.reset();  // (another key's: freed before this computation)
+  building = builder->builder.get();
   auto data = builder->builder->extend(cutoff_hz, progress, keep);
   last_computation.serial++;
   last_computation.computed = static_cast<long>(data.modes()) - kept_modes;

@@ -1,5 +1,8 @@
 #include "pcsim/simulation/memory_estimate.hpp"
 
+#include <petscsys.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
@@ -64,6 +67,12 @@ MemoryEstimate estimate_memory(const catenary::MeshSize& size, MemoryUse use, in
 }
 
 double machine_memory_bytes() {
+  PetscBool initialized = PETSC_FALSE, given = PETSC_FALSE;
+  PetscReal mb = 0;
+  if (PetscInitialized(&initialized) == 0 && initialized &&
+      PetscOptionsGetReal(nullptr, nullptr, "-pcsim_debug_machine_memory_mb", &mb, &given) == 0 &&
+      given)
+    return mb * 1024.0 * 1024.0;
   std::ifstream meminfo("/proc/meminfo");
   std::string line;
   while (std::getline(meminfo, line)) {
@@ -96,6 +105,41 @@ void check_memory(const catenary::MeshSize& size, MemoryUse use, int ranks, doub
                 e.nodes, e.dofs, e.matrix_nonzeros, e.factor_entries, need / 1e9, ranks_text,
                 machine_bytes / 1e9);
   throw InputError(size.file, size.key, text);
+}
+
+double resident_memory_bytes() {
+  std::ifstream statm("/proc/self/statm");
+  double pages = 0, resident = 0;
+  if (!(statm >> pages >> resident)) return 0;
+  return resident * static_cast<double>(sysconf(_SC_PAGESIZE));
+}
+
+double modal_basis_bytes(long rows, long vectors, bool window) {
+  const double v = static_cast<double>(vectors);
+  return kModalRowCopies * 8.0 * static_cast<double>(rows) * v + (window ? 8.0 * v * v : 0.0);
+}
+
+void check_modal_memory(const ModalMemoryNeed& need, double resident_bytes, int ranks_here,
+                        double machine_bytes, const std::string& file, const std::string& key) {
+  if (machine_bytes <= 0) return;
+  const double basis = modal_basis_bytes(need.rows, need.vectors, need.window);
+  const int here = std::max(ranks_here, 1);
+  const double total = here * (resident_bytes + basis), limit = 0.9 * machine_bytes;
+  if (total <= limit) return;
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "%ld vectors (%ld modes below %.1f Hz and the droppers' shapes) over %ld kept rows "
+                "need about %.2f GB while the basis is formed, beside the %.2f GB in use, on each "
+                "of %d rank(s) here: %.2f GB, more than 90%% of the machine's %.2f GB",
+                need.vectors, need.modes, need.cutoff_hz, need.rows, basis / 1e9,
+                resident_bytes / 1e9, here, total / 1e9, machine_bytes / 1e9);
+  throw ModalMemoryError(file, key,
+                         std::string("the modal level's basis would not fit in this machine's "
+                                     "memory: ") +
+                             text +
+                             "; use catenary.model: linear, a lower catenary.max_frequency_hz "
+                             "or fewer spans",
+                         text);
 }
 
 }  // namespace pcsim::simulation

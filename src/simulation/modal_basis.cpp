@@ -292,6 +292,14 @@ long ModalDataBuilder::modes() const {
   return static_cast<long>(parts_->omega2.size());
 }
 
+long ModalDataBuilder::kept_rows() const {
+  return static_cast<long>(parts_->row_keys.size());
+}
+
+long ModalDataBuilder::shapes() const {
+  return parts_->shapes ? static_cast<long>(parts_->shapes->count()) : 0;
+}
+
 void ModalDataBuilder::Parts::add_mode(double lambda, Vec phi) {
   if (shift_products) shift_products->append(phi);
   omega2.push_back(lambda);

@@ -90,6 +90,16 @@ std::size_t lowest_sufficient_cutoff(const std::vector<std::vector<FigureErrors>
   return k;
 }
 
+double settle_cutoff(PilotEstimate& pilot, const std::vector<double>& cutoffs,
+                     const std::vector<std::vector<FigureErrors>>& tried) {
+  const std::size_t k = lowest_sufficient_cutoff(tried);
+  if (k + 1 < tried.size()) {
+    pilot.cutoff_lowered_from_hz = cutoffs.back();
+    pilot.reduction_measured = tried[k];
+  }
+  return cutoffs[k];
+}
+
 bool last_raise_closer(const std::vector<std::vector<FigureErrors>>& tried) {
   if (tried.size() < 2) return false;
   const auto &last = tried.back(), &before = tried[tried.size() - 2];

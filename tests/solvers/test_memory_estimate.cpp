@@ -174,3 +174,47 @@ TEST(MemoryEstimate, MachineMemoryFromProcMeminfo) {
   const double bytes = simulation::machine_memory_bytes();
   EXPECT_GT(bytes, 1e8);  // any machine that runs the tests has more than 100 MB
 }
+
+// The modal basis while it is formed: kModalRowCopies copies of its kept
+// rows in double, and a window's shift products (vectors^2 doubles).
+TEST(ModalMemory, BasisBytesAreTheRowsCopiesAndTheWindowsProducts) {
+  EXPECT_DOUBLE_EQ(simulation::modal_basis_bytes(2852, 2736, false),
+                   simulation::kModalRowCopies * 8.0 * 2852 * 2736);
+  EXPECT_DOUBLE_EQ(simulation::modal_basis_bytes(3137, 5287, true) -
+                       simulation::modal_basis_bytes(3137, 5287, false),
+                   8.0 * 5287 * 5287);
+}
+
+// Refused where the ranks here, each holding what it holds and the whole
+// basis, would pass 90 % of the machine; the message names the file, the
+// key and the need, and needed() holds the need alone (the pilot's line).
+TEST(ModalMemory, RefusedAboveNinetyPercentOfTheMachine) {
+  simulation::ModalMemoryNeed need;
+  need.rows = 19206;  // three-sections-300 at 69.7 Hz (docs/fidelity.md)
+  need.modes = 18000;
+  need.vectors = 18576;
+  need.cutoff_hz = 69.7;
+  const double basis = simulation::modal_basis_bytes(need.rows, need.vectors, false);
+  const double resident = 1.2e9, machine = (resident + basis) / 0.9;
+  EXPECT_NO_THROW(simulation::check_modal_memory(need, resident, 1, machine * 1.001, "s.yaml",
+                                                 "catenary.model"));
+  EXPECT_NO_THROW(simulation::check_modal_memory(need, resident, 1, 0, "s.yaml", "k"));  // unknown
+  // Two ranks here hold it twice.
+  EXPECT_THROW(simulation::check_modal_memory(need, resident, 2, machine * 1.001, "s.yaml", "k"),
+               simulation::ModalMemoryError);
+  try {
+    simulation::check_modal_memory(need, resident, 1, machine * 0.999, "s.yaml",
+                                   "catenary.max_frequency_hz");
+    FAIL() << "a basis above 90 % of the machine accepted";
+  } catch (const InputError& e) {  // an InputError: exit 2
+    EXPECT_EQ(e.file(), "s.yaml");
+    EXPECT_EQ(e.key(), "catenary.max_frequency_hz");
+    EXPECT_NE(e.reason().find("18576 vectors (18000 modes below 69.7 Hz and the droppers' "
+                              "shapes) over 19206 kept rows need about 9.99 GB"),
+              std::string::npos)
+        << e.reason();
+    EXPECT_NE(e.reason().find("use catenary.model: linear"), std::string::npos);
+    const auto& m = dynamic_cast<const simulation::ModalMemoryError&>(e);
+    EXPECT_EQ(m.needed().find("use "), std::string::npos) << m.needed();
+  }
+}

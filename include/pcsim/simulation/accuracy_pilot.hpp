@@ -87,6 +87,9 @@ struct PilotEstimate {
   // modal: the highest cut-off tried when the run takes a lower one
   // (lowest_sufficient_cutoff), else 0.
   double cutoff_lowered_from_hz = 0;
+  // modal: the raise the machine's memory could not hold (its cut-off:
+  // simulation::check_modal_memory), else 0; the raises ended below it.
+  double cutoff_raise_refused_hz = 0;
   bool refined_mesh = false;  // the fine run halved the element length too
   // The linear FE runs ran in a second process beside the others
   // (-pcsim_pilot_process), and its peak resident memory [MB].
@@ -141,6 +144,11 @@ std::size_t lowest_sufficient_cutoff(const std::vector<std::vector<FigureErrors>
 // after which some reduction error is outside its target and every such one
 // is smaller than at the cut-off before: a further raise may bring it in.
 bool last_raise_closer(const std::vector<std::vector<FigureErrors>>& tried);
+// Where the raises end with figures outside the targets: the cut-off the run
+// takes among those tried (ascending), lowest_sufficient_cutoff's, and its
+// errors as the pilot's (cutoff_lowered_from_hz set when it is not the last).
+double settle_cutoff(PilotEstimate& pilot, const std::vector<double>& cutoffs,
+                     const std::vector<std::vector<FigureErrors>>& tried);
 
 // Where the pilot runs: every pantograph starts where the run starts it,
 // the figures are taken over [from_x, to_x] (spans from_span..to_span,

@@ -13,8 +13,10 @@
 
 #include <algorithm>
 #include <string>
+#include <utility>
 
 #include "pcsim/catenary/geometry.hpp"
+#include "pcsim/core/error.hpp"
 
 namespace pcsim::simulation {
 
@@ -46,12 +48,51 @@ struct MemoryEstimate {
 MemoryEstimate estimate_memory(const catenary::MeshSize& size, MemoryUse use, int modes = 20);
 
 // Total memory of this machine [bytes] (/proc/meminfo MemTotal); 0 if unknown.
+// The tests' -pcsim_debug_machine_memory_mb stands for it when given.
 double machine_memory_bytes();
+
+// This process's resident memory now [bytes] (/proc/self/statm); 0 if unknown.
+double resident_memory_bytes();
 
 // Throws InputError(size.file, size.key, ...) when the estimate for the
 // 'ranks_here' of 'ranks' ranks on this machine (0: all of them) exceeds 90 %
 // of 'machine_bytes' (skipped when machine_bytes is 0).
 void check_memory(const catenary::MeshSize& size, MemoryUse use, int ranks, double machine_bytes,
                   int modes = 20, int ranks_here = 0);
+
+// The modal level's basis while it is formed (simulation/catenary_setup.cpp):
+// 'vectors' basis vectors (modes and the droppers' shapes) over 'rows' kept
+// rows in double, held kModalRowCopies times at the peak (the modes' rows as
+// computed, the data's copy, the assembled basis, the model's rows), and with
+// a moving window its shift products (vectors^2 doubles, then P in floats).
+// Measured first-run peaks: 0.68 to 1.03 of the estimate with what the
+// process held beside it (docs/fidelity.md, "Memory of the modal basis").
+constexpr double kModalRowCopies = 3.5;
+double modal_basis_bytes(long rows, long vectors, bool window);
+
+// What check_modal_memory refuses: an InputError of the scene's key.
+class ModalMemoryError : public InputError {
+ public:
+  ModalMemoryError(std::string file, std::string key, std::string reason, std::string needed)
+      : InputError(std::move(file), std::move(key), std::move(reason)),
+        needed_(std::move(needed)) {}
+  // The need against the machine, without the advice (the pilot's raise).
+  const std::string& needed() const { return needed_; }
+
+ private:
+  std::string needed_;
+};
+
+struct ModalMemoryNeed {
+  long rows = 0, vectors = 0, modes = 0;  // vectors: modes and shapes
+  double cutoff_hz = 0;
+  bool window = false;
+};
+
+// Throws ModalMemoryError(file, key, ...) when this machine's 'ranks_here'
+// ranks, each holding 'resident_bytes' now and the whole basis (every rank
+// holds it), would exceed 90 % of 'machine_bytes' (skipped when it is 0).
+void check_modal_memory(const ModalMemoryNeed& need, double resident_bytes, int ranks_here,
+                        double machine_bytes, const std::string& file, const std::string& key);
 
 }  // namespace pcsim::simulation

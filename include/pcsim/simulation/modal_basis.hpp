@@ -55,6 +55,8 @@ class ModalDataBuilder {
                              bool keep_for_extension);
   double cutoff_hz() const;  // the last extend's; -1 before the first
   long modes() const;        // computed so far
+  long kept_rows() const;    // of every vector
+  long shapes() const;       // the droppers' static shapes (0 before the first extend)
 
  private:
   struct Parts;

@@ -1,0 +1,82 @@
+#!/bin/bash
+# The modal level's basis against the machine's memory
+# (simulation::check_modal_memory, docs/fidelity.md "Memory of the modal
+# basis"): once the modes below the cut-off are counted (the inertia), before
+# they are computed, a basis that would not fit is refused.
+#  1. EN 50318's modal run on a machine of 200 MB
+#     (-pcsim_debug_machine_memory_mb): the FE system's estimate (0.09 GB,
+#     the mesh-size check) fits, the basis (2736 vectors over 2852 kept rows,
+#     about 0.22 GB beside the 0.10 GB in use) does not. Exit 2, one message
+#     naming the scene file, the key (catenary.model, or
+#     catenary.max_frequency_hz where the scene sets the cut-off) and the
+#     need, on 1 and 2 ranks, with and without the accuracy pilot (whose
+#     first modal run meets it); no output folder. Control: the same run on a
+#     machine of 2000 MB starts (stopped after 2 steps).
+#  2. The accuracy pilot's raise that the machine cannot hold: on the
+#     three-span line the pilot raises 40.5 Hz to 50.6 Hz; with the raise
+#     refused (-pcsim_debug_modal_memory_above_hz 45: a cut-off above 45 Hz
+#     as if its basis did not fit) it says so, raises no further and the run
+#     takes 40.5 Hz (summary.json: cutoff_raise_refused_hz 50.6); the
+#     pilot is not cached (its cut-off is this machine's).
+set -euo pipefail
+: "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+en=$PCSIM_SOURCE_DIR/runs/en50318-300-modal.yaml
+
+refused() {  # label, key, command...
+  local label=$1 key=$2
+  shift 2
+  local code=0
+  "$@" > "$tmp/out.log" 2> "$tmp/err.log" || code=$?
+  [ "$code" -eq 2 ] || { echo "$label: exit $code, not 2"; cat "$tmp/out.log" "$tmp/err.log"; exit 1; }
+  [ "$(grep -c "pcsim: error" "$tmp/err.log")" -eq 1 ] ||
+    { echo "$label: not one message"; cat "$tmp/err.log"; exit 1; }
+  grep -q "runs/en50318-300-modal.yaml: key '$key': the modal level's basis would not fit in this machine's memory: 2736 vectors (2646 modes below 69.7 Hz and the droppers' shapes) over 2852 kept rows need about 0.22 GB" "$tmp/err.log" ||
+    { echo "$label: message"; cat "$tmp/err.log"; exit 1; }
+  [ ! -e "$tmp/run" ] || { echo "$label: an output folder was left"; exit 1; }
+  echo "ok   $label: exit 2, $(grep -o "more than 90% of the machine's [0-9.]* GB" "$tmp/err.log")"
+}
+
+small=(-pcsim_debug_machine_memory_mb 200)
+refused "1 rank, no pilot" catenary.model "$PCSIM_BIN" run "$en" -o "$tmp/run" \
+  --cache "$tmp/cache1" --no-report "${small[@]}"
+refused "2 ranks, no pilot" catenary.model mpirun -n 2 "$PCSIM_BIN" run "$en" -o "$tmp/run" \
+  --cache "$tmp/cache2" --no-report "${small[@]}"
+refused "1 rank, the pilot's first run" catenary.model "$PCSIM_BIN" run "$en" -o "$tmp/run" \
+  --cache "$tmp/cache3" --no-report "${small[@]}" -pcsim_accuracy_pilot true
+refused "cut-off set by the scene" catenary.max_frequency_hz "$PCSIM_BIN" run "$en" \
+  -o "$tmp/run" --cache "$tmp/cache4" --no-report "${small[@]}" \
+  --set catenary.max_frequency_hz=69.6595
+"$PCSIM_BIN" run "$en" -o "$tmp/fits" --cache "$tmp/cache5" --no-report \
+  -pcsim_debug_machine_memory_mb 2000 -ts_max_steps 2 > "$tmp/fits.log" 2>&1 ||
+  { echo "a machine of 2000 MB refused"; cat "$tmp/fits.log"; exit 1; }
+echo "ok   a machine of 2000 MB: the run starts"
+
+# 2. The pilot's raise refused.
+lumped=$PCSIM_SOURCE_DIR/tests/contact/data/three-span-lumped.yaml
+cutoffs() {  # the run's cut-off and the refused raise's (summary.json)
+  /usr/bin/python3 -c "import json,sys; j=json.load(open(sys.argv[1]))
+p=j['accuracy_estimate']['pilot']
+print('%.1f %.1f %d' % (j['modal']['cutoff_hz'], p['cutoff_raise_refused_hz'], p['cutoff_raises']))" \
+    "$1/summary.json"
+}
+for case in raised refused; do
+  extra=()
+  [ "$case" = refused ] && extra=(-pcsim_debug_modal_memory_above_hz 45)
+  "$PCSIM_BIN" run "$lumped" --set catenary.model=modal -pcsim_accuracy_pilot true \
+    -o "$tmp/$case" --cache "$tmp/cache-$case" --no-report "${extra[@]}" > "$tmp/$case.log" 2>&1 ||
+    { cat "$tmp/$case.log"; exit 1; }
+done
+[ "$(cutoffs "$tmp/raised")" = "50.6 0.0 1" ] || { echo "control: $(cutoffs "$tmp/raised")"; exit 1; }
+[ "$(cutoffs "$tmp/refused")" = "40.5 50.6 0" ] || { echo "refused: $(cutoffs "$tmp/refused")"; exit 1; }
+grep -q "modal at 50.6 Hz (its modes computed unless cached) ... not raised: 294 vectors" \
+  "$tmp/refused.log" || { echo "no refusal line"; cat "$tmp/refused.log"; exit 1; }
+grep -q "modal cut-off raised 0 time(s), to 40.5 Hz: its raise to 50.6 Hz would not fit in this machine's memory" \
+  "$tmp/refused.log" || { echo "no estimate line"; cat "$tmp/refused.log"; exit 1; }
+# The cut-off the machine's memory chose is not cached for another machine.
+ls "$tmp/cache-raised"/accuracy-pilot-*.json > /dev/null || { echo "control: no pilot cached"; exit 1; }
+! ls "$tmp/cache-refused"/accuracy-pilot-*.json > /dev/null 2>&1 ||
+  { echo "a pilot whose raise was refused was cached"; exit 1; }
+echo "ok   the pilot's raise to 50.6 Hz refused: the run takes 40.5 Hz (50.6 Hz without the refusal), not cached"
+echo "modal memory: ok"
