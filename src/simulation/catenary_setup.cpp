@@ -168,12 +168,19 @@ catenary::ModalData compute_data(const Context& ctx, const scene::RunScene& run,
   const long kept_modes = extends ? kept_builder->builder->modes() : 0;
   PetscLogDouble start;
   PetscTime(&start);
-  const simulation::ModalDataBuilder* building = nullptr;  // (set below)
+  const bool keep = extension_scopes > 0 && !no_later_extension && cutoff_hz > 0;
+  if (extends) {
+    forget_kept_bases(key);  // the lower cut-off's bases: superseded,
+    malloc_trim(0);          // and their memory given back (modal_basis_internal.hpp)
+  }
+  auto builder =
+      extends ? std::move(kept_builder) : new_builder(ctx, run, statics, kept_key, full_shapes);
+  kept_builder.reset();  // (another key's: freed before this computation)
   // A line per chunk of modes: how many, the time so far and the ETA (the
   // chunks are about equal in modes and cost); before the first, whether
   // the basis fits in memory.
   const auto progress = [&](long done, long total, int parts) {
-    if (done == 0) check_basis_memory(ctx, run, *building, kept_modes + total, cutoff_hz);
+    if (done == 0) check_basis_memory(ctx, run, *builder->builder, kept_modes + total, cutoff_hz);
     PetscLogDouble now;
     PetscTime(&now);
     const double elapsed = now - start;
@@ -188,15 +195,6 @@ catenary::ModalData compute_data(const Context& ctx, const scene::RunScene& run,
              100.0 * done / std::max(total, 1L), elapsed,
              done < total ? elapsed * (total - done) / done : 0.0);
   };
-  const bool keep = extension_scopes > 0 && !no_later_extension && cutoff_hz > 0;
-  if (extends) {
-    forget_kept_bases(key);  // the lower cut-off's bases: superseded,
-    malloc_trim(0);          // and their memory given back (modal_basis_internal.hpp)
-  }
-  auto builder =
-      extends ? std::move(kept_builder) : new_builder(ctx, run, statics, kept_key, full_shapes);
-  kept_builder.reset();  // (another key's: freed before this computation)
-  building = builder->builder.get();
   auto data = builder->builder->extend(cutoff_hz, progress, keep);
   last_computation.serial++;
   last_computation.computed = static_cast<long>(data.modes()) - kept_modes;
