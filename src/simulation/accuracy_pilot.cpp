@@ -408,7 +408,10 @@ double choose_cutoff(PilotRuns& runs, const scene::RunScene& run,
     try {
       figures = runs.here(label, reduced, run.dt, cutoff);
     } catch (const ModalMemoryError& e) {  // a raise the machine cannot hold: raised no further
-      if (cutoffs.empty()) throw;
+      if (cutoffs.empty()) {               // the first: the run's error (its line ended first)
+        print0(runs.ctx, "\n");
+        throw;
+      }
       print0(runs.ctx, "not raised: %s\n", e.needed().c_str());
       --pilot.cutoff_raises;
       pilot.cutoff_raise_refused_hz = cutoff;
