@@ -139,8 +139,6 @@ void check_basis_memory(const Context& ctx, const scene::RunScene& run,
   need.vectors = modes + builder.shapes();
   need.cutoff_hz = cutoff_hz;
   need.window = run.window.has_value();
-  int here = simulation::counted_node_processes();
-  if (here <= 0) here = ctx.size;
   double resident = simulation::resident_memory_bytes();  // the largest rank's: one verdict
   MPI_Allreduce(MPI_IN_PLACE, &resident, 1, MPI_DOUBLE, MPI_MAX, ctx.comm);
   // The tests' -pcsim_debug_modal_memory_above_hz F: a cut-off above F as if
@@ -152,8 +150,8 @@ void check_basis_memory(const Context& ctx, const scene::RunScene& run,
                                   &debug));
   const bool refused = debug && cutoff_hz > above_hz;
   simulation::check_modal_memory(
-      need, resident, std::min(here, ctx.size), refused ? 1.0 : simulation::machine_memory_bytes(),
-      run.catenary.scene_file,
+      need, resident, ctx.size, simulation::counted_node_processes(),
+      refused ? 1.0 : simulation::machine_memory_bytes(), run.catenary.scene_file,
       run.catenary.modal_cutoff_given ? "catenary.max_frequency_hz" : "catenary.model");
 }
 

@@ -35,6 +35,15 @@ double matrix_nonzeros(const catenary::MeshSize& s) {
   return nnz;
 }
 
+// What a command may hold of the machine's memory before it is refused.
+constexpr double kMachineShare = 0.9;
+
+// The ranks of 'ranks' on this machine: 'ranks_here' as counted (0: not
+// counted, all of them).
+int ranks_on_machine(int ranks, int ranks_here) {
+  return ranks_here > 0 ? std::min(ranks_here, ranks) : ranks;
+}
+
 }  // namespace
 
 MemoryEstimate estimate_memory(const catenary::MeshSize& size, MemoryUse use, int modes) {
@@ -88,8 +97,8 @@ void check_memory(const catenary::MeshSize& size, MemoryUse use, int ranks, doub
                   int modes, int ranks_here) {
   if (machine_bytes <= 0) return;
   const MemoryEstimate e = estimate_memory(size, use, modes);
-  const int here = ranks_here > 0 ? std::min(ranks_here, ranks) : ranks;
-  const double need = e.node_bytes(ranks, here), limit = 0.9 * machine_bytes;
+  const int here = ranks_on_machine(ranks, ranks_here);
+  const double need = e.node_bytes(ranks, here), limit = kMachineShare * machine_bytes;
   if (need <= limit) return;
   char ranks_text[64];
   if (here == ranks)
@@ -119,12 +128,13 @@ double modal_basis_bytes(long rows, long vectors, bool window) {
   return kModalRowCopies * 8.0 * static_cast<double>(rows) * v + (window ? 8.0 * v * v : 0.0);
 }
 
-void check_modal_memory(const ModalMemoryNeed& need, double resident_bytes, int ranks_here,
-                        double machine_bytes, const std::string& file, const std::string& key) {
+void check_modal_memory(const ModalMemoryNeed& need, double resident_bytes, int ranks,
+                        int ranks_here, double machine_bytes, const std::string& file,
+                        const std::string& key) {
   if (machine_bytes <= 0) return;
   const double basis = modal_basis_bytes(need.rows, need.vectors, need.window);
-  const int here = std::max(ranks_here, 1);
-  const double total = here * (resident_bytes + basis), limit = 0.9 * machine_bytes;
+  const int here = ranks_on_machine(ranks, ranks_here);
+  const double total = here * (resident_bytes + basis), limit = kMachineShare * machine_bytes;
   if (total <= limit) return;
   char text[512];
   std::snprintf(text, sizeof text,

@@ -196,14 +196,16 @@ TEST(ModalMemory, RefusedAboveNinetyPercentOfTheMachine) {
   need.cutoff_hz = 69.7;
   const double basis = simulation::modal_basis_bytes(need.rows, need.vectors, false);
   const double resident = 1.2e9, machine = (resident + basis) / 0.9;
-  EXPECT_NO_THROW(simulation::check_modal_memory(need, resident, 1, machine * 1.001, "s.yaml",
+  EXPECT_NO_THROW(simulation::check_modal_memory(need, resident, 1, 0, machine * 1.001, "s.yaml",
                                                  "catenary.model"));
-  EXPECT_NO_THROW(simulation::check_modal_memory(need, resident, 1, 0, "s.yaml", "k"));  // unknown
-  // Two ranks here hold it twice.
-  EXPECT_THROW(simulation::check_modal_memory(need, resident, 2, machine * 1.001, "s.yaml", "k"),
+  EXPECT_NO_THROW(simulation::check_modal_memory(need, resident, 1, 0, 0, "s.yaml", "k"));
+  // Two ranks here hold it twice (0: not counted, all of the run's).
+  EXPECT_THROW(simulation::check_modal_memory(need, resident, 2, 0, machine * 1.001, "s.yaml", "k"),
                simulation::ModalMemoryError);
+  EXPECT_NO_THROW(
+      simulation::check_modal_memory(need, resident, 2, 1, machine * 1.001, "s.yaml", "k"));
   try {
-    simulation::check_modal_memory(need, resident, 1, machine * 0.999, "s.yaml",
+    simulation::check_modal_memory(need, resident, 1, 0, machine * 0.999, "s.yaml",
                                    "catenary.max_frequency_hz");
     FAIL() << "a basis above 90 % of the machine accepted";
   } catch (const InputError& e) {  // an InputError: exit 2

@@ -89,10 +89,12 @@ struct ModalMemoryNeed {
   bool window = false;
 };
 
-// Throws ModalMemoryError(file, key, ...) when this machine's 'ranks_here'
-// ranks, each holding 'resident_bytes' now and the whole basis (every rank
-// holds it), would exceed 90 % of 'machine_bytes' (skipped when it is 0).
-void check_modal_memory(const ModalMemoryNeed& need, double resident_bytes, int ranks_here,
-                        double machine_bytes, const std::string& file, const std::string& key);
+// Throws ModalMemoryError(file, key, ...) when the 'ranks_here' of 'ranks'
+// ranks on this machine (0: all of them), each holding 'resident_bytes' now
+// and the whole basis (every rank holds it), would exceed 90 % of
+// 'machine_bytes' (skipped when it is 0), as check_memory.
+void check_modal_memory(const ModalMemoryNeed& need, double resident_bytes, int ranks,
+                        int ranks_here, double machine_bytes, const std::string& file,
+                        const std::string& key);
 
 }  // namespace pcsim::simulation
