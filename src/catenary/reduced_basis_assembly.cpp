@@ -163,21 +163,45 @@ RitzCoefficients ritz_vectors(const ModalData& data, const std::vector<long>& ke
   return ritz;
 }
 
-// The basis's rows [Phi_keep, (Psi - Phi_keep C) X] written in place (nr x
-// (m + r)), the kept modes' columns read from 'mode_rows' (nr x modes), which
-// is freed after them when 'release' (assemble_basis(ModalData&&): no copy of
-// the kept modes' rows beside the data's and the basis's).
+// The kept modes' columns of 'rows' (nr x modes, row-major) moved in place
+// to the first m of each row of stride c >= modes: the rows from the last,
+// each through a row's buffer (a row's destination starts at or after its
+// source, and no earlier row's source reaches it).
+void move_kept_columns(std::vector<double>& rows, long nr, long modes,
+                       const std::vector<long>& keep, long c) {
+  const long m = static_cast<long>(keep.size());
+  rows.resize(static_cast<std::size_t>(nr * c));  // within the capacity the data reserved
+  std::vector<double> row(static_cast<std::size_t>(m));
+  for (long i = nr - 1; i >= 0; --i) {
+    const double* source = rows.data() + i * modes;
+    for (long k = 0; k < m; ++k) row[k] = source[keep[k]];
+    std::copy(row.begin(), row.end(), rows.data() + i * c);
+  }
+}
+
+// The basis's rows [Phi_keep, (Psi - Phi_keep C) X] (nr x (m + r)), the kept
+// modes' columns read from 'mode_rows' (nr x modes). With 'release' (the
+// data's own mode rows, assemble_basis(ModalData&&)) and a basis at least as
+// wide as the data, they are formed in the data's storage, which the data
+// reserve for it (ModalDataBuilder): one copy of the rows, not two, where a
+// first run's basis peaks; else the rows are copied and 'release' freed after.
 void fill_rows(const ModalData& data, const std::vector<long>& keep, const RitzCoefficients& ritz,
                std::vector<double>* release, std::vector<double>& out) {
   const long nr = static_cast<long>(data.row_keys.size()), m = static_cast<long>(keep.size());
-  const long r = ritz.X.cols(), c = m + r;
-  out.resize(static_cast<std::size_t>(nr * c));
-  Eigen::Map<RowMatrix> rows(out.data(), nr, c);
-  const ConstMap all_rows(data.mode_rows.data(), nr, static_cast<long>(data.modes()));
-  for (long i = 0; i < nr; ++i)  // row by row: both are row-major (a column copy strides)
-    for (long k = 0; k < m; ++k) rows(i, k) = all_rows(i, keep[k]);
-  if (release) std::vector<double>().swap(*release);
+  const long r = ritz.X.cols(), c = m + r, modes = static_cast<long>(data.modes());
+  if (release && c >= modes) {
+    move_kept_columns(*release, nr, modes, keep, c);
+    out = std::move(*release);
+  } else {
+    out.resize(static_cast<std::size_t>(nr * c));
+    const ConstMap all_rows(data.mode_rows.data(), nr, modes);
+    Eigen::Map<RowMatrix> rows(out.data(), nr, c);
+    for (long i = 0; i < nr; ++i)  // row by row: both are row-major (a column copy strides)
+      for (long k = 0; k < m; ++k) rows(i, k) = all_rows(i, keep[k]);
+    if (release) std::vector<double>().swap(*release);
+  }
   if (r == 0) return;
+  Eigen::Map<RowMatrix> rows(out.data(), nr, c);
   const long nd = static_cast<long>(data.shapes());
   const RowMatrix complement = ConstMap(data.shape_rows.data(), nr, nd) - rows.leftCols(m) * ritz.C;
   rows.rightCols(r).noalias() = complement * ritz.X;

@@ -259,13 +259,31 @@ bool read_basis_file(hid_t file, const std::string& key, catenary::ReducedBasis&
          (b.wind_damping.empty() || b.wind_damping.size() == n);
 }
 
+// Room in d.mode_rows for the basis's rows, which assemble_basis forms in
+// place (the modes' and the droppers' shapes' columns: catenary/reduced_basis.hpp),
+// as the modal data builder leaves it. Always true (no room: only a copy more).
+bool reserve_basis_room(hid_t file, catenary::ModalData& d) {
+  std::size_t shape_entries = 0;
+  if (H5Lexists(file, "/shape_rows", H5P_DEFAULT) > 0) {
+    const hid_t set = H5Dopen2(file, "/shape_rows", H5P_DEFAULT);
+    if (set >= 0) {
+      const hid_t space = H5Dget_space(set);
+      shape_entries = static_cast<std::size_t>(H5Sget_simple_extent_npoints(space));
+      H5Sclose(space);
+      H5Dclose(set);
+    }
+  }
+  d.mode_rows.reserve(d.row_keys.size() * d.omega2.size() + shape_entries);
+  return true;
+}
+
 bool read_file(hid_t file, const std::string& key, catenary::ModalData& d) {
   std::string stored;
   if (!read_key(file, stored) || stored != key) return false;
   const bool ok = read_attribute(file, "cutoff_hz", d.cutoff_hz) &&
                   read_attribute(file, "max_relative_residual", d.max_relative_residual) &&
                   read_dataset(file, "/omega2", d.omega2) &&
-                  read_dataset(file, "/row_keys", d.row_keys) &&
+                  read_dataset(file, "/row_keys", d.row_keys) && reserve_basis_room(file, d) &&
                   read_dataset(file, "/mode_rows", d.mode_rows);
   // The shapes and the compliance are absent for complete bases.
   for (auto [path, v] :

@@ -131,14 +131,20 @@ std::string parts_text(int parts, MPI_Comm comm) {
 // Refuses a basis of 'modes' modes that would not fit in memory, now that
 // their number is known (the inertia below the cut-off), before they are
 // computed: an error of the scene's cut-off if it set one, else of its model.
-void check_basis_memory(const Context& ctx, const scene::RunScene& run,
-                        const simulation::ModalDataBuilder& builder, long modes, double cutoff_hz) {
+void check_basis_memory(const Context& ctx, const scene::RunScene& run, const KeptBuilder& kept_b,
+                        long modes, long computed, double cutoff_hz, bool kept) {
+  const simulation::ModalDataBuilder& builder = *kept_b.builder;
   simulation::ModalMemoryNeed need;
   need.rows = builder.kept_rows();
   need.modes = modes;
   need.vectors = modes + builder.shapes();
   need.cutoff_hz = cutoff_hz;
   need.window = run.window.has_value();
+  need.kept = kept;
+  need.computed = computed;
+  PetscInt dofs = 0;
+  PCSIM_PETSC(VecGetSize(kept_b.x, &dofs));
+  need.dofs = dofs;
   double resident = simulation::resident_memory_bytes();  // the largest rank's: one verdict
   MPI_Allreduce(MPI_IN_PLACE, &resident, 1, MPI_DOUBLE, MPI_MAX, ctx.comm);
   // The tests' -pcsim_debug_modal_memory_above_hz F: a cut-off above F as if
@@ -178,7 +184,8 @@ catenary::ModalData compute_data(const Context& ctx, const scene::RunScene& run,
   // chunks are about equal in modes and cost); before the first, whether
   // the basis fits in memory.
   const auto progress = [&](long done, long total, int parts) {
-    if (done == 0) check_basis_memory(ctx, run, *builder->builder, kept_modes + total, cutoff_hz);
+    if (done == 0)
+      check_basis_memory(ctx, run, *builder, kept_modes + total, total, cutoff_hz, keep);
     PetscLogDouble now;
     PetscTime(&now);
     const double elapsed = now - start;

@@ -123,16 +123,19 @@ double resident_memory_bytes() {
   return resident * static_cast<double>(sysconf(_SC_PAGESIZE));
 }
 
-double modal_basis_bytes(long rows, long vectors, bool window) {
-  const double v = static_cast<double>(vectors);
-  return kModalRowCopies * 8.0 * static_cast<double>(rows) * v + (window ? 8.0 * v * v : 0.0);
+double modal_basis_bytes(const ModalMemoryNeed& need) {
+  const double v = static_cast<double>(need.vectors);
+  const double rows = (need.kept ? 2.0 : 1.0) * 8.0 * static_cast<double>(need.rows) * v;
+  const double chunk = std::min(kEigensolverVectors,
+                                kEigensolverVectorsPerMode * static_cast<double>(need.computed));
+  return rows + 8.0 * chunk * static_cast<double>(need.dofs) + (need.window ? 8.0 * v * v : 0.0);
 }
 
 void check_modal_memory(const ModalMemoryNeed& need, double resident_bytes, int ranks,
                         int ranks_here, double machine_bytes, const std::string& file,
                         const std::string& key) {
   if (machine_bytes <= 0) return;
-  const double basis = modal_basis_bytes(need.rows, need.vectors, need.window);
+  const double basis = modal_basis_bytes(need);
   const int here = ranks_on_machine(ranks, ranks_here);
   const double total = here * (resident_bytes + basis), limit = kMachineShare * machine_bytes;
   if (total <= limit) return;

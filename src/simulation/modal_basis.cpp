@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "modal_basis_internal.hpp"
+#include "mode_row_store.hpp"
 #include "pcsim/assembly/wind_terms.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/solvers/spectrum.hpp"
@@ -245,7 +246,9 @@ struct ModalDataBuilder::Parts {
   // shapes, then the later extends' modes: the shapes start at this index.
   std::size_t shapes_appended_at = 0;
   std::vector<double> contact_compliance, omega2, wind;
-  std::vector<std::vector<double>> columns, mass_products;  // of each mode
+  ModeRowStore mode_rows;                          // the modes' kept rows, as they come
+  std::vector<double> gathered;                    // one mode's kept rows
+  std::vector<std::vector<double>> mass_products;  // of each mode
   Eigen::MatrixXd pending;  // local parts of the modes whose mass products are to come
   long pending_count = 0;
   double cutoff_hz = 0, max_residual = 0;
@@ -258,12 +261,14 @@ struct ModalDataBuilder::Parts {
         row_keys(catenary::reduced_basis_rows(s.mesh(), full_shapes)),
         op(s, x_),
         rows(s, row_keys, loads),
-        wind_damping(s) {
+        wind_damping(s),
+        mode_rows(row_keys.size()),
+        gathered(rows.size()) {
     if (shift) shift_products = std::make_unique<ShiftProducts>(op.M, shift, spill_dir);
   }
   void add_mode(double lambda, Vec phi);
   void flush_mass_products();  // of the pending modes (collective)
-  ModalData data();            // frees each mode's rows once copied unless keep_vectors
+  ModalData data();            // takes the modes' rows unless keep_vectors (then copies)
 };
 
 namespace {
@@ -303,8 +308,8 @@ long ModalDataBuilder::shapes() const {
 void ModalDataBuilder::Parts::add_mode(double lambda, Vec phi) {
   if (shift_products) shift_products->append(phi);
   omega2.push_back(lambda);
-  columns.emplace_back(rows.size());
-  rows.gather(phi, columns.back().data());
+  rows.gather(phi, gathered.data());
+  mode_rows.append(gathered.data());
   if (shapes && shapes->count() > 0) {
     PetscInt local;
     PCSIM_PETSC(VecGetLocalSize(phi, &local));
@@ -344,11 +349,18 @@ ModalData ModalDataBuilder::extend(double max_frequency_hz, const ModalProgress&
       p.contact_compliance = contact_compliance(p.system, *p.K);
   }
   const auto sink = [&p](double lambda, Vec phi) { p.add_mode(lambda, phi); };
+  // Once the modes are counted (and the basis found to fit): the rows' room
+  // for them and for the droppers' Ritz vectors the basis adds.
+  const std::size_t room = p.shapes ? p.shapes->count() : 0;
+  const ModalProgress reserving = [&](long done, long total, int parts) {
+    if (progress) progress(done, total, parts);
+    if (done == 0) p.mode_rows.reserve_columns(p.omega2.size() + total + room);
+  };
   const double omega_from = 2 * M_PI * p.cutoff_hz, omega_max = 2 * M_PI * max_frequency_hz;
   p.max_residual = std::max(p.max_residual,
                             complete ? stream_all_modes_dense(p.op, sink)
                                      : stream_modes(p.op, p.computed ? omega_from * omega_from : 0,
-                                                    omega_max * omega_max, sink, progress));
+                                                    omega_max * omega_max, sink, reserving));
   p.flush_mass_products();
   Eigen::MatrixXd().swap(p.pending);
   if (p.shift_products && p.shapes && !p.computed) {
@@ -372,14 +384,15 @@ ModalData ModalDataBuilder::Parts::data() {
   data.wind_damping = wind;
   data.max_relative_residual = max_residual;
   data.contact_compliance = contact_compliance;
-  const std::size_t n_rows = row_keys.size(), m = data.modes();
-  data.mode_rows.resize(n_rows * m);
-  for (std::size_t k = 0; k < m; ++k) {
-    for (std::size_t i = 0; i < n_rows; ++i) data.mode_rows[i * m + k] = columns[k][i];
-    if (!keep_vectors) std::vector<double>().swap(columns[k]);
-  }
-  if (!keep_vectors) malloc_trim(0);  // the columns freed: given back (modal_basis_internal.hpp)
+  const std::size_t m = data.modes();
   const std::size_t nd = shapes ? shapes->count() : 0;
+  // With room for the basis's rows (m + the droppers' Ritz vectors, at most
+  // nd), which assemble_basis forms in place.
+  data.mode_rows = keep_vectors ? mode_rows.copy(nd) : mode_rows.take(nd);
+  // What the eigensolver freed (its vectors, small blocks the C library
+  // keeps) given back before the shift products are formed
+  // (modal_basis_internal.hpp).
+  malloc_trim(0);
   if (nd > 0) {
     data.shape_rows = row_major(shapes->rows());
     data.mode_shape_mass.resize(m * nd);

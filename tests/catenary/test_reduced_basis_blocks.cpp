@@ -148,3 +148,30 @@ TEST(ReducedBasisBlocks, OneBlockOrAShiftLeftAsTheyAre) {
   EXPECT_EQ(shifted.column_blocks, (std::vector<long>{0, 2}));
   EXPECT_EQ(shifted.rows, (std::vector<double>{0, 1, 2, 0}));
 }
+
+// assemble_basis(ModalData&&) forms the basis's rows in the data's own
+// storage where the data left room for them (the modal data builder and the
+// cache's reader do) and the basis is at least as wide as the data: a first
+// run's basis then holds one copy of its rows where it peaks, not two. The
+// basis is the same, bit for bit, as the one assembled from a copy.
+TEST(ReducedBasisBlocks, MovedDataFormTheBasisInTheirOwnRows) {
+  // 6.5 Hz: every mode and a Ritz vector per shape (10 columns); 3.5 Hz: the
+  // three lowest modes (7 >= 6 columns, the kept ones moved within each
+  // row); 1.5 Hz: one mode (5 < 6 columns: copied).
+  for (double cutoff : {6.5, 3.5, 1.5})
+    for (bool room : {true, false}) {
+      ModalSettings s = settings();
+      s.max_frequency_hz = cutoff;
+      const ModalData copy = two_part_data();
+      const ReducedBasis expected = assemble_basis(copy, CatenaryMesh{}, s);
+      ModalData data = two_part_data();
+      if (room) data.mode_rows.reserve(data.mode_rows.size() + data.shape_rows.size());
+      const double* storage = data.mode_rows.data();
+      const ReducedBasis b = assemble_basis(std::move(data), CatenaryMesh{}, s);
+      EXPECT_EQ(b.rows, expected.rows) << cutoff << " Hz, room " << room;
+      EXPECT_EQ(b.omega2, expected.omega2) << cutoff << " Hz, room " << room;
+      EXPECT_EQ(b.column_blocks, expected.column_blocks) << cutoff << " Hz, room " << room;
+      const bool in_place = room && b.size() >= static_cast<std::size_t>(kModes);
+      EXPECT_EQ(b.rows.data() == storage, in_place) << cutoff << " Hz, room " << room;
+    }
+}

@@ -60,15 +60,29 @@ double resident_memory_bytes();
 void check_memory(const catenary::MeshSize& size, MemoryUse use, int ranks, double machine_bytes,
                   int modes = 20, int ranks_here = 0);
 
+struct ModalMemoryNeed {
+  long rows = 0, vectors = 0, modes = 0;  // vectors: modes and shapes
+  long computed = 0;  // of the modes, those computed now (the others kept from a lower cut-off)
+  long dofs = 0;      // the catenary's unknowns (the eigensolver's vectors' length)
+  double cutoff_hz = 0;
+  bool window = false;
+  bool kept = false;  // the rows kept for a raised cut-off (an accuracy pilot's run)
+};
+
 // The modal level's basis while it is formed (simulation/catenary_setup.cpp):
-// 'vectors' basis vectors (modes and the droppers' shapes) over 'rows' kept
-// rows in double, held kModalRowCopies times at the peak (the modes' rows as
-// computed, the data's copy, the assembled basis, the model's rows), and with
-// a moving window its shift products (vectors^2 doubles, then P in floats).
-// Measured first-run peaks: 0.68 to 1.03 of the estimate with what the
-// process held beside it (docs/fidelity.md, "Memory of the modal basis").
-constexpr double kModalRowCopies = 3.5;
-double modal_basis_bytes(long rows, long vectors, bool window);
+// its rows ('vectors' basis vectors over 'rows' kept rows, in double), stored
+// once as the modes are computed and the basis formed in their storage
+// (simulation/mode_row_store.hpp), twice where they are kept for a raised
+// cut-off (an accuracy pilot's run); the eigensolver's vectors over the
+// catenary's unknowns while it computes a chunk of about 800 modes
+// (modal_basis_internal.hpp, kChunkModes): kEigensolverVectors, or
+// kEigensolverVectorsPerMode for each mode computed where fewer; with a
+// moving window the shift products (vectors^2 doubles, then P in floats).
+// The eigensolver's counts are measured: first-run peaks against the
+// estimate in docs/fidelity.md, "Memory of the modal basis".
+constexpr double kEigensolverVectors = 2000;
+constexpr double kEigensolverVectorsPerMode = 2.5;
+double modal_basis_bytes(const ModalMemoryNeed& need);
 
 // What check_modal_memory refuses: an InputError of the scene's key.
 class ModalMemoryError : public InputError {
@@ -81,12 +95,6 @@ class ModalMemoryError : public InputError {
 
  private:
   std::string needed_;
-};
-
-struct ModalMemoryNeed {
-  long rows = 0, vectors = 0, modes = 0;  // vectors: modes and shapes
-  double cutoff_hz = 0;
-  bool window = false;
 };
 
 // Throws ModalMemoryError(file, key, ...) when the 'ranks_here' of 'ranks'
