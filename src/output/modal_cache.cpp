@@ -261,8 +261,8 @@ bool read_basis_file(hid_t file, const std::string& key, catenary::ReducedBasis&
 
 // Room in d.mode_rows for the basis's rows, which assemble_basis forms in
 // place (the modes' and the droppers' shapes' columns: catenary/reduced_basis.hpp),
-// as the modal data builder leaves it. Always true (no room: only a copy more).
-bool reserve_basis_room(hid_t file, catenary::ModalData& d) {
+// as the modal data builder leaves it (without it: a copy more, no error).
+void reserve_basis_room(hid_t file, catenary::ModalData& d) {
   std::size_t shape_entries = 0;
   if (H5Lexists(file, "/shape_rows", H5P_DEFAULT) > 0) {
     const hid_t set = H5Dopen2(file, "/shape_rows", H5P_DEFAULT);
@@ -274,17 +274,16 @@ bool reserve_basis_room(hid_t file, catenary::ModalData& d) {
     }
   }
   d.mode_rows.reserve(d.row_keys.size() * d.omega2.size() + shape_entries);
-  return true;
 }
 
 bool read_file(hid_t file, const std::string& key, catenary::ModalData& d) {
   std::string stored;
   if (!read_key(file, stored) || stored != key) return false;
-  const bool ok = read_attribute(file, "cutoff_hz", d.cutoff_hz) &&
-                  read_attribute(file, "max_relative_residual", d.max_relative_residual) &&
-                  read_dataset(file, "/omega2", d.omega2) &&
-                  read_dataset(file, "/row_keys", d.row_keys) && reserve_basis_room(file, d) &&
-                  read_dataset(file, "/mode_rows", d.mode_rows);
+  bool ok = read_attribute(file, "cutoff_hz", d.cutoff_hz) &&
+            read_attribute(file, "max_relative_residual", d.max_relative_residual) &&
+            read_dataset(file, "/omega2", d.omega2) && read_dataset(file, "/row_keys", d.row_keys);
+  if (ok) reserve_basis_room(file, d);
+  ok = ok && read_dataset(file, "/mode_rows", d.mode_rows);
   // The shapes and the compliance are absent for complete bases.
   for (auto [path, v] :
        {std::pair{"/shape_rows", &d.shape_rows}, std::pair{"/mode_shape_mass", &d.mode_shape_mass},

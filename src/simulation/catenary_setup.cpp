@@ -131,19 +131,20 @@ std::string parts_text(int parts, MPI_Comm comm) {
 // Refuses a basis of 'modes' modes that would not fit in memory, now that
 // their number is known (the inertia below the cut-off), before they are
 // computed: an error of the scene's cut-off if it set one, else of its model.
-void check_basis_memory(const Context& ctx, const scene::RunScene& run, const KeptBuilder& kept_b,
-                        long modes, long computed, double cutoff_hz, bool kept) {
-  const simulation::ModalDataBuilder& builder = *kept_b.builder;
+void check_basis_memory(const Context& ctx, const scene::RunScene& run,
+                        const KeptBuilder& computation, long modes, long computed, double cutoff_hz,
+                        bool rows_kept) {
+  const simulation::ModalDataBuilder& builder = *computation.builder;
   simulation::ModalMemoryNeed need;
   need.rows = builder.kept_rows();
   need.modes = modes;
   need.vectors = modes + builder.shapes();
   need.cutoff_hz = cutoff_hz;
   need.window = run.window.has_value();
-  need.kept = kept;
+  need.kept = rows_kept;
   need.computed = computed;
   PetscInt dofs = 0;
-  PCSIM_PETSC(VecGetSize(kept_b.x, &dofs));
+  PCSIM_PETSC(VecGetSize(computation.x, &dofs));
   need.dofs = dofs;
   double resident = simulation::resident_memory_bytes();  // the largest rank's: one verdict
   MPI_Allreduce(MPI_IN_PLACE, &resident, 1, MPI_DOUBLE, MPI_MAX, ctx.comm);

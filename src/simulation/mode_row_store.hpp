@@ -21,7 +21,6 @@ class ModeRowStore {
   // (the columns twice as many).
   void append(const double* column);
 
-  std::size_t rows() const { return rows_; }
   std::size_t columns() const { return count_; }
   double at(std::size_t row, std::size_t column) const { return values_[row * stride_ + column]; }
   const double* data() const { return values_.data(); }
