@@ -28,10 +28,11 @@ void ModeRowStore::restride(std::size_t stride) {
 
 std::vector<double> ModeRowStore::take(std::size_t room) {
   // Rows moved to the stride of the columns, from the first (each to a place
-  // at or before its old one).
-  for (std::size_t i = 0; i < rows_; ++i)
-    std::memmove(values_.data() + i * count_, values_.data() + i * stride_,
-                 count_ * sizeof(double));
+  // at or before its old one); none where they are there already.
+  if (stride_ != count_)
+    for (std::size_t i = 0; i < rows_; ++i)
+      std::memmove(values_.data() + i * count_, values_.data() + i * stride_,
+                   count_ * sizeof(double));
   values_.resize(rows_ * count_);
   values_.reserve(rows_ * (count_ + room));
   std::vector<double> out = std::move(values_);
