@@ -304,6 +304,23 @@ bool read_file(hid_t file, const std::string& key, catenary::ModalData& d) {
 
 }  // namespace
 
+bool read_mode_rows(const std::string& file, const std::string& key, std::size_t count,
+                    std::vector<double>& mode_rows, std::size_t products,
+                    std::vector<double>& shift_products) {
+  return read_quietly(file, [&](hid_t h5) {
+    std::string stored;
+    std::vector<double> rows, g;
+    if (!read_key(h5, stored) || stored != key || !read_dataset(h5, "/mode_rows", rows) ||
+        rows.size() != count)
+      return false;
+    if (products > 0 && (!read_dataset(h5, "/shift_products", g) || g.size() != products))
+      return false;
+    mode_rows = std::move(rows);
+    shift_products = std::move(g);
+    return true;
+  });
+}
+
 std::string modal_cache_key(const std::string& design_content, const catenary::CatenaryMesh& mesh,
                             bool form_finding, bool full_shapes, bool window_shift) {
   KeyBuffer key;

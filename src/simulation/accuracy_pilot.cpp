@@ -421,6 +421,11 @@ double choose_cutoff(PilotRuns& runs, const scene::RunScene& run,
     if (modes.serial != before && modes.kept > 0)
       print0(runs.ctx, "      %ld modes computed, the %ld below %.1f Hz kept from the last\n",
              modes.computed, modes.kept, modes.kept_below_hz);
+    if (modes.serial != before && modes.again_below_hz > 0)
+      print0(runs.ctx,
+             "      %ld modes computed, those below %.1f Hz again: their rows are not in the "
+             "cache file this process wrote (not written, or replaced since)\n",
+             modes.computed, modes.again_below_hz);
     if (!reference) reference = runs.collected(reference_label);
     pilot.reduction_measured = differences(figures, *reference, 1.0);
     cutoffs.push_back(cutoff);

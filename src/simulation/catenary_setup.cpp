@@ -30,7 +30,12 @@ void broadcast(std::vector<T>& v, MPI_Comm comm) {
   unsigned long n = v.size();
   MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG, 0, comm);
   v.resize(n);
-  MPI_Bcast(v.data(), static_cast<int>(n * sizeof(T)), MPI_BYTE, 0, comm);
+  // In pieces of at most 1 GiB: a count is an int (a large line's rows are
+  // more bytes than an int holds).
+  constexpr std::size_t kPiece = std::size_t{1} << 30;
+  auto* bytes = reinterpret_cast<char*>(v.data());
+  for (std::size_t done = 0, total = n * sizeof(T); done < total; done += kPiece)
+    MPI_Bcast(bytes + done, static_cast<int>(std::min(kPiece, total - done)), MPI_BYTE, 0, comm);
 }
 
 void broadcast(catenary::ModalData& d, MPI_Comm comm) {
@@ -86,6 +91,9 @@ Mat window_shift_matrix(const assembly::CatenarySystem& system, double shift) {
 // the modes above (ModalDataBuilder).
 struct KeptBuilder {
   std::string key;
+  // Where the last data's rows are stored (rank 0: the cache file this
+  // process wrote, its key and stamp), for the builder's next extend.
+  std::string rows_file, rows_key, rows_stamp;
   std::unique_ptr<assembly::CatenarySystem> system;
   Vec x = nullptr;
   Mat shift = nullptr;
@@ -132,8 +140,8 @@ std::string parts_text(int parts, MPI_Comm comm) {
 // their number is known (the inertia below the cut-off), before they are
 // computed: an error of the scene's cut-off if it set one, else of its model.
 void check_basis_memory(const Context& ctx, const scene::RunScene& run,
-                        const KeptBuilder& computation, long modes, long computed, double cutoff_hz,
-                        bool rows_kept) {
+                        const KeptBuilder& computation, long modes, long computed,
+                        double cutoff_hz) {
   const simulation::ModalDataBuilder& builder = *computation.builder;
   simulation::ModalMemoryNeed need;
   need.rows = builder.kept_rows();
@@ -141,7 +149,6 @@ void check_basis_memory(const Context& ctx, const scene::RunScene& run,
   need.vectors = modes + builder.shapes();
   need.cutoff_hz = cutoff_hz;
   need.window = run.window.has_value();
-  need.kept = rows_kept;
   need.computed = computed;
   PetscInt dofs = 0;
   PCSIM_PETSC(VecGetSize(computation.x, &dofs));
@@ -162,22 +169,59 @@ void check_basis_memory(const Context& ctx, const scene::RunScene& run,
       run.catenary.modal_cutoff_given ? "catenary.max_frequency_hz" : "catenary.model");
 }
 
+// A file's modification time and size ("" if it is missing): a file
+// renamed over is another.
+std::string file_stamp(const std::string& file) {
+  struct stat st {};
+  if (stat(file.c_str(), &st) != 0) return "";
+  return std::to_string(st.st_mtim.tv_sec) + "." + std::to_string(st.st_mtim.tv_nsec) + ":" +
+         std::to_string(st.st_size);
+}
+
+// The last data's rows (and a window's shift products) given back to the
+// kept builder from the cache file this process wrote them to (rank 0
+// reads, every rank gets them); false if it wrote none or the file has been
+// replaced since (another process's modes, whose signs may differ): the
+// modes are then computed again.
+bool give_back_rows(const Context& ctx, KeptBuilder& kept) {
+  simulation::ModalDataBuilder& builder = *kept.builder;
+  const auto count = static_cast<std::size_t>(builder.kept_rows() * builder.modes());
+  const auto vectors = static_cast<std::size_t>(builder.modes() + builder.shapes());
+  std::vector<double> rows, products;
+  int ok = 0;
+  if (ctx.rank == 0)
+    ok = !kept.rows_file.empty() && file_stamp(kept.rows_file) == kept.rows_stamp &&
+         output::read_mode_rows(kept.rows_file, kept.rows_key, count, rows,
+                                builder.has_shift() ? vectors * vectors : 0, products);
+  MPI_Bcast(&ok, 1, MPI_INT, 0, ctx.comm);
+  if (!ok) return false;
+  broadcast(rows, ctx.comm);
+  broadcast(products, ctx.comm);
+  builder.give_back_rows(std::move(rows), std::move(products));
+  return true;
+}
+
 catenary::ModalData compute_data(const Context& ctx, const scene::RunScene& run,
                                  const simulation::StaticConfiguration& statics,
                                  const std::string& key, double cutoff_hz, bool full_shapes) {
   const std::string kept_key = key + "@" + std::to_string(ctx.size);
-  const bool extends = kept_builder && kept_builder->key == kept_key && cutoff_hz > 0 &&
-                       kept_builder->builder->cutoff_hz() > 0 &&
-                       cutoff_hz >= kept_builder->builder->cutoff_hz();
-  const double from_hz = extends ? kept_builder->builder->cutoff_hz() : 0;
-  const long kept_modes = extends ? kept_builder->builder->modes() : 0;
+  bool extends = kept_builder && kept_builder->key == kept_key && cutoff_hz > 0 &&
+                 kept_builder->builder->cutoff_hz() > 0 &&
+                 cutoff_hz >= kept_builder->builder->cutoff_hz();
   PetscLogDouble start;
   PetscTime(&start);
   const bool keep = extension_scopes > 0 && !no_later_extension && cutoff_hz > 0;
+  double again_below_hz = 0;  // the lower cut-off whose modes are computed again
   if (extends) {
     forget_kept_bases(key);  // the lower cut-off's bases: superseded,
     malloc_trim(0);          // and their memory given back (modal_basis_internal.hpp)
+    if (kept_builder->builder->rows_given_away() && !give_back_rows(ctx, *kept_builder)) {
+      again_below_hz = kept_builder->builder->cutoff_hz();
+      extends = false;
+    }
   }
+  const double from_hz = extends ? kept_builder->builder->cutoff_hz() : 0;
+  const long kept_modes = extends ? kept_builder->builder->modes() : 0;
   auto builder =
       extends ? std::move(kept_builder) : new_builder(ctx, run, statics, kept_key, full_shapes);
   kept_builder.reset();  // (another key's: freed before this computation)
@@ -185,8 +229,7 @@ catenary::ModalData compute_data(const Context& ctx, const scene::RunScene& run,
   // chunks are about equal in modes and cost); before the first, whether
   // the basis fits in memory.
   const auto progress = [&](long done, long total, int parts) {
-    if (done == 0)
-      check_basis_memory(ctx, run, *builder, kept_modes + total, total, cutoff_hz, keep);
+    if (done == 0) check_basis_memory(ctx, run, *builder, kept_modes + total, total, cutoff_hz);
     PetscLogDouble now;
     PetscTime(&now);
     const double elapsed = now - start;
@@ -206,6 +249,7 @@ catenary::ModalData compute_data(const Context& ctx, const scene::RunScene& run,
   last_computation.computed = static_cast<long>(data.modes()) - kept_modes;
   last_computation.kept = kept_modes;
   last_computation.kept_below_hz = from_hz;
+  last_computation.again_below_hz = again_below_hz;
   if (keep) kept_builder = std::move(builder);
   return data;
 }
@@ -249,6 +293,11 @@ catenary::ModalData cached_data(const Context& ctx, const scene::RunScene& run,
   if (ctx.rank == 0) {
     try {
       output::write_modal_data(out.cache_file, key, data);
+      if (kept_builder) {  // where a raise reads the rows back
+        kept_builder->rows_file = out.cache_file;
+        kept_builder->rows_key = key;
+        kept_builder->rows_stamp = file_stamp(out.cache_file);
+      }
     } catch (const std::exception& e) {
       std::fprintf(stderr, "pcsim: warning: the modal data are not cached: %s\n", e.what());
     }
@@ -263,10 +312,8 @@ std::string cache_file_served(const Context& ctx, const std::string& key, double
   std::string served;
   if (ctx.rank == 0) {
     const auto files = output::modal_data_candidates(ctx.cache_dir, key, cutoff_hz);
-    struct stat st {};
-    if (!files.empty() && stat(files.front().c_str(), &st) == 0)
-      served = files.front() + "@" + std::to_string(st.st_mtim.tv_sec) + "." +
-               std::to_string(st.st_mtim.tv_nsec) + ":" + std::to_string(st.st_size);
+    const std::string stamp = files.empty() ? "" : file_stamp(files.front());
+    if (!stamp.empty()) served = files.front() + "@" + stamp;
   }
   return broadcast_text(ctx.comm, served);
 }

@@ -125,7 +125,8 @@ double resident_memory_bytes() {
 
 double modal_basis_bytes(const ModalMemoryNeed& need) {
   const double v = static_cast<double>(need.vectors);
-  const double rows = (need.kept ? 2.0 : 1.0) * 8.0 * static_cast<double>(need.rows) * v;
+  const double lower = static_cast<double>(std::max(need.modes - need.computed, 0L));
+  const double rows = 8.0 * static_cast<double>(need.rows) * (v + lower);
   const double chunk = std::min(kEigensolverVectors,
                                 kEigensolverVectorsPerMode * static_cast<double>(need.computed));
   return rows + 8.0 * chunk * static_cast<double>(need.dofs) + (need.window ? 8.0 * v * v : 0.0);

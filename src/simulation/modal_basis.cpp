@@ -235,6 +235,7 @@ struct ModalDataBuilder::Parts {
   assembly::CatenarySystem& system;
   Vec x;
   bool keep_vectors = true;
+  bool rows_given_away = false;  // the data took the store's rows (give_back_rows)
   std::vector<long> row_keys;
   Operators op;
   RowGather rows;
@@ -268,7 +269,8 @@ struct ModalDataBuilder::Parts {
   }
   void add_mode(double lambda, Vec phi);
   void flush_mass_products();  // of the pending modes (collective)
-  ModalData data();            // takes the modes' rows unless keep_vectors (then copies)
+  ModalData data();            // takes the modes' rows and the shift products
+  void shapes_last(std::vector<double>& g, long c, bool to_end) const;
 };
 
 namespace {
@@ -305,6 +307,29 @@ long ModalDataBuilder::shapes() const {
   return parts_->shapes ? static_cast<long>(parts_->shapes->count()) : 0;
 }
 
+bool ModalDataBuilder::rows_given_away() const {
+  return parts_->rows_given_away;
+}
+
+void ModalDataBuilder::give_back_rows(std::vector<double>&& mode_rows,
+                                      std::vector<double>&& shift_products) {
+  Parts& p = *parts_;
+  const long c = static_cast<long>(p.omega2.size()) + shapes();
+  if (mode_rows.size() != p.row_keys.size() * p.omega2.size() ||
+      (p.shift_products && shift_products.size() != static_cast<std::size_t>(c * c)))
+    throw SolverError("modal data: the rows given back are not the last data's");
+  p.mode_rows.adopt(std::move(mode_rows), p.omega2.size());
+  if (p.shift_products) {
+    p.shapes_last(shift_products, c, false);
+    p.shift_products->give_back(std::move(shift_products));
+  }
+  p.rows_given_away = false;
+}
+
+bool ModalDataBuilder::has_shift() const {
+  return parts_->shift_products != nullptr;
+}
+
 void ModalDataBuilder::Parts::add_mode(double lambda, Vec phi) {
   if (shift_products) shift_products->append(phi);
   omega2.push_back(lambda);
@@ -338,6 +363,7 @@ ModalData ModalDataBuilder::extend(double max_frequency_hz, const ModalProgress&
   PetscTime(&t0);
   Parts& p = *parts_;
   if (p.computed && !p.keep_vectors) throw SolverError("modal data: the vectors were freed");
+  if (p.rows_given_away) throw SolverError("modal data: the last data's rows not given back");
   p.keep_vectors = keep_for_extension;
   const bool complete = max_frequency_hz <= 0;
   if (p.computed && (complete || p.cutoff_hz <= 0 || max_frequency_hz < p.cutoff_hz))
@@ -387,8 +413,9 @@ ModalData ModalDataBuilder::Parts::data() {
   const std::size_t m = data.modes();
   const std::size_t nd = shapes ? shapes->count() : 0;
   // With room for the basis's rows (m + the droppers' Ritz vectors, at most
-  // nd), which assemble_basis forms in place.
-  data.mode_rows = keep_vectors ? mode_rows.copy(nd) : mode_rows.take(nd);
+  // nd), which assemble_basis forms in place; a raise needs them back.
+  data.mode_rows = mode_rows.take(nd);
+  rows_given_away = keep_vectors;
   // What the eigensolver freed (its vectors, small blocks the C library
   // keeps) given back before the shift products are formed
   // (modal_basis_internal.hpp).
@@ -403,20 +430,22 @@ ModalData ModalDataBuilder::Parts::data() {
     data.shape_flexibility = row_major(shapes->flexibility());
   }
   if (shift_products) {
-    const auto G = shift_products->compute(x, keep_vectors);  // in the order appended
-    // A last computation's G is moved, not copied; one kept for a raised
-    // cut-off is copied.
-    data.shift_products =
-        keep_vectors ? std::vector<double>(G.data(), G.data() + G.size()) : shift_products->take();
-    // The order appended, [first modes, shapes, later modes], to [modes,
-    // shapes]: the shapes' rows and columns rotated to the end, in place.
-    const long c = static_cast<long>(m + nd), s0 = static_cast<long>(shapes_appended_at);
-    auto& g = data.shift_products;
-    for (long i = 0; i < c; ++i)
-      std::rotate(g.begin() + i * c + s0, g.begin() + i * c + s0 + nd, g.begin() + (i + 1) * c);
-    std::rotate(g.begin() + s0 * c, g.begin() + (s0 + nd) * c, g.end());
+    shift_products->compute(x, keep_vectors);  // in the order appended
+    // Moved, not copied (a raise needs them back: give_back_rows).
+    data.shift_products = shift_products->take();
+    shapes_last(data.shift_products, static_cast<long>(m + nd), true);
   }
   return data;
+}
+
+// The order appended, [first modes, shapes, later modes], to [modes,
+// shapes] (to_end) or back: the shapes' rows and columns rotated, in place.
+void ModalDataBuilder::Parts::shapes_last(std::vector<double>& g, long c, bool to_end) const {
+  const long nd = shapes ? static_cast<long>(shapes->count()) : 0;
+  const long s0 = static_cast<long>(shapes_appended_at), k = to_end ? nd : c - s0 - nd;
+  for (long i = 0; i < c; ++i)
+    std::rotate(g.begin() + i * c + s0, g.begin() + i * c + s0 + k, g.begin() + (i + 1) * c);
+  std::rotate(g.begin() + s0 * c, g.begin() + (s0 + k) * c, g.end());
 }
 
 }  // namespace pcsim::simulation

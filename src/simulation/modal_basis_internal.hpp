@@ -113,8 +113,10 @@ class ShiftProducts {
   // compute() or take().
   Eigen::Map<const RowMatrix> compute(Vec like, bool keep_vectors);
   // G's storage (row-major, c x c) moved out: no copy of G beside it (the
-  // 1000-span window's G at 136 Hz is 224 MB); no later compute().
+  // 1000-span window's G at 136 Hz is 224 MB); no later compute() until it
+  // is given back (the same values, in the order appended).
   std::vector<double> take();
+  void give_back(std::vector<double>&& g);
   long count() const { return count_; }
   long spilled_blocks() const;  // blocks of the vectors on file (tests)
 

@@ -213,4 +213,11 @@ std::vector<double> ShiftProducts::take() {
   return std::move(g_);
 }
 
+void ShiftProducts::give_back(std::vector<double>&& g) {
+  if (!taken_ || g.size() != static_cast<std::size_t>(computed_ * computed_))
+    throw SolverError("shift products: given back what was not taken");
+  g_ = std::move(g);
+  taken_ = false;
+}
+
 }  // namespace pcsim::simulation::modal_detail

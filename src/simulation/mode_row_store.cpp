@@ -41,13 +41,9 @@ std::vector<double> ModeRowStore::take(std::size_t room) {
   return out;
 }
 
-std::vector<double> ModeRowStore::copy(std::size_t room) const {
-  std::vector<double> out;
-  out.reserve(rows_ * (count_ + room));
-  out.resize(rows_ * count_);
-  for (std::size_t i = 0; i < rows_; ++i)
-    std::copy_n(values_.data() + i * stride_, count_, out.data() + i * count_);
-  return out;
+void ModeRowStore::adopt(std::vector<double>&& rows, std::size_t columns) {
+  values_ = std::move(rows);
+  stride_ = count_ = columns;
 }
 
 }  // namespace pcsim::simulation

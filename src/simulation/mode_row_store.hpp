@@ -26,10 +26,11 @@ class ModeRowStore {
   const double* data() const { return values_.data(); }
 
   // The rows as rows() x columns() row-major, with capacity for 'room' more
-  // columns: the store's own storage (take: the store is empty after) or a
-  // copy (the store kept for more columns).
+  // columns, in the store's own storage: the store is empty after.
   std::vector<double> take(std::size_t room);
-  std::vector<double> copy(std::size_t room) const;
+  // Rows taken earlier (rows() x columns row-major) as the store's again,
+  // for more columns (a raised cut-off's modes).
+  void adopt(std::vector<double>&& rows, std::size_t columns);
 
  private:
   void restride(std::size_t stride);

@@ -6,8 +6,10 @@
 #  1. EN 50318's modal run on a machine of 150 MB, 200 MB on 2 ranks
 #     (-pcsim_debug_machine_memory_mb): the FE system's estimate (0.09 GB,
 #     the mesh-size check) fits, the basis (2736 vectors over 2852 kept rows
-#     and the eigensolver's vectors, about 0.29 GB, 0.35 GB where the pilot
-#     keeps the rows for a raise, beside the 0.10 GB in use) does not. Exit 2, one message
+#     and the eigensolver's vectors, about 0.29 GB, the same where the
+#     pilot may raise the cut-off: its rows are held once, read back from
+#     the cache at a raise; 0.35 GB until 2026-12-07, when a pilot kept a
+#     copy; beside the 0.10 GB in use) does not. Exit 2, one message
 #     naming the scene file, the key (catenary.model, or
 #     catenary.max_frequency_hz where the scene sets the cut-off) and the
 #     need, on 1 and 2 ranks, with and without the accuracy pilot (whose
@@ -19,6 +21,14 @@
 #     as if its basis did not fit) it says so, raises no further and the run
 #     takes 40.5 Hz (summary.json: cutoff_raise_refused_hz 50.6); the
 #     pilot is not cached (its cut-off is this machine's).
+#  3. The rows of the pilot's first cut-off are held once: the raise reads
+#     them back from the cache file the process wrote (the control of 2.:
+#     "kept from the last", its results equal to the modes at once,
+#     tests/assembly/test_modal_window.sh). Where that file could not be
+#     written (a folder of its name in the cache), the raise says it
+#     computes every mode again, and the run's contact force is the
+#     control's to 1e-9 (the bound of test_modal_window.sh's raise against
+#     the modes at once; the same modes in another order of computation).
 set -euo pipefail
 : "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}"
 tmp=$(mktemp -d)
@@ -45,7 +55,7 @@ refused "1 rank, no pilot" catenary.model 0.29 "$PCSIM_BIN" run "$en" -o "$tmp/r
 # (Two ranks hold two FE systems, 0.18 GB: a machine of 200 MB holds them, not the bases.)
 refused "2 ranks, no pilot" catenary.model 0.29 mpirun -n 2 "$PCSIM_BIN" run "$en" -o "$tmp/run" \
   --cache "$tmp/cache2" --no-report -pcsim_debug_machine_memory_mb 200
-refused "1 rank, the pilot's first run" catenary.model 0.35 "$PCSIM_BIN" run "$en" -o "$tmp/run" \
+refused "1 rank, the pilot's first run" catenary.model 0.29 "$PCSIM_BIN" run "$en" -o "$tmp/run" \
   --cache "$tmp/cache3" --no-report "${small[@]}" -pcsim_accuracy_pilot true
 refused "cut-off set by the scene" catenary.max_frequency_hz 0.29 "$PCSIM_BIN" run "$en" \
   -o "$tmp/run" --cache "$tmp/cache4" --no-report "${small[@]}" \
@@ -81,4 +91,26 @@ ls "$tmp/cache-raised"/accuracy-pilot-*.json > /dev/null || { echo "control: no 
 ! ls "$tmp/cache-refused"/accuracy-pilot-*.json > /dev/null 2>&1 ||
   { echo "a pilot whose raise was refused was cached"; exit 1; }
 echo "ok   the pilot's raise to 50.6 Hz refused: the run takes 40.5 Hz (50.6 Hz without the refusal), not cached"
+
+# 3. The raise without the first cut-off's rows in the cache.
+grep -q "^      [0-9]* modes computed, the [0-9]* below 40.5 Hz kept from the last$" \
+  "$tmp/raised.log" || { echo "control: the raise did not keep the modes below"; exit 1; }
+first=$(cd "$tmp/cache-raised" && ls modal-*-40.45Hz.h5)
+mkdir -p "$tmp/cache-unwritable/$first"
+"$PCSIM_BIN" run "$lumped" --set catenary.model=modal -pcsim_accuracy_pilot true \
+  -o "$tmp/again" --cache "$tmp/cache-unwritable" --no-report > "$tmp/again.log" 2>&1 ||
+  { cat "$tmp/again.log"; exit 1; }
+grep -q "^      [0-9]* modes computed, those below 40.5 Hz again: their rows are not in the cache file this process wrote" \
+  "$tmp/again.log" || { echo "no line on the modes computed again"; cat "$tmp/again.log"; exit 1; }
+[ "$(cutoffs "$tmp/again")" = "50.6 0.0 1" ] || { echo "again: $(cutoffs "$tmp/again")"; exit 1; }
+/usr/bin/python3 - "$tmp/raised" "$tmp/again" <<'PY'
+import sys
+import h5py
+import numpy as np
+a, b = (h5py.File(d + "/results.h5", "r")["pantographs/lumped/contact_force"][:]
+        for d in sys.argv[1:3])
+rel = np.max(np.abs(a - b)) / np.max(np.abs(a))
+print(f"ok   the raise without the first rows in the cache: every mode computed again, {rel:.1e} from the control")
+assert rel <= 1e-9, rel
+PY
 echo "modal memory: ok"

@@ -43,19 +43,24 @@ TEST(ModeRowStore, GrownOnTheWayOrReservedTheSameRows) {
   reserved.reserve_columns(21);
   append_columns(reserved, 0, 21);
   for (std::size_t k = 0; k < 21; ++k) EXPECT_EQ(grown.at(3, k), value(3, k));
-  expect_rows(grown.copy(0), 21, "grown, copied");
-  expect_rows(reserved.copy(0), 21, "reserved, copied");
+  expect_rows(grown.take(0), 21, "grown, taken");
+  expect_rows(reserved.take(0), 21, "reserved, taken");
 }
 
-TEST(ModeRowStore, MoreColumnsAfterACopy) {
-  ModeRowStore store(kRows);  // a raised cut-off's modes after the first data
-  store.reserve_columns(6);
+// A raised cut-off's modes after the first data: the rows taken by the
+// data, given back (as a raise reads them from the cache), more appended.
+TEST(ModeRowStore, MoreColumnsAfterTheRowsAreGivenBack) {
+  ModeRowStore store(kRows);
+  store.reserve_columns(6 + 2);
   append_columns(store, 0, 6);
-  expect_rows(store.copy(2), 6, "first data");
+  std::vector<double> first = store.take(2);
+  expect_rows(first, 6, "first data");
+  EXPECT_EQ(store.columns(), 0u);
+  store.adopt(std::move(first), 6);
+  EXPECT_EQ(store.columns(), 6u);
   store.reserve_columns(11);
   append_columns(store, 6, 11);
   expect_rows(store.take(0), 11, "raised");
-  EXPECT_EQ(store.columns(), 0u);
 }
 
 TEST(ModeRowStore, TakenInItsOwnStorageWithRoom) {
@@ -67,7 +72,9 @@ TEST(ModeRowStore, TakenInItsOwnStorageWithRoom) {
   expect_rows(rows, 7, "taken");
   EXPECT_EQ(rows.data(), storage);  // no copy
   EXPECT_GE(rows.capacity(), kRows * 10);
-  ModeRowStore copied(kRows);
-  append_columns(copied, 0, 7);
-  EXPECT_GE(copied.copy(3).capacity(), kRows * 10);
+  ModeRowStore grown(kRows);  // grown on the way: moved to the columns' stride
+  append_columns(grown, 0, 7);
+  const std::vector<double> moved = grown.take(3);
+  expect_rows(moved, 7, "grown, taken");
+  EXPECT_GE(moved.capacity(), kRows * 10);
 }

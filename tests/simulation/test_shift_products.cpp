@@ -9,7 +9,8 @@
 //  - a folder that takes no file keeps the vectors in memory, and a block that
 //    cannot be written (a file size limit: a full disk) stays in memory;
 //  - take() moves out the products compute() gave, bit for bit, and no
-//    compute() follows it;
+//    compute() follows it until they are given back (a raise's, read from
+//    the cache): then the new vectors' products, the same bits as kept;
 //  - the products over the nonzero rows only (nonzero_row_ranges,
 //    product_tn_rows) equal those over every row.
 // pcsim-test-ranks: 1 2
@@ -172,6 +173,19 @@ TEST_F(ShiftProductsTest, TakeMovesOutTheProductsComputed) {
   const RowMajor G = Eigen::Map<const RowMajor>(taken.data(), kVectors, kVectors);
   EXPECT_EQ((G - computed).cwiseAbs().maxCoeff(), 0.0);
   EXPECT_THROW(products.compute(vectors_[0], false), std::exception);
+}
+
+TEST_F(ShiftProductsTest, GivenBackTheyGrowAsKept) {
+  const RowMajor kept = products(dir_.string(), 300);
+  ShiftProducts products(M_, S_, dir_.string());
+  for (PetscInt k = 0; k < 300; ++k) products.append(vectors_[k]);
+  products.compute(vectors_[0], true);
+  std::vector<double> first = products.take();
+  EXPECT_THROW(products.give_back(std::vector<double>(7)), std::exception);  // not G's size
+  products.give_back(std::move(first));
+  for (PetscInt k = 300; k < kVectors; ++k) products.append(vectors_[k]);
+  const RowMajor grown = products.compute(vectors_[0], false);
+  EXPECT_EQ((grown - kept).cwiseAbs().maxCoeff(), 0.0);
 }
 
 // The products over W's nonzero rows only (the window's front spans): zero

@@ -44,6 +44,12 @@ bool find_modal_data(const std::string& dir, const std::string& key, double max_
                      catenary::ModalData& data, std::string& file);
 // False (data untouched) if the file is missing, unreadable or for another key.
 bool read_modal_data(const std::string& file, const std::string& key, catenary::ModalData& data);
+// The modes' kept rows (mode_rows, 'count' of them) and, if 'products' > 0,
+// that many shift products alone; false (both untouched) as
+// read_modal_data, or if the counts differ.
+bool read_mode_rows(const std::string& file, const std::string& key, std::size_t count,
+                    std::vector<double>& mode_rows, std::size_t products,
+                    std::vector<double>& shift_products);
 // Creates the folder if needed (InputError on key --cache if it cannot);
 // writes file.tmp-<pid> and renames it to file.
 void write_modal_data(const std::string& file, const std::string& key,

@@ -59,6 +59,9 @@ class ModalExtensionScope {
 struct ModalComputation {
   long serial = 0, computed = 0, kept = 0;
   double kept_below_hz = 0;
+  // > 0: the modes below it computed again, their rows not in the cache
+  // file this process wrote them to (not written, or replaced since).
+  double again_below_hz = 0;
 };
 ModalComputation last_modal_computation();
 

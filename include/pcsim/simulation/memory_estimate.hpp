@@ -66,14 +66,14 @@ struct ModalMemoryNeed {
   long dofs = 0;      // the catenary's unknowns (the eigensolver's vectors' length)
   double cutoff_hz = 0;
   bool window = false;
-  bool kept = false;  // the rows kept for a raised cut-off (an accuracy pilot's run)
 };
 
 // The modal level's basis while it is formed (simulation/catenary_setup.cpp):
 // its rows ('vectors' basis vectors over 'rows' kept rows, in double), stored
 // once as the modes are computed and the basis formed in their storage
-// (simulation/mode_row_store.hpp), twice where they are kept for a raised
-// cut-off (an accuracy pilot's run); the eigensolver's vectors over the
+// (simulation/mode_row_store.hpp), and at a raised cut-off the lower one's
+// rows (modes - computed) beside that room while they move into it (an
+// accuracy pilot's raise, simulation/modal_basis.hpp); the eigensolver's vectors over the
 // catenary's unknowns while it computes a chunk of about 800 modes
 // (modal_basis_internal.hpp, kChunkModes): kEigensolverVectors, or
 // kEigensolverVectorsPerMode for each mode computed where fewer; with a

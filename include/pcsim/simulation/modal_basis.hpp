@@ -27,7 +27,12 @@ namespace pcsim::simulation {
 // modes below f, and after extend(f1 < f) only those between f1 and f. It
 // keeps the operators, the factor of K, the dropper shapes and the
 // compliance (and with a shift, every vector) until it is destroyed (the
-// accuracy pilot's raised cut-offs, catenary_setup.hpp).
+// accuracy pilot's raised cut-offs, catenary_setup.hpp). The modes' kept
+// rows and a window's shift products it does not keep: the data take them
+// (the basis is formed in their storage), and a later extend needs them
+// given back (give_back_rows: the caller reads them from where it stored
+// the data), so that they are held once, not twice, while the lower
+// cut-off's basis serves.
 // 'x': the static configuration of 'system' (no extra unknowns); 'system'
 // and 'x' must outlive it. Collective; the results on every rank.
 // progress(done, total, parts): the modes computed so far, after each chunk of the
@@ -57,6 +62,12 @@ class ModalDataBuilder {
   long modes() const;        // computed so far
   long kept_rows() const;    // of every vector
   long shapes() const;       // the droppers' static shapes (0 before the first extend)
+  // The last extend's data.mode_rows (kept_rows() x modes() row-major) and,
+  // with a shift, its shift_products (the values the data had), needed
+  // before the next extend.
+  bool rows_given_away() const;
+  void give_back_rows(std::vector<double>&& mode_rows, std::vector<double>&& shift_products);
+  bool has_shift() const;
 
  private:
   struct Parts;
