@@ -3,7 +3,6 @@
 
 #include <malloc.h>
 #include <petscsys.h>
-#include <petsctime.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -15,6 +14,7 @@
 #include <optional>
 #include <sstream>
 
+#include "cache_written.hpp"
 #include "pcsim/catenary/reduced_basis.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/core/profiling.hpp"
@@ -422,10 +422,8 @@ double choose_cutoff(PilotRuns& runs, const scene::RunScene& run,
       print0(runs.ctx, "      %ld modes computed, the %ld below %.1f Hz kept from the last\n",
              modes.computed, modes.kept, modes.kept_below_hz);
     if (modes.serial != before && modes.again_below_hz > 0)
-      print0(runs.ctx,
-             "      %ld modes computed, those below %.1f Hz again: their rows are not in the "
-             "cache file this process wrote (not written, or replaced since)\n",
-             modes.computed, modes.again_below_hz);
+      print0(runs.ctx, "      %ld modes computed, those below %.1f Hz again: %s\n", modes.computed,
+             modes.again_below_hz, "their rows are not in the cache file this process wrote");
     if (!reference) reference = runs.collected(reference_label);
     pilot.reduction_measured = differences(figures, *reference, 1.0);
     cutoffs.push_back(cutoff);
@@ -480,6 +478,7 @@ PilotEstimate run_accuracy_pilot(const Context& ctx, const SceneSource& source,
   if (modal) {
     pilot.cutoff_hz = choose_cutoff(runs, run, reference, reference_label);
     run.catenary.modal.max_frequency_hz = pilot.cutoff_hz;
+    remove_superseded_files(ctx, pilot.cutoff_hz);  // the raises' cut-offs below
   }
   if (!converged) {
     converged = runs.collected(fine_label);

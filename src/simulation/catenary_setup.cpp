@@ -2,11 +2,11 @@
 
 #include <malloc.h>
 #include <petsctime.h>
-#include <sys/stat.h>
 
 #include <algorithm>
 #include <cstdio>
 
+#include "cache_written.hpp"
 #include "pcsim/assembly/fe_catenary.hpp"
 #include "pcsim/assembly/modal_catenary.hpp"
 #include "pcsim/assembly/static_problem.hpp"
@@ -169,15 +169,6 @@ void check_basis_memory(const Context& ctx, const scene::RunScene& run,
       run.catenary.modal_cutoff_given ? "catenary.max_frequency_hz" : "catenary.model");
 }
 
-// A file's modification time and size ("" if it is missing): a file
-// renamed over is another.
-std::string file_stamp(const std::string& file) {
-  struct stat st {};
-  if (stat(file.c_str(), &st) != 0) return "";
-  return std::to_string(st.st_mtim.tv_sec) + "." + std::to_string(st.st_mtim.tv_nsec) + ":" +
-         std::to_string(st.st_size);
-}
-
 // The last data's rows (and a window's shift products) given back to the
 // kept builder from the cache file this process wrote them to (rank 0
 // reads, every rank gets them); false if it wrote none or the file has been
@@ -293,6 +284,7 @@ catenary::ModalData cached_data(const Context& ctx, const scene::RunScene& run,
   if (ctx.rank == 0) {
     try {
       output::write_modal_data(out.cache_file, key, data);
+      note_data_written(key, data.cutoff_hz, out.cache_file);
       if (kept_builder) {  // where a raise reads the rows back
         kept_builder->rows_file = out.cache_file;
         kept_builder->rows_key = key;
@@ -347,6 +339,7 @@ void store_basis(const Context& ctx, const std::string& kept_key, const std::str
   const std::string file = output::basis_cache_file(ctx.cache_dir, key);
   try {
     output::write_basis(file, key, basis);
+    note_basis_written(served, file);
     out.basis_file = file;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "pcsim: warning: the assembled basis is not cached: %s\n", e.what());

@@ -40,6 +40,8 @@
 #    broadcast, simulation::broadcast_figures): the same cut-off after the
 #    same raises, within a time limit. Until 2026-12-06 rank 1 went on to the
 #    run while rank 0 raised, and the run hung.
+#  - A raising pilot leaves in the cache the data of the cut-off it took, not
+#    those of the cut-offs below (simulation/cache_written.hpp).
 #  - A value other than auto, true or false is an input error (exit 2, nothing made).
 # The tests' PETSC_OPTIONS switch the pilot off (tests/CMakeLists.txt); the
 # command line switches it on here.
@@ -57,6 +59,15 @@ grep -q "accuracy pilot: spans 4-5" modal.log || { cat modal.log; exit 1; }
 grep -q "modal cut-off raised" modal.log || { echo "the default cut-off was kept"; exit 1; }
 grep -q "^      346 modes computed, the 1465 below 59.1 Hz kept from the last$" modal.log ||
   { cat modal.log; exit 1; }
+# The raise read the 59.1 Hz rows back from the cache; once the pilot took
+# 73.9 Hz, the 59.1 Hz data and the basis assembled from them are removed
+# (the 73.9 Hz data serve every lower cut-off); the lock files stay.
+grep -q "^    the cache's files of the cut-offs below 73.9 Hz removed" modal.log ||
+  { cat modal.log; exit 1; }
+# shellcheck disable=SC2012 # names of pcsim's own, no odd characters
+[ "$(ls "$tmp"/cache/modal-*Hz.h5 | wc -l) $(ls "$tmp"/cache/basis-*.h5 | wc -l)" = "1 1" ] ||
+  { echo "the superseded cache files are still there:"; ls -l "$tmp/cache"; exit 1; }
+ls "$tmp"/cache/modal-*-73.915Hz.h5 > /dev/null || { ls -l "$tmp/cache"; exit 1; }
 cutoff=$("$PCSIM_PYTHON" -c "import json; print(repr(json.load(open('modal/summary.json'))['modal']['cutoff_hz']))")
 "$PCSIM_BIN" run "$scene" --cache "$tmp/at-once-cache" --no-report --set catenary.model=modal \
   --set catenary.max_frequency_hz="$cutoff" -o at-once -pcsim_accuracy_pilot false > at-once.log 2>&1 ||

@@ -95,7 +95,11 @@ echo "ok   the pilot's raise to 50.6 Hz refused: the run takes 40.5 Hz (50.6 Hz 
 # 3. The raise without the first cut-off's rows in the cache.
 grep -q "^      [0-9]* modes computed, the [0-9]* below 40.5 Hz kept from the last$" \
   "$tmp/raised.log" || { echo "control: the raise did not keep the modes below"; exit 1; }
-first=$(cd "$tmp/cache-raised" && ls modal-*-40.45Hz.h5)
+# (The control's pilot took 50.6 Hz and removed its 40.5 Hz data, which
+# those at 50.6 Hz serve: the same name but for the cut-off.)
+taken=$(cd "$tmp/cache-raised" && ls modal-*-50.5625Hz.h5)
+first=${taken%-50.5625Hz.h5}-40.45Hz.h5
+[ ! -e "$tmp/cache-raised/$first" ] || { echo "control: the 40.5 Hz data left"; exit 1; }
 mkdir -p "$tmp/cache-unwritable/$first"
 "$PCSIM_BIN" run "$lumped" --set catenary.model=modal -pcsim_accuracy_pilot true \
   -o "$tmp/again" --cache "$tmp/cache-unwritable" --no-report > "$tmp/again.log" 2>&1 ||
