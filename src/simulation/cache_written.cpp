@@ -11,6 +11,7 @@ namespace {
 
 struct WrittenFile {
   std::string file, stamp;
+  bool unchanged() const { return !stamp.empty() && file_stamp(file) == stamp; }
 };
 
 struct WrittenData {
@@ -22,19 +23,22 @@ struct WrittenData {
 
 std::vector<WrittenData> written;
 
+std::string stamp_of(const struct stat& st) {
+  return std::to_string(st.st_mtim.tv_sec) + "." + std::to_string(st.st_mtim.tv_nsec) + ":" +
+         std::to_string(st.st_size);
+}
+
 // Removes 'f' if it is still what this process wrote; its bytes, or 0.
 double remove_unchanged(const WrittenFile& f) {
   struct stat st {};
-  if (f.stamp.empty() || file_stamp(f.file) != f.stamp || stat(f.file.c_str(), &st) != 0) return 0;
+  if (f.stamp.empty() || stat(f.file.c_str(), &st) != 0 || stamp_of(st) != f.stamp) return 0;
   return std::remove(f.file.c_str()) == 0 ? static_cast<double>(st.st_size) : 0;
 }
 
 bool superseded(const WrittenData& d, double kept_hz) {
   if (d.cutoff_hz <= 0 || d.cutoff_hz >= kept_hz) return false;
   for (const auto& e : written)
-    if (e.cache_key == d.cache_key && e.cutoff_hz >= kept_hz &&
-        file_stamp(e.data.file) == e.data.stamp)
-      return true;
+    if (e.cache_key == d.cache_key && e.cutoff_hz >= kept_hz && e.data.unchanged()) return true;
   return false;
 }
 
@@ -42,9 +46,7 @@ bool superseded(const WrittenData& d, double kept_hz) {
 
 std::string file_stamp(const std::string& file) {
   struct stat st {};
-  if (stat(file.c_str(), &st) != 0) return "";
-  return std::to_string(st.st_mtim.tv_sec) + "." + std::to_string(st.st_mtim.tv_nsec) + ":" +
-         std::to_string(st.st_size);
+  return stat(file.c_str(), &st) == 0 ? stamp_of(st) : "";
 }
 
 void note_data_written(const std::string& cache_key, double cutoff_hz, const std::string& file) {
@@ -54,6 +56,13 @@ void note_data_written(const std::string& cache_key, double cutoff_hz, const std
 void note_basis_written(const std::string& served, const std::string& file) {
   for (auto& d : written)
     if (served == d.data.file + "@" + d.data.stamp) d.bases.push_back({file, file_stamp(file)});
+}
+
+std::string unchanged_data_file(const std::string& cache_key, double cutoff_hz) {
+  for (const auto& d : written)
+    if (d.cache_key == cache_key && d.cutoff_hz == cutoff_hz && d.data.unchanged())
+      return d.data.file;
+  return "";
 }
 
 double remove_superseded_data(double kept_hz) {

@@ -19,6 +19,9 @@ void note_data_written(const std::string& cache_key, double cutoff_hz, const std
 // A basis assembled from the data served as 'served' (data file@stamp),
 // written to 'file' just now.
 void note_basis_written(const std::string& served, const std::string& file);
+// The file this process wrote the data of 'cache_key' at cutoff_hz to, if
+// it is still what it wrote (its stamp); "" otherwise.
+std::string unchanged_data_file(const std::string& cache_key, double cutoff_hz);
 
 // Removes the data this process wrote below kept_hz, and the bases it wrote
 // from them, where it also wrote data of the same key at or above kept_hz

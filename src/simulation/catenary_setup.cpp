@@ -91,9 +91,6 @@ Mat window_shift_matrix(const assembly::CatenarySystem& system, double shift) {
 // the modes above (ModalDataBuilder).
 struct KeptBuilder {
   std::string key;
-  // Where the last data's rows are stored (rank 0: the cache file this
-  // process wrote, its key and stamp), for the builder's next extend.
-  std::string rows_file, rows_key, rows_stamp;
   std::unique_ptr<assembly::CatenarySystem> system;
   Vec x = nullptr;
   Mat shift = nullptr;
@@ -174,16 +171,18 @@ void check_basis_memory(const Context& ctx, const scene::RunScene& run,
 // reads, every rank gets them); false if it wrote none or the file has been
 // replaced since (another process's modes, whose signs may differ): the
 // modes are then computed again.
-bool give_back_rows(const Context& ctx, KeptBuilder& kept) {
-  simulation::ModalDataBuilder& builder = *kept.builder;
+bool give_back_rows(const Context& ctx, simulation::ModalDataBuilder& builder,
+                    const std::string& key) {
   const auto count = static_cast<std::size_t>(builder.kept_rows() * builder.modes());
   const auto vectors = static_cast<std::size_t>(builder.modes() + builder.shapes());
   std::vector<double> rows, products;
   int ok = 0;
-  if (ctx.rank == 0)
-    ok = !kept.rows_file.empty() && file_stamp(kept.rows_file) == kept.rows_stamp &&
-         output::read_mode_rows(kept.rows_file, kept.rows_key, count, rows,
-                                builder.has_shift() ? vectors * vectors : 0, products);
+  if (ctx.rank == 0) {
+    const std::string file = unchanged_data_file(key, builder.cutoff_hz());
+    ok = !file.empty() &&
+         output::read_mode_rows(file, key, count, rows, builder.has_shift() ? vectors * vectors : 0,
+                                products);
+  }
   MPI_Bcast(&ok, 1, MPI_INT, 0, ctx.comm);
   if (!ok) return false;
   broadcast(rows, ctx.comm);
@@ -206,8 +205,9 @@ catenary::ModalData compute_data(const Context& ctx, const scene::RunScene& run,
   if (extends) {
     forget_kept_bases(key);  // the lower cut-off's bases: superseded,
     malloc_trim(0);          // and their memory given back (modal_basis_internal.hpp)
-    if (kept_builder->builder->rows_given_away() && !give_back_rows(ctx, *kept_builder)) {
-      again_below_hz = kept_builder->builder->cutoff_hz();
+    auto& kept = *kept_builder->builder;
+    if (kept.rows_given_away() && !give_back_rows(ctx, kept, key)) {
+      again_below_hz = kept.cutoff_hz();
       extends = false;
     }
   }
@@ -284,12 +284,7 @@ catenary::ModalData cached_data(const Context& ctx, const scene::RunScene& run,
   if (ctx.rank == 0) {
     try {
       output::write_modal_data(out.cache_file, key, data);
-      note_data_written(key, data.cutoff_hz, out.cache_file);
-      if (kept_builder) {  // where a raise reads the rows back
-        kept_builder->rows_file = out.cache_file;
-        kept_builder->rows_key = key;
-        kept_builder->rows_stamp = file_stamp(out.cache_file);
-      }
+      note_data_written(key, data.cutoff_hz, out.cache_file);  // (a raise reads it back)
     } catch (const std::exception& e) {
       std::fprintf(stderr, "pcsim: warning: the modal data are not cached: %s\n", e.what());
     }
