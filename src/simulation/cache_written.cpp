@@ -42,6 +42,24 @@ bool superseded(const WrittenData& d, double kept_hz) {
   return false;
 }
 
+// The bytes removed.
+double remove_superseded_data(double kept_hz) {
+  std::vector<char> removed(written.size());
+  for (std::size_t i = 0; i < written.size(); ++i) removed[i] = superseded(written[i], kept_hz);
+  double bytes = 0;
+  std::vector<WrittenData> kept;
+  for (std::size_t i = 0; i < written.size(); ++i) {
+    if (!removed[i]) {
+      kept.push_back(std::move(written[i]));
+      continue;
+    }
+    for (const auto& b : written[i].bases) bytes += remove_unchanged(b);
+    bytes += remove_unchanged(written[i].data);
+  }
+  written = std::move(kept);
+  return bytes;
+}
+
 }  // namespace
 
 std::string file_stamp(const std::string& file) {
@@ -63,23 +81,6 @@ std::string unchanged_data_file(const std::string& cache_key, double cutoff_hz) 
     if (d.cache_key == cache_key && d.cutoff_hz == cutoff_hz && d.data.unchanged())
       return d.data.file;
   return "";
-}
-
-double remove_superseded_data(double kept_hz) {
-  std::vector<char> removed(written.size());
-  for (std::size_t i = 0; i < written.size(); ++i) removed[i] = superseded(written[i], kept_hz);
-  double bytes = 0;
-  std::vector<WrittenData> kept;
-  for (std::size_t i = 0; i < written.size(); ++i) {
-    if (!removed[i]) {
-      kept.push_back(std::move(written[i]));
-      continue;
-    }
-    for (const auto& b : written[i].bases) bytes += remove_unchanged(b);
-    bytes += remove_unchanged(written[i].data);
-  }
-  written = std::move(kept);
-  return bytes;
 }
 
 void remove_superseded_files(const Context& ctx, double kept_hz) {

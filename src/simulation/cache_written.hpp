@@ -23,13 +23,11 @@ void note_basis_written(const std::string& served, const std::string& file);
 // it is still what it wrote (its stamp); "" otherwise.
 std::string unchanged_data_file(const std::string& cache_key, double cutoff_hz);
 
-// Removes the data this process wrote below kept_hz, and the bases it wrote
-// from them, where it also wrote data of the same key at or above kept_hz
-// that are still there (each file only if unchanged since: its stamp).
-// Returns the bytes removed.
-double remove_superseded_data(double kept_hz);
-// The same on rank 0, and a console line if it removed any (an accuracy
-// pilot that took kept_hz).
+// Rank 0 removes the data this process wrote below kept_hz, and the bases
+// it wrote from them, where it also wrote data of the same key at or above
+// kept_hz that are still there (each file only if unchanged since: its
+// stamp), and says so on the console if it removed any (an accuracy pilot
+// that took kept_hz).
 void remove_superseded_files(const Context& ctx, double kept_hz);
 
 }  // namespace pcsim::simulation

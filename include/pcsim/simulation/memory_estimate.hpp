@@ -73,8 +73,8 @@ struct ModalMemoryNeed {
 // once as the modes are computed and the basis formed in their storage
 // (simulation/mode_row_store.hpp), and at a raised cut-off the lower one's
 // rows (modes - computed) beside that room while they move into it (an
-// accuracy pilot's raise, simulation/modal_basis.hpp); the eigensolver's vectors over the
-// catenary's unknowns while it computes a chunk of about 800 modes
+// accuracy pilot's raise, simulation/modal_basis.hpp); the eigensolver's
+// vectors over the catenary's unknowns while it computes a chunk of about 800 modes
 // (modal_basis_internal.hpp, kChunkModes): kEigensolverVectors, or
 // kEigensolverVectorsPerMode for each mode computed where fewer; with a
 // moving window the shift products (vectors^2 doubles, then P in floats).
