@@ -5,18 +5,13 @@
 // the matrix; the same product for 32 states at once is a matrix-matrix
 // product that reads the matrix once (runs/bench/record_product_rate.cpp:
 // ~5 times less time per state), exact in double precision.
-// petscblaslapack.h needs petscsys.h first.
-#include <petscsys.h>
-// clang-format off
-#include <petscblaslapack.h>
-// clang-format on
-
 #include <unistd.h>
 
 #include <algorithm>
 #include <memory>
 
 #include "pcsim/assembly/modal_catenary.hpp"
+#include "pcsim/core/dense_gemm.hpp"
 #include "pcsim/core/error.hpp"
 
 namespace pcsim::assembly {
@@ -27,22 +22,15 @@ constexpr long kKeptStatesGrowth = 32;  // columns added when the kept states ar
 
 // C (rows x states, column-major, leading dimension rows) = A S, A a
 // row-major rows x n matrix, S rows lo .. lo + n - 1 of the first 'states'
-// columns of a column-major matrix, by the system's BLAS (BLIS:
+// columns of a column-major matrix, by the system's BLAS (dense_gemm; BLIS:
 // runs/bench_blas.sh).
 void product(const ModalCatenary::RowMatrix& a, const Eigen::MatrixXd& s, long lo, long states,
              std::vector<double>& c) {
   c.assign(static_cast<std::size_t>(a.rows() * states), 0.0);
   if (a.rows() == 0 || states == 0 || a.cols() == 0) return;
-  PetscBLASInt rows, n, m, lead_a, lead_s;
-  PCSIM_PETSC(PetscBLASIntCast(a.rows(), &rows));
-  PCSIM_PETSC(PetscBLASIntCast(states, &n));
-  PCSIM_PETSC(PetscBLASIntCast(a.cols(), &m));
-  PCSIM_PETSC(PetscBLASIntCast(a.cols(), &lead_a));
-  PCSIM_PETSC(PetscBLASIntCast(s.rows(), &lead_s));
-  const PetscScalar one = 1, zero = 0;
   // A row-major is A^T column-major (m x rows).
-  BLASgemm_("T", "N", &rows, &n, &m, &one, a.data(), &lead_a, s.data() + lo, &lead_s, &zero,
-            c.data(), &rows);
+  dense_gemm(true, false, a.rows(), states, a.cols(), 1.0, a.data(), a.cols(), s.data() + lo,
+             s.rows(), 0.0, c.data(), a.rows());
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "pcsim/catenary/reduced_basis.hpp"
+#include "pcsim/core/dense_gemm.hpp"
 #include "pcsim/core/union_find.hpp"
 
 namespace pcsim::catenary {
@@ -201,10 +202,13 @@ void fill_rows(const ModalData& data, const std::vector<long>& keep, const RitzC
     if (release) std::vector<double>().swap(*release);
   }
   if (r == 0) return;
-  Eigen::Map<RowMatrix> rows(out.data(), nr, c);
+  // Row-major blocks as the BLAS's column-major transposes (dense_gemm).
   const long nd = static_cast<long>(data.shapes());
-  const RowMatrix complement = ConstMap(data.shape_rows.data(), nr, nd) - rows.leftCols(m) * ritz.C;
-  rows.rightCols(r).noalias() = complement * ritz.X;
+  std::vector<double> complement(data.shape_rows);  // Psi - Phi_keep C, nr x nd
+  dense_gemm(false, false, nd, nr, m, -1.0, ritz.C.data(), nd, out.data(), c, 1.0,
+             complement.data(), nd);
+  dense_gemm(true, false, r, nr, nd, 1.0, ritz.X.data(), nd, complement.data(), nd, 0.0,
+             out.data() + m, c);  // (Psi - Phi_keep C) X
 }
 
 // The window's shift in the basis B = [Phi_keep, Psi X - Phi_keep CX]:
@@ -226,19 +230,24 @@ std::vector<double> shift_in_basis(std::vector<double> g, long total, long modes
     const long n = std::min(kRows, total - i0);
     Rows rows(g.data() + i0 * total, n, total, stride);
     for (long i = 0; i < m; ++i) block.col(i).head(n) = rows.col(keep[i]);
-    if (r > 0)
-      block.topRightCorner(n, r).noalias() =
-          rows.rightCols(nd) * ritz.X - block.topLeftCorner(n, m) * ritz.CX;
+    if (r > 0) {  // G(rows, shapes) X - (G T)(rows, kept) CX, as the BLAS's transposes
+      dense_gemm(true, false, r, n, nd, 1.0, ritz.X.data(), nd, rows.data() + modes, total, 0.0,
+                 block.data() + m, c);
+      dense_gemm(true, false, r, n, m, -1.0, ritz.CX.data(), m, block.data(), c, 1.0,
+                 block.data() + m, c);
+    }
     rows.leftCols(c) = block.topRows(n);
   }
   RowMatrix bottom(r, c);  // X^T (G T)(shapes, :) - CX^T (G T)(keep, :)
   if (r > 0) {
-    bottom.noalias() = ritz.X.transpose() * Rows(g.data() + modes * total, nd, c, stride);
+    dense_gemm(false, false, c, r, nd, 1.0, g.data() + modes * total, total, ritz.X.data(), nd, 0.0,
+               bottom.data(), c);
     for (long i0 = 0; i0 < m; i0 += kRows) {
       const long n = std::min(kRows, m - i0);
       for (long i = 0; i < n; ++i)
         block.row(i) = Rows(g.data() + keep[i0 + i] * total, 1, c, stride);
-      bottom.noalias() -= ritz.CX.middleRows(i0, n).transpose() * block.topRows(n);
+      dense_gemm(false, false, c, r, n, -1.0, block.data(), c, ritz.CX.data() + i0, m, 1.0,
+                 bottom.data(), c);
     }
   }
   // Row i of P from row keep[i] >= i of G T: no later source is overwritten.

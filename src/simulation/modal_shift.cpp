@@ -1,17 +1,12 @@
 // The products G = V^T M S V of a moving window's shift over the modal
 // data's vectors (modal_basis_internal.hpp, ShiftProducts).
-// petscblaslapack.h needs petscsys.h first.
-// clang-format off
-#include <petscsys.h>
-#include <petscblaslapack.h>
-// clang-format on
-
 #include <malloc.h>
 
 #include <Eigen/Core>
 #include <algorithm>
 
 #include "modal_basis_internal.hpp"
+#include "pcsim/core/dense_gemm.hpp"
 #include "pcsim/core/error.hpp"
 #include "pcsim/core/profiling.hpp"
 
@@ -63,20 +58,11 @@ std::vector<RowRange> nonzero_row_ranges(const Eigen::MatrixXd& W, long first_co
 void product_tn_rows(long m, long n, const std::vector<RowRange>& rows, const double* A, long lda,
                      const double* B, long ldb, double* C, long ldc) {
   if (m == 0 || n == 0) return;
-  PetscBLASInt bm, bn, blda, bldb, bldc;
-  PCSIM_PETSC(PetscBLASIntCast(m, &bm));
-  PCSIM_PETSC(PetscBLASIntCast(n, &bn));
-  PCSIM_PETSC(PetscBLASIntCast(std::max(lda, 1L), &blda));
-  PCSIM_PETSC(PetscBLASIntCast(std::max(ldb, 1L), &bldb));
-  PCSIM_PETSC(PetscBLASIntCast(ldc, &bldc));
-  const double one = 1, zero = 0;
   bool written = false;
   for (const RowRange& r : rows) {
     if (r.end == r.begin) continue;
-    PetscBLASInt bk;
-    PCSIM_PETSC(PetscBLASIntCast(r.end - r.begin, &bk));
-    BLASgemm_("T", "N", &bm, &bn, &bk, &one, A + r.begin, &blda, B + r.begin, &bldb,
-              written ? &one : &zero, C, &bldc);
+    dense_gemm(true, false, m, n, r.end - r.begin, 1.0, A + r.begin, lda, B + r.begin, ldb,
+               written ? 1.0 : 0.0, C, ldc);
     written = true;
   }
   if (!written)  // no rows: C = 0
