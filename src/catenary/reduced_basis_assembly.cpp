@@ -10,6 +10,7 @@
 
 #include "pcsim/catenary/reduced_basis.hpp"
 #include "pcsim/core/dense_gemm.hpp"
+#include "pcsim/core/profiling.hpp"
 #include "pcsim/core/union_find.hpp"
 
 namespace pcsim::catenary {
@@ -263,6 +264,7 @@ std::vector<double> shift_in_basis(std::vector<double> g, long total, long modes
 ReducedBasis assemble(const ModalData& data, std::vector<double> shift_products,
                       std::vector<double>* release, const CatenaryMesh& mesh,
                       const ModalSettings& s) {
+  const ScopedEvent timed(log_events().basis_assembly);
   if (s.max_frequency_hz > data.cutoff_hz * (1 + 1e-12) && data.cutoff_hz > 0)
     throw std::logic_error("reduced basis: the data stop below the cut-off asked for");
   ReducedBasis b;

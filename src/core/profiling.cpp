@@ -40,6 +40,7 @@ const LogEvents& log_events() {
     e.dd_interface = register_event("pcsimDDInterface");
     e.shift_products = register_event("pcsimShiftProd");
     e.shift_gemm = register_event("pcsimShiftGemm");
+    e.basis_assembly = register_event("pcsimBasisAsm");
     return e;
   }();
   return events;

@@ -23,6 +23,7 @@ struct LogEvents {
   PetscLogEvent dd_interface;     // its interface solve x_G = S^-1 g (replicated)
   PetscLogEvent shift_products;   // a modal window's shift products G = V^T M S V (set-up)
   PetscLogEvent shift_gemm;       // their dense products (BLAS dgemm)
+  PetscLogEvent basis_assembly;   // a reduced basis assembled from its modal data (set-up)
 };
 
 // Wall-clock time [s] by PETSc's timer (the clock of -log_view): for differences.
