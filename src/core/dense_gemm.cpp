@@ -16,7 +16,7 @@ void dense_gemm(bool transpose_a, bool transpose_b, long m, long n, long k, doub
                 const double* A, long lda, const double* B, long ldb, double beta, double* C,
                 long ldc) {
   if (m == 0 || n == 0) return;
-  if (k == 0) {  // no terms: C = beta C (the BLAS may not be asked for k = 0)
+  if (k == 0) {  // no terms: C = beta C here, where A and B may be null
     for (long j = 0; j < n; ++j)
       for (long i = 0; i < m; ++i) C[i + j * ldc] = beta == 0 ? 0.0 : beta * C[i + j * ldc];
     return;
