@@ -276,6 +276,7 @@ int main(int argc, char** argv) {
     pcsim::simulation::record_batches_choice();
     pcsim::simulation::record_thread_choice();
     pcsim::simulation::pilot_process_choice();
+    pcsim::simulation::step_cpu_choice(ctx.size);
     debug_fail_if_asked(ctx);
     status = it->second.run(ctx);
     if (status == 0) warn_unread_options(ctx);

@@ -1,6 +1,7 @@
 #include "pcsim/simulation/run_session.hpp"
 
 #include <petsctime.h>
+#include <sched.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -91,6 +92,8 @@ RunSession::RunSession(const Context& ctx, assembly::CoupledSystem& system,
       options_(std::move(options)),
       stop_(stop),
       path_(solver.cheap_path() ? "cheap" : "full"),
+      // (not the pilot's runs beside its second process: both would take CPU N)
+      step_cpu_(pilot_process_running() ? -1 : step_cpu_choice(ctx.size)),
       batch_records_(
           system.batches_records() && !options_.window &&
           (options_.record_batches == RecordBatches::on ||
@@ -272,6 +275,7 @@ void RunSession::time_step(long step, double start, long newton_iterations) {
   if (const solvers::LowRankStepSolver* low_rank = solver_.low_rank())
     events.rank_one_terms = static_cast<long>(low_rank->active_terms());
   events.exact_dropper_anchors = now.exact_dropper_anchors - counted_.exact_dropper_anchors;
+  events.cpu = sched_getcpu();  // -1 where the system cannot tell
   if (step_end_ > 0) timing_.add(step, start - step_end_, events);
 }
 
@@ -325,7 +329,10 @@ void RunSession::start_computing_records() {
   finish_computing_records();  // collective
   computing_ = std::move(pending_);
   pending_.clear();
-  computing_job_ = std::async(std::launch::async, system_.take_records());
+  computing_job_ = std::async(std::launch::async, [job = system_.take_records()] {
+    leave_step_cpu();  // -pcsim_step_cpu: the step's CPU is the step's
+    return job();
+  });
 }
 
 void RunSession::finish_computing_records() {

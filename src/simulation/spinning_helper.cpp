@@ -1,5 +1,7 @@
 #include "spinning_helper.hpp"
 
+#include "pcsim/simulation/step_cpu.hpp"
+
 namespace pcsim::simulation {
 
 namespace {
@@ -16,6 +18,7 @@ void SpinningHelper::start() {
   if (started()) return;
   state_.store(kSpin, std::memory_order_relaxed);
   thread_ = std::thread([this] {
+    leave_step_cpu();  // -pcsim_step_cpu: the step's CPU is the step's
     int state;
     while ((state = state_.load(std::memory_order_acquire)) == kSpin) cpu_relax();
     if (state == kWork) work_();

@@ -243,6 +243,8 @@ expect path-bad 2 "command line|key '-pcsim_path'|auto, full or cheap" yes run g
 expect path-cheap 2 "command line|key '-pcsim_path'|cheap path needs" yes run dsa-cheap.yaml -pcsim_path cheap
 expect record-batches 2 "command line|key '-pcsim_record_batches'|not auto, true or false" yes run good-run.yaml -pcsim_record_batches sometimes
 expect record-thread 2 "command line|key '-pcsim_record_thread'|not auto, true or false" yes run good-run.yaml -pcsim_record_thread sometimes
+expect step-cpu-word 2 "command line|key '-pcsim_step_cpu'|'first' is not a CPU number" yes run good-run.yaml -pcsim_step_cpu first
+expect step-cpu-absent 2 "command line|key '-pcsim_step_cpu'|CPU 4096 is not one this process may run on" yes run good-run.yaml -pcsim_step_cpu 4096
 
 # ---- found by the static solve (pcsim check solves nothing) ----
 expect hanging 2 "hanging-design.yaml|key 'wires'|form-finding found no tension distribution|wire 'hanger'" no \
@@ -345,6 +347,7 @@ expect2 geometry "key 'pantographs[0].working_height'" run dsa-high.yaml
 expect2 output "key '-o'" static good-static.yaml -o foreign
 expect2 design-dir "key 'catenary.design'" static design-dir.yaml
 expect2 form-finding "key 'wires'" static hanging.yaml
+expect2 step-cpu "pins the stepping thread of a run of one rank; on 2 ranks" run good-run.yaml -pcsim_step_cpu 0
 
 # A refused run's message is the last thing said: PETSc's summaries at
 # finalisation (-log_view, -options_left) would follow it with a page on stdout.

@@ -81,4 +81,37 @@ TEST(StepTiming, SlowestStepsNameTheirCauses) {
   EXPECT_NE(line.find("dropper_exact_anchor 1, 4.000"), std::string::npos) << line;
 }
 
+// The CPU each step ended on (sched_getcpu in the run): a virtual machine's
+// two CPUs can run at different speeds (docs/benchmarks.md, "The machine's
+// two CPUs at different speeds"), so the steps' count and mean per CPU say
+// where a run's time went. The first step is apart; an unknown CPU (-1) is
+// not counted.
+TEST(StepTiming, StepsCountedByTheirCpu) {
+  StepTiming timing;
+  StepEvents on0, on1, unknown;
+  on0.cpu = 0;
+  on1.cpu = 1;
+  timing.add(1, 9e-3, on1);  // the first step: apart
+  timing.add(2, 1e-3, on0);
+  timing.add(3, 3e-3, on0);
+  timing.add(4, 5e-3, on1);
+  timing.add(5, 7e-3, unknown);
+  const auto by_cpu = timing.json()["by_cpu"];
+  ASSERT_EQ(by_cpu.size(), 2u);
+  EXPECT_EQ(by_cpu["0"]["steps"], 2);
+  EXPECT_DOUBLE_EQ(by_cpu["0"]["mean_ms"].get<double>(), 2.0);
+  EXPECT_EQ(by_cpu["1"]["steps"], 1);
+  EXPECT_DOUBLE_EQ(by_cpu["1"]["mean_ms"].get<double>(), 5.0);
+  const std::string line = timing.summary_line();
+  EXPECT_NE(line.find("    steps by CPU (count, mean ms): 0 2, 2.000; 1 1, 5.000\n"),
+            std::string::npos)
+      << line;
+  // No CPU known: no line.
+  StepTiming none;
+  none.add(1, 1e-3, {});
+  none.add(2, 1e-3, {});
+  EXPECT_TRUE(none.json()["by_cpu"].empty());
+  EXPECT_EQ(none.summary_line().find("by CPU"), std::string::npos);
+}
+
 }  // namespace

@@ -17,6 +17,7 @@
 #include "pcsim/simulation/interrupt.hpp"
 #include "pcsim/simulation/moving_window.hpp"
 #include "pcsim/simulation/run_checkpoint.hpp"
+#include "pcsim/simulation/step_cpu.hpp"
 #include "pcsim/simulation/step_timing.hpp"
 #include "pcsim/solvers/dynamics.hpp"
 
@@ -129,6 +130,7 @@ class RunSession {
   long debug_signal_step_ = -1;  // -pcsim_debug_signal_step: raise SIGTERM there (tests)
   int debug_signal_rank_ = -1;   // on this rank only (-1: every rank)
   std::string path_;             // "cheap" or "full"
+  StepCpuPin step_cpu_;          // -pcsim_step_cpu (step_cpu.hpp)
   StepTiming timing_;            // this process's steps (a restart's earlier ones are not in it)
   double step_end_ = -1;         // when the previous step's record ended [s]
   // Counts whose changes over a step are its events (StepEvents).

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <array>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
@@ -36,6 +37,10 @@ struct StepEvents {
   // Reduced catenary: its bounded dropper check took every tracked dropper's
   // elongation in double precision (an exact anchor: each row read whole).
   long exact_dropper_anchors = 0;
+  // The CPU the stepping thread ended the step on (sched_getcpu; -1 not
+  // known): on a virtual machine two CPUs can run at different speeds
+  // (docs/benchmarks.md, "The machine's two CPUs at different speeds").
+  int cpu = -1;
 };
 
 class StepTiming {
@@ -47,7 +52,8 @@ class StepTiming {
   // {steps, first_step_ms, median_ms, p99_ms, p99_9_ms, p99_99_ms, max_ms,
   //  max_without_context_switch_ms, steps_with_context_switch, output_max_ms,
   //  output_mean_ms, slowest: [{step, ms, causes}], by_cause: {cause: {steps,
-  //  mean_ms}}, scheduling: StepScheduling::json()}; percentiles over the
+  //  mean_ms}}, by_cpu: {cpu: {steps, mean_ms}}, scheduling:
+  //  StepScheduling::json()}; percentiles over the
   //  steps after the first (nearest rank).
   //  by_cause counts a step under each of its causes (kCauseKeys), "none"
   //  for a step without one: what the run's mean step time is made of.
@@ -75,6 +81,7 @@ class StepTiming {
   long output_count_ = 0, switched_steps_ = 0;
   std::vector<Slow> slowest_;                                // the kSlowest largest, largest first
   std::array<std::pair<long, double>, kCauses> by_cause_{};  // steps, seconds
+  std::map<int, std::pair<long, double>> by_cpu_;            // steps, seconds
   static constexpr std::size_t kSlowest = 5;
 };
 
