@@ -475,6 +475,7 @@ nlohmann::json RunSession::facts() const {
     if (info.residual_update_checked) j["residual_update_gap_n"] = info.residual_update_gap;
   }
   j["step_time"] = timing_.json();
+  j["step_time"]["pinned"] = step_cpu_.json();
   return j;
 }
 

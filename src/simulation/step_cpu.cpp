@@ -5,8 +5,10 @@
 
 #include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "pcsim/core/error.hpp"
 
@@ -26,6 +28,47 @@ std::string allowed_list(const cpu_set_t& set) {
   return list;
 }
 
+// Passes a second of a loop over 256 KiB of doubles (a level-2 cache's
+// worth, as a modal step's vectors) on the calling thread, over 'seconds'.
+double probe_passes_per_s(double seconds) {
+  std::vector<double> x(32768, 1.0);
+  const auto pass = [&] {
+    for (double& v : x) v = v * 0.999999 + 1e-6;
+  };
+  pass();  // the caches and the clock settled
+  const auto start = std::chrono::steady_clock::now();
+  long passes = 0;
+  double elapsed = 0;
+  do {
+    pass();
+    ++passes;
+    elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  } while (elapsed < seconds);
+  volatile double keep = x[passes % x.size()];  // the loop's results used
+  (void)keep;
+  return passes / elapsed;
+}
+
+// The CPU of 'allowed' where the probe ran fastest; 'probe' gets each
+// CPU's passes a second. The thread is on the last CPU probed after.
+int fastest_cpu(const cpu_set_t& allowed, nlohmann::json& probe) {
+  probe = nlohmann::json::object();
+  int best = -1;
+  double best_rate = 0;
+  for (int c = 0; c < CPU_SETSIZE; ++c) {
+    if (!CPU_ISSET(c, &allowed)) continue;
+    cpu_set_t one;
+    CPU_ZERO(&one);
+    CPU_SET(c, &one);
+    if (sched_setaffinity(0, sizeof one, &one) != 0) continue;
+    const double rate = probe_passes_per_s(0.04);
+    probe[std::to_string(c)] = rate;
+    if (rate > best_rate) best = c, best_rate = rate;
+  }
+  if (best < 0) throw SolverError("-pcsim_step_cpu fastest: no CPU could be probed");
+  return best;
+}
+
 }  // namespace
 
 int step_cpu_choice(int ranks) {
@@ -35,8 +78,9 @@ int step_cpu_choice(int ranks) {
     PetscFunctionBeginUser;
     PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "pcsim run: the stepping thread", "");
     PetscCall(PetscOptionsString(kOption,
-                                 "the CPU the stepping thread runs on, the run's other threads "
-                                 "off it (one rank; docs/benchmarks.md)",
+                                 "the CPU the stepping thread runs on (a number, or fastest: "
+                                 "the one a short probe finds fastest), the run's other "
+                                 "threads off it (one rank; docs/benchmarks.md)",
                                  "", "", value, sizeof value, &given));
     PetscOptionsEnd();
     PetscFunctionReturn(0);
@@ -44,6 +88,13 @@ int step_cpu_choice(int ranks) {
   PCSIM_PETSC(read());
   if (!given) return -1;
   const std::string v = value;
+  if (v == "fastest") {
+    if (ranks > 1)
+      throw InputError("command line", kOption,
+                       "pins the stepping thread of a run of one rank; on " +
+                           std::to_string(ranks) + " ranks mpirun binds them (--bind-to core)");
+    return kFastestCpu;
+  }
   std::size_t used = 0;
   int cpu = -1;
   try {
@@ -52,7 +103,8 @@ int step_cpu_choice(int ranks) {
     used = 0;
   }
   if (v.empty() || used != v.size() || cpu < 0)
-    throw InputError("command line", kOption, "'" + v + "' is not a CPU number (0, 1, ...)");
+    throw InputError("command line", kOption,
+                     "'" + v + "' is not a CPU number (0, 1, ...) or fastest");
   if (ranks > 1)
     throw InputError("command line", kOption,
                      "pins the stepping thread of a run of one rank; on " + std::to_string(ranks) +
@@ -70,10 +122,11 @@ int step_cpu_choice(int ranks) {
 }
 
 StepCpuPin::StepCpuPin(int cpu) {
-  if (cpu < 0) return;
+  if (cpu == -1) return;
   CPU_ZERO(&before_);
   if (sched_getaffinity(0, sizeof before_, &before_) != 0)
     throw SolverError(std::string("-pcsim_step_cpu: the thread's CPUs: ") + std::strerror(errno));
+  if (cpu == kFastestCpu) cpu = fastest_cpu(before_, probe_);
   cpu_set_t one;
   CPU_ZERO(&one);
   CPU_SET(cpu, &one);
@@ -83,6 +136,14 @@ StepCpuPin::StepCpuPin(int cpu) {
   g_process_cpus = before_;
   g_pinned_cpu = cpu;
   pinned_ = true;
+  cpu_ = cpu;
+}
+
+nlohmann::json StepCpuPin::json() const {
+  if (!pinned_) return nullptr;
+  nlohmann::json j = {{"cpu", cpu_}};
+  if (!probe_.is_null()) j["probe_passes_per_s"] = probe_;
+  return j;
 }
 
 StepCpuPin::~StepCpuPin() {

@@ -7,7 +7,9 @@
 # the step). A first run whose accuracy pilot runs linear FE in its second
 # process (4-span EN 50318 line) steps on CPU N too, its pilot's runs not
 # pinned (both processes would share CPU N). A run without the option counts
-# every such step under some CPU.
+# every such step under some CPU. -pcsim_step_cpu fastest probes each CPU
+# (summary.json step_time.pinned.probe_passes_per_s) and steps on the one
+# with the most passes.
 # Bad values: tests/app/test_bad_input.sh. Run time: ~5 s.
 set -euo pipefail
 : "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:=/usr/bin/python3}"
@@ -22,6 +24,7 @@ run() {  # run NAME [options...]
 }
 mapfile -t cpus < <("$PCSIM_PYTHON" -c 'import os; print(*sorted(os.sched_getaffinity(0))[:2], sep="\n")')
 run plain
+run fastest -pcsim_step_cpu fastest
 for c in "${cpus[@]}"; do
   run "linear-$c" -pcsim_step_cpu "$c"
   run "modal-$c" -pcsim_step_cpu "$c" --set catenary.model=modal \
@@ -32,7 +35,7 @@ done
   --no-report --cache "$tmp/cache" -pcsim_step_cpu "${cpus[0]}" > "$tmp/pilot.log" 2>&1 ||
   { cat "$tmp/pilot.log"; exit 1; }
 "$PCSIM_PYTHON" - "$tmp" "${cpus[@]}" <<'PY'
-import json, sys
+import json, os, sys
 tmp, cpus = sys.argv[1], sys.argv[2:]
 def step_time(name):
     with open(f"{tmp}/{name}/summary.json") as f:
@@ -50,6 +53,15 @@ for c in cpus:
             failures.append(f"{level} on CPU {c}: {by_cpu}")
         if level == "modal" and not s.get("records_thread"):
             failures.append(f"modal on CPU {c}: no records' thread ({s.get('records_thread')})")
+s = step_time("fastest")["step_time"]
+probe, cpu = s["pinned"].get("probe_passes_per_s", {}), str(s["pinned"]["cpu"])
+allowed = sorted(os.sched_getaffinity(0))
+if sorted(map(int, probe)) != allowed or probe[cpu] != max(probe.values()):
+    failures.append(f"fastest: CPU {cpu} after the probe {probe} of CPUs {allowed}")
+if list(s["by_cpu"]) != [cpu]:
+    failures.append(f"fastest: steps on {s['by_cpu']}, pinned to {cpu}")
+if step_time("plain")["step_time"]["pinned"] is not None:
+    failures.append("plain: pinned")
 s = step_time("pilot")
 by_cpu = s["step_time"]["by_cpu"]
 if list(by_cpu) != [cpus[0]] or by_cpu[cpus[0]]["steps"] != s["step_time"]["steps"] - 1:

@@ -1,4 +1,4 @@
-// The CPU a run's stepping thread runs on (-pcsim_step_cpu N), for
+// The CPU a run's stepping thread runs on (-pcsim_step_cpu N|fastest), for
 // hardware-in-the-loop use: a rig keeps a CPU for the step (Linux's
 // isolcpus, or a virtual machine's fastest CPU: two CPUs of one machine can
 // run at different speeds, docs/benchmarks.md, "The machine's two CPUs at
@@ -10,19 +10,28 @@
 
 #include <sched.h>
 
+#include <nlohmann/json.hpp>
+
 namespace pcsim::simulation {
 
-// -pcsim_step_cpu: -1 when not given. Checked (InputError, exit 2): an
-// integer naming a CPU this process may run on, on a run of one rank
-// ('ranks': the run's).
+// -pcsim_step_cpu: -1 when not given, kFastestCpu for "fastest". Checked
+// (InputError, exit 2): "fastest" or an integer naming a CPU this process
+// may run on, on a run of one rank ('ranks': the run's).
+constexpr int kFastestCpu = -2;
 int step_cpu_choice(int ranks);
 
 // While alive, the calling thread on 'cpu' (-1: nothing changes; a run of the
 // accuracy pilot beside its second process is not pinned); its CPUs
 // as before when it ends. One at a time per process.
+// kFastestCpu: the CPU of the process's on which a short probe ran fastest
+// (a loop over 256 KiB of doubles, 40 ms on each CPU, just before the
+// steps: a virtual machine's CPUs can differ by half at the same moment).
 class StepCpuPin {
  public:
   explicit StepCpuPin(int cpu);
+  // {cpu: the CPU pinned} or, after a probe, {cpu, probe_passes_per_s: {cpu:
+  // passes}}; null when not pinned (summary.json step_time.pinned).
+  nlohmann::json json() const;
   ~StepCpuPin();
   StepCpuPin(const StepCpuPin&) = delete;
   StepCpuPin& operator=(const StepCpuPin&) = delete;
@@ -30,6 +39,8 @@ class StepCpuPin {
  private:
   cpu_set_t before_{};
   bool pinned_ = false;
+  int cpu_ = -1;
+  nlohmann::json probe_;  // passes a second per CPU (kFastestCpu)
 };
 
 // First thing on a thread a run starts: the process's CPUs but the stepping
