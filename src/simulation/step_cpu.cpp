@@ -88,13 +88,11 @@ int step_cpu_choice(int ranks) {
   PCSIM_PETSC(read());
   if (!given) return -1;
   const std::string v = value;
-  if (v == "fastest") {
-    if (ranks > 1)
-      throw InputError("command line", kOption,
-                       "pins the stepping thread of a run of one rank; on " +
-                           std::to_string(ranks) + " ranks mpirun binds them (--bind-to core)");
-    return kFastestCpu;
-  }
+  if (ranks > 1)
+    throw InputError("command line", kOption,
+                     "pins the stepping thread of a run of one rank; on " + std::to_string(ranks) +
+                         " ranks mpirun binds them (--bind-to core)");
+  if (v == "fastest") return kFastestCpu;
   std::size_t used = 0;
   int cpu = -1;
   try {
@@ -105,10 +103,6 @@ int step_cpu_choice(int ranks) {
   if (v.empty() || used != v.size() || cpu < 0)
     throw InputError("command line", kOption,
                      "'" + v + "' is not a CPU number (0, 1, ...) or fastest");
-  if (ranks > 1)
-    throw InputError("command line", kOption,
-                     "pins the stepping thread of a run of one rank; on " + std::to_string(ranks) +
-                         " ranks mpirun binds them (--bind-to core)");
   cpu_set_t allowed;
   CPU_ZERO(&allowed);
   if (sched_getaffinity(0, sizeof allowed, &allowed) != 0)
@@ -135,19 +129,18 @@ StepCpuPin::StepCpuPin(int cpu) {
                       std::to_string(cpu) + ": " + std::strerror(errno));
   g_process_cpus = before_;
   g_pinned_cpu = cpu;
-  pinned_ = true;
   cpu_ = cpu;
 }
 
 nlohmann::json StepCpuPin::json() const {
-  if (!pinned_) return nullptr;
+  if (cpu_ < 0) return nullptr;
   nlohmann::json j = {{"cpu", cpu_}};
   if (!probe_.is_null()) j["probe_passes_per_s"] = probe_;
   return j;
 }
 
 StepCpuPin::~StepCpuPin() {
-  if (!pinned_) return;
+  if (cpu_ < 0) return;
   g_pinned_cpu = -1;
   sched_setaffinity(0, sizeof before_, &before_);  // (no throw from a destructor)
 }

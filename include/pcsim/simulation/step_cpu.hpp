@@ -23,7 +23,7 @@ int step_cpu_choice(int ranks);
 // While alive, the calling thread on 'cpu' (-1: nothing changes; a run of the
 // accuracy pilot beside its second process is not pinned); its CPUs
 // as before when it ends. One at a time per process.
-// kFastestCpu: the CPU of the process's on which a short probe ran fastest
+// kFastestCpu: the process's CPU on which a short probe ran fastest
 // (a loop over 256 KiB of doubles, 40 ms on each CPU, just before the
 // steps: a virtual machine's CPUs can differ by half at the same moment).
 class StepCpuPin {
@@ -38,8 +38,7 @@ class StepCpuPin {
 
  private:
   cpu_set_t before_{};
-  bool pinned_ = false;
-  int cpu_ = -1;
+  int cpu_ = -1;          // the CPU pinned (-1: none)
   nlohmann::json probe_;  // passes a second per CPU (kFastestCpu)
 };
 
