@@ -1,8 +1,6 @@
 // The stepping thread's CPU (step_cpu.hpp).
 #include "pcsim/simulation/step_cpu.hpp"
 
-#include <petscsys.h>
-
 #include <atomic>
 #include <cerrno>
 #include <chrono>
@@ -11,6 +9,7 @@
 #include <vector>
 
 #include "pcsim/core/error.hpp"
+#include "pcsim/simulation/auto_option.hpp"
 
 namespace pcsim::simulation {
 
@@ -73,20 +72,12 @@ int fastest_cpu(const cpu_set_t& allowed, nlohmann::json& probe) {
 
 int step_cpu_choice(int ranks) {
   char value[64] = "";
-  PetscBool given = PETSC_FALSE;
-  auto read = [&]() -> PetscErrorCode {  // PETSc's macros return an error code
-    PetscFunctionBeginUser;
-    PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "pcsim run: the stepping thread", "");
-    PetscCall(PetscOptionsString(kOption,
-                                 "the CPU the stepping thread runs on (a number, or fastest: "
-                                 "the one a short probe finds fastest), the run's other "
-                                 "threads off it (one rank; docs/benchmarks.md)",
-                                 "", "", value, sizeof value, &given));
-    PetscOptionsEnd();
-    PetscFunctionReturn(0);
-  };
-  PCSIM_PETSC(read());
-  if (!given) return -1;
+  if (!read_option_string("pcsim run: the stepping thread", kOption,
+                          "the CPU the stepping thread runs on (a number, or fastest: the one a "
+                          "short probe finds fastest), the run's other threads off it (one rank; "
+                          "docs/benchmarks.md)",
+                          "", value, sizeof value))
+    return -1;
   const std::string v = value;
   if (ranks > 1)
     throw InputError("command line", kOption,

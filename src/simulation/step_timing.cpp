@@ -19,8 +19,9 @@ void StepTiming::add(long step, double seconds, const StepEvents& events) {
       by_cause_[c].second += seconds;
     }
   if (events.cpu >= 0) {
-    ++by_cpu_[events.cpu].first;
-    by_cpu_[events.cpu].second += seconds;
+    auto& [steps, total] = by_cpu_[events.cpu];
+    ++steps;
+    total += seconds;
   }
   if (events.involuntary_switches > 0)
     ++switched_steps_;
@@ -143,14 +144,14 @@ nlohmann::json StepTiming::json() const {
 
 namespace {
 
-// "    steps by CPU (count, mean ms): 0 7000, 0.072; 1 79, 0.101", or "".
-std::string cpu_line(const nlohmann::json& by_cpu) {
-  if (by_cpu.empty()) return "";
-  std::string line = "    steps by CPU (count, mean ms):";
+// "    steps by WHAT (count, mean ms): key steps, mean; ..." over {key:
+// {steps, mean_ms}} (the by_cause and by_cpu of json()).
+std::string counts_line(const char* what, const nlohmann::json& counts) {
+  std::string line = std::string("    steps by ") + what + " (count, mean ms):";
   const char* separator = " ";
   char text[80];
-  for (const auto& [cpu, count] : by_cpu.items()) {
-    std::snprintf(text, sizeof text, "%s%s %ld, %.3f", separator, cpu.c_str(),
+  for (const auto& [key, count] : counts.items()) {
+    std::snprintf(text, sizeof text, "%s%s %ld, %.3f", separator, key.c_str(),
                   count["steps"].get<long>(), count["mean_ms"].get<double>());
     line += text;
     separator = "; ";
@@ -174,18 +175,9 @@ std::string StepTiming::summary_line() const {
                 j["output_max_ms"].get<double>());
   std::string line = text;
   const auto& by_cause = j["by_cause"];
-  if (by_cause.size() > 1 || (!by_cause.empty() && !by_cause.contains("none"))) {
-    line += "    steps by cause (count, mean ms):";
-    const char* separator = " ";
-    for (const auto& [key, count] : by_cause.items()) {
-      std::snprintf(text, sizeof text, "%s%s %ld, %.3f", separator, key.c_str(),
-                    count["steps"].get<long>(), count["mean_ms"].get<double>());
-      line += text;
-      separator = "; ";
-    }
-    line += "\n";
-  }
-  line += cpu_line(j["by_cpu"]);
+  if (by_cause.size() > 1 || (!by_cause.empty() && !by_cause.contains("none")))
+    line += counts_line("cause", by_cause);
+  if (!j["by_cpu"].empty()) line += counts_line("CPU", j["by_cpu"]);
   for (std::size_t i = 0; i < slowest_.size() && i < 3; ++i) {
     std::snprintf(text, sizeof text, "    slowest: step %ld, %.3f ms (%s)\n", slowest_[i].step,
                   1e3 * slowest_[i].seconds, causes(slowest_[i].events).c_str());
