@@ -1,9 +1,9 @@
 // The job's processes on this node (run_session.hpp): for the record thread's
 // and the pilot's spare core, and for the memory check (app/inputs.cpp).
-#include <sched.h>
 #include <unistd.h>
 
 #include "pcsim/simulation/run_session.hpp"
+#include "pcsim/simulation/step_cpu.hpp"
 
 namespace pcsim::simulation {
 
@@ -25,9 +25,7 @@ int ranks_on_node(MPI_Comm comm) {
 }  // namespace
 
 bool core_to_spare_here(MPI_Comm comm) {
-  cpu_set_t allowed;
-  CPU_ZERO(&allowed);
-  const int cpus = sched_getaffinity(0, sizeof allowed, &allowed) == 0 ? CPU_COUNT(&allowed) : 1;
+  const int cpus = process_cpu_count();  // (not a pinned stepping thread's one CPU)
   const int processes = node_processes > 0 ? node_processes : ranks_on_node(comm);
   return cpus > 1 && sysconf(_SC_NPROCESSORS_ONLN) > processes;
 }

@@ -329,6 +329,7 @@ void RunSession::start_computing_records() {
   finish_computing_records();  // collective
   computing_ = std::move(pending_);
   pending_.clear();
+  const StepCpuWidened widened;  // (the thread begins off a pinned step's CPU)
   computing_job_ = std::async(std::launch::async, [job = system_.take_records()] {
     leave_step_cpu();  // -pcsim_step_cpu: the step's CPU is the step's
     return job();

@@ -17,6 +17,7 @@ void cpu_relax() {
 void SpinningHelper::start() {
   if (started()) return;
   state_.store(kSpin, std::memory_order_relaxed);
+  const StepCpuWidened widened;  // (the thread begins off a pinned step's CPU)
   thread_ = std::thread([this] {
     leave_step_cpu();  // -pcsim_step_cpu: the step's CPU is the step's
     int state;

@@ -136,6 +136,25 @@ StepCpuPin::~StepCpuPin() {
   sched_setaffinity(0, sizeof before_, &before_);  // (no throw from a destructor)
 }
 
+StepCpuWidened::StepCpuWidened() : cpu_(g_pinned_cpu.load()) {
+  if (cpu_ >= 0) sched_setaffinity(0, sizeof g_process_cpus, &g_process_cpus);
+}
+
+StepCpuWidened::~StepCpuWidened() {
+  if (cpu_ < 0) return;
+  cpu_set_t one;
+  CPU_ZERO(&one);
+  CPU_SET(cpu_, &one);
+  sched_setaffinity(0, sizeof one, &one);  // (no throw from a destructor)
+}
+
+int process_cpu_count() {
+  if (g_pinned_cpu.load() >= 0) return CPU_COUNT(&g_process_cpus);
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  return sched_getaffinity(0, sizeof allowed, &allowed) == 0 ? CPU_COUNT(&allowed) : 1;
+}
+
 void leave_step_cpu() {
   const int cpu = g_pinned_cpu.load();
   if (cpu < 0) return;

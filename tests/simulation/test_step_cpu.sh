@@ -9,7 +9,9 @@
 # pinned (both processes would share CPU N). A run without the option counts
 # every such step under some CPU. -pcsim_step_cpu fastest probes each CPU
 # (summary.json step_time.pinned.probe_passes_per_s) and steps on the one
-# with the most passes.
+# with the most passes. Pinning keeps the run's spare core: a modal run
+# whose records' thread is left to pcsim (-pcsim_record_thread auto) has one
+# pinned as unpinned, where the process may use two CPUs or more.
 # Bad values: tests/app/test_bad_input.sh. Run time: ~5 s.
 set -euo pipefail
 : "${PCSIM_BIN:?}" "${PCSIM_SOURCE_DIR:?}" "${PCSIM_PYTHON:=/usr/bin/python3}"
@@ -25,6 +27,9 @@ run() {  # run NAME [options...]
 mapfile -t cpus < <("$PCSIM_PYTHON" -c 'import os; print(*sorted(os.sched_getaffinity(0))[:2], sep="\n")')
 run plain
 run fastest -pcsim_step_cpu fastest
+modal_auto=(--set catenary.model=modal --set catenary.max_frequency_hz=150 -pcsim_record_batches true)
+run modal-auto "${modal_auto[@]}"
+run modal-auto-pinned "${modal_auto[@]}" -pcsim_step_cpu fastest
 for c in "${cpus[@]}"; do
   run "linear-$c" -pcsim_step_cpu "$c"
   run "modal-$c" -pcsim_step_cpu "$c" --set catenary.model=modal \
@@ -60,6 +65,9 @@ if sorted(map(int, probe)) != allowed or probe[cpu] != max(probe.values()):
     failures.append(f"fastest: CPU {cpu} after the probe {probe} of CPUs {allowed}")
 if list(s["by_cpu"]) != [cpu]:
     failures.append(f"fastest: steps on {s['by_cpu']}, pinned to {cpu}")
+threads = [step_time(n).get("records_thread") for n in ("modal-auto", "modal-auto-pinned")]
+if threads != [len(allowed) > 1] * 2:
+    failures.append(f"records' thread unpinned, pinned: {threads} with CPUs {allowed}")
 if step_time("plain")["step_time"]["pinned"] is not None:
     failures.append("plain: pinned")
 s = step_time("pilot")

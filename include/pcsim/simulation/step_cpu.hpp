@@ -42,6 +42,29 @@ class StepCpuPin {
   nlohmann::json probe_;  // passes a second per CPU (kFastestCpu)
 };
 
+// The CPUs this process may run on: while the stepping thread is pinned, its
+// CPUs before (a pinned thread's own affinity is one CPU, and a run's spare
+// core for its records' thread or its window's helper is the process's);
+// else the calling thread's.
+int process_cpu_count();
+
+// While alive on the stepping thread, pinned: its CPUs the process's, so that
+// a thread it starts begins off the step's CPU (a new thread has its
+// creator's CPUs, and one begun on the step's CPU waited there for the
+// step's time slice, milliseconds, before leave_step_cpu moved it:
+// docs/benchmarks.md, "A pinned step's threads started off its CPU").
+// Nothing while not pinned.
+class StepCpuWidened {
+ public:
+  StepCpuWidened();
+  ~StepCpuWidened();
+  StepCpuWidened(const StepCpuWidened&) = delete;
+  StepCpuWidened& operator=(const StepCpuWidened&) = delete;
+
+ private:
+  int cpu_ = -1;  // the step's CPU, restored at the end (-1: not pinned)
+};
+
 // First thing on a thread a run starts: the process's CPUs but the stepping
 // thread's, while one is pinned (else nothing changes).
 void leave_step_cpu();
