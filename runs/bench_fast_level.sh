@@ -8,6 +8,10 @@
 # and after. Run it on an otherwise idle machine: it measures wall time. The
 # first modal run of a design computes its modes into the cache (OUT/cache;
 # minutes for 20 spans), later ones read them (the set-up column says which).
+# Every run steps on the CPU a short probe finds fastest (-pcsim_step_cpu
+# fastest): this machine's CPUs can differ by 1.5x or more, and which one is
+# slower changes within minutes (docs/benchmarks.md, "The machine's two CPUs
+# at different speeds"); a pcsim option after -- overrides it.
 #   runs/bench_fast_level.sh                      # every scene (about an hour)
 #   runs/bench_fast_level.sh runs/interaction/en50318-300.yaml ...   # these only
 #   OUT=out/bench-fast runs/bench_fast_level.sh [scenes] -- [pcsim options]
@@ -43,7 +47,7 @@ for scene in "${scenes[@]}"; do
     [ "$model" = linear ] && pilot=false
     if ! build/pcsim run "$scene" -o "$dir" --overwrite --no-report --cache "$OUT/cache" \
       --set catenary.model=$model \
-      -pcsim_accuracy_pilot $pilot "$@" \
+      -pcsim_accuracy_pilot $pilot -pcsim_step_cpu fastest "$@" \
       > "$OUT/$name/$model.log" 2>&1; then
       echo "FAILED: $scene ($model), see $OUT/$name/$model.log" >&2
     fi
