@@ -20,6 +20,13 @@ constexpr const char* kOption = "-pcsim_step_cpu";
 std::atomic<int> g_pinned_cpu{-1};  // the stepping thread's CPU while pinned
 cpu_set_t g_process_cpus;           // the pinned thread's CPUs before (leave_step_cpu)
 
+cpu_set_t only(int cpu) {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  CPU_SET(cpu, &set);
+  return set;
+}
+
 std::string allowed_list(const cpu_set_t& set) {
   std::string list;
   for (int c = 0; c < CPU_SETSIZE; ++c)
@@ -56,9 +63,7 @@ int fastest_cpu(const cpu_set_t& allowed, nlohmann::json& probe) {
   double best_rate = 0;
   for (int c = 0; c < CPU_SETSIZE; ++c) {
     if (!CPU_ISSET(c, &allowed)) continue;
-    cpu_set_t one;
-    CPU_ZERO(&one);
-    CPU_SET(c, &one);
+    const cpu_set_t one = only(c);
     if (sched_setaffinity(0, sizeof one, &one) != 0) continue;
     const double rate = probe_passes_per_s(0.04);
     probe[std::to_string(c)] = rate;
@@ -112,9 +117,7 @@ StepCpuPin::StepCpuPin(int cpu) {
   if (sched_getaffinity(0, sizeof before_, &before_) != 0)
     throw SolverError(std::string("-pcsim_step_cpu: the thread's CPUs: ") + std::strerror(errno));
   if (cpu == kFastestCpu) cpu = fastest_cpu(before_, probe_);
-  cpu_set_t one;
-  CPU_ZERO(&one);
-  CPU_SET(cpu, &one);
+  const cpu_set_t one = only(cpu);
   if (sched_setaffinity(0, sizeof one, &one) != 0)  // 0: the calling thread
     throw SolverError("-pcsim_step_cpu: the stepping thread not moved to CPU " +
                       std::to_string(cpu) + ": " + std::strerror(errno));
@@ -142,9 +145,7 @@ StepCpuWidened::StepCpuWidened() : cpu_(g_pinned_cpu.load()) {
 
 StepCpuWidened::~StepCpuWidened() {
   if (cpu_ < 0) return;
-  cpu_set_t one;
-  CPU_ZERO(&one);
-  CPU_SET(cpu_, &one);
+  const cpu_set_t one = only(cpu_);
   sched_setaffinity(0, sizeof one, &one);  // (no throw from a destructor)
 }
 
