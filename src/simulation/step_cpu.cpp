@@ -27,6 +27,12 @@ cpu_set_t only(int cpu) {
   return set;
 }
 
+// The calling thread's CPUs into 'set'; false (errno set) when unreadable.
+bool read_thread_cpus(cpu_set_t& set) {
+  CPU_ZERO(&set);
+  return sched_getaffinity(0, sizeof set, &set) == 0;  // 0: the calling thread
+}
+
 std::string allowed_list(const cpu_set_t& set) {
   std::string list;
   for (int c = 0; c < CPU_SETSIZE; ++c)
@@ -100,8 +106,7 @@ int step_cpu_choice(int ranks) {
     throw InputError("command line", kOption,
                      "'" + v + "' is not a CPU number (0, 1, ...) or fastest");
   cpu_set_t allowed;
-  CPU_ZERO(&allowed);
-  if (sched_getaffinity(0, sizeof allowed, &allowed) != 0)
+  if (!read_thread_cpus(allowed))
     throw InputError("command line", kOption,
                      std::string("the process's CPUs cannot be read: ") + std::strerror(errno));
   if (cpu >= CPU_SETSIZE || !CPU_ISSET(cpu, &allowed))
@@ -113,8 +118,7 @@ int step_cpu_choice(int ranks) {
 
 StepCpuPin::StepCpuPin(int cpu) {
   if (cpu == -1) return;
-  CPU_ZERO(&before_);
-  if (sched_getaffinity(0, sizeof before_, &before_) != 0)
+  if (!read_thread_cpus(before_))
     throw SolverError(std::string("-pcsim_step_cpu: the thread's CPUs: ") + std::strerror(errno));
   if (cpu == kFastestCpu) cpu = fastest_cpu(before_, probe_);
   const cpu_set_t one = only(cpu);
@@ -152,8 +156,7 @@ StepCpuWidened::~StepCpuWidened() {
 int process_cpu_count() {
   if (g_pinned_cpu.load() >= 0) return CPU_COUNT(&g_process_cpus);
   cpu_set_t allowed;
-  CPU_ZERO(&allowed);
-  return sched_getaffinity(0, sizeof allowed, &allowed) == 0 ? CPU_COUNT(&allowed) : 1;
+  return read_thread_cpus(allowed) ? CPU_COUNT(&allowed) : 1;
 }
 
 void leave_step_cpu() {
