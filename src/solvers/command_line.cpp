@@ -19,7 +19,7 @@ constexpr const char* kCommandLine = "command line";
   throw InputError(kCommandLine, option, reason);
 }
 
-std::string quoted(const std::string& text) {
+std::string in_quotes(const std::string& text) {
   return text.empty() ? std::string("nothing") : "'" + text + "'";
 }
 
@@ -62,9 +62,9 @@ double parse_real_option(const std::string& option, const std::string& text) {
   char* end = nullptr;
   const double value = std::strtod(text.c_str(), &end);
   if (text.empty() || end != text.c_str() + text.size())
-    fail(option, "must be a number (got " + quoted(text) + ")");
+    fail(option, "must be a number (got " + in_quotes(text) + ")");
   if (errno == ERANGE || !std::isfinite(value))
-    fail(option, "must be a finite number (got " + quoted(text) + ")");
+    fail(option, "must be a finite number (got " + in_quotes(text) + ")");
   return value;
 }
 
@@ -73,7 +73,7 @@ long parse_int_option(const std::string& option, const std::string& text) {
   char* end = nullptr;
   const long value = std::strtol(text.c_str(), &end, 10);
   if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE)
-    fail(option, "must be an integer (got " + quoted(text) + ")");
+    fail(option, "must be an integer (got " + in_quotes(text) + ")");
   return value;
 }
 
@@ -84,7 +84,7 @@ TimeIntegrationOptions read_time_integration_options(MPI_Comm comm) {
   if (texts.dt_set) {
     const double dt = parse_real_option("-ts_dt", texts.dt);
     if (!(dt > 0))
-      fail("-ts_dt", "must be a positive time step in seconds (got " + quoted(texts.dt) + ")");
+      fail("-ts_dt", "must be a positive time step in seconds (got " + in_quotes(texts.dt) + ")");
     o.dt = dt;
   }
   if (texts.type_set) {
@@ -93,7 +93,7 @@ TimeIntegrationOptions read_time_integration_options(MPI_Comm comm) {
     PetscErrorCode (*create)(TS) = nullptr;
     PCSIM_PETSC(PetscFunctionListFind(TSList, o.ts_type.c_str(), &create));
     if (!create)
-      fail("-ts_type", "unknown time integrator " + quoted(o.ts_type) + "; use hht or alpha2");
+      fail("-ts_type", "unknown time integrator " + in_quotes(o.ts_type) + "; use hht or alpha2");
     if (!integrates_second_order(o.ts_type))
       fail("-ts_type", "'" + o.ts_type +
                            "' integrates first-order systems only; a run is second order (M A + "
@@ -102,21 +102,21 @@ TimeIntegrationOptions read_time_integration_options(MPI_Comm comm) {
   if (texts.alpha_set) {
     const double alpha = parse_real_option("-ts_hht_alpha", texts.alpha);
     if (!(alpha >= 0 && alpha <= 1.0 / 3.0 + 1e-14))
-      fail("-ts_hht_alpha", "must lie in [0, 1/3] (got " + quoted(texts.alpha) + ")");
+      fail("-ts_hht_alpha", "must lie in [0, 1/3] (got " + in_quotes(texts.alpha) + ")");
     o.hht_alpha = alpha;
   }
   if (texts.max_time_set) {
     const double t = parse_real_option("-ts_max_time", texts.max_time);
     if (!(t > 0))
       fail("-ts_max_time",
-           "must be a positive simulated time in seconds (got " + quoted(texts.max_time) + ")");
+           "must be a positive simulated time in seconds (got " + in_quotes(texts.max_time) + ")");
     o.max_time = t;
   }
   if (texts.max_steps_set) {
     const long n = parse_int_option("-ts_max_steps", texts.max_steps);
     if (n < 1)  // a run of no step has no state to write (and no acceleration)
       fail("-ts_max_steps",
-           "must be a number of steps, 1 or more (got " + quoted(texts.max_steps) + ")");
+           "must be a number of steps, 1 or more (got " + in_quotes(texts.max_steps) + ")");
     o.max_steps = n;
   }
   return o;
