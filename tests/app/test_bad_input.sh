@@ -38,7 +38,7 @@ snapshot() {
 checksums() { (cd "$w" && find . -type f -print0 | LC_ALL=C sort -z | xargs -0 md5sum); }
 before=$(snapshot)
 before_sums=$(checksums)
-# Milliseconds since the epoch, without a process (bash's EPOCHREALTIME, its
+# Milliseconds since the epoch, without starting a program (bash's EPOCHREALTIME, its
 # decimal point the locale's).
 now_ms() { local t=${EPOCHREALTIME//[!0-9]/}; echo $((t / 1000)); }
 
@@ -54,9 +54,9 @@ expect() {
   for cmd in "${runs[@]}"; do
     cases=$((cases + 1))
     local status=0 problems=() start end line
-    start=${EPOCHREALTIME//[!0-9]/}
+    start=$(now_ms)
     (cd "$w" && "$PCSIM_BIN" "$cmd" "$@" > "$tmp/out.txt" 2> "$tmp/err.txt") || status=$?
-    end=${EPOCHREALTIME//[!0-9]/}
+    end=$(now_ms)
     local err
     err=$(< "$tmp/err.txt")
     [ "$status" -eq "$code" ] || problems+=("exit $status instead of $code")
@@ -81,7 +81,7 @@ expect() {
     else
       local first=""
       while IFS= read -r line; do [[ $line == pcsim* ]] && { first=${line:0:150}; break; }; done <<< "$err"
-      printf 'ok   %-16s %-10s %4d ms: %s\n' "$name" "$cmd" $(((end - start) / 1000)) "$first"
+      printf 'ok   %-16s %-10s %4d ms: %s\n' "$name" "$cmd" $((end - start)) "$first"
     fi
   done
 }
