@@ -57,8 +57,13 @@ expect() {
     start=$(now_ms)
     (cd "$w" && "$PCSIM_BIN" "$cmd" "$@" > "$tmp/out.txt" 2> "$tmp/err.txt") || status=$?
     end=$(now_ms)
-    local err
+    local err lines=0 first=""
     err=$(< "$tmp/err.txt")
+    # One pass over its lines: the error messages, and the first pcsim line.
+    while IFS= read -r line; do
+      [[ $line == "pcsim: error"* ]] && lines=$((lines + 1))
+      [[ -z $first && $line == pcsim* ]] && first=${line:0:150}
+    done <<< "$err"
     [ "$status" -eq "$code" ] || problems+=("exit $status instead of $code")
     local needle
     IFS='|' read -r -a list <<< "$needles"
@@ -66,8 +71,6 @@ expect() {
       [[ $err == *"$needle"* ]] || problems+=("stderr lacks '$needle'")
     done
     if [ "$code" -ne 0 ]; then
-      local lines=0
-      while IFS= read -r line; do [[ $line == "pcsim: error"* ]] && lines=$((lines + 1)); done <<< "$err"
       [ "$lines" -eq 1 ] || problems+=("$lines error messages instead of 1")
     fi
     # Accepted runs of the real command write their results: remove them
@@ -79,8 +82,6 @@ expect() {
       sed 's/^/    /' "$tmp/err.txt" >&2
       failures=$((failures + 1))
     else
-      local first=""
-      while IFS= read -r line; do [[ $line == pcsim* ]] && { first=${line:0:150}; break; }; done <<< "$err"
       printf 'ok   %-16s %-10s %4d ms: %s\n' "$name" "$cmd" $((end - start)) "$first"
     fi
   done
