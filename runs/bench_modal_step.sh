@@ -12,7 +12,8 @@
 # at 136.1 Hz, its pilot's; flex136: dsa380-300-flexible at 136.1 Hz; win136:
 # the 1000-span window at 136.1 Hz, its pilot's since 2026-12-04; ts300:
 # three-sections-300 at its default 69.7 Hz, whose first run computes 18000
-# modes: 615 s with its run, peak 9887 MB (2026-12-04); the names:
+# modes: 615 s with its run, peak 9887 MB (2026-12-04); ts1: one of its
+# sections alone, runs/bench/one-section-300.yaml; the names:
 # runs/bench/modal_scenes.sh). Run it on an otherwise idle machine: it
 # measures wall time.
 set -euo pipefail

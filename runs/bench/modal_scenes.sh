@@ -13,5 +13,6 @@ declare -A MODAL_SCENES=(
   [two109]="runs/interaction/two-pantographs-300.yaml --set catenary.model=modal --set catenary.max_frequency_hz=108.8"
   [dsa136]="runs/interaction/dsa380-300-base.yaml --set catenary.model=modal --set catenary.max_frequency_hz=136.1"
   [ts300]="runs/lines/three-sections-300.yaml --set catenary.model=modal"
+  [ts1]="runs/bench/one-section-300.yaml --set catenary.model=modal"
   [flex136]="runs/interaction/dsa380-300-flexible.yaml --set catenary.model=modal --set catenary.max_frequency_hz=136.1"
 )
